@@ -1,0 +1,218 @@
+//! A bounding volume hierarchy built with the binned surface-area heuristic.
+//!
+//! Nodes are stored depth first: an interior node's first child follows it, the second child's
+//! index is stored. Traversal visits the near child first (by the ray direction's sign on the
+//! split axis) and keeps a fixed-size stack: no allocation per ray.
+use crate::math::{Aabb, Ray};
+use alloc::vec::Vec;
+use glam::Vec3;
+
+const BINS: usize = 16;
+const MAX_LEAF: usize = 4;
+const MAX_DEPTH: usize = 60;
+/// Cost of one traversal step relative to one primitive test.
+const TRAVERSAL_COST: f32 = 0.5;
+
+/// A node: its box, and either a primitive range (leaf, `count > 0`) or the second child.
+#[derive(Clone, Copy, Debug)]
+pub struct BvhNode {
+    /// Bounds of everything below.
+    pub bounds: Aabb,
+    /// Leaf: first primitive. Interior: index of the second child.
+    pub offset: u32,
+    /// Leaf: number of primitives. Interior: 0.
+    pub count: u16,
+    /// Interior: split axis.
+    pub axis: u16,
+}
+
+/// The hierarchy; primitives are referred to by their position in the build order.
+#[derive(Clone, Debug, Default)]
+pub struct Bvh {
+    /// Nodes, root first (empty for an empty scene).
+    pub nodes: Vec<BvhNode>,
+}
+
+struct Item {
+    bounds: Aabb,
+    centroid: Vec3,
+    index: u32,
+}
+
+impl Bvh {
+    /// Builds over primitive boxes; returns the hierarchy and the order in which the caller must
+    /// store its primitives (leaves refer to ranges of that order).
+    pub fn build(bounds: &[Aabb]) -> (Bvh, Vec<u32>) {
+        let mut items: Vec<Item> = bounds
+            .iter()
+            .enumerate()
+            .map(|(i, b)| Item {
+                bounds: *b,
+                centroid: b.centroid(),
+                index: i as u32,
+            })
+            .collect();
+        let mut nodes = Vec::with_capacity(2 * items.len().max(1));
+        if !items.is_empty() {
+            let n = items.len();
+            build_node(&mut items, 0, n, 0, &mut nodes);
+        }
+        (Bvh { nodes }, items.iter().map(|it| it.index).collect())
+    }
+
+    /// Bounds of the whole hierarchy.
+    pub fn bounds(&self) -> Aabb {
+        self.nodes.first().map_or(Aabb::EMPTY, |n| n.bounds)
+    }
+
+    /// Visits leaves the ray may reach, near first; `leaf(first, count, t_max)` tests the
+    /// primitives and returns the new `t_max` (or `None` to stop, for any-hit queries).
+    #[inline]
+    pub fn traverse(&self, ray: &Ray, mut leaf: impl FnMut(usize, usize, f32) -> Option<f32>) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let inv_d = Vec3::ONE / ray.d;
+        let neg = [inv_d.x < 0.0, inv_d.y < 0.0, inv_d.z < 0.0];
+        let mut t_max = ray.t_max;
+        let mut stack = [0u32; 64];
+        let mut sp = 0usize;
+        let mut node = 0usize;
+        loop {
+            let n = &self.nodes[node];
+            if n.bounds.hit(ray, inv_d, t_max).is_some() {
+                if n.count > 0 {
+                    match leaf(n.offset as usize, n.count as usize, t_max) {
+                        Some(t) => t_max = t,
+                        None => return,
+                    }
+                } else {
+                    let (near, far) = if neg[n.axis as usize] {
+                        (n.offset as usize, node + 1)
+                    } else {
+                        (node + 1, n.offset as usize)
+                    };
+                    stack[sp] = far as u32;
+                    sp += 1;
+                    node = near;
+                    continue;
+                }
+            }
+            if sp == 0 {
+                return;
+            }
+            sp -= 1;
+            node = stack[sp] as usize;
+        }
+    }
+}
+
+fn make_leaf(items: &[Item], start: usize, end: usize, bounds: Aabb, nodes: &mut Vec<BvhNode>) {
+    nodes.push(BvhNode {
+        bounds,
+        offset: start as u32,
+        count: (end - start) as u16,
+        axis: 0,
+    });
+    let _ = items;
+}
+
+fn build_node(
+    items: &mut [Item],
+    start: usize,
+    end: usize,
+    depth: usize,
+    nodes: &mut Vec<BvhNode>,
+) {
+    let slice = &items[start..end];
+    let bounds = slice.iter().fold(Aabb::EMPTY, |b, it| b.union(it.bounds));
+    let cb = slice.iter().fold(Aabb::EMPTY, |b, it| b.grow(it.centroid));
+    let count = end - start;
+    if count == 1 || depth >= MAX_DEPTH && count <= u16::MAX as usize {
+        return make_leaf(items, start, end, bounds, nodes);
+    }
+    let ext = cb.extent();
+    let mut best: Option<(f32, usize, usize)> = None; // (cost, axis, split bin)
+    for axis in 0..3 {
+        if !(ext[axis] > 0.0) {
+            continue;
+        }
+        let mut bin_bounds = [Aabb::EMPTY; BINS];
+        let mut bin_count = [0usize; BINS];
+        let scale = BINS as f32 / ext[axis];
+        for it in slice {
+            let b = (((it.centroid[axis] - cb.min[axis]) * scale) as usize).min(BINS - 1);
+            bin_count[b] += 1;
+            bin_bounds[b] = bin_bounds[b].union(it.bounds);
+        }
+        // Sweep from the right to get suffix areas, then from the left.
+        let mut right_area = [0.0f32; BINS];
+        let mut right_count = [0usize; BINS];
+        let (mut rb, mut rc) = (Aabb::EMPTY, 0usize);
+        for i in (1..BINS).rev() {
+            rb = rb.union(bin_bounds[i]);
+            rc += bin_count[i];
+            right_area[i] = rb.area();
+            right_count[i] = rc;
+        }
+        let (mut lb, mut lc) = (Aabb::EMPTY, 0usize);
+        for i in 0..BINS - 1 {
+            lb = lb.union(bin_bounds[i]);
+            lc += bin_count[i];
+            if lc == 0 || right_count[i + 1] == 0 {
+                continue;
+            }
+            let cost = lb.area() * lc as f32 + right_area[i + 1] * right_count[i + 1] as f32;
+            if best.map_or(true, |(c, _, _)| cost < c) {
+                best = Some((cost, axis, i));
+            }
+        }
+    }
+    let area = bounds.area();
+    let split = match best {
+        Some((cost, axis, bin)) => {
+            let split_cost = TRAVERSAL_COST + if area > 0.0 { cost / area } else { 0.0 };
+            if count <= MAX_LEAF && split_cost >= count as f32 {
+                return make_leaf(items, start, end, bounds, nodes);
+            }
+            let scale = BINS as f32 / ext[axis];
+            let minc = cb.min[axis];
+            let mid = partition(&mut items[start..end], |it| {
+                (((it.centroid[axis] - minc) * scale) as usize).min(BINS - 1) <= bin
+            });
+            Some((axis, start + mid))
+        }
+        None => None,
+    };
+    let (axis, mid) = match split {
+        Some(s) if s.1 > start && s.1 < end => s,
+        _ => {
+            // All centroids coincide: a leaf if small, else split by index to bound leaf size.
+            if count <= MAX_LEAF * 4 {
+                return make_leaf(items, start, end, bounds, nodes);
+            }
+            (0, start + count / 2)
+        }
+    };
+    let me = nodes.len();
+    nodes.push(BvhNode {
+        bounds,
+        offset: 0,
+        count: 0,
+        axis: axis as u16,
+    });
+    build_node(items, start, mid, depth + 1, nodes);
+    nodes[me].offset = nodes.len() as u32;
+    build_node(items, mid, end, depth + 1, nodes);
+}
+
+fn partition(items: &mut [Item], pred: impl Fn(&Item) -> bool) -> usize {
+    let mut first = 0;
+    for i in 0..items.len() {
+        if pred(&items[i]) {
+            items.swap(first, i);
+            first += 1;
+        }
+    }
+    first
+}

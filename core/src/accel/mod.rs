@@ -1,0 +1,3 @@
+//! Acceleration structures.
+mod bvh;
+pub use bvh::{Bvh, BvhNode};

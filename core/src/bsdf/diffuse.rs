@@ -1,0 +1,51 @@
+//! Lambertian reflection, one-sided as in Mitsuba 3 (the back side is black; wrap it in
+//! `twosided` for both sides).
+//!
+//! Scene parameters (`<bsdf type="diffuse">`): `reflectance` (rgb, default 0.5; Nori's `albedo`
+//! is the same parameter).
+use super::BsdfSample;
+use crate::math::INV_PI;
+use crate::sampling::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
+use crate::Color;
+use glam::{Vec2, Vec3};
+
+/// Lambertian BRDF `reflectance / pi`, sampled by the cosine.
+#[derive(Clone, Debug)]
+pub struct Diffuse {
+    /// Albedo in `[0, 1]` per channel.
+    pub reflectance: Color,
+}
+
+impl Diffuse {
+    /// `reflectance / pi * cos theta_o` on the front side, else 0.
+    pub fn eval(&self, wi: Vec3, wo: Vec3, _uv: Vec2) -> Color {
+        if wi.z <= 0.0 || wo.z <= 0.0 {
+            return Color::ZERO;
+        }
+        self.reflectance * (INV_PI * wo.z)
+    }
+    /// Cosine-hemisphere density.
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, _uv: Vec2) -> f32 {
+        if wi.z <= 0.0 {
+            return 0.0;
+        }
+        cosine_hemisphere_pdf(wo)
+    }
+    /// Cosine-weighted sample; the weight is the reflectance.
+    pub fn sample(&self, wi: Vec3, _u1: f32, u2: Vec2, _uv: Vec2) -> Option<BsdfSample> {
+        if wi.z <= 0.0 {
+            return None;
+        }
+        let wo = square_to_cosine_hemisphere(u2);
+        let pdf = cosine_hemisphere_pdf(wo);
+        if !(pdf > 0.0) {
+            return None;
+        }
+        Some(BsdfSample {
+            wo,
+            weight: self.reflectance,
+            pdf,
+            delta: false,
+        })
+    }
+}

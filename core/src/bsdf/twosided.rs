@@ -1,0 +1,52 @@
+//! Two-sided adapter: a model for the front and one for the back of a surface.
+//!
+//! Scene parameters (`<bsdf type="twosided">`): one nested `<bsdf>` (used on both sides) or two
+//! (front, then back). A ray arriving from the back sees the back model as if the surface were
+//! flipped.
+use super::{Bsdf, BsdfSample};
+use crate::Color;
+use alloc::boxed::Box;
+use glam::{Vec2, Vec3};
+
+/// Front and back BSDFs.
+#[derive(Clone, Debug)]
+pub struct TwoSided {
+    /// Model seen from the side the normal points to.
+    pub front: Box<Bsdf>,
+    /// Model seen from the other side.
+    pub back: Box<Bsdf>,
+}
+
+#[inline]
+fn flip(v: Vec3) -> Vec3 {
+    Vec3::new(v.x, v.y, -v.z)
+}
+
+impl TwoSided {
+    /// Evaluates the side `wi` is on.
+    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+        if wi.z >= 0.0 {
+            self.front.eval(wi, wo, uv)
+        } else {
+            self.back.eval(flip(wi), flip(wo), uv)
+        }
+    }
+    /// Density of the side `wi` is on.
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
+        if wi.z >= 0.0 {
+            self.front.pdf(wi, wo, uv)
+        } else {
+            self.back.pdf(flip(wi), flip(wo), uv)
+        }
+    }
+    /// Samples the side `wi` is on.
+    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+        if wi.z >= 0.0 {
+            self.front.sample(wi, u1, u2, uv)
+        } else {
+            let mut s = self.back.sample(flip(wi), u1, u2, uv)?;
+            s.wo = flip(s.wo);
+            Some(s)
+        }
+    }
+}

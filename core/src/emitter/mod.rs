@@ -1,0 +1,80 @@
+//! Emitters: a closed enum, one variant per file.
+mod area;
+mod constant;
+mod point;
+
+pub use area::AreaLight;
+pub use constant::ConstantEnv;
+pub use point::PointLight;
+
+use crate::geometry::{Disk, Interaction, Shape};
+use crate::Color;
+use glam::{Vec2, Vec3};
+
+/// What emitters need to know of the scene while sampling.
+pub struct EmitterCtx<'a> {
+    /// All shapes.
+    pub shapes: &'a [Shape],
+    /// All disks.
+    pub disks: &'a [Disk],
+}
+
+/// A light sample seen from a reference point.
+#[derive(Clone, Copy, Debug)]
+pub struct EmitterSample {
+    /// Unit direction from the reference point toward the light.
+    pub wo: Vec3,
+    /// Where the shadow segment ends (already offset off the light's surface), or `None` for a
+    /// light at infinity (shadow ray of unbounded extent along `wo`).
+    pub target: Option<Vec3>,
+    /// Emitted radiance arriving along `-wo`, divided by `pdf` (excludes light selection).
+    pub weight: Color,
+    /// Solid-angle density (1 for delta lights).
+    pub pdf: f32,
+    /// Whether the light is a delta distribution (a point): no other strategy can find it.
+    pub delta: bool,
+}
+
+/// Light sources.
+#[derive(Clone, Debug)]
+pub enum Emitter {
+    /// Emission from a shape's surface.
+    Area(AreaLight),
+    /// Uniform radiance from every direction at infinity.
+    Constant(ConstantEnv),
+    /// An isotropic point light.
+    Point(PointLight),
+}
+
+impl Emitter {
+    /// Samples light arriving at `it` (direct illumination).
+    pub fn sample(&self, ctx: &EmitterCtx, it: &Interaction, u: Vec2) -> Option<EmitterSample> {
+        match self {
+            Emitter::Area(e) => e.sample(ctx, it, u),
+            Emitter::Constant(e) => e.sample(it, u),
+            Emitter::Point(e) => e.sample(it),
+        }
+    }
+    /// Whether the emitter is at infinity (seen by rays that escape the scene).
+    pub fn is_environment(&self) -> bool {
+        matches!(self, Emitter::Constant(_))
+    }
+    /// Whether it is a delta light, which no ray can hit.
+    pub fn is_delta(&self) -> bool {
+        matches!(self, Emitter::Point(_))
+    }
+    /// Radiance of an environment emitter along an escaping ray direction `d`.
+    pub fn eval_environment(&self, _d: Vec3) -> Color {
+        match self {
+            Emitter::Constant(e) => e.radiance,
+            _ => Color::ZERO,
+        }
+    }
+    /// Density with which `sample` from `r` picks the direction `d` toward an environment.
+    pub fn pdf_environment(&self, _r: Vec3, _d: Vec3) -> f32 {
+        match self {
+            Emitter::Constant(e) => e.pdf(),
+            _ => 0.0,
+        }
+    }
+}

@@ -1,0 +1,54 @@
+//! Per-pixel accumulation of samples, in sample-index order, in f64.
+use crate::Color;
+
+/// The running sums of one pixel. Adding the same samples in the same order gives the same bits,
+/// whichever thread does it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PixelAccum {
+    /// Sum of accepted sample values.
+    pub sum: [f64; 3],
+    /// Sum of squared sample values (for variance estimates and statistical tests).
+    pub sum_sq: [f64; 3],
+    /// Number of accepted samples.
+    pub count: u64,
+    /// Number of samples dropped because they were not finite.
+    pub dropped: u64,
+}
+
+impl PixelAccum {
+    /// Adds one sample; a non-finite one is counted and dropped.
+    #[inline]
+    pub fn add(&mut self, c: Color) {
+        if !c.is_finite() {
+            self.dropped += 1;
+            return;
+        }
+        for k in 0..3 {
+            let v = c[k] as f64;
+            self.sum[k] += v;
+            self.sum_sq[k] += v * v;
+        }
+        self.count += 1;
+    }
+    /// Merges sums of a later sample range (`other` must follow `self` in sample order).
+    pub fn merge(&mut self, other: &PixelAccum) {
+        for k in 0..3 {
+            self.sum[k] += other.sum[k];
+            self.sum_sq[k] += other.sum_sq[k];
+        }
+        self.count += other.count;
+        self.dropped += other.dropped;
+    }
+    /// The pixel's estimate (mean of accepted samples; 0 if none).
+    pub fn mean(&self) -> [f32; 3] {
+        if self.count == 0 {
+            return [0.0; 3];
+        }
+        let n = self.count as f64;
+        [
+            (self.sum[0] / n) as f32,
+            (self.sum[1] / n) as f32,
+            (self.sum[2] / n) as f32,
+        ]
+    }
+}

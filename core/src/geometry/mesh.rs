@@ -1,0 +1,103 @@
+//! Triangle meshes in world space, with optional vertex normals and texture coordinates.
+//!
+//! Built by the driver from `obj`, `ply`, `rectangle` and `cube` shapes (see the driver's loaders
+//! for their scene parameters). Positions and normals are already transformed to world space.
+use crate::math::gamma;
+use crate::sampling::{warp::square_to_uniform_triangle, Discrete1D};
+use alloc::vec::Vec;
+use glam::{Vec2, Vec3};
+
+/// A triangle mesh in world space.
+#[derive(Clone, Debug)]
+pub struct Mesh {
+    /// Vertex positions.
+    pub positions: Vec<Vec3>,
+    /// Unit vertex normals, one per position, or empty.
+    pub normals: Vec<Vec3>,
+    /// Texture coordinates, one per position, or empty.
+    pub uvs: Vec<Vec2>,
+    /// Triangles as indices into `positions`.
+    pub indices: Vec<[u32; 3]>,
+    /// Triangles chosen by area (None when the mesh has no area).
+    area_dist: Option<Discrete1D>,
+}
+
+impl Mesh {
+    /// Builds the mesh; indices must be in range (the loaders check and report).
+    pub fn new(
+        positions: Vec<Vec3>,
+        normals: Vec<Vec3>,
+        uvs: Vec<Vec2>,
+        indices: Vec<[u32; 3]>,
+    ) -> Self {
+        let mut m = Mesh {
+            positions,
+            normals,
+            uvs,
+            indices,
+            area_dist: None,
+        };
+        m.area_dist = Discrete1D::new((0..m.indices.len()).map(|i| m.triangle_area(i)));
+        m
+    }
+    /// The three corners of triangle `i`.
+    #[inline]
+    pub fn vertices(&self, i: usize) -> [Vec3; 3] {
+        let [a, b, c] = self.indices[i];
+        [
+            self.positions[a as usize],
+            self.positions[b as usize],
+            self.positions[c as usize],
+        ]
+    }
+    /// Area of triangle `i`.
+    pub fn triangle_area(&self, i: usize) -> f32 {
+        let [a, b, c] = self.vertices(i);
+        0.5 * (b - a).cross(c - a).length()
+    }
+    /// Total area.
+    pub fn area(&self) -> f32 {
+        self.area_dist.as_ref().map_or(0.0, |d| d.total() as f32)
+    }
+    /// Unit geometric normal of triangle `i` (`cross(p1 - p0, p2 - p0)`, so counter-clockwise
+    /// winding faces the viewer), or zero for a degenerate triangle.
+    #[inline]
+    pub fn face_normal(&self, i: usize) -> Vec3 {
+        let [a, b, c] = self.vertices(i);
+        (b - a).cross(c - a).normalize_or_zero()
+    }
+    /// Surface point, its error bound, geometric normal, shading normal and uv at barycentrics.
+    pub fn surface(&self, i: usize, b1: f32, b2: f32) -> (Vec3, Vec3, Vec3, Vec3, Vec2) {
+        let b0 = 1.0 - b1 - b2;
+        let [i0, i1, i2] = self.indices[i].map(|k| k as usize);
+        let [p0, p1, p2] = [self.positions[i0], self.positions[i1], self.positions[i2]];
+        let p = p0 * b0 + p1 * b1 + p2 * b2;
+        let err = ((p0 * b0).abs() + (p1 * b1).abs() + (p2 * b2).abs()) * gamma(7);
+        let ng = self.face_normal(i);
+        let ns = if self.normals.is_empty() {
+            ng
+        } else {
+            let n = self.normals[i0] * b0 + self.normals[i1] * b1 + self.normals[i2] * b2;
+            let n = n.normalize_or_zero();
+            if n == Vec3::ZERO {
+                ng
+            } else {
+                n
+            }
+        };
+        let uv = if self.uvs.is_empty() {
+            Vec2::new(b1, b2)
+        } else {
+            self.uvs[i0] * b0 + self.uvs[i1] * b1 + self.uvs[i2] * b2
+        };
+        (p, err, ng, ns, uv)
+    }
+    /// Uniform point by area: triangle chosen by area, then uniform barycentrics.
+    /// Returns `(triangle, b1, b2)`; `None` for a mesh without area.
+    pub fn sample(&self, u: Vec2) -> Option<(usize, f32, f32)> {
+        let dist = self.area_dist.as_ref()?;
+        let (i, ux) = dist.sample_reuse(u.x);
+        let b = square_to_uniform_triangle(Vec2::new(ux, u.y));
+        Some((i, b.x, b.y))
+    }
+}

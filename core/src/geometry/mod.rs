@@ -1,0 +1,16 @@
+//! Shapes, their intersection routines, and surface sampling.
+mod disk;
+mod interaction;
+mod mesh;
+mod prim;
+mod shape;
+mod sphere;
+mod triangle;
+
+pub use disk::Disk;
+pub use interaction::Interaction;
+pub use mesh::Mesh;
+pub use prim::{Hit, Prim};
+pub use shape::{area_to_solid_angle, PositionSample, Shape, ShapeKind};
+pub use sphere::Sphere;
+pub use triangle::intersect_triangle;

@@ -1,0 +1,70 @@
+//! Primitives as the BVH stores them: triangles carry their corners inline.
+use super::{intersect_triangle, Disk, Sphere};
+use crate::math::{Aabb, Ray};
+use glam::Vec3;
+
+/// One intersectable primitive, referring back to the shape it belongs to.
+#[derive(Clone, Copy, Debug)]
+pub enum Prim {
+    /// Triangle `face` of mesh shape `shape`, corners copied for locality.
+    Triangle { v: [Vec3; 3], shape: u32, face: u32 },
+    /// A sphere shape.
+    Sphere { sphere: Sphere, shape: u32 },
+    /// Disk `disk` (index into the scene's disks) of shape `shape`.
+    Disk { disk: u32, shape: u32 },
+}
+
+/// The closest hit found by a traversal.
+#[derive(Clone, Copy, Debug)]
+pub struct Hit {
+    /// Ray parameter.
+    pub t: f32,
+    /// Index into the scene's primitive array.
+    pub prim: u32,
+    /// Barycentrics (triangles) or the local disk point.
+    pub uv: glam::Vec2,
+}
+
+impl Prim {
+    /// Bounding box.
+    pub fn bounds(&self, disks: &[Disk]) -> Aabb {
+        match self {
+            Prim::Triangle { v, .. } => Aabb::point(v[0]).grow(v[1]).grow(v[2]),
+            Prim::Sphere { sphere, .. } => {
+                let r = Vec3::splat(sphere.radius);
+                Aabb {
+                    min: sphere.center - r,
+                    max: sphere.center + r,
+                }
+            }
+            Prim::Disk { disk, .. } => {
+                let d = &disks[*disk as usize];
+                let mut b = Aabb::EMPTY;
+                for (x, y) in [(-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)] {
+                    b = b.grow(d.to_world.point(Vec3::new(x, y, 0.0)));
+                }
+                b
+            }
+        }
+    }
+    /// Shape index.
+    pub fn shape(&self) -> u32 {
+        match *self {
+            Prim::Triangle { shape, .. }
+            | Prim::Sphere { shape, .. }
+            | Prim::Disk { shape, .. } => shape,
+        }
+    }
+    /// Intersection in `(0, t_max)`: `(t, uv)`.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32, disks: &[Disk]) -> Option<(f32, glam::Vec2)> {
+        match self {
+            Prim::Triangle { v, .. } => intersect_triangle(ray, t_max, v[0], v[1], v[2])
+                .map(|(t, _, b1, b2)| (t, glam::Vec2::new(b1, b2))),
+            Prim::Sphere { sphere, .. } => {
+                sphere.intersect(ray, t_max).map(|t| (t, glam::Vec2::ZERO))
+            }
+            Prim::Disk { disk, .. } => disks[*disk as usize].intersect(ray, t_max),
+        }
+    }
+}

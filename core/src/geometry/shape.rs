@@ -1,0 +1,191 @@
+//! Shapes: geometry plus the material and emitter attached to it.
+//!
+//! Common scene parameters of every `<shape>`: `flip_normals` (boolean, default false), a nested
+//! or referenced `<bsdf>` (default: `diffuse` with reflectance 0.5, as in Mitsuba 3), an optional
+//! nested `<emitter type="area">`.
+use super::{Disk, Hit, Interaction, Mesh, Prim, Sphere};
+use crate::math::{Frame, Ray};
+use glam::{Vec2, Vec3};
+
+/// The geometry of a shape.
+#[derive(Clone, Debug)]
+pub enum ShapeKind {
+    /// A triangle mesh (also rectangles and cubes).
+    Mesh(Mesh),
+    /// An analytic sphere.
+    Sphere(Sphere),
+    /// An analytic disk; the index is into the scene's disk array.
+    Disk(u32),
+}
+
+/// A shape in the scene.
+#[derive(Clone, Debug)]
+pub struct Shape {
+    /// Geometry.
+    pub kind: ShapeKind,
+    /// Index of its BSDF.
+    pub bsdf: u32,
+    /// Index of its area emitter, if any.
+    pub emitter: Option<u32>,
+    /// Whether normals are flipped (inside-out).
+    pub flip_normals: bool,
+}
+
+/// A point on a shape's surface.
+#[derive(Clone, Copy, Debug)]
+pub struct PositionSample {
+    /// The point.
+    pub p: Vec3,
+    /// Its error bound.
+    pub p_err: Vec3,
+    /// Unit geometric normal there (after `flip_normals`): the area-to-solid-angle Jacobian.
+    pub ng: Vec3,
+    /// Unit shading normal there (after `flip_normals`): the side an area emitter lights.
+    pub ns: Vec3,
+}
+
+impl Shape {
+    /// Surface area.
+    pub fn area(&self, disks: &[Disk]) -> f32 {
+        match &self.kind {
+            ShapeKind::Mesh(m) => m.area(),
+            ShapeKind::Sphere(s) => s.area(),
+            ShapeKind::Disk(d) => disks[*d as usize].area,
+        }
+    }
+
+    #[inline]
+    fn orient(&self, n: Vec3) -> Vec3 {
+        if self.flip_normals {
+            -n
+        } else {
+            n
+        }
+    }
+
+    /// The full interaction for a hit on primitive `prim` of this shape.
+    pub fn interaction(&self, hit: &Hit, prim: &Prim, ray: &Ray, disks: &[Disk]) -> Interaction {
+        let (p, p_err, ng, ns, uv) = match (&self.kind, prim) {
+            (ShapeKind::Mesh(m), Prim::Triangle { face, .. }) => {
+                m.surface(*face as usize, hit.uv.x, hit.uv.y)
+            }
+            (ShapeKind::Sphere(s), _) => {
+                let (p, err) = s.project(ray.at(hit.t));
+                let n = (p - s.center) / s.radius;
+                let n = n.normalize_or(Vec3::Z);
+                let uv = Vec2::new(
+                    (libm::atan2f(n.y, n.x) * crate::math::INV_TWO_PI + 1.0) % 1.0,
+                    libm::acosf(n.z.clamp(-1.0, 1.0)) * crate::math::INV_PI,
+                );
+                (p, err, n, n, uv)
+            }
+            (ShapeKind::Disk(d), _) => {
+                let disk = &disks[*d as usize];
+                let (p, err) = disk.point(hit.uv);
+                let uv = Vec2::new(
+                    hit.uv.length(),
+                    (libm::atan2f(hit.uv.y, hit.uv.x) * crate::math::INV_TWO_PI + 1.0) % 1.0,
+                );
+                (p, err, disk.normal, disk.normal, uv)
+            }
+            _ => unreachable_shape(),
+        };
+        let ng = self.orient(ng);
+        let ns = self.orient(ns);
+        Interaction {
+            p,
+            p_err,
+            t: hit.t,
+            ng,
+            frame: Frame::from_normal(ns),
+            uv,
+            shape: hit_shape(prim),
+            wi: (-ray.d).normalize(),
+        }
+    }
+
+    /// A point uniformly distributed by area (density `1 / area`).
+    pub fn sample_position(&self, u: Vec2, disks: &[Disk]) -> Option<PositionSample> {
+        let (p, p_err, ng, ns) = match &self.kind {
+            ShapeKind::Mesh(m) => {
+                let (i, b1, b2) = m.sample(u)?;
+                let (p, err, ng, ns, _) = m.surface(i, b1, b2);
+                (p, err, ng, ns)
+            }
+            ShapeKind::Sphere(s) => {
+                let d = crate::sampling::warp::square_to_uniform_sphere(u);
+                let (p, err) = s.project(s.center + d * s.radius);
+                (p, err, d, d)
+            }
+            ShapeKind::Disk(d) => {
+                let disk = &disks[*d as usize];
+                let (p, err) = disk.sample(u);
+                (p, err, disk.normal, disk.normal)
+            }
+        };
+        Some(PositionSample {
+            p,
+            p_err,
+            ng: self.orient(ng),
+            ns: self.orient(ns),
+        })
+    }
+
+    /// A point on the shape sampled for the reference point `r`, with its solid-angle density
+    /// at `r`: cone sampling for spheres seen from outside, area sampling otherwise.
+    pub fn sample_from(&self, r: Vec3, u: Vec2, disks: &[Disk]) -> Option<(PositionSample, f32)> {
+        if let ShapeKind::Sphere(s) = &self.kind {
+            if let Some(cs) = s.sample_cone(r, u) {
+                let (p, p_err) = s.project(cs.p);
+                let n = self.orient(cs.n);
+                return Some((
+                    PositionSample {
+                        p,
+                        p_err,
+                        ng: n,
+                        ns: n,
+                    },
+                    cs.pdf,
+                ));
+            }
+        }
+        let ps = self.sample_position(u, disks)?;
+        let pdf = area_to_solid_angle(r, ps.p, ps.ng, 1.0 / self.area(disks));
+        (pdf > 0.0 && pdf.is_finite()).then_some((ps, pdf))
+    }
+
+    /// The solid-angle density with which [`Shape::sample_from`] picks point `p` (geometric
+    /// normal `ng`) when sampling from `r`.
+    pub fn pdf_from(&self, r: Vec3, p: Vec3, ng: Vec3, disks: &[Disk]) -> f32 {
+        if let ShapeKind::Sphere(s) = &self.kind {
+            if let Some(pdf) = s.cone_pdf(r) {
+                return pdf;
+            }
+        }
+        area_to_solid_angle(r, p, ng, 1.0 / self.area(disks))
+    }
+}
+
+/// Converts an area density at `p` (normal `n`) to a solid-angle density seen from `r`.
+#[inline]
+pub fn area_to_solid_angle(r: Vec3, p: Vec3, n: Vec3, pdf_area: f32) -> f32 {
+    let d = p - r;
+    let dist2 = d.length_squared();
+    let cos = n.dot(d).abs() / libm::sqrtf(dist2);
+    if cos > 0.0 && dist2 > 0.0 {
+        pdf_area * dist2 / cos
+    } else {
+        0.0
+    }
+}
+
+#[inline]
+fn hit_shape(prim: &Prim) -> u32 {
+    prim.shape()
+}
+
+#[cold]
+fn unreachable_shape() -> ! {
+    // The scene builder pairs primitives with their shapes; a mismatch is a construction bug.
+    panic!("primitive does not belong to its shape kind")
+}

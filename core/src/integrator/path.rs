@@ -1,0 +1,199 @@
+//! Unidirectional path tracer with three ways of finding light.
+//!
+//! Scene parameters (`<integrator type="path_mats|path_half|path_mis|path">`): `max_depth`
+//! (integer, default -1 = unbounded; 1 = only emitters seen directly, 2 = direct lighting),
+//! `rr_depth` (integer, default 5: Russian roulette from that depth on, with survival probability
+//! min(max throughput, 0.95)), `hide_emitters` (boolean, default false). These follow Mitsuba 3's
+//! `path` integrator exactly.
+//!
+//! Strategies:
+//! - `path_mats`: BSDF sampling only; light counts when a path hits an emitter.
+//! - `path_half`: CS500's estimator: an explicit light connection at every vertex plus implicit
+//!   hits, each weighted 1/2 (weight 1 where only one of them can produce the sample: delta
+//!   lights, delta BSDF components).
+//! - `path_mis` / `path`: the same two strategies combined by the power heuristic.
+use super::power_heuristic;
+use crate::emitter::Emitter;
+use crate::geometry::Interaction;
+use crate::math::Ray;
+use crate::sampling::Sampler;
+use crate::scene::Scene;
+use crate::Color;
+use glam::Vec3;
+
+/// How a path finds light.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Strategy {
+    /// BSDF sampling only.
+    Bsdf,
+    /// Emitter and BSDF sampling, each weighted 1/2.
+    Half,
+    /// Emitter and BSDF sampling combined by the power heuristic.
+    Mis,
+}
+
+/// A path tracer with Mitsuba 3's depth conventions.
+#[derive(Clone, Copy, Debug)]
+pub struct PathIntegrator {
+    /// How light is found.
+    pub strategy: Strategy,
+    /// Longest path in segments (`None` = unbounded).
+    pub max_depth: Option<u32>,
+    /// Depth from which Russian roulette applies.
+    pub rr_depth: u32,
+    /// Whether emitters seen directly by the camera are hidden.
+    pub hide_emitters: bool,
+}
+
+impl Default for PathIntegrator {
+    fn default() -> Self {
+        PathIntegrator {
+            strategy: Strategy::Mis,
+            max_depth: None,
+            rr_depth: 5,
+            hide_emitters: false,
+        }
+    }
+}
+
+/// What the next vertex needs to know about how the path left the previous one.
+#[derive(Clone, Copy)]
+struct Prev {
+    p: Vec3,
+    /// BSDF density of the sampled direction.
+    pdf: f32,
+    /// Whether emitter sampling ran there and could have produced this direction.
+    nee: bool,
+}
+
+impl PathIntegrator {
+    /// Weight of light found by hitting an emitter; `light_pdf` gives the density with which
+    /// emitter sampling at the previous vertex would have produced the same direction.
+    #[inline]
+    fn hit_weight(&self, prev: Option<Prev>, light_pdf: impl FnOnce(Vec3) -> f32) -> f32 {
+        let Some(prev) = prev else { return 1.0 };
+        if !prev.nee {
+            return 1.0;
+        }
+        match self.strategy {
+            Strategy::Bsdf => 1.0,
+            Strategy::Half => 0.5,
+            Strategy::Mis => power_heuristic(prev.pdf, light_pdf(prev.p)),
+        }
+    }
+
+    /// Emitter sampling at `si`: one light chosen uniformly, one point on it, one shadow ray.
+    #[inline]
+    fn sample_emitter<S: Sampler>(
+        &self,
+        scene: &Scene,
+        si: &Interaction,
+        bsdf: &crate::bsdf::Bsdf,
+        wi: Vec3,
+        sampler: &mut S,
+    ) -> Color {
+        let n = scene.emitters.len();
+        let idx = ((sampler.next_1d() * n as f32) as usize).min(n - 1);
+        let u = sampler.next_2d();
+        let sel_pdf = 1.0 / n as f32;
+        let Some(es) = scene.emitters[idx].sample(&scene.emitter_ctx(), si, u) else {
+            return Color::ZERO;
+        };
+        let wo = si.frame.to_local(es.wo);
+        let f = bsdf.eval(wi, wo, si.uv);
+        if f == Color::ZERO {
+            return Color::ZERO;
+        }
+        let shadow = match es.target {
+            Some(t) => si.spawn_ray_to(t),
+            None => si.spawn_ray(es.wo),
+        };
+        if scene.occluded(&shadow) {
+            return Color::ZERO;
+        }
+        let w = if es.delta {
+            1.0
+        } else {
+            match self.strategy {
+                Strategy::Half => 0.5,
+                _ => power_heuristic(es.pdf * sel_pdf, bsdf.pdf(wi, wo, si.uv)),
+            }
+        };
+        f * es.weight * (w / sel_pdf)
+    }
+
+    /// Radiance along `ray`.
+    pub fn li<S: Sampler>(&self, scene: &Scene, mut ray: Ray, sampler: &mut S) -> Color {
+        let max_depth = self.max_depth.unwrap_or(u32::MAX);
+        if max_depth == 0 {
+            return Color::ZERO;
+        }
+        let features = &scene.features;
+        let sel_pdf = if scene.emitters.is_empty() {
+            0.0
+        } else {
+            1.0 / scene.emitters.len() as f32
+        };
+        let mut result = Color::ZERO;
+        let mut throughput = Color::ONE;
+        let mut depth = 0u32;
+        let mut prev: Option<Prev> = None;
+        loop {
+            let visible = !(depth == 0 && self.hide_emitters);
+            let Some(si) = scene.intersect(&ray) else {
+                if let (true, Some(env)) = (visible, scene.environment) {
+                    let e = &scene.emitters[env as usize];
+                    let d = ray.d.normalize();
+                    let w = self.hit_weight(prev, |p| e.pdf_environment(p, d) * sel_pdf);
+                    result += throughput * e.eval_environment(d) * w;
+                }
+                break;
+            };
+            let shape = &scene.shapes[si.shape as usize];
+            if let (true, Some(ei)) = (visible, shape.emitter) {
+                if let Emitter::Area(a) = &scene.emitters[ei as usize] {
+                    let le = a.eval(si.frame.n, si.wi);
+                    if le != Color::ZERO {
+                        let w = self.hit_weight(prev, |p| {
+                            a.pdf(&scene.emitter_ctx(), p, si.p, si.ng) * sel_pdf
+                        });
+                        result += throughput * le * w;
+                    }
+                }
+            }
+            if depth + 1 >= max_depth {
+                break;
+            }
+            let bsdf = &scene.bsdfs[shape.bsdf as usize];
+            let wi = si.frame.to_local(si.wi);
+            let nee = self.strategy != Strategy::Bsdf && features.has_emitters && bsdf.has_smooth();
+            if nee {
+                result += throughput * self.sample_emitter(scene, &si, bsdf, wi, sampler);
+            }
+            let u1 = sampler.next_1d();
+            let u2 = sampler.next_2d();
+            let Some(bs) = bsdf.sample(wi, u1, u2, si.uv) else {
+                break;
+            };
+            throughput *= bs.weight;
+            prev = Some(Prev {
+                p: si.p,
+                pdf: bs.pdf,
+                nee: nee && !bs.delta && features.has_hittable_emitters,
+            });
+            ray = si.spawn_ray(si.frame.to_world(bs.wo));
+            depth += 1;
+            if depth >= self.rr_depth {
+                let q = throughput.max_element().min(0.95);
+                if !(sampler.next_1d() < q) {
+                    break;
+                }
+                throughput /= q;
+            }
+            if throughput == Color::ZERO || !throughput.is_finite() {
+                break;
+            }
+        }
+        result
+    }
+}

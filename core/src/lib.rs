@@ -1,0 +1,27 @@
+//! Tessera core: the `no_std` heart of the path tracer.
+//!
+//! Geometry, sampling, BSDFs, emitters, the camera and the per-sample `trace_path`
+//! ([`integrator::Integrator::li`]). Everything here is allocation-free per sample, has no global
+//! state and never panics on data: a non-finite sample is reported to the caller, who drops it.
+//! Math goes through `glam` with the `libm` backend, so every build computes the same bits.
+#![no_std]
+#![forbid(unsafe_code)]
+
+extern crate alloc;
+
+pub mod accel;
+pub mod bsdf;
+pub mod camera;
+pub mod emitter;
+pub mod film;
+pub mod geometry;
+pub mod integrator;
+pub mod math;
+pub mod render;
+pub mod sampling;
+pub mod scene;
+
+pub use glam;
+
+/// Linear RGB radiance, reflectance or throughput.
+pub type Color = glam::Vec3;

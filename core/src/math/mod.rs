@@ -1,0 +1,27 @@
+//! Small math building blocks: rays, frames, bounding boxes, transforms, floating-point bounds.
+mod aabb;
+mod float;
+mod frame;
+mod ray;
+mod transform;
+
+pub use aabb::Aabb;
+pub use float::{gamma, next_down, next_up, offset_ray_origin};
+pub use frame::Frame;
+pub use ray::Ray;
+pub use transform::Transform;
+
+/// Pi as f32.
+pub const PI: f32 = core::f32::consts::PI;
+/// 1 / pi.
+pub const INV_PI: f32 = core::f32::consts::FRAC_1_PI;
+/// 1 / (2 pi).
+pub const INV_TWO_PI: f32 = 0.5 * core::f32::consts::FRAC_1_PI;
+/// 1 / (4 pi).
+pub const INV_FOUR_PI: f32 = 0.25 * core::f32::consts::FRAC_1_PI;
+
+/// `sqrt(max(x, 0))`: safe against tiny negative rounding errors.
+#[inline]
+pub fn safe_sqrt(x: f32) -> f32 {
+    libm::sqrtf(x.max(0.0))
+}

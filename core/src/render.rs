@@ -1,0 +1,40 @@
+//! The per-sample entry point: one camera sample of one pixel, replayable alone.
+use crate::film::PixelAccum;
+use crate::integrator::Integrator;
+use crate::sampling::{IndependentSampler, Sampler};
+use crate::scene::Scene;
+use crate::Color;
+use core::ops::Range;
+use glam::Vec2;
+
+/// Radiance of sample `index` of pixel `(x, y)`: a pure function of its arguments.
+#[inline]
+pub fn render_sample(
+    scene: &Scene,
+    integrator: &Integrator,
+    seed: u64,
+    x: u32,
+    y: u32,
+    index: u64,
+) -> Color {
+    let mut sampler = IndependentSampler::new(seed, x, y, index);
+    let offset = scene.filter.sample(sampler.next_2d());
+    let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
+    let ray = scene.camera.generate_ray(pos);
+    integrator.li(scene, ray, &mut sampler)
+}
+
+/// Adds samples `samples` of pixel `(x, y)` to `acc`, in index order.
+pub fn render_pixel(
+    scene: &Scene,
+    integrator: &Integrator,
+    seed: u64,
+    x: u32,
+    y: u32,
+    samples: Range<u64>,
+    acc: &mut PixelAccum,
+) {
+    for i in samples {
+        acc.add(render_sample(scene, integrator, seed, x, y, i));
+    }
+}

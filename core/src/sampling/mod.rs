@@ -1,0 +1,22 @@
+//! Random numbers and warping functions.
+mod discrete;
+mod independent;
+pub mod warp;
+
+pub use discrete::Discrete1D;
+pub use independent::{pixel_key, IndependentSampler};
+
+use glam::Vec2;
+
+/// A source of sample values in `[0, 1)`. Implementations are deterministic functions of how they
+/// were created; the integrators draw from them in a fixed order.
+pub trait Sampler {
+    /// One value in `[0, 1)`.
+    fn next_1d(&mut self) -> f32;
+    /// Two values in `[0, 1)^2`.
+    fn next_2d(&mut self) -> Vec2 {
+        let x = self.next_1d();
+        let y = self.next_1d();
+        Vec2::new(x, y)
+    }
+}

@@ -1,0 +1,28 @@
+//! Command-line interface: argument definitions and the subcommands.
+pub mod render;
+
+use clap::{Parser, Subcommand};
+
+/// Tessera: a physically based Monte Carlo path tracer.
+#[derive(Parser, Debug)]
+#[command(name = "tessera", version, about)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// Subcommands.
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Render a scene file to one or more images.
+    Render(render::RenderArgs),
+}
+
+/// Parses `name=value` for `-D`.
+pub fn parse_define(s: &str) -> Result<(String, String), String> {
+    match s.split_once('=') {
+        Some((k, v)) if !k.is_empty() => Ok((k.to_string(), v.to_string())),
+        _ => Err(format!("expected name=value, found \"{s}\"")),
+    }
+}

@@ -1,0 +1,147 @@
+//! Renders a whole image: a fixed list of tiles handed to worker threads by an atomic cursor.
+//!
+//! Each pixel belongs to exactly one tile and each tile to exactly one worker, which adds the
+//! pixel's samples in sample-index order; composition only copies tiles into place. The result
+//! is therefore the same bits for any thread count and any tile size.
+use crossbeam_channel::unbounded;
+use std::ops::Range;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use tessera_core::film::PixelAccum;
+use tessera_core::integrator::Integrator;
+use tessera_core::render::render_pixel;
+use tessera_core::scene::Scene;
+
+/// How to render.
+#[derive(Clone, Debug)]
+pub struct RenderOptions {
+    /// Samples per pixel (the sample indices rendered are `samples`).
+    pub samples: Range<u64>,
+    /// Worker threads (at least 1).
+    pub threads: usize,
+    /// Tile edge in pixels (never derived from the thread count).
+    pub tile_size: u32,
+    /// Scene seed.
+    pub seed: u64,
+}
+
+/// A rectangle of pixels `[x0, x1) x [y0, y1)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Tile {
+    /// Left column.
+    pub x0: u32,
+    /// Top row.
+    pub y0: u32,
+    /// One past the right column.
+    pub x1: u32,
+    /// One past the bottom row.
+    pub y1: u32,
+}
+
+/// Accumulated samples of every pixel, row-major.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Framebuffer {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Sums per pixel.
+    pub pixels: Vec<PixelAccum>,
+}
+
+impl Framebuffer {
+    /// An empty buffer.
+    pub fn new(width: u32, height: u32) -> Self {
+        Framebuffer {
+            width,
+            height,
+            pixels: vec![PixelAccum::default(); width as usize * height as usize],
+        }
+    }
+    /// Mean of each pixel.
+    pub fn rgb(&self) -> Vec<[f32; 3]> {
+        self.pixels.iter().map(|p| p.mean()).collect()
+    }
+    /// Samples dropped because they were not finite.
+    pub fn dropped(&self) -> u64 {
+        self.pixels.iter().map(|p| p.dropped).sum()
+    }
+    /// Accumulator of pixel `(x, y)`.
+    pub fn at(&self, x: u32, y: u32) -> &PixelAccum {
+        &self.pixels[y as usize * self.width as usize + x as usize]
+    }
+}
+
+/// The tiles covering a `width x height` image, in scanline order.
+pub fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
+    let size = size.max(1);
+    let mut out = Vec::new();
+    for y0 in (0..height).step_by(size as usize) {
+        for x0 in (0..width).step_by(size as usize) {
+            out.push(Tile {
+                x0,
+                y0,
+                x1: (x0 + size).min(width),
+                y1: (y0 + size).min(height),
+            });
+        }
+    }
+    out
+}
+
+/// Renders every pixel; `progress(tiles_done, tiles_total)` is called on the calling thread as
+/// tiles arrive.
+pub fn render(
+    scene: &Scene,
+    integrator: &Integrator,
+    opts: &RenderOptions,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Framebuffer {
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let list = tiles(w, h, opts.tile_size);
+    let mut fb = Framebuffer::new(w, h);
+    let cursor = AtomicUsize::new(0);
+    let (tx, rx) = unbounded::<(usize, Vec<PixelAccum>)>();
+    let threads = opts.threads.max(1).min(list.len().max(1));
+    std::thread::scope(|s| {
+        for _ in 0..threads {
+            let tx = tx.clone();
+            let (list, cursor) = (&list, &cursor);
+            s.spawn(move || loop {
+                let i = cursor.fetch_add(1, Ordering::Relaxed);
+                let Some(t) = list.get(i) else { break };
+                let mut acc = vec![PixelAccum::default(); ((t.x1 - t.x0) * (t.y1 - t.y0)) as usize];
+                let mut k = 0;
+                for y in t.y0..t.y1 {
+                    for x in t.x0..t.x1 {
+                        render_pixel(
+                            scene,
+                            integrator,
+                            opts.seed,
+                            x,
+                            y,
+                            opts.samples.clone(),
+                            &mut acc[k],
+                        );
+                        k += 1;
+                    }
+                }
+                if tx.send((i, acc)).is_err() {
+                    break;
+                }
+            });
+        }
+        drop(tx);
+        let mut done = 0;
+        for (i, acc) in rx.iter() {
+            let t = list[i];
+            let tw = (t.x1 - t.x0) as usize;
+            for (row, y) in (t.y0..t.y1).enumerate() {
+                let dst = y as usize * w as usize + t.x0 as usize;
+                fb.pixels[dst..dst + tw].copy_from_slice(&acc[row * tw..(row + 1) * tw]);
+            }
+            done += 1;
+            progress(done, list.len());
+        }
+    });
+    fb
+}

@@ -1,0 +1,115 @@
+//! Walks the scene tree and assembles the core scene.
+use super::bsdfs::Bsdfs;
+use super::emitters::{build_area, build_scene_emitter};
+use super::integrator::build_integrator;
+use super::sensor::{build_sampler, build_sensor};
+use super::shapes::build_shape;
+use super::util::Result;
+use super::LoadedScene;
+use crate::error::InputError;
+use crate::xml::{Kind, Object};
+use tessera_core::geometry::{Shape, ShapeKind};
+use tessera_core::scene::{Scene, SceneParts};
+
+/// Builds a loaded scene from the root `<scene>` object.
+pub fn build(root: &Object) -> Result<LoadedScene> {
+    if root.kind != Kind::Scene {
+        return Err(root.error("the root element must be <scene>"));
+    }
+    let mut warnings = Vec::new();
+    let mut bsdfs = Bsdfs::default();
+    let mut shapes = Vec::new();
+    let mut disks = Vec::new();
+    let mut emitters = Vec::new();
+    let mut integrator_obj = None;
+    let mut sensor = None;
+    let mut scene_sampler = None;
+    for c in &root.children {
+        let obj = &c.obj;
+        match obj.kind {
+            Kind::Integrator => {
+                if integrator_obj.replace(obj).is_some() {
+                    return Err(obj.error("the scene has more than one integrator"));
+                }
+            }
+            Kind::Sensor => {
+                if sensor.is_some() {
+                    return Err(obj.error("the scene has more than one sensor"));
+                }
+                sensor = Some(build_sensor(obj, &mut warnings)?);
+            }
+            Kind::Sampler => scene_sampler = Some(build_sampler(obj, &mut warnings)?),
+            Kind::Bsdf => {
+                bsdfs.index_of(obj)?;
+            }
+            Kind::Emitter => emitters.push(build_scene_emitter(obj)?),
+            Kind::Shape => {
+                let parts = build_shape(obj)?;
+                let shape_index = shapes.len() as u32;
+                let bsdf = match parts.bsdf {
+                    Some(b) => bsdfs.index_of(&b.obj)?,
+                    None => bsdfs.default_index(),
+                };
+                let emitter = match parts.emitter {
+                    Some(e) => {
+                        emitters.push(build_area(&e.obj, shape_index)?);
+                        Some(emitters.len() as u32 - 1)
+                    }
+                    None => None,
+                };
+                let kind = match (parts.kind, parts.disk) {
+                    (ShapeKind::Disk(_), Some(d)) => {
+                        disks.push(d);
+                        ShapeKind::Disk(disks.len() as u32 - 1)
+                    }
+                    (k, _) => k,
+                };
+                obj.check_unused()?;
+                shapes.push(Shape {
+                    kind,
+                    bsdf,
+                    emitter,
+                    flip_normals: parts.flip_normals,
+                });
+            }
+            _ => {
+                return Err(InputError::at(
+                    &c.loc,
+                    format!(
+                        "{} is not allowed at the top level of a scene",
+                        obj.describe()
+                    ),
+                ))
+            }
+        }
+        c.mark_used();
+    }
+    let sensor = sensor.ok_or_else(|| root.error("the scene has no sensor (camera)"))?;
+    let integrator = build_integrator(integrator_obj.map(|o| &**o))?;
+    let (spp, seed) = match (sensor.spp, scene_sampler) {
+        (Some(n), _) => (n, sensor.seed.unwrap_or(0)),
+        (None, Some((n, s))) => (n, s),
+        (None, None) => (4, 0),
+    };
+    if emitters.iter().filter(|e| e.is_environment()).count() > 1 {
+        return Err(root.error("the scene has more than one environment emitter"));
+    }
+    root.check_unused()?;
+    let parts = SceneParts {
+        shapes,
+        disks,
+        bsdfs: bsdfs.list,
+        emitters,
+        camera: sensor.camera,
+        filter: sensor.filter,
+    };
+    let scene =
+        Scene::new(parts).map_err(|e| root.error(format!("cannot build the scene: {e:?}")))?;
+    Ok(LoadedScene {
+        scene,
+        integrator,
+        spp,
+        seed,
+        warnings,
+    })
+}

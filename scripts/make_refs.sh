@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Regenerates every Mitsuba 3 reference image in scenes/refs/ (see scenes/refs/README.md).
+# Run from anywhere; needs Mitsuba 3.9.1 (scripts/install_mitsuba.sh).
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$ROOT"
+PYTHON="${PYTHON:-python3}"
+
+"$PYTHON" scripts/mitsuba_ref.py scenes/cbox.xml -o scenes/refs/cbox_64x64_mitsuba.exr \
+    --spp 16384 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
+"$PYTHON" scripts/mitsuba_ref.py scenes/cs500_spheres.xml -o scenes/refs/cs500_spheres_64x64_mitsuba.exr \
+    --spp 16384 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
