@@ -1,10 +1,26 @@
 //! The `tessera` command line. Exit codes: 0 success, 1 failure while running (e.g. writing an
 //! output), 2 bad input or usage (with a one-line `file:line:col: message`).
+use clap::error::ErrorKind;
 use clap::Parser;
 use tessera::cli::{Cli, Command};
 
 fn main() {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) => {
+            e.exit()
+        }
+        Err(e) => {
+            // One line, like every other bad-input message: clap's first line says it all.
+            let text = e.render().to_string();
+            let first = text
+                .lines()
+                .find(|l| !l.trim().is_empty())
+                .unwrap_or("error: bad usage");
+            eprintln!("{first} (see tessera --help)");
+            std::process::exit(tessera::error::InputError::EXIT_CODE);
+        }
+    };
     let code = match cli.command {
         Command::Render(args) => tessera::cli::render::run(&args),
     };

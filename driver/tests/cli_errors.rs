@@ -275,8 +275,16 @@ fn malformed_xml_truncated_file() {
 #[test]
 fn unknown_plugin_types() {
     let cases = [
-        ("unknown-shape", "    <shape type=\"teapot\"/>\n", "<shape type=\"teapot\""),
-        ("unknown-bsdf", "    <bsdf type=\"glitter\"/>\n", "<bsdf type=\"glitter\""),
+        (
+            "unknown-shape",
+            "    <shape type=\"teapot\"/>\n",
+            "<shape type=\"teapot\"",
+        ),
+        (
+            "unknown-bsdf",
+            "    <bsdf type=\"glitter\"/>\n",
+            "<bsdf type=\"glitter\"",
+        ),
         (
             "unknown-integrator",
             "    <integrator type=\"magic\"/>\n",
@@ -421,9 +429,19 @@ fn zero_film_width() {
 fn bad_command_line_values() {
     let cases: [(&str, &[&str], &str, &str); 5] = [
         ("spp-0", &["--spp", "0"], "image.png", "--spp"),
-        ("integrator-foo", &["--integrator", "foo"], "image.png", "foo"),
+        (
+            "integrator-foo",
+            &["--integrator", "foo"],
+            "image.png",
+            "foo",
+        ),
         ("bmp", &[], "out.bmp", "out.bmp"),
-        ("tile-size-0", &["--tile-size", "0"], "image.png", "--tile-size"),
+        (
+            "tile-size-0",
+            &["--tile-size", "0"],
+            "image.png",
+            "--tile-size",
+        ),
         ("threads-0", &["--threads", "0"], "image.png", "--threads"),
     ];
     let mut problems = Vec::new();
@@ -466,7 +484,10 @@ fn failed_write_exits_1_and_leaves_nothing() {
     let err = stderr_of(&o);
     assert!(!err.contains("panicked"), "stderr {err:?}");
     assert_eq!(o.status.code(), Some(1), "stderr {err:?}");
-    assert!(err.contains(&output.display().to_string()), "stderr {err:?}");
+    assert!(
+        err.contains(&output.display().to_string()),
+        "stderr {err:?}"
+    );
     assert!(!missing_dir.exists(), "the missing directory was created");
     assert_eq!(tmp.out_entries(), Vec::<String>::new());
 
@@ -532,11 +553,18 @@ fn good_render_writes_valid_images() {
     let magic: [&[u8]; 3] = [b"\x89PNG\r\n\x1a\n", &[0x76, 0x2f, 0x31, 0x01], b"PF\n"];
     for (p, m) in outs.iter().zip(magic) {
         let bytes = std::fs::read(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
-        assert!(bytes.starts_with(m), "{} has the wrong magic bytes", p.display());
+        assert!(
+            bytes.starts_with(m),
+            "{} has the wrong magic bytes",
+            p.display()
+        );
         let img = tessera::image_io::read_image(p).unwrap();
         assert_eq!((img.width, img.height), (8, 8), "{}", p.display());
         assert!(
-            img.data.iter().flatten().all(|v| v.is_finite() && *v >= 0.0),
+            img.data
+                .iter()
+                .flatten()
+                .all(|v| v.is_finite() && *v >= 0.0),
             "{}",
             p.display()
         );

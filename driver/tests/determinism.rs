@@ -77,7 +77,11 @@ fn assert_same_bits(a: &Framebuffer, b: &Framebuffer, what: &str) {
 
 /// The image is not trivially black / empty (so equality means something).
 fn assert_nontrivial(fb: &Framebuffer, spp: u64) {
-    let lit = fb.pixels.iter().filter(|p| p.sum.iter().any(|&s| s > 0.0)).count();
+    let lit = fb
+        .pixels
+        .iter()
+        .filter(|p| p.sum.iter().any(|&s| s > 0.0))
+        .count();
     assert!(lit > fb.pixels.len() / 2, "only {lit} pixels are lit");
     for p in &fb.pixels {
         assert_eq!(p.count + p.dropped, spp);
@@ -88,7 +92,10 @@ fn assert_nontrivial(fb: &Framebuffer, spp: u64) {
 fn cbox_same_bits_for_any_threads_and_tile_size() {
     let l = load("cbox.xml", &[("res", "24"), ("spp", "4")]);
     assert_eq!(l.spp, 4);
-    assert!(matches!(l.scene.filter, Filter::Gaussian(_)), "want the default gaussian filter");
+    assert!(
+        matches!(l.scene.filter, Filter::Gaussian(_)),
+        "want the default gaussian filter"
+    );
     assert_eq!((l.scene.camera.width, l.scene.camera.height), (24, 24));
     let reference = render_with(&l, 0..l.spp, 1, 1, l.seed);
     assert_nontrivial(&reference, l.spp);
@@ -133,7 +140,10 @@ fn split_sample_ranges_merge_into_the_whole() {
         let close = |x: f64, y: f64| (x - y).abs() <= 1e-12 * x.abs().max(y.abs()) + 1e-300;
         for k in 0..3 {
             assert!(close(m.sum[k], w.sum[k]), "pixel {i}: sum {m:?} vs {w:?}");
-            assert!(close(m.sum_sq[k], w.sum_sq[k]), "pixel {i}: sum_sq {m:?} vs {w:?}");
+            assert!(
+                close(m.sum_sq[k], w.sum_sq[k]),
+                "pixel {i}: sum_sq {m:?} vs {w:?}"
+            );
         }
         let (mm, wm) = (m.mean(), w.mean());
         for k in 0..3 {
@@ -191,5 +201,9 @@ fn different_seeds_give_different_images() {
     );
     // Same seed, different sample ranges: also different (the index feeds the streams).
     let c = render_with(&l, 4..8, 2, 16, l.seed);
-    assert!(a.pixels.iter().zip(&c.pixels).any(|(p, q)| pixel_bits(p) != pixel_bits(q)));
+    assert!(a
+        .pixels
+        .iter()
+        .zip(&c.pixels)
+        .any(|(p, q)| pixel_bits(p) != pixel_bits(q)));
 }

@@ -11,19 +11,31 @@ pub fn scenes_dir() -> PathBuf {
 
 /// Loads a scene from XML text (relative paths resolve in `scenes/`).
 pub fn load_xml(xml: &str, defines: &[(&str, &str)]) -> LoadedScene {
-    let defines: Vec<(String, String)> = defines.iter().map(|(a, b)| (a.to_string(), b.to_string())).collect();
-    load_scene_str(xml, &scenes_dir().join("inline-test.xml"), &defines).unwrap_or_else(|e| panic!("{e}"))
+    let defines: Vec<(String, String)> = defines
+        .iter()
+        .map(|(a, b)| (a.to_string(), b.to_string()))
+        .collect();
+    load_scene_str(xml, &scenes_dir().join("inline-test.xml"), &defines)
+        .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Loads a scene file from `scenes/`.
 pub fn load_file(name: &str, defines: &[(&str, &str)]) -> LoadedScene {
-    let defines: Vec<(String, String)> = defines.iter().map(|(a, b)| (a.to_string(), b.to_string())).collect();
+    let defines: Vec<(String, String)> = defines
+        .iter()
+        .map(|(a, b)| (a.to_string(), b.to_string()))
+        .collect();
     load_scene(&scenes_dir().join(name), &defines).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Renders a loaded scene with `spp` samples on 2 threads.
 pub fn render_loaded(l: &LoadedScene, spp: u64, seed: u64) -> Framebuffer {
-    let opts = RenderOptions { samples: 0..spp, threads: 2, tile_size: 16, seed };
+    let opts = RenderOptions {
+        samples: 0..spp,
+        threads: 2,
+        tile_size: 16,
+        seed,
+    };
     render(&l.scene, &l.integrator, &opts, &mut |_, _| {})
 }
 

@@ -30,8 +30,15 @@ fn check(label: &str, xml: &str, defines: &[(&str, &str)], spp: u64, expected: [
         let ulp = (expected[k] as f32).abs() as f64 * f32::EPSILON as f64;
         let se = (var / n + (4.0 * ulp).powi(2)).sqrt();
         let t = (mean - expected[k]) / se;
-        let p_value = 2.0 * StudentsT::new(0.0, 1.0, n - 1.0).expect("dof > 0").sf(t.abs());
-        assert!(p_value >= alpha(), "{label} channel {k}: mean {mean} vs expected {} (t = {t:.3}, p = {p_value:.3e})", expected[k]);
+        let p_value = 2.0
+            * StudentsT::new(0.0, 1.0, n - 1.0)
+                .expect("dof > 0")
+                .sf(t.abs());
+        assert!(
+            p_value >= alpha(),
+            "{label} channel {k}: mean {mean} vs expected {} (t = {t:.3}, p = {p_value:.3e})",
+            expected[k]
+        );
     }
 }
 
@@ -51,7 +58,13 @@ const ENV_SPHERE: &str = r#"<scene version="3.0.0">
 #[test]
 fn diffuse_sphere_in_constant_environment() {
     for integ in INTEGRATORS {
-        check(&format!("env sphere {integ}"), ENV_SPHERE, &[("integrator", integ)], 100_000, [0.3, 0.75, 1.2]);
+        check(
+            &format!("env sphere {integ}"),
+            ENV_SPHERE,
+            &[("integrator", integ)],
+            100_000,
+            [0.3, 0.75, 1.2],
+        );
     }
 }
 
@@ -78,10 +91,22 @@ const CLOSED_SPHERE: &str = r#"<scene version="3.0.0">
 fn inside_closed_emitting_sphere() {
     let albedo = [0.3f64, 0.5, 0.7];
     for depth in [1i32, 2, 3, 5, -1] {
-        let expected = albedo.map(|a| if depth < 0 { 1.0 / (1.0 - a) } else { (1.0 - a.powi(depth)) / (1.0 - a) });
+        let expected = albedo.map(|a| {
+            if depth < 0 {
+                1.0 / (1.0 - a)
+            } else {
+                (1.0 - a.powi(depth)) / (1.0 - a)
+            }
+        });
         for integ in INTEGRATORS {
             let d = depth.to_string();
-            check(&format!("closed sphere {integ} depth {depth}"), CLOSED_SPHERE, &[("integrator", integ), ("max_depth", &d)], 100_000, expected);
+            check(
+                &format!("closed sphere {integ} depth {depth}"),
+                CLOSED_SPHERE,
+                &[("integrator", integ), ("max_depth", &d)],
+                100_000,
+                expected,
+            );
         }
     }
 }
@@ -112,8 +137,18 @@ fn sphere_light_over_diffuse_plane() {
     let (l, r, h) = (10.0f64, 0.5f64, 3.0f64);
     let expected = [0.7f64, 0.5, 0.3].map(|a| a * l * r * r / (h * h));
     for integ in INTEGRATORS {
-        let spp = if integ == "path_mats" { 2_000_000 } else { 100_000 };
-        check(&format!("sphere light {integ}"), SPHERE_LIGHT, &[("integrator", integ)], spp, expected);
+        let spp = if integ == "path_mats" {
+            2_000_000
+        } else {
+            100_000
+        };
+        check(
+            &format!("sphere light {integ}"),
+            SPHERE_LIGHT,
+            &[("integrator", integ)],
+            spp,
+            expected,
+        );
     }
 }
 

@@ -13,7 +13,11 @@ const RES: u32 = 64;
 const BLOCK: u32 = 8;
 
 fn render_with(strategy: Strategy, spp: u64, seed: u64) -> Framebuffer {
-    let mut loaded = load_file("cbox.xml", &[("res", "64"), ("rfilter", "box")]);
+    render_scene("cbox.xml", strategy, spp, seed)
+}
+
+fn render_scene(file: &str, strategy: Strategy, spp: u64, seed: u64) -> Framebuffer {
+    let mut loaded = load_file(file, &[("res", "64"), ("rfilter", "box")]);
     let Integrator::Path(ref mut p) = loaded.integrator;
     p.strategy = strategy;
     render_loaded(&loaded, spp, seed)
@@ -31,7 +35,10 @@ fn worst_region(a: &Framebuffer, b_mean: impl Fn(u32, u32, usize) -> (f64, f64))
                 let z = (ma - mb) / (va + vb).sqrt();
                 let p = z_p_value(z);
                 if p < worst.0 {
-                    worst = (p, format!("region ({bx},{by}) channel {k}: {ma:.5} vs {mb:.5}, z = {z:.2}"));
+                    worst = (
+                        p,
+                        format!("region ({bx},{by}) channel {k}: {ma:.5} vs {mb:.5}, z = {z:.2}"),
+                    );
                 }
             }
         }
@@ -55,22 +62,27 @@ fn integrators_agree_on_the_cornell_box() {
             let (na, a) = (&renders[i].0, &renders[i].1);
             let (nb, b) = (&renders[j].0, &renders[j].1);
             assert_eq!(a.dropped() + b.dropped(), 0);
-            let (p, what) = worst_region(a, |bx, by, k| region_stats(b, bx * BLOCK, by * BLOCK, BLOCK, BLOCK)[k]);
+            let (p, what) = worst_region(a, |bx, by, k| {
+                region_stats(b, bx * BLOCK, by * BLOCK, BLOCK, BLOCK)[k]
+            });
             eprintln!("{na} vs {nb}: worst p = {p:.3e} at {what}");
-            assert!(p >= alpha, "{na} vs {nb}: p = {p:.3e} < {alpha:.3e} at {what}");
+            assert!(
+                p >= alpha,
+                "{na} vs {nb}: p = {p:.3e} < {alpha:.3e} at {what}"
+            );
         }
     }
 }
 
-/// Our render of scenes/cbox.xml agrees with Mitsuba 3's (scenes/refs, 16384 spp, made by
-/// scripts/make_refs.sh). The reference's own variance is estimated as ours scaled by the ratio
-/// of sample counts (same scene, a path tracer of the same kind).
-#[test]
-fn cornell_box_matches_mitsuba() {
+/// Our render of a scene file agrees with Mitsuba 3's (`scenes/refs/NAME_64x64_mitsuba.exr`,
+/// 16384 spp, made by scripts/make_refs.sh). The reference's own variance is estimated as ours
+/// scaled by the ratio of sample counts (same scene, a path tracer of the same kind).
+fn matches_mitsuba(name: &str) {
     let spp = 512;
     let ref_spp = 16384.0;
-    let ours = render_with(Strategy::Mis, spp, 11);
-    let reference = read_image(&scenes_dir().join("refs/cbox_64x64_mitsuba.exr")).expect("reference image");
+    let ours = render_scene(&format!("{name}.xml"), Strategy::Mis, spp, 11);
+    let reference = read_image(&scenes_dir().join(format!("refs/{name}_64x64_mitsuba.exr")))
+        .expect("reference image");
     assert_eq!((reference.width, reference.height), (RES, RES));
     let alpha = sidak_alpha(0.01, (RES / BLOCK).pow(2) as usize * 3);
     let (p, what) = worst_region(&ours, |bx, by, k| {
@@ -83,8 +95,21 @@ fn cornell_box_matches_mitsuba() {
         let ours_var = region_stats(&ours, bx * BLOCK, by * BLOCK, BLOCK, BLOCK)[k].1;
         (m / (BLOCK * BLOCK) as f64, ours_var * spp as f64 / ref_spp)
     });
-    eprintln!("Tessera vs Mitsuba 3: worst p = {p:.3e} at {what}");
-    assert!(p >= alpha, "Tessera vs Mitsuba 3: p = {p:.3e} < {alpha:.3e} at {what}");
+    eprintln!("{name}: Tessera vs Mitsuba 3: worst p = {p:.3e} at {what}");
+    assert!(
+        p >= alpha,
+        "{name}: Tessera vs Mitsuba 3: p = {p:.3e} < {alpha:.3e} at {what}"
+    );
+}
+
+#[test]
+fn cornell_box_matches_mitsuba() {
+    matches_mitsuba("cbox");
+}
+
+#[test]
+fn cs500_spheres_match_mitsuba() {
+    matches_mitsuba("cs500_spheres");
 }
 
 /// The comparison has power: a reference 2% too bright is rejected.
@@ -95,5 +120,8 @@ fn comparison_rejects_a_two_percent_bias() {
         let (m, v) = region_stats(&ours, bx * BLOCK, by * BLOCK, BLOCK, BLOCK)[k];
         (m * 1.02, v * 512.0 / 16384.0)
     });
-    assert!(p < sidak_alpha(0.01, (RES / BLOCK).pow(2) as usize * 3), "a 2% bias went unnoticed (p = {p:.3e})");
+    assert!(
+        p < sidak_alpha(0.01, (RES / BLOCK).pow(2) as usize * 3),
+        "a 2% bias went unnoticed (p = {p:.3e})"
+    );
 }

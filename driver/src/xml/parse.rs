@@ -123,6 +123,10 @@ impl Building {
 pub struct Parser {
     /// `$name` parameters: `-D` defines first, then `<default>`s that were not yet set.
     params: HashMap<String, String>,
+    /// Names of the `-D` defines, which the scene must declare or use.
+    define_names: Vec<String>,
+    /// Parameter names the files declare (`<default>`) or mention (`$name`).
+    known_params: std::collections::HashSet<String>,
     /// Objects declared with an `id` (or aliased), and where.
     ids: HashMap<String, (Rc<Object>, Loc)>,
     /// Ids of objects whose element is still being read.
@@ -208,6 +212,8 @@ impl Parser {
     pub fn new(defines: &[(String, String)]) -> Self {
         Parser {
             params: defines.iter().cloned().collect(),
+            define_names: defines.iter().map(|(k, _)| k.clone()).collect(),
+            known_params: std::collections::HashSet::new(),
             ids: HashMap::new(),
             open_ids: HashMap::new(),
             files: Vec::new(),
@@ -232,11 +238,37 @@ impl Parser {
                 ),
             ));
         }
+        self.note_mentions(text);
         let attrs = Attrs::read(root, &src, &self.params)?;
         self.files.push(canonical(path));
-        let obj = self.build_object(&src, root, Kind::Scene, &attrs, None, 1);
+        let obj = self.build_object(&src, root, Kind::Scene, &attrs, None, 1)?;
         self.files.pop();
-        obj
+        // A -D that no file declares or uses is almost always a typo: say so.
+        if let Some(d) = self
+            .define_names
+            .iter()
+            .find(|d| !self.known_params.contains(*d))
+        {
+            return Err(InputError::file(
+                path,
+                format!("-D {d}: the scene has no <default name=\"{d}\"> and never uses ${d}"),
+            ));
+        }
+        Ok(obj)
+    }
+
+    /// Records every `$name` a file's text mentions.
+    fn note_mentions(&mut self, text: &str) {
+        let mut rest = text;
+        while let Some(i) = rest.find('$') {
+            rest = &rest[i + 1..];
+            let n = rest
+                .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+                .unwrap_or(rest.len());
+            if n > 0 {
+                self.known_params.insert(rest[..n].to_string());
+            }
+        }
     }
 
     /// Reads an object element into an [`Object`] (registering nothing).
@@ -414,6 +446,7 @@ impl Parser {
                 self.params
                     .entry(name.value.clone())
                     .or_insert_with(|| value.value.clone());
+                self.known_params.insert(name.value.clone());
                 Ok(())
             }
             Item::Alias => {
@@ -495,6 +528,7 @@ impl Parser {
         let text = read_text(&path)
             .map_err(|m| attrs.error(format!("cannot include \"{}\": {m}", path.display())))?;
         let text = strip_bom(&text);
+        self.note_mentions(text);
         let file = Arc::new(path);
         let doc = parse_document(text, &file)?;
         let isrc = Source::new(file, text);

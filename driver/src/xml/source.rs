@@ -52,11 +52,11 @@ pub fn parse_document<'t>(
         allow_dtd: false,
         ..Default::default()
     };
-    roxmltree::Document::parse_with_options(text, opts).map_err(|e| convert_error(&e, file))
+    roxmltree::Document::parse_with_options(text, opts).map_err(|e| convert_error(&e, file, text))
 }
 
 /// Converts a roxmltree error: `file:line:col: message` when it has a position.
-fn convert_error(e: &roxmltree::Error, file: &Arc<PathBuf>) -> InputError {
+fn convert_error(e: &roxmltree::Error, file: &Arc<PathBuf>, text: &str) -> InputError {
     use roxmltree::Error as E;
     let full = match e {
         E::DtdDetected => {
@@ -64,7 +64,13 @@ fn convert_error(e: &roxmltree::Error, file: &Arc<PathBuf>) -> InputError {
         }
         E::NoRootNode => return InputError::file(file, "the file contains no XML element"),
         E::UnclosedRootNode => {
-            return InputError::file(file, "XML error: the root element is never closed")
+            // roxmltree gives no position: the problem shows at the end of the text.
+            let line = text.lines().count().max(1) as u32;
+            let col = text.lines().last().map_or(0, |l| l.chars().count()) as u32 + 1;
+            return InputError::at(
+                &Loc::new(file.clone(), line, col),
+                "XML error: the file ends before the root element is closed",
+            );
         }
         other => other.to_string(),
     };

@@ -1,0 +1,828 @@
+//! Chi-square goodness-of-fit tests of every sampling routine of the core against its pdf.
+//!
+//! Each test draws its samples through the `tessera::stats` harness (`SphereChi2`,
+//! `PlaneChi2`, or `chi2_test` on counts drawn from a `Pcg32`), with a fixed seed: test `k` in
+//! the order of [`N_TESTS`]'s list uses seed `k`. The whole file fails with probability 1% if
+//! every sampler is right: each test runs at the Šidák-corrected level
+//! `sidak_alpha(0.01, N_TESTS)`. Every result is printed (run with `--nocapture` to see the
+//! p-values) and is the assert message on failure.
+//!
+//! Reference densities are written here independently of the core where that is meaningful
+//! (mesh and disk ray casts in f64, the Gaussian filter's step table, the discrete pmf); the
+//! core's own pdf functions are what is under test otherwise.
+
+use std::f64::consts::TAU;
+
+use glam::{DMat4, DVec3, Mat4, Quat, Vec2, Vec3};
+use tessera::stats::{
+    chi2_test, sidak_alpha, Chi2Result, Pcg32, PlaneChi2, SphereChi2, DEFAULT_MIN_EXPECTED,
+};
+use tessera_core::camera::{Filter, GaussianFilter};
+use tessera_core::geometry::{Disk, Mesh, Shape, ShapeKind, Sphere};
+use tessera_core::math::{Ray, Transform};
+use tessera_core::sampling::{warp, Discrete1D};
+
+/// Number of chi-square tests in this file (one per seed):
+///  1 uniform sphere, 2 cosine hemisphere, 3-5 uniform cone (cos_max 0.9, 0, -0.5),
+///  6 tiny cone (omc), 7 concentric disk, 8 triangle barycentrics,
+///  9 sphere cone far, 10 sphere cone near, 11 mesh directions, 12 mesh triangle choice,
+///  13 mesh barycentrics in one triangle, 14 ellipse (disk) directions,
+///  15 Discrete1D indices, 16 Discrete1D rescaled u, 17 box filter, 18 Gaussian filter.
+const N_TESTS: usize = 18;
+
+/// Samples per test.
+const SAMPLES: usize = 1_000_000;
+
+fn alpha() -> f64 {
+    sidak_alpha(0.01, N_TESTS)
+}
+
+/// Prints the result and asserts that it passes at the corrected level.
+fn check(name: &str, r: &Chi2Result) {
+    let a = alpha();
+    println!("{name}: {r}");
+    assert!(r.passes(a), "{name}: {r} (alpha = {a:.3e})");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Helpers: frames and the "cap square" map
+// ---------------------------------------------------------------------------------------------
+
+/// An orthonormal frame `[s, t, a]` (f64) with `a` the given unit axis; built here, not with the
+/// core's `Frame`, so that the tests do not share the sampler's choice of tangents.
+fn frame_around(a: DVec3) -> [DVec3; 3] {
+    let helper = if a.x.abs() < 0.6 { DVec3::X } else { DVec3::Y };
+    let s = helper.cross(a).normalize();
+    let t = a.cross(s);
+    [s, t, a]
+}
+
+/// Maps a direction to the unit square by `x = (1 - cos θ) / omc_box`, `y = φ / 2π`, with `θ`,
+/// `φ` measured in `frame` (axis `frame[2]`). Since `dω = d(cos θ) dφ`, a solid-angle density
+/// `p(ω)` becomes the area density `p(ω) · 2π · omc_box` on the square: this bins only the cap
+/// `1 - cos θ <= omc_box` around the axis, at any angular size, with cells of equal solid
+/// angle. `1 - cos θ` is computed as `(x² + y²) / (|d| (|d| + z))`, without cancellation.
+fn cap_coords(d: Vec3, frame: &[DVec3; 3], omc_box: f64) -> Vec2 {
+    let d = d.as_dvec3();
+    let (x, y, z) = (d.dot(frame[0]), d.dot(frame[1]), d.dot(frame[2]));
+    let len = (x * x + y * y + z * z).sqrt();
+    let omc = (x * x + y * y) / (len * (len + z));
+    let mut phi = y.atan2(x);
+    if phi < 0.0 {
+        phi += TAU;
+    }
+    Vec2::new((omc / omc_box) as f32, (phi / TAU) as f32)
+}
+
+/// Inverse of [`cap_coords`]: the unit direction (f64) of a point of the square.
+fn cap_dir(p: Vec2, frame: &[DVec3; 3], omc_box: f64) -> DVec3 {
+    let omc = f64::from(p.x) * omc_box;
+    let cos = 1.0 - omc;
+    let sin = (omc * (2.0 - omc)).max(0.0).sqrt();
+    let phi = TAU * f64::from(p.y);
+    frame[0] * (sin * phi.cos()) + frame[1] * (sin * phi.sin()) + frame[2] * cos
+}
+
+/// `1 - cos` of the half-angle of the cone subtended by a sphere of radius `radius` at
+/// distance `dist`, in f64.
+fn sphere_omc(radius: f64, dist: f64) -> f64 {
+    let sin2 = (radius / dist).powi(2);
+    sin2 / (1.0 + (1.0 - sin2).sqrt())
+}
+
+// ---------------------------------------------------------------------------------------------
+// 1. Warps
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn t01_uniform_sphere() {
+    let r = SphereChi2::default().run(
+        |u| Some(warp::square_to_uniform_sphere(u)),
+        |_| f64::from(warp::uniform_sphere_pdf()),
+        1,
+    );
+    check("uniform sphere", &r);
+}
+
+#[test]
+fn t02_cosine_hemisphere() {
+    let r = SphereChi2::default().run(
+        |u| Some(warp::square_to_cosine_hemisphere(u)),
+        |v| f64::from(warp::cosine_hemisphere_pdf(v)),
+        2,
+    );
+    check("cosine hemisphere", &r);
+}
+
+/// The cone's edge `cos θ = cos_max` must not coincide with a cell boundary in `cos θ` when
+/// f32 round-off can put a sample a hair outside it (it would land in a cell of expectation
+/// 0); `theta_bins` are chosen so the edge crosses the middle of a row, except for
+/// `cos_max = 0` where the sampled `cos θ = 1 - u` is at least `2^-24 > 0` and the edge on a
+/// row boundary makes any sample below the horizon an immediate failure.
+fn cone_test(cos_max: f32, theta_bins: usize, seed: u64) -> Chi2Result {
+    SphereChi2 {
+        theta_bins,
+        phi_bins: 20,
+        samples: SAMPLES,
+    }
+    .run(
+        |u| Some(warp::square_to_uniform_cone(u, cos_max)),
+        |v| f64::from(warp::uniform_cone_pdf(v, cos_max)),
+        seed,
+    )
+}
+
+#[test]
+fn t03_uniform_cone_0_9() {
+    // Rows of width 2/205 in cos θ: the edge 0.9 sits at 194.75 rows, the cone spans ~10 rows.
+    check("uniform cone cos_max = 0.9", &cone_test(0.9, 205, 3));
+}
+
+#[test]
+fn t04_uniform_cone_0() {
+    check("uniform cone cos_max = 0", &cone_test(0.0, 10, 4));
+}
+
+#[test]
+fn t05_uniform_cone_minus_0_5() {
+    // Edge at row 2.5 of 10.
+    check("uniform cone cos_max = -0.5", &cone_test(-0.5, 10, 5));
+}
+
+#[test]
+fn t06_uniform_cone_omc_tiny() {
+    // A cone of 1 - cos θ_max = 1e-3 (θ_max ≈ 2.6°) is a single cell of any reasonable sphere
+    // grid, so the cap alone is binned: `cap_coords` maps it to [0, 1/1.1] × [0, 1) of the
+    // square with cells of equal solid angle, and the 10% margin beyond the edge (which then
+    // crosses the middle of column 18.18 of 20) catches samples outside the cone. The claimed
+    // density is 1 / (2π omc) on the cap (the value `Sphere::cone_pdf` pairs with this warp;
+    // there is no separate pdf function for it), i.e. 2π omc_box / (2π omc) = 1.1 on the square.
+    let omc = 1e-3f32;
+    let omc64 = f64::from(omc);
+    let omc_box = 1.1 * omc64;
+    let frame = [DVec3::X, DVec3::Y, DVec3::Z];
+    let r = PlaneChi2 {
+        bins_x: 20,
+        bins_y: 20,
+        samples: SAMPLES,
+    }
+    .run(
+        |u| {
+            let v = warp::square_to_uniform_cone_omc(u, omc);
+            Some(cap_coords(v, &frame, omc_box))
+        },
+        |p| {
+            if f64::from(p.x) * omc_box <= omc64 {
+                TAU * omc_box / (TAU * omc64)
+            } else {
+                0.0
+            }
+        },
+        6,
+    );
+    check("uniform cone omc = 1e-3 (cap square)", &r);
+}
+
+#[test]
+fn t07_concentric_disk() {
+    // [-1,1]^2 mapped to [0,1]^2 by p = (d + 1) / 2: the area density is scaled by 4.
+    let r = PlaneChi2 {
+        bins_x: 20,
+        bins_y: 20,
+        samples: SAMPLES,
+    }
+    .run(
+        |u| Some((warp::square_to_uniform_disk_concentric(u) + Vec2::ONE) * 0.5),
+        |p| 4.0 * f64::from(warp::uniform_disk_pdf(2.0 * p - Vec2::ONE)),
+        7,
+    );
+    check("concentric disk", &r);
+}
+
+#[test]
+fn t08_uniform_triangle() {
+    let r = PlaneChi2::default().run(
+        |u| Some(warp::square_to_uniform_triangle(u)),
+        |b| f64::from(warp::uniform_triangle_pdf(b)),
+        8,
+    );
+    check("uniform triangle (b1, b2)", &r);
+}
+
+// ---------------------------------------------------------------------------------------------
+// 2. Sphere cone sampling (as the area emitter uses it)
+// ---------------------------------------------------------------------------------------------
+
+/// Checks one cone sample: `p` on the sphere, `n` its outward unit normal, on the side facing
+/// `r`, and the pdf equal to `cone_pdf`.
+fn check_cone_sample(s: &Sphere, r: Vec3, p: Vec3, n: Vec3, pdf: f32, cone_pdf: f32) {
+    let radius = f64::from(s.radius);
+    let dist = (p - s.center).as_dvec3().length();
+    assert!(
+        (dist - radius).abs() <= 1e-5 * radius,
+        "sampled p = {p} is at distance {dist} from the centre, radius {radius}"
+    );
+    let nn = n.as_dvec3();
+    assert!((nn.length() - 1.0).abs() <= 1e-5, "normal {n} is not unit");
+    let outward = (p - s.center).as_dvec3() / dist;
+    assert!(
+        nn.dot(outward) >= 1.0 - 1e-5,
+        "normal {n} is not outward at {p}"
+    );
+    // The visible side: the normal faces r (up to round-off on the silhouette).
+    let to_r = (r - p).as_dvec3();
+    assert!(
+        nn.dot(to_r) >= -1e-4 * to_r.length(),
+        "sampled p = {p} is on the far side of the sphere from {r}"
+    );
+    assert_eq!(pdf, cone_pdf, "sample_cone's pdf differs from cone_pdf");
+}
+
+/// Whether the ray from `r` along `d` hits the sphere (core's intersection routine).
+fn hits_sphere(s: &Sphere, r: Vec3, d: DVec3) -> bool {
+    s.intersect(&Ray::new(r, d.as_vec3()), f32::INFINITY)
+        .is_some()
+}
+
+#[test]
+fn t09_sphere_cone_far() {
+    // Distance 100 radii: the cone has 1 - cos θ_max ≈ 5e-5 (3e-4 sr), far too small for a
+    // sphere grid, so it is binned on the cap square around the axis r -> centre (see
+    // `cap_coords`, same construction as t06), with a 10% margin in 1 - cos θ.
+    let s = Sphere {
+        center: Vec3::new(0.7, -1.3, 2.1),
+        radius: 0.25,
+    };
+    // Axis with a negative z component (the other branch of the core's frame construction).
+    let axis = DVec3::new(-0.3, 0.45, -1.0).normalize();
+    let r = (s.center.as_dvec3() - axis * 100.0 * f64::from(s.radius)).as_vec3();
+    let axis = (s.center - r).as_dvec3().normalize();
+    let frame = frame_around(axis);
+    let dist = (s.center - r).as_dvec3().length();
+    let omc_box = 1.1 * sphere_omc(f64::from(s.radius), dist);
+    let cone_pdf = s.cone_pdf(r).expect("r is outside");
+
+    let result = PlaneChi2 {
+        bins_x: 20,
+        bins_y: 20,
+        samples: SAMPLES,
+    }
+    .run(
+        |u| {
+            let cs = s.sample_cone(r, u)?;
+            check_cone_sample(&s, r, cs.p, cs.n, cs.pdf, cone_pdf);
+            Some(cap_coords((cs.p - r).normalize(), &frame, omc_box))
+        },
+        |p| {
+            if hits_sphere(&s, r, cap_dir(p, &frame, omc_box)) {
+                f64::from(cone_pdf) * TAU * omc_box
+            } else {
+                0.0
+            }
+        },
+        9,
+    );
+    check("sphere cone, distance 100 radii (cap square)", &result);
+}
+
+#[test]
+fn t10_sphere_cone_near() {
+    // Distance 1.5 radii: the cone (half-angle 41.8°, 1.6 sr) is binned with SphereChi2 after
+    // rotating the axis r -> centre onto +z (our own frame): the cone's edge
+    // cos θ_max = sqrt(1 - 1/2.25) = 0.7454 then crosses row 69.8 of 80 instead of cutting
+    // cells obliquely, where thin slivers could escape the cubature.
+    let s = Sphere {
+        center: Vec3::new(0.3, -0.2, 0.5),
+        radius: 0.8,
+    };
+    let axis = DVec3::new(0.5, 0.8, 0.35).normalize();
+    let r = (s.center.as_dvec3() - axis * 1.5 * f64::from(s.radius)).as_vec3();
+    let axis = (s.center - r).as_dvec3().normalize();
+    let frame = frame_around(axis);
+    let cone_pdf = s.cone_pdf(r).expect("r is outside");
+
+    let result = SphereChi2 {
+        theta_bins: 80,
+        phi_bins: 40,
+        samples: SAMPLES,
+    }
+    .run(
+        |u| {
+            let cs = s.sample_cone(r, u)?;
+            check_cone_sample(&s, r, cs.p, cs.n, cs.pdf, cone_pdf);
+            let d = (cs.p - r).as_dvec3().normalize();
+            Some(DVec3::new(d.dot(frame[0]), d.dot(frame[1]), d.dot(frame[2])).as_vec3())
+        },
+        |l| {
+            let l = l.as_dvec3();
+            let d = frame[0] * l.x + frame[1] * l.y + frame[2] * l.z;
+            if hits_sphere(&s, r, d) {
+                f64::from(cone_pdf)
+            } else {
+                0.0
+            }
+        },
+        10,
+    );
+    check("sphere cone, distance 1.5 radii", &result);
+}
+
+#[test]
+fn sphere_cone_inside_is_none() {
+    let s = Sphere {
+        center: Vec3::new(1.0, 2.0, -3.0),
+        radius: 2.0,
+    };
+    let inside = [
+        s.center,
+        s.center + Vec3::new(0.5, -1.0, 0.7),
+        s.center + Vec3::new(0.0, 0.0, 1.999),
+    ];
+    for r in inside {
+        assert!(s.cone_pdf(r).is_none(), "cone_pdf from inside point {r}");
+        for u in [
+            Vec2::new(0.0, 0.0),
+            Vec2::new(0.3, 0.7),
+            Vec2::new(0.999, 0.5),
+        ] {
+            assert!(
+                s.sample_cone(r, u).is_none(),
+                "sample_cone from inside point {r}"
+            );
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// 3. Shape-level sampling (area lights): meshes and disks
+// ---------------------------------------------------------------------------------------------
+
+/// Reference point of the mesh tests.
+const MESH_REF: Vec3 = Vec3::new(0.1, 0.2, -0.3);
+
+/// Five triangles (relative to [`MESH_REF`]) in five separate directions, of very different
+/// areas, none coplanar with another; the winding is fixed so each faces the reference point.
+fn test_triangles() -> Vec<[Vec3; 3]> {
+    let rel = [
+        // Large, ahead (+z).
+        [
+            Vec3::new(-2.0, -1.5, 3.0),
+            Vec3::new(2.5, -1.0, 3.5),
+            Vec3::new(0.0, 2.0, 2.6),
+        ],
+        // Tiny, to the -x side.
+        [
+            Vec3::new(-2.0, 0.0, 0.0),
+            Vec3::new(-2.1, 0.25, 0.1),
+            Vec3::new(-1.95, 0.05, 0.3),
+        ],
+        // Medium, below (-y), tilted.
+        [
+            Vec3::new(-0.6, -1.5, -0.6),
+            Vec3::new(1.0, -1.9, 0.1),
+            Vec3::new(0.1, -1.4, 0.8),
+        ],
+        // Long and thin, behind (-z).
+        [
+            Vec3::new(-1.0, -0.2, -2.0),
+            Vec3::new(1.5, 0.3, -2.4),
+            Vec3::new(0.3, 0.25, -2.1),
+        ],
+        // Small, up and to the +x side.
+        [
+            Vec3::new(1.5, 1.0, 0.2),
+            Vec3::new(1.2, 1.8, -0.4),
+            Vec3::new(1.0, 1.5, 0.8),
+        ],
+    ];
+    rel.iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| v + MESH_REF);
+            // Counter-clockwise seen from the reference point.
+            if (b - a).cross(c - a).dot(MESH_REF - a) >= 0.0 {
+                [a, b, c]
+            } else {
+                [a, c, b]
+            }
+        })
+        .collect()
+}
+
+/// The mesh of [`test_triangles`], with per-vertex shading normals that differ from the
+/// geometric normals (the densities must use the geometric ones).
+fn test_mesh() -> Mesh {
+    let tris = test_triangles();
+    let mut positions = Vec::new();
+    let mut normals = Vec::new();
+    let mut indices = Vec::new();
+    for (i, t) in tris.iter().enumerate() {
+        let ng = (t[1] - t[0]).cross(t[2] - t[0]).normalize();
+        for (k, &p) in t.iter().enumerate() {
+            positions.push(p);
+            let tilt = Vec3::new(0.3 * k as f32, -0.2, 0.25 * i as f32);
+            normals.push((ng + tilt).normalize());
+        }
+        let base = 3 * i as u32;
+        indices.push([base, base + 1, base + 2]);
+    }
+    Mesh::new(positions, normals, Vec::new(), indices)
+}
+
+/// Area of a triangle in f64.
+fn tri_area64(t: &[Vec3; 3]) -> f64 {
+    let [a, b, c] = t.map(|v| v.as_dvec3());
+    0.5 * (b - a).cross(c - a).length()
+}
+
+/// Ray cast (f64, edge functions of the triangle seen from `r`) from `r` along the unit
+/// direction `d`: the hit point if the ray meets the triangle.
+fn ray_triangle64(r: DVec3, d: DVec3, t: &[Vec3; 3]) -> Option<DVec3> {
+    let [q0, q1, q2] = t.map(|v| v.as_dvec3() - r);
+    let e = [
+        d.dot(q0.cross(q1)),
+        d.dot(q1.cross(q2)),
+        d.dot(q2.cross(q0)),
+    ];
+    let inside = e.iter().all(|&x| x >= 0.0) || e.iter().all(|&x| x <= 0.0);
+    if !inside {
+        return None;
+    }
+    let n = (q1 - q0).cross(q2 - q0);
+    let dn = d.dot(n);
+    if dn == 0.0 {
+        return None;
+    }
+    let t_hit = q0.dot(n) / dn;
+    (t_hit > 0.0).then(|| r + d * t_hit)
+}
+
+#[test]
+fn t11_mesh_directions() {
+    let mesh = test_mesh();
+    let tris = test_triangles();
+    let face_normals: Vec<Vec3> = (0..tris.len()).map(|i| mesh.face_normal(i)).collect();
+    let shape = Shape {
+        kind: ShapeKind::Mesh(mesh),
+        bsdf: 0,
+        emitter: None,
+        flip_normals: false,
+    };
+    let r = MESH_REF;
+    let r64 = r.as_dvec3();
+    let overlaps = std::cell::Cell::new(0usize);
+    let result = SphereChi2 {
+        theta_bins: 20,
+        phi_bins: 40,
+        samples: SAMPLES,
+    }
+    .run(
+        |u| {
+            let (ps, pdf) = shape.sample_from(r, u, &[])?;
+            let want = shape.pdf_from(r, ps.p, ps.ng, &[]);
+            assert!(
+                (pdf - want).abs() <= 1e-5 * want,
+                "sample_from pdf {pdf} vs pdf_from {want} at {}",
+                ps.p
+            );
+            Some((ps.p - r).as_dvec3().normalize().as_vec3())
+        },
+        |w| {
+            // Sum over the triangles the ray meets (all of them: that is the density of the
+            // sampler's directions; the geometry is such that no two overlap as seen from r,
+            // which is checked, so this is also the first-hit density).
+            let d = w.as_dvec3().normalize();
+            let mut pdf = 0.0;
+            let mut hits = 0;
+            for (t, &ng) in tris.iter().zip(&face_normals) {
+                if let Some(p) = ray_triangle64(r64, d, t) {
+                    hits += 1;
+                    pdf += f64::from(shape.pdf_from(r, p.as_vec3(), ng, &[]));
+                }
+            }
+            if hits > 1 {
+                overlaps.set(overlaps.get() + 1);
+            }
+            pdf
+        },
+        11,
+    );
+    assert_eq!(overlaps.get(), 0, "triangles overlap as seen from r");
+    check("mesh directions (5 triangles)", &result);
+}
+
+#[test]
+fn t12_mesh_triangle_choice() {
+    let mesh = test_mesh();
+    let tris = test_triangles();
+    let areas: Vec<f64> = tris.iter().map(tri_area64).collect();
+    let total: f64 = areas.iter().sum();
+    let mut rng = Pcg32::new(12);
+    let mut observed = vec![0.0; tris.len()];
+    for _ in 0..SAMPLES {
+        let (i, b1, b2) = mesh.sample(rng.next_vec2()).expect("mesh has area");
+        assert!(
+            b1 >= 0.0 && b2 >= 0.0 && b1 + b2 <= 1.0 + 1e-6,
+            "({b1}, {b2})"
+        );
+        observed[i] += 1.0;
+    }
+    let expected: Vec<f64> = areas.iter().map(|a| SAMPLES as f64 * a / total).collect();
+    println!("triangle areas {areas:?}, counts {observed:?}");
+    check(
+        "mesh triangle choice by area",
+        &chi2_test(&observed, &expected, DEFAULT_MIN_EXPECTED),
+    );
+}
+
+#[test]
+fn t13_mesh_barycentrics_in_one_triangle() {
+    // Barycentrics of the samples that land in triangle 2 (a middle interval of the area cdf,
+    // so the reuse of u.x matters); the others count as failures, and the pdf integrates to
+    // the triangle's probability area_2 / total.
+    let k = 2;
+    let mesh = test_mesh();
+    let tris = test_triangles();
+    let total: f64 = tris.iter().map(tri_area64).sum();
+    let prob = tri_area64(&tris[k]) / total;
+    let r = PlaneChi2::default().run(
+        |u| {
+            let (i, b1, b2) = mesh.sample(u)?;
+            (i == k).then_some(Vec2::new(b1, b2))
+        },
+        |b| {
+            let (b1, b2) = (f64::from(b.x), f64::from(b.y));
+            if b1 >= 0.0 && b2 >= 0.0 && b1 + b2 <= 1.0 {
+                2.0 * prob
+            } else {
+                0.0
+            }
+        },
+        13,
+    );
+    check("mesh barycentrics in triangle 2", &r);
+}
+
+#[test]
+fn t14_disk_ellipse_directions() {
+    // The unit disk scaled non-uniformly (2 × 0.6), sheared, tilted and moved: an ellipse.
+    let m = Mat4::from_translation(Vec3::new(0.3, -0.2, -1.5))
+        * Mat4::from_quat(Quat::from_axis_angle(
+            Vec3::new(1.0, 0.5, 0.0).normalize(),
+            0.6,
+        ))
+        * Mat4::from_cols_array(&[
+            2.0, 0.0, 0.0, 0.0, // x axis
+            0.4, 0.6, 0.0, 0.0, // y axis (sheared)
+            0.0, 0.0, 1.5, 0.0, // z axis
+            0.0, 0.0, 0.0, 1.0,
+        ]);
+    let disk = Disk::new(Transform::new(m).expect("invertible")).expect("disk has area");
+    let disks = [disk];
+    let shape = Shape {
+        kind: ShapeKind::Disk(0),
+        bsdf: 0,
+        emitter: None,
+        flip_normals: false,
+    };
+    let r = Vec3::new(0.2, 0.3, 0.2);
+    let r64 = r.as_dvec3();
+    let m64: DMat4 = m.as_dmat4();
+    let inv64 = m64.inverse();
+    let o_local = inv64.transform_point3(r64);
+    assert!(
+        o_local.z.abs() > 0.5,
+        "the reference point is off the disk's plane"
+    );
+
+    let result = SphereChi2 {
+        theta_bins: 20,
+        phi_bins: 40,
+        samples: SAMPLES,
+    }
+    .run(
+        |u| {
+            let (ps, pdf) = shape.sample_from(r, u, &disks)?;
+            let local = inv64.transform_point3(ps.p.as_dvec3());
+            assert!(
+                local.z.abs() < 1e-5 && local.x.hypot(local.y) <= 1.0 + 1e-5,
+                "sampled point {} is not on the disk (local {local})",
+                ps.p
+            );
+            let want = shape.pdf_from(r, ps.p, ps.ng, &disks);
+            assert!(
+                (pdf - want).abs() <= 1e-5 * want,
+                "sample_from pdf {pdf} vs pdf_from {want}"
+            );
+            Some((ps.p - r).as_dvec3().normalize().as_vec3())
+        },
+        |w| {
+            // Ray cast in the disk's local frame, f64.
+            let d = inv64.transform_vector3(w.as_dvec3());
+            if d.z == 0.0 {
+                return 0.0;
+            }
+            let t = -o_local.z / d.z;
+            let (x, y) = (o_local.x + t * d.x, o_local.y + t * d.y);
+            if t > 0.0 && x * x + y * y <= 1.0 {
+                let p = m64.transform_point3(DVec3::new(x, y, 0.0));
+                f64::from(shape.pdf_from(r, p.as_vec3(), disk.normal, &disks))
+            } else {
+                0.0
+            }
+        },
+        14,
+    );
+    check("ellipse (disk) directions", &result);
+}
+
+// ---------------------------------------------------------------------------------------------
+// 4. Discrete1D
+// ---------------------------------------------------------------------------------------------
+
+/// Weights with zeros first, in a run, and last.
+const WEIGHTS: [f32; 10] = [0.0, 3.0, 0.5, 0.0, 0.0, 1.25, 7.0, 0.05, 2.0, 0.0];
+
+fn reference_pmf() -> Vec<f64> {
+    let total: f64 = WEIGHTS.iter().map(|&w| f64::from(w)).sum();
+    WEIGHTS.iter().map(|&w| f64::from(w) / total).collect()
+}
+
+#[test]
+fn t15_discrete_indices() {
+    let dist = Discrete1D::new(WEIGHTS).expect("valid weights");
+    let pmf = reference_pmf();
+    for (i, &p) in pmf.iter().enumerate() {
+        assert!(
+            (f64::from(dist.pmf(i)) - p).abs() <= 1e-6,
+            "pmf({i}) = {} vs {p}",
+            dist.pmf(i)
+        );
+    }
+    let mut rng = Pcg32::new(15);
+    let mut observed = vec![0.0; WEIGHTS.len()];
+    for _ in 0..SAMPLES {
+        let (i, ur) = dist.sample_reuse(rng.next_f32());
+        assert!((0.0..1.0).contains(&ur), "u rescaled = {ur}");
+        observed[i] += 1.0;
+    }
+    for (i, &w) in WEIGHTS.iter().enumerate() {
+        assert!(
+            w > 0.0 || observed[i] == 0.0,
+            "zero-weight item {i} chosen {} times",
+            observed[i]
+        );
+    }
+    let expected: Vec<f64> = pmf.iter().map(|p| p * SAMPLES as f64).collect();
+    check(
+        "Discrete1D indices",
+        &chi2_test(&observed, &expected, DEFAULT_MIN_EXPECTED),
+    );
+}
+
+#[test]
+fn t16_discrete_rescaled_u() {
+    // Joint test of (index, u rescaled) on cells (item, 20 bins of u): u rescaled must be
+    // uniform in [0, 1) within every item, independently of which item was chosen.
+    const U_BINS: usize = 20;
+    let dist = Discrete1D::new(WEIGHTS).expect("valid weights");
+    let pmf = reference_pmf();
+    let mut rng = Pcg32::new(16);
+    let mut observed = vec![0.0; WEIGHTS.len() * U_BINS];
+    for _ in 0..SAMPLES {
+        let (i, ur) = dist.sample_reuse(rng.next_f32());
+        assert!((0.0..1.0).contains(&ur), "u rescaled = {ur}");
+        let bin = ((f64::from(ur) * U_BINS as f64) as usize).min(U_BINS - 1);
+        observed[i * U_BINS + bin] += 1.0;
+    }
+    let expected: Vec<f64> = pmf
+        .iter()
+        .flat_map(|&p| std::iter::repeat(p * SAMPLES as f64 / U_BINS as f64).take(U_BINS))
+        .collect();
+    check(
+        "Discrete1D rescaled u (joint with index)",
+        &chi2_test(&observed, &expected, DEFAULT_MIN_EXPECTED),
+    );
+}
+
+// ---------------------------------------------------------------------------------------------
+// 5. Pixel filters
+// ---------------------------------------------------------------------------------------------
+
+#[test]
+fn t17_box_filter() {
+    let r = PlaneChi2::default().run(
+        |u| Some(Filter::Box.sample(u) + Vec2::splat(0.5)),
+        |_| 1.0,
+        17,
+    );
+    check("box filter", &r);
+}
+
+/// Steps of the tabulated Gaussian profile over `|x| ∈ [0, 2]`.
+const G_STEPS: usize = 31;
+const G_RADIUS: f64 = 2.0;
+
+/// The Gaussian filter's documented 1-D density (stddev 0.5, radius 2): 31 constant steps over
+/// `|x| ∈ [0, 2]`, mirrored; step `i` covers `[x_i, x_i + 2/31]` with `x_i = 2 i / 31` and has
+/// the value `max(0, exp(-x_i² / (2 · 0.25)) - exp(-4 / (2 · 0.25)))`; normalized over [-2, 2].
+/// Returned as the table of the 31 normalized step densities.
+fn gaussian_step_table() -> Vec<f64> {
+    let h = G_RADIUS / G_STEPS as f64;
+    let values: Vec<f64> = (0..G_STEPS)
+        .map(|i| {
+            let x0 = h * i as f64;
+            ((-x0 * x0 / 0.5).exp() - (-G_RADIUS * G_RADIUS / 0.5).exp()).max(0.0)
+        })
+        .collect();
+    let total = 2.0 * h * values.iter().sum::<f64>();
+    values.iter().map(|v| v / total).collect()
+}
+
+/// Evaluates the step density of [`gaussian_step_table`] at `x`.
+fn gaussian_step_density(table: &[f64], x: f64) -> f64 {
+    let h = G_RADIUS / G_STEPS as f64;
+    if x.abs() > G_RADIUS {
+        return 0.0;
+    }
+    table[((x.abs() / h) as usize).min(G_STEPS - 1)]
+}
+
+#[test]
+fn t18_gaussian_filter() {
+    // [-2, 2]^2 mapped to [0, 1]^2 (density × 16), 62 × 62 cells: one cell per step.
+    let filter = Filter::Gaussian(GaussianFilter::new(0.5));
+    let table = gaussian_step_table();
+    let r = PlaneChi2 {
+        bins_x: 2 * G_STEPS,
+        bins_y: 2 * G_STEPS,
+        samples: SAMPLES,
+    }
+    .run(
+        |u| {
+            let s = filter.sample(u);
+            Some((s + Vec2::splat(2.0)) / 4.0)
+        },
+        |p| {
+            let (x, y) = (4.0 * f64::from(p.x) - 2.0, 4.0 * f64::from(p.y) - 2.0);
+            16.0 * gaussian_step_density(&table, x) * gaussian_step_density(&table, y)
+        },
+        18,
+    );
+    check("Gaussian filter (stddev 0.5)", &r);
+}
+
+#[test]
+fn zz_debug_mesh() {
+    let tris = test_triangles();
+    let r = MESH_REF.as_dvec3();
+    let (nt, np) = (20usize, 40usize);
+    let support = |z: f64, phi: f64| {
+        let s = (1.0 - z * z).max(0.0).sqrt();
+        let d = DVec3::new(s * phi.cos(), s * phi.sin(), z);
+        tris.iter().any(|t| ray_triangle64(r, d, t).is_some())
+    };
+    let m = 100usize;
+    for it in 0..nt {
+        for ip in 0..np {
+            let (z0, z1) = (
+                -1.0 + 2.0 * it as f64 / nt as f64,
+                -1.0 + 2.0 * (it + 1) as f64 / nt as f64,
+            );
+            let (p0, p1) = (
+                TAU * ip as f64 / np as f64,
+                TAU * (ip + 1) as f64 / np as f64,
+            );
+            let mut inside = 0;
+            let mut per = 0;
+            for a in 0..m {
+                for b in 0..m {
+                    let z = z0 + (z1 - z0) * (a as f64 + 0.5) / m as f64;
+                    let ph = p0 + (p1 - p0) * (b as f64 + 0.5) / m as f64;
+                    if support(z, ph) {
+                        inside += 1;
+                    }
+                }
+            }
+            for a in 0..=400 {
+                let f = a as f64 / 400.0;
+                for (z, ph) in [
+                    (z0 + (z1 - z0) * f, p0),
+                    (z0 + (z1 - z0) * f, p1),
+                    (z0, p0 + (p1 - p0) * f),
+                    (z1, p0 + (p1 - p0) * f),
+                ] {
+                    if support(z, ph) {
+                        per += 1;
+                    }
+                }
+            }
+            let frac = inside as f64 / (m * m) as f64;
+            if (per > 0 || inside > 0) && frac < 0.05 {
+                println!(
+                    "cell {} (it {it}, ip {ip}): frac {frac}, perimeter hits {per}",
+                    it * np + ip
+                );
+            }
+        }
+    }
+}
