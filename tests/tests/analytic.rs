@@ -8,7 +8,7 @@ use tessera::stats::{sidak_alpha, t_test_from_sums};
 use tessera_tests::{load_xml, render_loaded};
 
 /// Number of t-tests in this file (cases x integrators x channels), for the Sidak correction.
-const N_TESTS: usize = (3 + 15 + 3) * 3;
+const N_TESTS: usize = (3 + 15 + 3 + 2) * 3;
 const INTEGRATORS: [&str; 3] = ["path_mats", "path_half", "path_mis"];
 
 fn alpha() -> f64 {
@@ -115,7 +115,7 @@ const SPHERE_LIGHT: &str = r#"<scene version="3.0.0">
   <default name="integrator" value="path_mis"/>
   <integrator type="$integrator"><integer name="max_depth" value="2"/></integrator>
   <sensor type="perspective">
-    <float name="fov" value="0.05"/>
+    <float name="fov" value="0.001"/>
     <transform name="to_world"><lookat origin="5, 0, 2" target="0, 0, 0" up="0, 0, 1"/></transform>
     <film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>
   </sensor>
@@ -150,6 +150,44 @@ fn sphere_light_over_diffuse_plane() {
             expected,
         );
     }
+}
+
+const POINT_LIGHT: &str = r#"<scene version="3.0.0">
+  <default name="integrator" value="path_mis"/>
+  <integrator type="$integrator"><integer name="max_depth" value="2"/></integrator>
+  <sensor type="perspective">
+    <float name="fov" value="0.001"/>
+    <transform name="to_world"><lookat origin="5, 0, 2" target="0, 0, 0" up="0, 0, 1"/></transform>
+    <film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>
+  </sensor>
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="1000"/></transform>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.5, 0.3"/></bsdf>
+  </shape>
+  <emitter type="point">
+    <point name="position" value="0, 0, 2"/>
+    <rgb name="intensity" value="20"/>
+  </emitter>
+</scene>"#;
+
+/// Directly below a point light of intensity I at height h over a diffuse plane:
+/// a I / (pi h^2). BSDF sampling alone can never find a point light: exactly zero.
+#[test]
+fn point_light_over_diffuse_plane() {
+    let (i, h) = (20.0f64, 2.0f64);
+    let expected = [0.7f64, 0.5, 0.3].map(|a| a * i / (std::f64::consts::PI * h * h));
+    for integ in ["path_half", "path_mis"] {
+        check(
+            &format!("point light {integ}"),
+            POINT_LIGHT,
+            &[("integrator", integ)],
+            100_000,
+            expected,
+        );
+    }
+    let loaded = load_xml(POINT_LIGHT, &[("integrator", "path_mats")]);
+    let fb = render_loaded(&loaded, 10_000, 7);
+    assert_eq!(fb.at(0, 0).sum, [0.0; 3], "path_mats found a point light");
 }
 
 /// The test has power: the same render is rejected against a reference 1% off.

@@ -75,3 +75,45 @@ fn nori_and_mitsuba_dialects_render_the_same_bits() {
     );
     assert_eq!(a, b);
 }
+
+/// A PLY quad and the same quad as OBJ (both fan-triangulated the same way) render the same bits.
+#[test]
+fn ply_and_obj_meshes_load_alike() {
+    let dir = std::env::temp_dir().join(format!("tessera-ply-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("quad.ply"),
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n\
+         element face 1\nproperty list uchar int vertex_indices\nend_header\n\
+         -1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\n4 0 1 2 3\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("quad.obj"),
+        "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n",
+    )
+    .unwrap();
+    let scene = |file: &str| {
+        format!(
+            r#"<scene version="3.0.0">
+  <sensor type="perspective"><float name="fov" value="60"/>
+    <transform name="to_world"><lookat origin="0.3, 0.2, 3" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="12"/><integer name="height" value="12"/></film></sensor>
+  <shape type="{}"><string name="filename" value="{}"/>
+    <emitter type="area"><rgb name="radiance" value="1, 2, 3"/></emitter></shape>
+  <emitter type="constant"><rgb name="radiance" value="0.5"/></emitter>
+</scene>"#,
+            &file[file.len() - 3..],
+            dir.join(file).display()
+        )
+    };
+    let a = load_xml(&scene("quad.ply"), &[]);
+    let b = load_xml(&scene("quad.obj"), &[]);
+    let (fa, fb) = (render_loaded(&a, 4, 1), render_loaded(&b, 4, 1));
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(
+        fa.pixels.iter().any(|p| p.sum[2] > p.sum[0]),
+        "the quad is not visible"
+    );
+    assert_eq!(fa, fb);
+}

@@ -364,11 +364,11 @@ const MESH_REF: Vec3 = Vec3::new(0.1, 0.2, -0.3);
 /// areas, none coplanar with another; the winding is fixed so each faces the reference point.
 fn test_triangles() -> Vec<[Vec3; 3]> {
     let rel = [
-        // Large, ahead (+z).
+        // Large, ahead (+x).
         [
-            Vec3::new(-2.0, -1.5, 3.0),
-            Vec3::new(2.5, -1.0, 3.5),
-            Vec3::new(0.0, 2.0, 2.6),
+            Vec3::new(3.0, -1.5, -1.0),
+            Vec3::new(3.4, 2.2, -0.6),
+            Vec3::new(2.7, 0.3, 1.4),
         ],
         // Tiny, to the -x side.
         [
@@ -382,17 +382,17 @@ fn test_triangles() -> Vec<[Vec3; 3]> {
             Vec3::new(1.0, -1.9, 0.1),
             Vec3::new(0.1, -1.4, 0.8),
         ],
-        // Long and thin, behind (-z).
+        // Long and thin, behind (+y).
         [
-            Vec3::new(-1.0, -0.2, -2.0),
-            Vec3::new(1.5, 0.3, -2.4),
-            Vec3::new(0.3, 0.25, -2.1),
+            Vec3::new(-1.0, 2.0, -0.2),
+            Vec3::new(1.5, 2.4, 0.3),
+            Vec3::new(0.3, 2.1, 0.25),
         ],
-        // Small, up and to the +x side.
+        // Small, up and to the -x, -y side.
         [
-            Vec3::new(1.5, 1.0, 0.2),
-            Vec3::new(1.2, 1.8, -0.4),
-            Vec3::new(1.0, 1.5, 0.8),
+            Vec3::new(-1.5, -1.0, 1.0),
+            Vec3::new(-1.2, -0.6, 1.4),
+            Vec3::new(-1.0, -1.3, 1.2),
         ],
     ];
     rel.iter()
@@ -775,53 +775,55 @@ fn t18_gaussian_filter() {
 fn zz_debug_mesh() {
     let tris = test_triangles();
     let r = MESH_REF.as_dvec3();
-    let (nt, np) = (20usize, 40usize);
-    let support = |z: f64, phi: f64| {
-        let s = (1.0 - z * z).max(0.0).sqrt();
-        let d = DVec3::new(s * phi.cos(), s * phi.sin(), z);
-        tris.iter().any(|t| ray_triangle64(r, d, t).is_some())
-    };
-    let m = 100usize;
-    for it in 0..nt {
-        for ip in 0..np {
-            let (z0, z1) = (
-                -1.0 + 2.0 * it as f64 / nt as f64,
-                -1.0 + 2.0 * (it + 1) as f64 / nt as f64,
-            );
-            let (p0, p1) = (
-                TAU * ip as f64 / np as f64,
-                TAU * (ip + 1) as f64 / np as f64,
-            );
-            let mut inside = 0;
-            let mut per = 0;
-            for a in 0..m {
-                for b in 0..m {
-                    let z = z0 + (z1 - z0) * (a as f64 + 0.5) / m as f64;
-                    let ph = p0 + (p1 - p0) * (b as f64 + 0.5) / m as f64;
-                    if support(z, ph) {
-                        inside += 1;
-                    }
-                }
-            }
-            for a in 0..=400 {
-                let f = a as f64 / 400.0;
-                for (z, ph) in [
-                    (z0 + (z1 - z0) * f, p0),
-                    (z0 + (z1 - z0) * f, p1),
-                    (z0, p0 + (p1 - p0) * f),
-                    (z1, p0 + (p1 - p0) * f),
-                ] {
-                    if support(z, ph) {
-                        per += 1;
-                    }
-                }
-            }
-            let frac = inside as f64 / (m * m) as f64;
-            if (per > 0 || inside > 0) && frac < 0.05 {
-                println!(
-                    "cell {} (it {it}, ip {ip}): frac {frac}, perimeter hits {per}",
-                    it * np + ip
+    for (nt, np) in [(10usize, 20usize), (20, 40)] {
+        println!("grid {nt}x{np}");
+        let support = |z: f64, phi: f64| {
+            let s = (1.0 - z * z).max(0.0).sqrt();
+            let d = DVec3::new(s * phi.cos(), s * phi.sin(), z);
+            tris.iter().any(|t| ray_triangle64(r, d, t).is_some())
+        };
+        let m = 100usize;
+        for it in 0..nt {
+            for ip in 0..np {
+                let (z0, z1) = (
+                    -1.0 + 2.0 * it as f64 / nt as f64,
+                    -1.0 + 2.0 * (it + 1) as f64 / nt as f64,
                 );
+                let (p0, p1) = (
+                    TAU * ip as f64 / np as f64,
+                    TAU * (ip + 1) as f64 / np as f64,
+                );
+                let mut inside = 0;
+                let mut per = 0;
+                for a in 0..m {
+                    for b in 0..m {
+                        let z = z0 + (z1 - z0) * (a as f64 + 0.5) / m as f64;
+                        let ph = p0 + (p1 - p0) * (b as f64 + 0.5) / m as f64;
+                        if support(z, ph) {
+                            inside += 1;
+                        }
+                    }
+                }
+                for a in 0..=400 {
+                    let f = a as f64 / 400.0;
+                    for (z, ph) in [
+                        (z0 + (z1 - z0) * f, p0),
+                        (z0 + (z1 - z0) * f, p1),
+                        (z0, p0 + (p1 - p0) * f),
+                        (z1, p0 + (p1 - p0) * f),
+                    ] {
+                        if support(z, ph) {
+                            per += 1;
+                        }
+                    }
+                }
+                let frac = inside as f64 / (m * m) as f64;
+                if (per > 0 || inside > 0) && frac < 0.05 {
+                    println!(
+                        "cell {} (it {it}, ip {ip}): frac {frac}, perimeter hits {per}",
+                        it * np + ip
+                    );
+                }
             }
         }
     }
