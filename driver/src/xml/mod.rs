@@ -7,9 +7,15 @@
 //! tree through the typed getters of [`Object`] and finally calls [`Object::check_unused`].
 
 mod attrs;
+mod building;
 mod dialect;
+mod getters;
+mod include;
 mod object;
+mod params;
 mod parse;
+mod property;
+mod refs;
 mod source;
 mod subst;
 mod transform;

@@ -5,24 +5,27 @@
 //! `$name` substitution, the table of object ids, and the stack of files being included.
 //! Recursion is bounded: elements may nest at most [`MAX_DEPTH`] levels (counting through
 //! includes) and includes at most [`MAX_INCLUDE_DEPTH`] levels.
+//!
+//! This file holds the walk itself; the elements other than objects are read in
+//! `property.rs`, `refs.rs` (`<ref>`, `<alias>`), `params.rs` (`<default>`) and `include.rs`.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 use std::sync::Arc;
 
-use glam::DMat4;
 use roxmltree::Node;
 
 use super::attrs::Attrs;
-use super::dialect::{element_alias, param_name};
-use super::object::{Child, Kind, Object, Prop, Value};
-use super::source::{check_size, parse_document, read_text, Source};
-use super::subst::is_valid_name;
+use super::building::Building;
+use super::dialect::element_alias;
+use super::include::canonical;
+use super::object::{Child, Kind, Object};
+use super::source::{check_size, parse_document, Source};
 use super::transform;
 use crate::error::{InputError, Loc};
 
-type Result<T> = std::result::Result<T, InputError>;
+pub(super) type Result<T> = std::result::Result<T, InputError>;
 
 /// Deepest element nesting accepted (the root `<scene>` is level 1).
 pub const MAX_DEPTH: usize = 64;
@@ -56,96 +59,28 @@ enum Item<'a> {
     Alias,
 }
 
-/// An object whose element is being read.
-struct Building {
-    kind: Kind,
-    plugin: String,
-    props: Vec<Prop>,
-    children: Vec<Child>,
-    /// Parameter names (properties and named children) seen so far, for duplicates.
-    names: HashMap<String, Loc>,
-}
-
-impl Building {
-    fn new(kind: Kind, plugin: String) -> Self {
-        Building {
-            kind,
-            plugin,
-            props: Vec::new(),
-            children: Vec::new(),
-            names: HashMap::new(),
-        }
-    }
-
-    fn describe(&self) -> String {
-        if self.plugin.is_empty() {
-            self.kind.tag().to_string()
-        } else {
-            format!("{} \"{}\"", self.kind, self.plugin)
-        }
-    }
-
-    /// Normalizes a parameter name for this object.
-    fn param_name(&self, raw: &str) -> String {
-        param_name(raw, self.kind, &self.plugin)
-    }
-
-    fn claim_name(&mut self, name: &str, loc: &Loc) -> Result<()> {
-        if let Some(first) = self.names.get(name) {
-            return Err(InputError::at(
-                loc,
-                format!(
-                    "parameter \"{name}\" of {} is specified twice (first at {first})",
-                    self.describe()
-                ),
-            ));
-        }
-        self.names.insert(name.to_string(), loc.clone());
-        Ok(())
-    }
-
-    fn add_prop(&mut self, prop: Prop) -> Result<()> {
-        self.claim_name(&prop.name, &prop.loc)?;
-        self.props.push(prop);
-        Ok(())
-    }
-
-    fn add_child(&mut self, child: Child) -> Result<()> {
-        if let Some(n) = &child.name {
-            self.claim_name(n, &child.loc)?;
-        }
-        self.children.push(child);
-        Ok(())
-    }
-}
-
 /// The state of one load.
 pub struct Parser {
     /// `$name` parameters: `-D` defines first, then `<default>`s that were not yet set.
-    params: HashMap<String, String>,
+    pub(super) params: HashMap<String, String>,
     /// Names of the `-D` defines, which the scene must declare or use.
-    define_names: Vec<String>,
+    pub(super) define_names: Vec<String>,
     /// Parameter names the files declare (`<default>`) or mention (`$name`).
-    known_params: std::collections::HashSet<String>,
+    pub(super) known_params: std::collections::HashSet<String>,
     /// Objects declared with an `id` (or aliased), and where.
-    ids: HashMap<String, (Rc<Object>, Loc)>,
+    pub(super) ids: HashMap<String, (Rc<Object>, Loc)>,
     /// Ids of objects whose element is still being read.
-    open_ids: HashMap<String, Loc>,
+    pub(super) open_ids: HashMap<String, Loc>,
     /// Files being read, outermost first (canonical paths when they exist).
-    files: Vec<PathBuf>,
+    pub(super) files: Vec<PathBuf>,
 }
 
-/// The canonical form of a path when it exists, else the path itself.
-fn canonical(path: &Path) -> PathBuf {
-    std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf())
-}
-
-fn strip_bom(text: &str) -> &str {
+pub(super) fn strip_bom(text: &str) -> &str {
     text.strip_prefix('\u{feff}').unwrap_or(text)
 }
 
 /// Validates a `version="3.0.0"` attribute (one to three dot-separated numbers).
-fn check_version(a: &Attrs) -> Result<()> {
+pub(super) fn check_version(a: &Attrs) -> Result<()> {
     if let Some(v) = a.get("version") {
         let parts: Vec<&str> = v.value.split('.').collect();
         let ok = parts.len() <= 3
@@ -163,7 +98,7 @@ fn check_version(a: &Attrs) -> Result<()> {
 }
 
 /// Fails when a non-object element contains elements or text.
-fn no_content(src: &Source<'_>, node: Node<'_, '_>) -> Result<()> {
+pub(super) fn no_content(src: &Source<'_>, node: Node<'_, '_>) -> Result<()> {
     for ch in node.children() {
         if ch.is_element() {
             return Err(InputError::at(
@@ -181,7 +116,7 @@ fn no_content(src: &Source<'_>, node: Node<'_, '_>) -> Result<()> {
 }
 
 /// Fails when `ch` is a text node with something other than whitespace.
-fn check_text(src: &Source<'_>, parent: Node<'_, '_>, ch: Node<'_, '_>) -> Result<()> {
+pub(super) fn check_text(src: &Source<'_>, parent: Node<'_, '_>, ch: Node<'_, '_>) -> Result<()> {
     if !ch.is_text() {
         return Ok(());
     }
@@ -243,36 +178,12 @@ impl Parser {
         self.files.push(canonical(path));
         let obj = self.build_object(&src, root, Kind::Scene, &attrs, None, 1)?;
         self.files.pop();
-        // A -D that no file declares or uses is almost always a typo: say so.
-        if let Some(d) = self
-            .define_names
-            .iter()
-            .find(|d| !self.known_params.contains(*d))
-        {
-            return Err(InputError::file(
-                path,
-                format!("-D {d}: the scene has no <default name=\"{d}\"> and never uses ${d}"),
-            ));
-        }
+        self.check_defines(path)?;
         Ok(obj)
     }
 
-    /// Records every `$name` a file's text mentions.
-    fn note_mentions(&mut self, text: &str) {
-        let mut rest = text;
-        while let Some(i) = rest.find('$') {
-            rest = &rest[i + 1..];
-            let n = rest
-                .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
-                .unwrap_or(rest.len());
-            if n > 0 {
-                self.known_params.insert(rest[..n].to_string());
-            }
-        }
-    }
-
     /// Reads an object element into an [`Object`] (registering nothing).
-    fn build_object(
+    pub(super) fn build_object(
         &mut self,
         src: &Source<'_>,
         node: Node<'_, '_>,
@@ -333,24 +244,8 @@ impl Parser {
         ))
     }
 
-    /// Fails when `id` is already declared (or being declared).
-    fn check_new_id(&self, id: &str, loc: &Loc) -> Result<()> {
-        let first = self
-            .ids
-            .get(id)
-            .map(|(_, l)| l)
-            .or_else(|| self.open_ids.get(id));
-        match first {
-            Some(first) => Err(InputError::at(
-                loc,
-                format!("duplicate id \"{id}\" (first declared at {first})"),
-            )),
-            None => Ok(()),
-        }
-    }
-
     /// Reads the content of an object element into `b`.
-    fn parse_body(
+    pub(super) fn parse_body(
         &mut self,
         src: &Source<'_>,
         node: Node<'_, '_>,
@@ -397,7 +292,7 @@ impl Parser {
     }
 
     /// Reads one element inside an object into `b`.
-    fn parse_item(
+    pub(super) fn parse_item(
         &mut self,
         src: &Source<'_>,
         node: Node<'_, '_>,
@@ -429,230 +324,8 @@ impl Parser {
             }
             Item::Ref => self.parse_ref(src, node, &attrs, b),
             Item::Include => self.parse_include(src, node, &attrs, b, depth),
-            Item::Default => {
-                no_content(src, node)?;
-                attrs.allow(&["name", "value"])?;
-                let name = attrs.require("name")?;
-                let value = attrs.require("value")?;
-                if !is_valid_name(&name.value) {
-                    return Err(name.error(
-                        &attrs.tag,
-                        &format!(
-                            "\"{}\" is not a valid parameter name (use letters, digits, _)",
-                            name.value
-                        ),
-                    ));
-                }
-                self.params
-                    .entry(name.value.clone())
-                    .or_insert_with(|| value.value.clone());
-                self.known_params.insert(name.value.clone());
-                Ok(())
-            }
-            Item::Alias => {
-                no_content(src, node)?;
-                attrs.allow(&["id", "as"])?;
-                let id = attrs.require("id")?;
-                let new = attrs.require("as")?;
-                let obj = self.resolve(&id.value, &id.loc)?;
-                if new.value.is_empty() {
-                    return Err(new.error(&attrs.tag, "must not be empty"));
-                }
-                self.check_new_id(&new.value, &new.loc)?;
-                self.ids.insert(new.value.clone(), (obj, attrs.loc.clone()));
-                Ok(())
-            }
+            Item::Default => self.parse_default(src, node, &attrs),
+            Item::Alias => self.parse_alias(src, node, &attrs),
         }
-    }
-
-    /// The object declared with `id`.
-    fn resolve(&self, id: &str, loc: &Loc) -> Result<Rc<Object>> {
-        if let Some((obj, _)) = self.ids.get(id) {
-            return Ok(obj.clone());
-        }
-        let msg = if self.open_ids.contains_key(id) {
-            format!("id \"{id}\" refers to an object that contains this reference")
-        } else {
-            format!("unknown id \"{id}\" (objects must be declared before they are referenced)")
-        };
-        Err(InputError::at(loc, msg))
-    }
-
-    fn parse_ref(
-        &mut self,
-        src: &Source<'_>,
-        node: Node<'_, '_>,
-        attrs: &Attrs,
-        b: &mut Building,
-    ) -> Result<()> {
-        no_content(src, node)?;
-        attrs.allow(&["id", "name"])?;
-        let id = attrs.require("id")?;
-        let obj = self.resolve(&id.value, &attrs.loc)?;
-        obj.mark_referenced();
-        let name = match attrs.get("name") {
-            Some(a) if a.value.is_empty() => return Err(a.error(&attrs.tag, "must not be empty")),
-            Some(a) => Some(b.param_name(&a.value)),
-            None => None,
-        };
-        b.add_child(Child::new(name, obj, attrs.loc.clone(), true))
-    }
-
-    fn parse_include(
-        &mut self,
-        src: &Source<'_>,
-        node: Node<'_, '_>,
-        attrs: &Attrs,
-        b: &mut Building,
-        depth: usize,
-    ) -> Result<()> {
-        no_content(src, node)?;
-        attrs.allow(&["filename"])?;
-        let fname = attrs.require("filename")?;
-        if fname.value.is_empty() {
-            return Err(fname.error(&attrs.tag, "must not be empty"));
-        }
-        let path = src.dir.join(&fname.value);
-        if self.files.len() >= MAX_INCLUDE_DEPTH {
-            return Err(attrs.error(format!(
-                "includes are nested deeper than {MAX_INCLUDE_DEPTH} levels"
-            )));
-        }
-        let key = canonical(&path);
-        if self.files.contains(&key) {
-            return Err(attrs.error(format!(
-                "include cycle: \"{}\" is already being read (it includes itself, directly or not)",
-                path.display()
-            )));
-        }
-        let text = read_text(&path)
-            .map_err(|m| attrs.error(format!("cannot include \"{}\": {m}", path.display())))?;
-        let text = strip_bom(&text);
-        self.note_mentions(text);
-        let file = Arc::new(path);
-        let doc = parse_document(text, &file)?;
-        let isrc = Source::new(file, text);
-        let root = doc.root_element();
-        self.files.push(key);
-        let result = if root.tag_name().name() == "scene" {
-            // The included scene's content is spliced in place of the <include>.
-            Attrs::read(root, &isrc, &self.params)
-                .and_then(|ra| {
-                    ra.allow(&["version"])?;
-                    check_version(&ra)
-                })
-                .and_then(|()| self.parse_body(&isrc, root, b, depth + 1))
-        } else {
-            self.parse_item(&isrc, root, b, depth + 1)
-        };
-        self.files.pop();
-        result
-    }
-
-    /// Reads a property element.
-    fn parse_property(
-        &mut self,
-        src: &Source<'_>,
-        node: Node<'_, '_>,
-        tag: &str,
-        a: &Attrs,
-        b: &Building,
-        depth: usize,
-    ) -> Result<Prop> {
-        let name = a.require("name")?;
-        if name.value.is_empty() {
-            return Err(name.error(&a.tag, "must not be empty"));
-        }
-        let value = match tag {
-            "transform" => {
-                a.allow(&["name"])?;
-                Value::Transform(self.parse_transform(src, node, depth)?)
-            }
-            _ => {
-                no_content(src, node)?;
-                self.simple_value(tag, a)?
-            }
-        };
-        Ok(Prop::new(b.param_name(&name.value), value, a.loc.clone()))
-    }
-
-    /// The value of a property element other than `<transform>`.
-    fn simple_value(&self, tag: &str, a: &Attrs) -> Result<Value> {
-        let t = a.tag.as_str();
-        Ok(match tag {
-            "float" | "integer" | "boolean" | "string" | "rgb" => {
-                a.allow(&["name", "value"])?;
-                let v = a.require("value")?;
-                match tag {
-                    "float" => Value::Float(v.float(t)?),
-                    "integer" => Value::Integer(v.int(t)?),
-                    "boolean" => Value::Boolean(v.boolean(t)?),
-                    "string" => Value::String(v.value.clone()),
-                    _ => Value::Rgb(v.vec3(t, true)?),
-                }
-            }
-            "spectrum" => {
-                a.allow(&["name", "value", "filename"])?;
-                if let Some(f) = a.get("filename") {
-                    return Err(f.error(t, "spectra are not supported (only <spectrum value=\"v\"/>, meaning grey): use <rgb>"));
-                }
-                let v = a.require("value")?;
-                let items: Vec<&str> = super::values::split_list(&v.value).collect();
-                match items.as_slice() {
-                    [one] if !one.contains(':') => Value::Float(v.float(t)?),
-                    _ => return Err(v.error(
-                        t,
-                        "spectra are not supported (only a single value, meaning grey): use <rgb>",
-                    )),
-                }
-            }
-            "point" | "vector" => {
-                a.allow(&["name", "value", "x", "y", "z"])?;
-                let v = transform::xyz(a, &["value"], 0.0, true)?
-                    .ok_or_else(|| {
-                        a.error(format!(
-                            "<{t}> needs a \"value\" or \"x\"/\"y\"/\"z\" attributes"
-                        ))
-                    })?
-                    .to_array();
-                if tag == "point" {
-                    Value::Point(v)
-                } else {
-                    Value::Vector(v)
-                }
-            }
-            _ => unreachable!("not a simple property tag: {tag}"),
-        })
-    }
-
-    /// Composes the operations inside a `<transform>` element (`M = op * M`).
-    fn parse_transform(&self, src: &Source<'_>, node: Node<'_, '_>, depth: usize) -> Result<DMat4> {
-        let mut m = DMat4::IDENTITY;
-        for ch in node.children() {
-            if !ch.is_element() {
-                check_text(src, node, ch)?;
-                continue;
-            }
-            let loc = src.loc(ch.range().start);
-            if depth + 1 > MAX_DEPTH {
-                return Err(InputError::at(
-                    &loc,
-                    format!("elements are nested deeper than {MAX_DEPTH} levels"),
-                ));
-            }
-            let tag = ch.tag_name().name();
-            if !transform::is_op(tag) {
-                return Err(InputError::at(
-                    &loc,
-                    format!(
-                        "<{tag}> is not allowed inside <transform> (expected translate, scale, rotate, matrix or lookat)"
-                    ),
-                ));
-            }
-            let a = Attrs::read(ch, src, &self.params)?;
-            no_content(src, ch)?;
-            m = transform::op_matrix(&a)? * m;
-        }
-        Ok(m)
     }
 }

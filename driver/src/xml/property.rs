@@ -1,0 +1,121 @@
+//! Property elements (`<float>`, `<rgb>`, `<point>`, `<transform>`, ...) to [`Prop`]s.
+
+use glam::DMat4;
+use roxmltree::Node;
+
+use super::attrs::Attrs;
+use super::building::Building;
+use super::object::{Prop, Value};
+use super::parse::{check_text, no_content, Parser, Result, MAX_DEPTH};
+use super::source::Source;
+use super::transform;
+use crate::error::InputError;
+
+impl Parser {
+    /// Reads a property element.
+    pub(super) fn parse_property(
+        &mut self,
+        src: &Source<'_>,
+        node: Node<'_, '_>,
+        tag: &str,
+        a: &Attrs,
+        b: &Building,
+        depth: usize,
+    ) -> Result<Prop> {
+        let name = a.require("name")?;
+        if name.value.is_empty() {
+            return Err(name.error(&a.tag, "must not be empty"));
+        }
+        let value = match tag {
+            "transform" => {
+                a.allow(&["name"])?;
+                Value::Transform(self.parse_transform(src, node, depth)?)
+            }
+            _ => {
+                no_content(src, node)?;
+                self.simple_value(tag, a)?
+            }
+        };
+        Ok(Prop::new(b.param_name(&name.value), value, a.loc.clone()))
+    }
+
+    /// The value of a property element other than `<transform>`.
+    fn simple_value(&self, tag: &str, a: &Attrs) -> Result<Value> {
+        let t = a.tag.as_str();
+        Ok(match tag {
+            "float" | "integer" | "boolean" | "string" | "rgb" => {
+                a.allow(&["name", "value"])?;
+                let v = a.require("value")?;
+                match tag {
+                    "float" => Value::Float(v.float(t)?),
+                    "integer" => Value::Integer(v.int(t)?),
+                    "boolean" => Value::Boolean(v.boolean(t)?),
+                    "string" => Value::String(v.value.clone()),
+                    _ => Value::Rgb(v.vec3(t, true)?),
+                }
+            }
+            "spectrum" => {
+                a.allow(&["name", "value", "filename"])?;
+                if let Some(f) = a.get("filename") {
+                    return Err(f.error(t, "spectra are not supported (only <spectrum value=\"v\"/>, meaning grey): use <rgb>"));
+                }
+                let v = a.require("value")?;
+                let items: Vec<&str> = super::values::split_list(&v.value).collect();
+                match items.as_slice() {
+                    [one] if !one.contains(':') => Value::Float(v.float(t)?),
+                    _ => return Err(v.error(
+                        t,
+                        "spectra are not supported (only a single value, meaning grey): use <rgb>",
+                    )),
+                }
+            }
+            "point" | "vector" => {
+                a.allow(&["name", "value", "x", "y", "z"])?;
+                let v = transform::xyz(a, &["value"], 0.0, true)?
+                    .ok_or_else(|| {
+                        a.error(format!(
+                            "<{t}> needs a \"value\" or \"x\"/\"y\"/\"z\" attributes"
+                        ))
+                    })?
+                    .to_array();
+                if tag == "point" {
+                    Value::Point(v)
+                } else {
+                    Value::Vector(v)
+                }
+            }
+            _ => unreachable!("not a simple property tag: {tag}"),
+        })
+    }
+
+    /// Composes the operations inside a `<transform>` element (`M = op * M`).
+    fn parse_transform(&self, src: &Source<'_>, node: Node<'_, '_>, depth: usize) -> Result<DMat4> {
+        let mut m = DMat4::IDENTITY;
+        for ch in node.children() {
+            if !ch.is_element() {
+                check_text(src, node, ch)?;
+                continue;
+            }
+            let loc = src.loc(ch.range().start);
+            if depth + 1 > MAX_DEPTH {
+                return Err(InputError::at(
+                    &loc,
+                    format!("elements are nested deeper than {MAX_DEPTH} levels"),
+                ));
+            }
+            let tag = ch.tag_name().name();
+            if !transform::is_op(tag) {
+                return Err(InputError::at(
+                    &loc,
+                    format!(
+                        "<{tag}> is not allowed inside <transform> (expected translate, scale, rotate, matrix or lookat)"
+                    ),
+                ));
+            }
+            let a = Attrs::read(ch, src, &self.params)?;
+            no_content(src, ch)?;
+            m = transform::op_matrix(&a)? * m;
+        }
+        Ok(m)
+    }
+}
