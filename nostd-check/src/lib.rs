@@ -37,6 +37,11 @@ fn panic(_info: &PanicInfo) -> ! {
 pub fn trace_one(seed: u64) -> f32 {
     let mut s = IndependentSampler::new(seed, 0, 0, 0);
     let d = warp::square_to_uniform_sphere(Vec2::new(s.next_1d(), s.next_1d()));
-    let sphere = tessera_core::geometry::Sphere { center: Vec3::new(0.0, 0.0, 3.0), radius: 1.0 };
-    sphere.intersect(&Ray::new(Vec3::ZERO, d), f32::INFINITY).unwrap_or(0.0)
+    let sphere = tessera_core::geometry::Sphere {
+        center: Vec3::new(0.0, 0.0, 3.0),
+        radius: 1.0,
+    };
+    sphere
+        .intersect(&Ray::new(Vec3::ZERO, d), f32::INFINITY)
+        .unwrap_or(0.0)
 }

@@ -756,9 +756,8 @@ fn t16_discrete_rescaled_u() {
         let bin = ((f64::from(ur) * U_BINS as f64) as usize).min(U_BINS - 1);
         observed[i * U_BINS + bin] += 1.0;
     }
-    let expected: Vec<f64> = pmf
-        .iter()
-        .flat_map(|&p| std::iter::repeat(p * SAMPLES as f64 / U_BINS as f64).take(U_BINS))
+    let expected: Vec<f64> = (0..WEIGHTS.len() * U_BINS)
+        .map(|cell| pmf[cell / U_BINS] * SAMPLES as f64 / U_BINS as f64)
         .collect();
     check(
         "Discrete1D rescaled u (joint with index)",

@@ -12,5 +12,5 @@ pub use interaction::Interaction;
 pub use mesh::Mesh;
 pub use prim::{Hit, Prim};
 pub use shape::{area_to_solid_angle, PositionSample, Shape, ShapeKind};
-pub use sphere::Sphere;
+pub use sphere::{ConeSample, Sphere};
 pub use triangle::intersect_triangle;
