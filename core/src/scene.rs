@@ -5,7 +5,19 @@ use crate::camera::{Filter, Perspective};
 use crate::emitter::{Emitter, EmitterCtx};
 use crate::geometry::{Disk, Hit, Interaction, Prim, Shape, ShapeKind};
 use crate::math::{Aabb, Ray};
+use crate::sampling::Discrete1D;
 use alloc::vec::Vec;
+
+/// How emitter sampling picks one light.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum LightSelection {
+    /// In proportion to each light's emitted power (luminance), so shadow rays go where the light
+    /// is: the default. Falls back to uniform when no light reports a positive power.
+    #[default]
+    Power,
+    /// Every light with the same probability (the seeds' and Mitsuba 3's default).
+    Uniform,
+}
 
 /// What a scene contains, computed once; integrators consult it to skip work a scene does not
 /// need (no shadow rays without emitters, no environment lookups without an environment...).
@@ -42,6 +54,8 @@ pub struct SceneParts {
     pub camera: Perspective,
     /// The pixel filter.
     pub filter: Filter,
+    /// How emitter sampling picks a light.
+    pub light_selection: LightSelection,
 }
 
 /// A scene ready to render: built once, then only read (it is `Sync`).
@@ -59,14 +73,20 @@ pub struct Scene {
     pub bsdfs: Vec<Bsdf>,
     /// Lights.
     pub emitters: Vec<Emitter>,
-    /// Index of the environment emitter, if any (at most one).
-    pub environment: Option<u32>,
+    /// Indices of the emitters at infinity (seen by rays that escape the scene).
+    pub environments: Vec<u32>,
+    /// Light choice by power (None: uniform).
+    selection: Option<Discrete1D>,
     /// The camera.
     pub camera: Perspective,
     /// The pixel filter.
     pub filter: Filter,
     /// What the scene contains.
     pub features: SceneFeatures,
+    /// Centre of the scene's bounding sphere.
+    pub scene_center: glam::Vec3,
+    /// Radius of the scene's bounding sphere (lights at infinity aim at it).
+    pub scene_radius: f32,
 }
 
 /// Why a scene could not be built (the driver checks inputs first; this guards embedders).
@@ -77,8 +97,6 @@ pub enum BuildError {
     BadIndex,
     /// A mesh index is out of range.
     BadMeshIndex,
-    /// More than one environment emitter.
-    TwoEnvironments,
     /// Too many primitives for 32-bit ids.
     TooLarge,
 }
@@ -121,28 +139,42 @@ impl Scene {
         if prims.len() >= u32::MAX as usize {
             return Err(BuildError::TooLarge);
         }
-        let mut environment = None;
+        let mut environments = Vec::new();
         for (i, e) in p.emitters.iter().enumerate() {
-            match e {
-                Emitter::Area(a) => {
-                    if p.shapes.get(a.shape as usize).and_then(|s| s.emitter) != Some(i as u32) {
-                        return Err(BuildError::BadIndex);
-                    }
+            if let Emitter::Area(a) = e {
+                if p.shapes.get(a.shape as usize).and_then(|s| s.emitter) != Some(i as u32) {
+                    return Err(BuildError::BadIndex);
                 }
-                e if e.is_environment() => {
-                    if environment.replace(i as u32).is_some() {
-                        return Err(BuildError::TwoEnvironments);
-                    }
-                }
-                _ => {}
+            }
+            if e.is_environment() {
+                environments.push(i as u32);
             }
         }
         let bounds: Vec<Aabb> = prims.iter().map(|pr| pr.bounds(&p.disks)).collect();
         let (bvh, order) = Bvh::build(&bounds);
+        let world = bvh.bounds();
+        let (center, radius) = if world.is_empty() {
+            (glam::Vec3::ZERO, 1.0)
+        } else {
+            (
+                world.centroid(),
+                (world.extent().length() * 0.5).max(f32::MIN_POSITIVE),
+            )
+        };
+        let ctx = EmitterCtx {
+            shapes: &p.shapes,
+            disks: &p.disks,
+            scene_center: center,
+            scene_radius: radius,
+        };
+        let selection = match p.light_selection {
+            LightSelection::Power => Discrete1D::new(p.emitters.iter().map(|e| e.power(&ctx))),
+            LightSelection::Uniform => None,
+        };
         let prims: Vec<Prim> = order.iter().map(|&i| prims[i as usize]).collect();
         let features = SceneFeatures {
             has_emitters: !p.emitters.is_empty(),
-            has_environment: environment.is_some(),
+            has_environment: !environments.is_empty(),
             has_hittable_emitters: p.emitters.iter().any(|e| !e.is_delta()),
             has_delta_emitters: p.emitters.iter().any(|e| e.is_delta()),
             has_triangles: prims.iter().any(|pr| matches!(pr, Prim::Triangle { .. })),
@@ -156,7 +188,10 @@ impl Scene {
             bvh,
             bsdfs: p.bsdfs,
             emitters: p.emitters,
-            environment,
+            environments,
+            selection,
+            scene_center: center,
+            scene_radius: radius,
             camera: p.camera,
             filter: p.filter,
             features,
@@ -174,6 +209,33 @@ impl Scene {
         EmitterCtx {
             shapes: &self.shapes,
             disks: &self.disks,
+            scene_center: self.scene_center,
+            scene_radius: self.scene_radius,
+        }
+    }
+
+    /// Picks a light for emitter sampling: its index and the probability it was picked.
+    #[inline]
+    pub fn select_emitter(&self, u: f32) -> Option<(usize, f32)> {
+        let n = self.emitters.len();
+        if n == 0 {
+            return None;
+        }
+        match &self.selection {
+            Some(d) => {
+                let (i, _) = d.sample_reuse(u);
+                Some((i, d.pmf(i)))
+            }
+            None => Some((((u * n as f32) as usize).min(n - 1), 1.0 / n as f32)),
+        }
+    }
+
+    /// The probability that [`Scene::select_emitter`] picks light `i`.
+    #[inline]
+    pub fn emitter_select_pdf(&self, i: usize) -> f32 {
+        match &self.selection {
+            Some(d) => d.pmf(i),
+            None => 1.0 / self.emitters.len() as f32,
         }
     }
 

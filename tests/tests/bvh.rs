@@ -73,6 +73,7 @@ fn random_scene(rng: &mut Rng, triangles: usize) -> Scene {
         emitters: vec![],
         camera,
         filter: Filter::Box,
+        light_selection: Default::default(),
     };
     Scene::new(parts).expect("valid scene")
 }

@@ -17,6 +17,16 @@ pub struct EmitterCtx<'a> {
     pub shapes: &'a [Shape],
     /// All disks.
     pub disks: &'a [Disk],
+    /// Centre of the scene's bounding sphere.
+    pub scene_center: Vec3,
+    /// Radius of the scene's bounding sphere.
+    pub scene_radius: f32,
+}
+
+/// Luminance (Rec. 709) of a linear RGB colour.
+#[inline]
+pub fn luminance(c: Color) -> f32 {
+    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
 }
 
 /// A light sample seen from a reference point.
@@ -53,6 +63,24 @@ impl Emitter {
             Emitter::Area(e) => e.sample(ctx, it, u),
             Emitter::Constant(e) => e.sample(it, u),
             Emitter::Point(e) => e.sample(it),
+        }
+    }
+    /// Emitted power (luminance, watts up to a constant), for choosing lights by power.
+    pub fn power(&self, ctx: &EmitterCtx) -> f32 {
+        use crate::math::PI;
+        let p = match self {
+            Emitter::Area(e) => {
+                PI * ctx.shapes[e.shape as usize].area(ctx.disks) * luminance(e.radiance)
+            }
+            Emitter::Constant(e) => {
+                4.0 * PI * PI * ctx.scene_radius * ctx.scene_radius * luminance(e.radiance)
+            }
+            Emitter::Point(e) => 4.0 * PI * luminance(e.intensity),
+        };
+        if p.is_finite() && p > 0.0 {
+            p
+        } else {
+            0.0
         }
     }
     /// Whether the emitter is at infinity (seen by rays that escape the scene).

@@ -92,10 +92,10 @@ impl PathIntegrator {
         wi: Vec3,
         sampler: &mut S,
     ) -> Color {
-        let n = scene.emitters.len();
-        let idx = ((sampler.next_1d() * n as f32) as usize).min(n - 1);
+        let Some((idx, sel_pdf)) = scene.select_emitter(sampler.next_1d()) else {
+            return Color::ZERO;
+        };
         let u = sampler.next_2d();
-        let sel_pdf = 1.0 / n as f32;
         let Some(es) = scene.emitters[idx].sample(&scene.emitter_ctx(), si, u) else {
             return Color::ZERO;
         };
@@ -141,11 +141,17 @@ impl PathIntegrator {
         loop {
             let visible = !(depth == 0 && self.hide_emitters);
             let Some(si) = scene.intersect(&ray) else {
-                if let (true, Some(env)) = (visible, scene.environment) {
-                    let e = &scene.emitters[env as usize];
+                if visible && features.has_environment {
                     let d = ray.d.normalize();
-                    let w = self.hit_weight(prev, |p| e.pdf_environment(p, d) * sel_pdf);
-                    result += throughput * e.eval_environment(d) * w;
+                    for &env in &scene.environments {
+                        let e = &scene.emitters[env as usize];
+                        let le = e.eval_environment(d);
+                        if le != Color::ZERO {
+                            let sel = scene.emitter_select_pdf(env as usize);
+                            let w = self.hit_weight(prev, |p| e.pdf_environment(p, d) * sel);
+                            result += throughput * le * w;
+                        }
+                    }
                 }
                 break;
             };

@@ -9,7 +9,7 @@ use super::LoadedScene;
 use crate::error::InputError;
 use crate::xml::{Kind, Object};
 use tessera_core::geometry::{Shape, ShapeKind};
-use tessera_core::scene::{Scene, SceneParts};
+use tessera_core::scene::{LightSelection, Scene, SceneParts};
 
 /// Builds a loaded scene from the root `<scene>` object.
 pub fn build(root: &Object) -> Result<LoadedScene> {
@@ -85,15 +85,29 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         c.mark_used();
     }
     let sensor = sensor.ok_or_else(|| root.error("the scene has no sensor (camera)"))?;
+    // Tessera's own integrator parameter (Mitsuba has none): how emitter sampling picks a light.
+    let light_selection = match integrator_obj
+        .map(|o| o.string("light_selection", "power"))
+        .transpose()?
+        .as_deref()
+    {
+        None | Some("power") => LightSelection::Power,
+        Some("uniform") => LightSelection::Uniform,
+        Some(other) => {
+            let obj = integrator_obj.expect("a value implies an integrator");
+            return Err(super::util::at_prop(
+                obj,
+                "light_selection",
+                format!("unknown light_selection \"{other}\" (power, uniform)"),
+            ));
+        }
+    };
     let integrator = build_integrator(integrator_obj.map(|o| &**o))?;
     let (spp, seed) = match (sensor.spp, scene_sampler) {
         (Some(n), _) => (n, sensor.seed.unwrap_or(0)),
         (None, Some((n, s))) => (n, s),
         (None, None) => (4, 0),
     };
-    if emitters.iter().filter(|e| e.is_environment()).count() > 1 {
-        return Err(root.error("the scene has more than one environment emitter"));
-    }
     root.check_unused()?;
     let parts = SceneParts {
         shapes,
@@ -102,6 +116,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         emitters,
         camera: sensor.camera,
         filter: sensor.filter,
+        light_selection,
     };
     let scene =
         Scene::new(parts).map_err(|e| root.error(format!("cannot build the scene: {e:?}")))?;
