@@ -6,20 +6,20 @@
 use tessera::image_io::read_image;
 use tessera::render::Framebuffer;
 use tessera::stats::sidak_alpha;
-use tessera_core::integrator::{Integrator, Strategy};
 use tessera_tests::{load_file, region_stats, render_loaded, scenes_dir, z_p_value};
 
 const RES: u32 = 64;
 const BLOCK: u32 = 8;
 
-fn render_with(strategy: Strategy, spp: u64, seed: u64) -> Framebuffer {
+fn render_with(strategy: &str, spp: u64, seed: u64) -> Framebuffer {
     render_scene("cbox.xml", strategy, spp, seed)
 }
 
-fn render_scene(file: &str, strategy: Strategy, spp: u64, seed: u64) -> Framebuffer {
+fn render_scene(file: &str, strategy: &str, spp: u64, seed: u64) -> Framebuffer {
     let mut loaded = load_file(file, &[("res", "64"), ("rfilter", "box")]);
-    let Integrator::Path(ref mut p) = loaded.integrator;
-    p.strategy = strategy;
+    loaded
+        .set_integrator(Some(strategy), None)
+        .expect("known integrator");
     render_loaded(&loaded, spp, seed)
 }
 
@@ -51,9 +51,9 @@ fn worst_region(a: &Framebuffer, b_mean: impl Fn(u32, u32, usize) -> (f64, f64))
 fn integrators_agree_on_the_cornell_box() {
     let spp = 512;
     let renders = [
-        ("path_mats", render_with(Strategy::Bsdf, spp, 1)),
-        ("path_half", render_with(Strategy::Half, spp, 2)),
-        ("path_mis", render_with(Strategy::Mis, spp, 3)),
+        ("path_mats", render_with("path_mats", spp, 1)),
+        ("path_half", render_with("path_half", spp, 2)),
+        ("path_mis", render_with("path_mis", spp, 3)),
     ];
     let n_tests = 3 * (RES / BLOCK).pow(2) as usize * 3;
     let alpha = sidak_alpha(0.01, n_tests);
@@ -80,7 +80,7 @@ fn integrators_agree_on_the_cornell_box() {
 fn matches_mitsuba(name: &str) {
     let spp = 512;
     let ref_spp = 16384.0;
-    let ours = render_scene(&format!("{name}.xml"), Strategy::Mis, spp, 11);
+    let ours = render_scene(&format!("{name}.xml"), "path_mis", spp, 11);
     let reference = read_image(&scenes_dir().join(format!("refs/{name}_64x64_mitsuba.exr")))
         .expect("reference image");
     assert_eq!((reference.width, reference.height), (RES, RES));
@@ -119,7 +119,7 @@ fn cs500_spheres_match_mitsuba() {
 /// The comparison has power: a reference 2% too bright is rejected.
 #[test]
 fn comparison_rejects_a_two_percent_bias() {
-    let ours = render_with(Strategy::Mis, 512, 11);
+    let ours = render_with("path_mis", 512, 11);
     let (p, _) = worst_region(&ours, |bx, by, k| {
         let (m, v) = region_stats(&ours, bx * BLOCK, by * BLOCK, BLOCK, BLOCK)[k];
         (m * 1.02, v * 512.0 / 16384.0)

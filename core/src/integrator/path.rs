@@ -1,6 +1,6 @@
 //! Unidirectional path tracer with three ways of finding light.
 //!
-//! Scene parameters (`<integrator type="path_mats|path_half|path_mis|path">`): `max_depth`
+//! Scene parameters (`<integrator type="path_mats|path_ems|path_half|path_mis|path">`): `max_depth`
 //! (integer, default -1 = unbounded; 1 = only emitters seen directly, 2 = direct lighting),
 //! `rr_depth` (integer, default 5: Russian roulette from that depth on, with survival probability
 //! min(max throughput, 0.95)), `hide_emitters` (boolean, default false). These follow Mitsuba 3's
@@ -8,13 +8,16 @@
 //!
 //! Strategies:
 //! - `path_mats`: BSDF sampling only; light counts when a path hits an emitter.
+//! - `path_ems`: emitter sampling for every light a vertex can see; emitters hit by BSDF-sampled
+//!   rays count only where emitter sampling could not have found them (the camera ray, after a
+//!   delta bounce).
 //! - `path_half`: CS500's estimator: an explicit light connection at every vertex plus implicit
 //!   hits, each weighted 1/2 (weight 1 where only one of them can produce the sample: delta
 //!   lights, delta BSDF components).
-//! - `path_mis` / `path`: the same two strategies combined by the power heuristic.
-use super::power_heuristic;
-use crate::emitter::Emitter;
-use crate::geometry::Interaction;
+//! - `path_mis` / `path`: the same two strategies combined by the power heuristic (Tessera's own
+//!   parameter `heuristic`, string power|balance, default power).
+use super::light::{emission_along, sample_light};
+use super::Heuristic;
 use crate::math::Ray;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
@@ -26,6 +29,8 @@ use glam::Vec3;
 pub enum Strategy {
     /// BSDF sampling only.
     Bsdf,
+    /// Emitter sampling only (implicit hits only where it could not reach).
+    Emitter,
     /// Emitter and BSDF sampling, each weighted 1/2.
     Half,
     /// Emitter and BSDF sampling combined by the power heuristic.
@@ -43,6 +48,8 @@ pub struct PathIntegrator {
     pub rr_depth: u32,
     /// Whether emitters seen directly by the camera are hidden.
     pub hide_emitters: bool,
+    /// How `Strategy::Mis` weighs its two strategies.
+    pub heuristic: Heuristic,
 }
 
 impl Default for PathIntegrator {
@@ -52,6 +59,7 @@ impl Default for PathIntegrator {
             max_depth: None,
             rr_depth: 5,
             hide_emitters: false,
+            heuristic: Heuristic::Power,
         }
     }
 }
@@ -70,56 +78,17 @@ impl PathIntegrator {
     /// Weight of light found by hitting an emitter; `light_pdf` gives the density with which
     /// emitter sampling at the previous vertex would have produced the same direction.
     #[inline]
-    fn hit_weight(&self, prev: Option<Prev>, light_pdf: impl FnOnce(Vec3) -> f32) -> f32 {
+    fn hit_weight(&self, prev: Option<Prev>, light_pdf: f32) -> f32 {
         let Some(prev) = prev else { return 1.0 };
         if !prev.nee {
             return 1.0;
         }
         match self.strategy {
             Strategy::Bsdf => 1.0,
+            Strategy::Emitter => 0.0,
             Strategy::Half => 0.5,
-            Strategy::Mis => power_heuristic(prev.pdf, light_pdf(prev.p)),
+            Strategy::Mis => self.heuristic.weight(prev.pdf, light_pdf),
         }
-    }
-
-    /// Emitter sampling at `si`: one light chosen uniformly, one point on it, one shadow ray.
-    #[inline]
-    fn sample_emitter<S: Sampler>(
-        &self,
-        scene: &Scene,
-        si: &Interaction,
-        bsdf: &crate::bsdf::Bsdf,
-        wi: Vec3,
-        sampler: &mut S,
-    ) -> Color {
-        let Some((idx, sel_pdf)) = scene.select_emitter(sampler.next_1d()) else {
-            return Color::ZERO;
-        };
-        let u = sampler.next_2d();
-        let Some(es) = scene.emitters[idx].sample(&scene.emitter_ctx(), si, u) else {
-            return Color::ZERO;
-        };
-        let wo = si.frame.to_local(es.wo);
-        let f = bsdf.eval(wi, wo, si.uv);
-        if f == Color::ZERO {
-            return Color::ZERO;
-        }
-        let shadow = match es.target {
-            Some(t) => si.spawn_ray_to(t),
-            None => si.spawn_ray(es.wo),
-        };
-        if scene.occluded(&shadow) {
-            return Color::ZERO;
-        }
-        let w = if es.delta {
-            1.0
-        } else {
-            match self.strategy {
-                Strategy::Half => 0.5,
-                _ => power_heuristic(es.pdf * sel_pdf, bsdf.pdf(wi, wo, si.uv)),
-            }
-        };
-        f * es.weight * (w / sel_pdf)
     }
 
     /// Radiance along `ray`.
@@ -129,44 +98,23 @@ impl PathIntegrator {
             return Color::ZERO;
         }
         let features = &scene.features;
-        let sel_pdf = if scene.emitters.is_empty() {
-            0.0
-        } else {
-            1.0 / scene.emitters.len() as f32
-        };
         let mut result = Color::ZERO;
         let mut throughput = Color::ONE;
         let mut depth = 0u32;
         let mut prev: Option<Prev> = None;
         loop {
             let visible = !(depth == 0 && self.hide_emitters);
-            let Some(si) = scene.intersect(&ray) else {
-                if visible && features.has_environment {
-                    let d = ray.d.normalize();
-                    for &env in &scene.environments {
-                        let e = &scene.emitters[env as usize];
-                        let le = e.eval_environment(d);
-                        if le != Color::ZERO {
-                            let sel = scene.emitter_select_pdf(env as usize);
-                            let w = self.hit_weight(prev, |p| e.pdf_environment(p, d) * sel);
-                            result += throughput * le * w;
-                        }
-                    }
-                }
-                break;
-            };
-            let shape = &scene.shapes[si.shape as usize];
-            if let (true, Some(ei)) = (visible, shape.emitter) {
-                if let Emitter::Area(a) = &scene.emitters[ei as usize] {
-                    let le = a.eval(si.frame.n, si.wi);
-                    if le != Color::ZERO {
-                        let w = self.hit_weight(prev, |p| {
-                            a.pdf(&scene.emitter_ctx(), p, si.p, si.ng) * sel_pdf
-                        });
-                        result += throughput * le * w;
-                    }
-                }
+            let hit = scene.intersect(&ray);
+            if visible && (hit.is_some() || features.has_environment) {
+                let d = ray.d.normalize();
+                let with_pdf = self.strategy == Strategy::Mis && prev.is_some_and(|p| p.nee);
+                let from = prev.map_or(ray.o, |p| p.p);
+                emission_along(scene, from, d, hit.as_ref(), with_pdf, |le, light_pdf| {
+                    result += throughput * le * self.hit_weight(prev, light_pdf);
+                });
             }
+            let Some(si) = hit else { break };
+            let shape = &scene.shapes[si.shape as usize];
             if depth + 1 >= max_depth {
                 break;
             }
@@ -174,7 +122,14 @@ impl PathIntegrator {
             let wi = si.frame.to_local(si.wi);
             let nee = self.strategy != Strategy::Bsdf && features.has_emitters && bsdf.has_smooth();
             if nee {
-                result += throughput * self.sample_emitter(scene, &si, bsdf, wi, sampler);
+                if let Some(ls) = sample_light(scene, &si, bsdf, wi, sampler) {
+                    let w = match (ls.delta, self.strategy) {
+                        (true, _) | (_, Strategy::Emitter) => 1.0,
+                        (_, Strategy::Half) => 0.5,
+                        _ => self.heuristic.weight(ls.light_pdf, ls.bsdf_pdf),
+                    };
+                    result += throughput * ls.value * w;
+                }
             }
             let u1 = sampler.next_1d();
             let u2 = sampler.next_2d();

@@ -2,12 +2,11 @@
 use crate::error::InputError;
 use crate::image_io::{write_image, Format, RgbImage};
 use crate::render::{render, RenderOptions};
-use crate::scene::{integrator_from_name, load_scene};
+use crate::scene::load_scene;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use std::time::Instant;
-use tessera_core::integrator::Integrator;
 
 /// Arguments of `tessera render`.
 #[derive(Args, Debug, Clone)]
@@ -26,7 +25,8 @@ pub struct RenderArgs {
     /// Seed of every random stream (default: the sampler's `seed`, else 0).
     #[arg(long)]
     pub seed: Option<u64>,
-    /// Integrator: path, path_mis, path_half, path_mats (keeps the file's max_depth etc.).
+    /// Integrator name (path, path_mis, path_half, path_ems, path_mats, direct, direct_ems,
+    /// direct_mats, direct_mis); keeps the file's max_depth etc.
     #[arg(long)]
     pub integrator: Option<String>,
     /// Longest path (-1 = unbounded), overriding the scene file.
@@ -74,22 +74,8 @@ pub fn run(args: &RenderArgs) -> i32 {
     for w in &loaded.warnings {
         eprintln!("warning: {w}");
     }
-    let Integrator::Path(ref mut p) = loaded.integrator;
-    if let Some(name) = &args.integrator {
-        match integrator_from_name(name) {
-            Some(s) => p.strategy = s,
-            None => {
-                return usage(format!(
-                    "unknown integrator \"{name}\" (path, path_mis, path_half, path_mats)"
-                ))
-            }
-        }
-    }
-    if let Some(d) = args.max_depth {
-        if d < -1 || d > u32::MAX as i64 {
-            return usage(format!("--max-depth must be -1 or at least 0, found {d}"));
-        }
-        p.max_depth = (d >= 0).then_some(d as u32);
+    if let Err(e) = loaded.set_integrator(args.integrator.as_deref(), args.max_depth) {
+        return usage(e);
     }
     let spp = args.spp.unwrap_or(loaded.spp);
     let threads = args

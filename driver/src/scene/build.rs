@@ -1,7 +1,7 @@
 //! Walks the scene tree and assembles the core scene.
 use super::bsdfs::Bsdfs;
 use super::emitters::{build_area, build_scene_emitter};
-use super::integrator::build_integrator;
+use super::integrator::read_integrator;
 use super::sensor::{build_sampler, build_sensor};
 use super::shapes::build_shape;
 use super::util::Result;
@@ -102,7 +102,10 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
             ));
         }
     };
-    let integrator = build_integrator(integrator_obj.map(|o| &**o))?;
+    let integrator_spec = read_integrator(integrator_obj.map(|o| &**o))?;
+    let integrator = integrator_spec
+        .build()
+        .expect("read_integrator checks the name");
     let (spp, seed) = match (sensor.spp, scene_sampler) {
         (Some(n), _) => (n, sensor.seed.unwrap_or(0)),
         (None, Some((n, s))) => (n, s),
@@ -123,6 +126,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
     Ok(LoadedScene {
         scene,
         integrator,
+        integrator_spec,
         spp,
         seed,
         warnings,

@@ -8,7 +8,7 @@ mod sensor;
 mod shapes;
 mod util;
 
-pub use integrator::integrator_from_name;
+pub use integrator::{IntegratorSpec, INTEGRATOR_NAMES};
 
 use crate::error::InputError;
 use std::path::Path;
@@ -22,12 +22,40 @@ pub struct LoadedScene {
     pub scene: Scene,
     /// The integrator the file names (default `path`).
     pub integrator: Integrator,
+    /// Its name and parameters, to rebuild it with command-line changes.
+    pub integrator_spec: IntegratorSpec,
     /// Samples per pixel from the sampler (default 4, as in Mitsuba 3).
     pub spp: u64,
     /// Seed from the sampler (default 0).
     pub seed: u64,
     /// Things that load but are not rendered exactly as written (one line each).
     pub warnings: Vec<String>,
+}
+
+impl LoadedScene {
+    /// Switches to another integrator by name (keeping the file's parameters that apply) and/or
+    /// another `max_depth` (-1 = unbounded).
+    pub fn set_integrator(
+        &mut self,
+        name: Option<&str>,
+        max_depth: Option<i64>,
+    ) -> Result<(), String> {
+        let mut spec = self.integrator_spec.clone();
+        if let Some(n) = name {
+            spec.name = n.to_string();
+        }
+        if let Some(d) = max_depth {
+            if d < -1 || d > u32::MAX as i64 {
+                return Err(format!("max depth must be -1 or at least 0, found {d}"));
+            }
+            spec.max_depth = (d >= 0).then_some(d as u32);
+        }
+        self.integrator = spec
+            .build()
+            .ok_or_else(|| format!("unknown integrator \"{}\" ({INTEGRATOR_NAMES})", spec.name))?;
+        self.integrator_spec = spec;
+        Ok(())
+    }
 }
 
 /// Loads a scene file; `defines` are `-D name=value` overrides of `<default>`s.
