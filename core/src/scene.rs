@@ -214,6 +214,15 @@ impl Scene {
         }
     }
 
+    /// Changes how emitter sampling picks a light.
+    pub fn set_light_selection(&mut self, how: LightSelection) {
+        let ctx = self.emitter_ctx();
+        self.selection = match how {
+            LightSelection::Power => Discrete1D::new(self.emitters.iter().map(|e| e.power(&ctx))),
+            LightSelection::Uniform => None,
+        };
+    }
+
     /// Picks a light for emitter sampling: its index and the probability it was picked.
     #[inline]
     pub fn select_emitter(&self, u: f32) -> Option<(usize, f32)> {

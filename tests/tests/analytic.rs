@@ -2,22 +2,46 @@
 //!
 //! Each case renders a 1x1 image through a tiny field of view and tests the pixel's sample mean
 //! against the analytic radiance at significance 0.01, Sidak-corrected over every test in this
-//! file. A control shows the same test rejects a reference 1% off.
+//! file, for every integrator that can handle the case (one that cannot, such as BSDF sampling
+//! with a point light, must give exactly zero). A control shows the test rejects a reference 1%
+//! off.
 use statrs::distribution::{ContinuousCDF, StudentsT};
 use tessera::stats::{sidak_alpha, t_test_from_sums};
+use tessera_core::glam::{DMat4, DVec3};
 use tessera_tests::{load_xml, render_loaded};
 
-/// Number of t-tests in this file (cases x integrators x channels), for the Sidak correction.
-const N_TESTS: usize = (3 + 15 + 3 + 2) * 3;
-const INTEGRATORS: [&str; 3] = ["path_mats", "path_half", "path_mis"];
+/// Path tracers (take max_depth) and direct-lighting integrators (one bounce).
+const PATHS: [&str; 4] = ["path_mats", "path_ems", "path_half", "path_mis"];
+const DIRECTS: [&str; 4] = ["direct_ems", "direct_mats", "direct_mis", "direct"];
+
+/// Number of t-tests in this file (cases x integrators x channels), for the Sidak correction:
+/// environment sphere 8, closed sphere 4 x 5 + 4, sphere light 8, point light 6, polygons 2 x 8,
+/// furnace box 8.
+const N_TESTS: usize = (8 + 24 + 8 + 6 + 16 + 8) * 3;
 
 fn alpha() -> f64 {
     sidak_alpha(0.01, N_TESTS)
 }
 
+/// Loads `xml` and switches to integrator `name` (with `max_depth` for path tracers).
+fn load_with(xml: &str, name: &str, max_depth: Option<i64>) -> tessera::scene::LoadedScene {
+    let mut loaded = load_xml(xml, &[]);
+    loaded
+        .set_integrator(Some(name), max_depth)
+        .expect("known integrator");
+    loaded
+}
+
 /// Renders `xml` (a 1x1 image) and t-tests each channel against `expected`.
-fn check(label: &str, xml: &str, defines: &[(&str, &str)], spp: u64, expected: [f64; 3]) {
-    let loaded = load_xml(xml, defines);
+fn check(
+    label: &str,
+    xml: &str,
+    integrator: &str,
+    max_depth: Option<i64>,
+    spp: u64,
+    expected: [f64; 3],
+) {
+    let loaded = load_with(xml, integrator, max_depth);
     let fb = render_loaded(&loaded, spp, 7);
     let p = fb.at(0, 0);
     assert_eq!(p.dropped, 0, "{label}: non-finite samples");
@@ -43,8 +67,6 @@ fn check(label: &str, xml: &str, defines: &[(&str, &str)], spp: u64, expected: [
 }
 
 const ENV_SPHERE: &str = r#"<scene version="3.0.0">
-  <default name="integrator" value="path_mis"/>
-  <integrator type="$integrator"/>
   <sensor type="perspective">
     <float name="fov" value="1"/>
     <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
@@ -57,11 +79,12 @@ const ENV_SPHERE: &str = r#"<scene version="3.0.0">
 /// A convex diffuse object under a constant environment reflects albedo x radiance.
 #[test]
 fn diffuse_sphere_in_constant_environment() {
-    for integ in INTEGRATORS {
+    for integ in PATHS.iter().chain(&DIRECTS) {
         check(
             &format!("env sphere {integ}"),
             ENV_SPHERE,
-            &[("integrator", integ)],
+            integ,
+            None,
             100_000,
             [0.3, 0.75, 1.2],
         );
@@ -69,9 +92,6 @@ fn diffuse_sphere_in_constant_environment() {
 }
 
 const CLOSED_SPHERE: &str = r#"<scene version="3.0.0">
-  <default name="integrator" value="path_mis"/>
-  <default name="max_depth" value="-1"/>
-  <integrator type="$integrator"><integer name="max_depth" value="$max_depth"/></integrator>
   <sensor type="perspective">
     <float name="fov" value="1"/>
     <transform name="to_world"><lookat origin="0, 0, 0" target="0, 0, 1" up="0, 1, 0"/></transform>
@@ -86,7 +106,7 @@ const CLOSED_SPHERE: &str = r#"<scene version="3.0.0">
 </scene>"#;
 
 /// Inside a closed emitting diffuse sphere: Le (1 - a^d) / (1 - a) at max_depth d, Le / (1 - a)
-/// unbounded.
+/// unbounded; direct lighting gives Le (1 + a).
 #[test]
 fn inside_closed_emitting_sphere() {
     let albedo = [0.3f64, 0.5, 0.7];
@@ -98,22 +118,30 @@ fn inside_closed_emitting_sphere() {
                 (1.0 - a.powi(depth)) / (1.0 - a)
             }
         });
-        for integ in INTEGRATORS {
-            let d = depth.to_string();
+        for integ in PATHS {
             check(
                 &format!("closed sphere {integ} depth {depth}"),
                 CLOSED_SPHERE,
-                &[("integrator", integ), ("max_depth", &d)],
+                integ,
+                Some(depth as i64),
                 100_000,
                 expected,
             );
         }
     }
+    for integ in DIRECTS {
+        check(
+            &format!("closed sphere {integ}"),
+            CLOSED_SPHERE,
+            integ,
+            None,
+            100_000,
+            albedo.map(|a| 1.0 + a),
+        );
+    }
 }
 
 const SPHERE_LIGHT: &str = r#"<scene version="3.0.0">
-  <default name="integrator" value="path_mis"/>
-  <integrator type="$integrator"><integer name="max_depth" value="2"/></integrator>
   <sensor type="perspective">
     <float name="fov" value="0.001"/>
     <transform name="to_world"><lookat origin="5, 0, 2" target="0, 0, 0" up="0, 0, 1"/></transform>
@@ -136,16 +164,18 @@ const SPHERE_LIGHT: &str = r#"<scene version="3.0.0">
 fn sphere_light_over_diffuse_plane() {
     let (l, r, h) = (10.0f64, 0.5f64, 3.0f64);
     let expected = [0.7f64, 0.5, 0.3].map(|a| a * l * r * r / (h * h));
-    for integ in INTEGRATORS {
-        let spp = if integ == "path_mats" {
+    for integ in PATHS.iter().chain(&DIRECTS) {
+        let spp = if integ.ends_with("mats") {
             2_000_000
         } else {
             100_000
         };
+        let depth = integ.starts_with("path").then_some(2);
         check(
             &format!("sphere light {integ}"),
             SPHERE_LIGHT,
-            &[("integrator", integ)],
+            integ,
+            depth,
             spp,
             expected,
         );
@@ -153,8 +183,6 @@ fn sphere_light_over_diffuse_plane() {
 }
 
 const POINT_LIGHT: &str = r#"<scene version="3.0.0">
-  <default name="integrator" value="path_mis"/>
-  <integrator type="$integrator"><integer name="max_depth" value="2"/></integrator>
   <sensor type="perspective">
     <float name="fov" value="0.001"/>
     <transform name="to_world"><lookat origin="5, 0, 2" target="0, 0, 0" up="0, 0, 1"/></transform>
@@ -176,27 +204,155 @@ const POINT_LIGHT: &str = r#"<scene version="3.0.0">
 fn point_light_over_diffuse_plane() {
     let (i, h) = (20.0f64, 2.0f64);
     let expected = [0.7f64, 0.5, 0.3].map(|a| a * i / (std::f64::consts::PI * h * h));
-    for integ in ["path_half", "path_mis"] {
+    for integ in [
+        "path_ems",
+        "path_half",
+        "path_mis",
+        "direct_ems",
+        "direct_mis",
+        "direct",
+    ] {
+        let depth = integ.starts_with("path").then_some(2);
         check(
             &format!("point light {integ}"),
             POINT_LIGHT,
-            &[("integrator", integ)],
+            integ,
+            depth,
             100_000,
             expected,
         );
     }
-    let loaded = load_xml(POINT_LIGHT, &[("integrator", "path_mats")]);
-    let fb = render_loaded(&loaded, 10_000, 7);
-    assert_eq!(fb.at(0, 0).sum, [0.0; 3], "path_mats found a point light");
+    for integ in ["path_mats", "direct_mats"] {
+        let fb = render_loaded(&load_with(POINT_LIGHT, integ, Some(2)), 10_000, 7);
+        assert_eq!(fb.at(0, 0).sum, [0.0; 3], "{integ} found a point light");
+    }
 }
 
 /// The test has power: the same render is rejected against a reference 1% off.
 #[test]
 fn control_rejects_a_wrong_reference() {
-    let loaded = load_xml(SPHERE_LIGHT, &[("integrator", "path_mis")]);
+    let loaded = load_with(SPHERE_LIGHT, "path_mis", Some(2));
     let fb = render_loaded(&loaded, 100_000, 7);
     let p = fb.at(0, 0);
     let expected = 0.7 * 10.0 * 0.25 / 9.0 * 1.01;
     let t = t_test_from_sums(p.count as f64, p.sum[0], p.sum_sq[0], expected);
     assert!(!t.passes(alpha()), "a 1% wrong reference passed: {t}");
+}
+
+/// Irradiance at `x` (normal `n`) from a planar polygon of uniform radiance `l` seen from its
+/// emitting side, by Lambert's formula: E = L/2 |sum_i theta_i (n . unit(v_i x v_i+1))|, with
+/// v_i the vectors from x to the vertices and theta_i the angle between consecutive ones.
+fn lambert_irradiance(x: DVec3, n: DVec3, vertices: &[DVec3], l: f64) -> f64 {
+    let mut sum = 0.0;
+    for i in 0..vertices.len() {
+        let a = (vertices[i] - x).normalize();
+        let b = (vertices[(i + 1) % vertices.len()] - x).normalize();
+        let theta = a.dot(b).clamp(-1.0, 1.0).acos();
+        sum += theta * n.dot(a.cross(b).normalize());
+    }
+    0.5 * l * sum.abs()
+}
+
+fn polygon_scene(sx: f64, sy: f64, angle: f64, t: DVec3) -> (String, Vec<DVec3>) {
+    let m = DMat4::from_translation(t)
+        * DMat4::from_rotation_x(angle.to_radians())
+        * DMat4::from_scale(DVec3::new(sx, sy, 1.0));
+    let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+        .map(|(x, y)| m.transform_point3(DVec3::new(x, y, 0.0)));
+    let xml = format!(
+        r#"<scene version="3.0.0">
+  <sensor type="perspective">
+    <float name="fov" value="0.001"/>
+    <transform name="to_world"><lookat origin="5, 0, 2" target="0, 0, 0" up="0, 0, 1"/></transform>
+    <film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>
+  </sensor>
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="1000"/></transform>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.5, 0.3"/></bsdf>
+  </shape>
+  <shape type="rectangle">
+    <transform name="to_world">
+      <scale x="{sx}" y="{sy}" z="1"/><rotate x="1" angle="{angle}"/><translate x="{}" y="{}" z="{}"/>
+    </transform>
+    <emitter type="area"><rgb name="radiance" value="5"/></emitter>
+  </shape>
+</scene>"#,
+        t.x, t.y, t.z
+    );
+    (xml, corners.to_vec())
+}
+
+/// Rectangular emitters over a diffuse plane against Lambert's polygon formula (my own
+/// calculator above): a / pi * E at the point the camera sees.
+#[test]
+fn polygonal_emitters_match_lamberts_formula() {
+    let cases = [
+        (0.8, 0.5, 150.0, DVec3::new(0.3, 0.2, 2.0)),
+        (1.5, 1.0, 100.0, DVec3::new(-0.5, 1.5, 2.0)),
+    ];
+    for (k, (sx, sy, angle, t)) in cases.into_iter().enumerate() {
+        let (xml, corners) = polygon_scene(sx, sy, angle, t);
+        let e = lambert_irradiance(DVec3::ZERO, DVec3::Z, &corners, 5.0);
+        assert!(
+            e > 0.5,
+            "case {k}: the light barely reaches the point (E = {e})"
+        );
+        let expected = [0.7f64, 0.5, 0.3].map(|a| a * e / std::f64::consts::PI);
+        for integ in PATHS.iter().chain(&DIRECTS) {
+            let spp = if integ.ends_with("mats") {
+                400_000
+            } else {
+                100_000
+            };
+            let depth = integ.starts_with("path").then_some(2);
+            check(
+                &format!("polygon {k} {integ}"),
+                &xml,
+                integ,
+                depth,
+                spp,
+                expected,
+            );
+        }
+    }
+}
+
+const FURNACE_BOX: &str = r#"<scene version="3.0.0">
+  <sensor type="perspective">
+    <float name="fov" value="1"/>
+    <transform name="to_world"><lookat origin="0.1, 0.2, 0" target="1, 0.3, 0.4" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>
+  </sensor>
+  <shape type="cube">
+    <boolean name="flip_normals" value="true"/>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.3, 0.5, 0.7"/></bsdf>
+    <emitter type="area"><rgb name="radiance" value="1"/></emitter>
+  </shape>
+</scene>"#;
+
+/// A closed emitting diffuse box (a triangle mesh lit from inside): 1 / (1 - a) for path
+/// tracers, 1 + a for direct lighting.
+#[test]
+fn furnace_box() {
+    let albedo = [0.3f64, 0.5, 0.7];
+    for integ in PATHS {
+        check(
+            &format!("furnace box {integ}"),
+            FURNACE_BOX,
+            integ,
+            Some(-1),
+            100_000,
+            albedo.map(|a| 1.0 / (1.0 - a)),
+        );
+    }
+    for integ in DIRECTS {
+        check(
+            &format!("furnace box {integ}"),
+            FURNACE_BOX,
+            integ,
+            None,
+            100_000,
+            albedo.map(|a| 1.0 + a),
+        );
+    }
 }

@@ -46,7 +46,7 @@ fn worst_region(a: &Framebuffer, b_mean: impl Fn(u32, u32, usize) -> (f64, f64))
     worst
 }
 
-/// path_mats, path_half and path_mis converge to the same image.
+/// path_mats, path_half, path_mis and path_ems converge to the same image.
 #[test]
 fn integrators_agree_on_the_cornell_box() {
     let spp = 512;
@@ -54,11 +54,12 @@ fn integrators_agree_on_the_cornell_box() {
         ("path_mats", render_with("path_mats", spp, 1)),
         ("path_half", render_with("path_half", spp, 2)),
         ("path_mis", render_with("path_mis", spp, 3)),
+        ("path_ems", render_with("path_ems", spp, 4)),
     ];
-    let n_tests = 3 * (RES / BLOCK).pow(2) as usize * 3;
+    let n_tests = 6 * (RES / BLOCK).pow(2) as usize * 3;
     let alpha = sidak_alpha(0.01, n_tests);
-    for i in 0..3 {
-        for j in i + 1..3 {
+    for i in 0..renders.len() {
+        for j in i + 1..renders.len() {
             let (na, a) = (&renders[i].0, &renders[i].1);
             let (nb, b) = (&renders[j].0, &renders[j].1);
             assert_eq!(a.dropped() + b.dropped(), 0);
@@ -127,5 +128,25 @@ fn comparison_rejects_a_two_percent_bias() {
     assert!(
         p < sidak_alpha(0.01, (RES / BLOCK).pow(2) as usize * 3),
         "a 2% bias went unnoticed (p = {p:.3e})"
+    );
+}
+
+/// Choosing lights by power or uniformly changes the noise, never the image: the CS500 scene
+/// (three sphere lights of different power and an environment) agrees region by region.
+#[test]
+fn light_selection_by_power_or_uniform_agrees() {
+    use tessera_core::scene::LightSelection;
+    let mut loaded = load_file("cs500_spheres.xml", &[("res", "64"), ("rfilter", "box")]);
+    let power = render_loaded(&loaded, 256, 21);
+    loaded.scene.set_light_selection(LightSelection::Uniform);
+    let uniform = render_loaded(&loaded, 256, 22);
+    let alpha = sidak_alpha(0.01, (RES / BLOCK).pow(2) as usize * 3);
+    let (p, what) = worst_region(&power, |bx, by, k| {
+        region_stats(&uniform, bx * BLOCK, by * BLOCK, BLOCK, BLOCK)[k]
+    });
+    eprintln!("power vs uniform light selection: worst p = {p:.3e} at {what}");
+    assert!(
+        p >= alpha,
+        "power vs uniform light selection: p = {p:.3e} < {alpha:.3e} at {what}"
     );
 }
