@@ -5,4 +5,5 @@ pub mod mesh;
 pub mod render;
 pub mod scene;
 pub mod stats;
+pub mod testfile;
 pub mod xml;

@@ -8,6 +8,7 @@ const NORI: &str = r#"<scene>
   <camera type="perspective">
     <transform name="toWorld"><lookat origin="0, 1, 6" target="0, 0.5, 0" up="0, 1, 0"/></transform>
     <float name="fov" value="35"/>
+    <float name="nearClip" value="0.01"/> <!-- Nori's default is 1e-4, Mitsuba's 0.01 -->
     <integer name="width" value="24"/>
     <integer name="height" value="16"/>
     <rfilter type="gaussian"/>

@@ -1,5 +1,6 @@
 //! Command-line interface: argument definitions and the subcommands.
 pub mod render;
+pub mod test;
 
 use clap::{Parser, Subcommand};
 
@@ -17,6 +18,8 @@ pub struct Cli {
 pub enum Command {
     /// Render a scene file to one or more images.
     Render(render::RenderArgs),
+    /// Run a Nori-style test file (`<test type="ttest">`) and report each case.
+    Test(test::TestArgs),
 }
 
 /// Parses `name=value` for `-D`.

@@ -64,6 +64,11 @@ pub fn load_scene(path: &Path, defines: &[(String, String)]) -> Result<LoadedSce
     build::build(&root)
 }
 
+/// Builds a scene from an already parsed `<scene>` object (e.g. one nested in a test file).
+pub fn build_scene_object(obj: &crate::xml::Object) -> Result<LoadedScene, InputError> {
+    build::build(obj)
+}
+
 /// Loads a scene from text as if read from `virtual_path` (relative paths resolve beside it).
 pub fn load_scene_str(
     text: &str,

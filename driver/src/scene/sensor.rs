@@ -2,7 +2,8 @@
 //!
 //! Sensor `perspective`: `fov` (float, degrees) with `fov_axis` (x|y|diagonal|smaller|larger,
 //! default x), or else `focal_length` (string like "50mm", default 50mm, a diagonal field of view
-//! on a 36x24 mm frame, as in Mitsuba 3); `to_world`; `near_clip` (0.01), `far_clip` (10000).
+//! on a 36x24 mm frame, as in Mitsuba 3); `to_world`; `near_clip` (0.01; 1e-4 for a Nori camera, which carries width/height), `far_clip`
+//! (10000).
 //! Film `hdrfilm`: `width` (768), `height` (576); `pixel_format`, `component_format` and
 //! `file_format` are accepted and have no effect (the output file's extension decides). Nori
 //! puts `width`/`height` (defaults 1280x720) on the camera. Filter: `box`, `gaussian` (`stddev`
@@ -93,7 +94,15 @@ pub fn build_sensor(obj: &Object, warnings: &mut Vec<String>) -> Result<SensorPa
         )));
     }
     let to_world = transform(obj, "to_world")?;
-    let near = float_checked(obj, "near_clip", 0.01, |v| v >= 0.0, "non-negative")?;
+    // Nori's camera carries width/height and clips at 1e-4; Mitsuba's sensor clips at 0.01.
+    let nori = obj.has("width") || obj.has("height");
+    let near = float_checked(
+        obj,
+        "near_clip",
+        if nori { 1e-4 } else { 0.01 },
+        |v| v >= 0.0,
+        "non-negative",
+    )?;
     let far = float_checked(
         obj,
         "far_clip",

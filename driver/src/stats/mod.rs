@@ -32,4 +32,4 @@ pub use chi2::{chi2_test, sidak_alpha, Chi2Result, DEFAULT_MIN_EXPECTED, PDF_INT
 pub use plane_chi2::PlaneChi2;
 pub use rng::Pcg32;
 pub use sphere_chi2::SphereChi2;
-pub use ttest::{t_test_from_sums, t_test_mean, welch_test, Moments, TTest};
+pub use ttest::{t_test_from_sums, t_test_mean, t_test_mean_f32, welch_test, Moments, TTest};

@@ -201,6 +201,30 @@ pub fn t_test_mean(m: &Moments, reference: f64) -> TTest {
     )
 }
 
+/// [`t_test_mean`] for samples computed in single precision: the renderer's answer carries a few
+/// f32 ulps of rounding that no number of samples removes, so `(4 f32 ulps of the reference)^2`
+/// joins the squared standard error. Near-zero-variance estimators (a point light, BSDF sampling
+/// in a furnace) are then held to f32 precision rather than beyond it.
+///
+/// # Panics
+/// With fewer than 2 samples.
+pub fn t_test_mean_f32(m: &Moments, reference: f64) -> TTest {
+    assert!(
+        m.count() >= 2,
+        "t-test needs at least 2 samples, got {}",
+        m.count()
+    );
+    let n = m.count() as f64;
+    let floor = 4.0 * f32::EPSILON as f64 * reference.abs();
+    let se2 = m.variance() / n + floor * floor;
+    t_test(
+        m.mean() - reference,
+        se2,
+        n - 1.0,
+        equal_tolerance(m.mean(), reference, 4.0),
+    )
+}
+
 /// One-sample, two-sided Student t-test of `H0: E[x] = reference` from the count `n`, `sum`
 /// `= Σx` and `sum_sq = Σx²` (as accumulated per pixel by the renderer, in f64).
 ///

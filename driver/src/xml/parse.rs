@@ -164,19 +164,21 @@ impl Parser {
         let src = Source::new(file, text);
         let root = doc.root_element();
         let loc = src.loc(root.range().start);
-        if root.tag_name().name() != "scene" {
-            return Err(InputError::at(
-                &loc,
-                format!(
-                    "the root element must be <scene>, found <{}>",
-                    root.tag_name().name()
-                ),
-            ));
-        }
+        // A scene file, or a Nori test file (`<test type="ttest|chi2test">` holding scenes).
+        let root_kind = match root.tag_name().name() {
+            "scene" => Kind::Scene,
+            "test" => Kind::Test,
+            other => {
+                return Err(InputError::at(
+                    &loc,
+                    format!("the root element must be <scene> (or <test>), found <{other}>"),
+                ))
+            }
+        };
         self.note_mentions(text);
         let attrs = Attrs::read(root, &src, &self.params)?;
         self.files.push(canonical(path));
-        let obj = self.build_object(&src, root, Kind::Scene, &attrs, None, 1)?;
+        let obj = self.build_object(&src, root, root_kind, &attrs, None, 1)?;
         self.files.pop();
         self.check_defines(path)?;
         Ok(obj)
