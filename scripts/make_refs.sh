@@ -10,3 +10,5 @@ PYTHON="${PYTHON:-python3}"
     --spp 16384 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
 "$PYTHON" scripts/mitsuba_ref.py scenes/cs500_spheres.xml -o scenes/refs/cs500_spheres_64x64_mitsuba.exr \
     --spp 16384 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
+"$PYTHON" scripts/mitsuba_ref.py scenes/envmap.xml -o scenes/refs/envmap_64x64_mitsuba.exr \
+    --spp 16384 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb

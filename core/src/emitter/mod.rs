@@ -1,11 +1,19 @@
 //! Emitters: a closed enum, one variant per file.
 mod area;
 mod constant;
+mod directional;
+mod distant_disk;
+mod envmap;
 mod point;
+mod spot;
 
 pub use area::AreaLight;
 pub use constant::ConstantEnv;
+pub use directional::DirectionalLight;
+pub use distant_disk::DistantDisk;
+pub use envmap::EnvMap;
 pub use point::PointLight;
+pub use spot::SpotLight;
 
 use crate::geometry::{Disk, Interaction, Shape};
 use crate::Color;
@@ -41,7 +49,8 @@ pub struct EmitterSample {
     pub weight: Color,
     /// Solid-angle density (1 for delta lights).
     pub pdf: f32,
-    /// Whether the light is a delta distribution (a point): no other strategy can find it.
+    /// Whether the light is a delta distribution (a point, or a single direction): no other
+    /// strategy can find it.
     pub delta: bool,
 }
 
@@ -54,6 +63,14 @@ pub enum Emitter {
     Constant(ConstantEnv),
     /// An isotropic point light.
     Point(PointLight),
+    /// A point light with an angular falloff around its axis.
+    Spot(SpotLight),
+    /// Parallel light from one direction at infinity.
+    Directional(DirectionalLight),
+    /// A disk of uniform radiance at infinity (a sun).
+    DistantDisk(DistantDisk),
+    /// Radiance at infinity from a latitude-longitude image.
+    EnvMap(EnvMap),
 }
 
 impl Emitter {
@@ -63,6 +80,10 @@ impl Emitter {
             Emitter::Area(e) => e.sample(ctx, it, u),
             Emitter::Constant(e) => e.sample(it, u),
             Emitter::Point(e) => e.sample(it),
+            Emitter::Spot(e) => e.sample(it),
+            Emitter::Directional(e) => e.sample(it),
+            Emitter::DistantDisk(e) => e.sample(it, u),
+            Emitter::EnvMap(e) => e.sample(it, u),
         }
     }
     /// Emitted power (luminance, watts up to a constant), for choosing lights by power.
@@ -76,6 +97,14 @@ impl Emitter {
                 4.0 * PI * PI * ctx.scene_radius * ctx.scene_radius * luminance(e.radiance)
             }
             Emitter::Point(e) => 4.0 * PI * luminance(e.intensity),
+            Emitter::Spot(e) => e.solid_angle() * luminance(e.intensity),
+            Emitter::Directional(e) => {
+                PI * ctx.scene_radius * ctx.scene_radius * luminance(e.irradiance)
+            }
+            Emitter::DistantDisk(e) => {
+                PI * ctx.scene_radius * ctx.scene_radius * e.solid_angle() * luminance(e.radiance)
+            }
+            Emitter::EnvMap(e) => PI * ctx.scene_radius * ctx.scene_radius * e.luminance_integral(),
         };
         if p.is_finite() && p > 0.0 {
             p
@@ -85,23 +114,33 @@ impl Emitter {
     }
     /// Whether the emitter is at infinity (seen by rays that escape the scene).
     pub fn is_environment(&self) -> bool {
-        matches!(self, Emitter::Constant(_))
+        matches!(
+            self,
+            Emitter::Constant(_) | Emitter::DistantDisk(_) | Emitter::EnvMap(_)
+        )
     }
-    /// Whether it is a delta light, which no ray can hit.
+    /// Whether it is a delta light (in position or direction), which no ray can hit.
     pub fn is_delta(&self) -> bool {
-        matches!(self, Emitter::Point(_))
+        matches!(
+            self,
+            Emitter::Point(_) | Emitter::Spot(_) | Emitter::Directional(_)
+        )
     }
     /// Radiance of an environment emitter along an escaping ray direction `d`.
-    pub fn eval_environment(&self, _d: Vec3) -> Color {
+    pub fn eval_environment(&self, d: Vec3) -> Color {
         match self {
             Emitter::Constant(e) => e.radiance,
+            Emitter::DistantDisk(e) => e.eval(d),
+            Emitter::EnvMap(e) => e.eval(d),
             _ => Color::ZERO,
         }
     }
     /// Density with which `sample` from `r` picks the direction `d` toward an environment.
-    pub fn pdf_environment(&self, _r: Vec3, _d: Vec3) -> f32 {
+    pub fn pdf_environment(&self, _r: Vec3, d: Vec3) -> f32 {
         match self {
             Emitter::Constant(e) => e.pdf(),
+            Emitter::DistantDisk(e) => e.pdf(d),
+            Emitter::EnvMap(e) => e.pdf(d),
             _ => 0.0,
         }
     }

@@ -1,9 +1,11 @@
 //! Random numbers and warping functions.
 mod discrete;
+mod distribution2d;
 mod independent;
 pub mod warp;
 
 pub use discrete::Discrete1D;
+pub use distribution2d::Distribution2D;
 pub use independent::{pixel_key, IndependentSampler};
 
 use glam::Vec2;

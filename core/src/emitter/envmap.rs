@@ -1,0 +1,275 @@
+//! Environment map: radiance at infinity from a latitude-longitude image, as Mitsuba 3's `envmap`.
+//!
+//! Scene parameters (`<emitter type="envmap">`): `filename` (string, required: an EXR, PFM or
+//! RGBE `.hdr` image, relative to the scene file; at least 2x3 pixels, as in Mitsuba 3), `scale`
+//! (float, default 1: multiplies the image), `to_world` (transform, default identity; a
+//! rotation, optionally uniformly scaled), `mis_compensation` (boolean; accepted for Mitsuba 3
+//! files and ignored). The driver loads the image; the core receives linear RGB pixels.
+//!
+//! Mapping (Mitsuba 3's, checked against Mitsuba 3.9.1 by evaluating its envmap at known
+//! directions): +y is up. A local unit direction `d` has `u = atan2(d.x, -d.z) / 2 pi` (wrapped
+//! to [0, 1)) and `v = acos(d.y) / pi`, so `u = 0` looks along -z, `u = 1/4` along +x, `u = 1/2`
+//! along +z, `u = 3/4` along -x, and `v = 0` is straight up. Pixel column `x` sits at
+//! `u = (x + 1/2) / width` (periodic), pixel row `y` at `v = y / (height - 1)`: the top row is the
+//! north pole and the bottom row the south pole. Radiance is the bilinear interpolation of the
+//! four surrounding pixels, times `scale`.
+//!
+//! Sampling (as Mitsuba 3's hierarchical warp does, here in two levels): every pixel gets the
+//! weight luminance x sin(theta of its row) (the pole rows: the sine of a quarter row); a cell between four pixel centres (`width x
+//! (height - 1)` cells) is chosen by a [`Distribution2D`] in proportion to the integral of the
+//! bilinear interpolant of those weights over it (the mean of its corners), then a point of the
+//! cell is drawn from that bilinear density exactly (a linear density in `v`, then in `u`). The
+//! density in `(u, v)` is therefore the bilinear interpolant of luminance x sin(theta) divided by
+//! its integral: proportional to the radiance's luminance up to the interpolation of
+//! sin(theta), positive wherever the radiance is (so emitter sampling alone covers the map), and
+//! `pdf_uv / (2 pi^2 sin theta)` is its exact solid-angle density. For light selection by power
+//! the map counts as `pi r^2` times its integral of luminance over the sphere.
+use super::{luminance, EmitterSample};
+use crate::geometry::Interaction;
+use crate::math::{INV_PI, INV_TWO_PI, PI};
+use crate::sampling::Distribution2D;
+use crate::Color;
+use alloc::vec::Vec;
+use glam::{Mat3, Vec2, Vec3};
+
+/// A latitude-longitude environment map.
+#[derive(Clone, Debug)]
+pub struct EnvMap {
+    /// Radiance per pixel (`scale` applied), row-major, top row first.
+    pixels: Vec<Color>,
+    width: usize,
+    height: usize,
+    /// Local to world directions: a rotation.
+    to_world: Mat3,
+    /// World to local: the transpose of `to_world`.
+    to_local: Mat3,
+    /// Per pixel, luminance x sin(theta of its row): the sampling weights at the cell corners.
+    weights: Vec<f32>,
+    /// Cell choice (`None` when the map is black).
+    dist: Option<Distribution2D>,
+    /// `width * (height - 1)` over the integral of the bilinear weights in cell units: turns the
+    /// interpolated weight into a density on the `(u, v)` square.
+    pdf_scale: f32,
+    /// Integral of luminance over the sphere (W/m^2 up to the luminance weights).
+    integral: f32,
+}
+
+impl EnvMap {
+    /// An environment from `width x height` linear RGB pixels (row-major, top row first), times
+    /// `scale`, rotated by `to_world` (a rotation; the caller checks). `None` unless
+    /// `width >= 1`, `height >= 2` and the pixel count matches. Negative or non-finite values
+    /// count as 0 (the driver rejects them before).
+    pub fn new(
+        pixels: Vec<[f32; 3]>,
+        width: usize,
+        height: usize,
+        scale: f32,
+        to_world: Mat3,
+    ) -> Option<Self> {
+        if width < 1 || height < 2 || width.checked_mul(height)? != pixels.len() {
+            return None;
+        }
+        let scale = if scale.is_finite() && scale > 0.0 {
+            scale
+        } else {
+            0.0
+        };
+        let pixels: Vec<Color> = pixels
+            .into_iter()
+            .map(|p| {
+                let c = Color::from(p) * scale;
+                if c.is_finite() {
+                    c.max(Color::ZERO)
+                } else {
+                    Color::ZERO
+                }
+            })
+            .collect();
+        let (nx, ny) = (width, height - 1);
+        let mut weights = Vec::with_capacity(width * height);
+        // The pole rows (sin theta = 0) get the sine of a quarter row instead, so that the density
+        // stays positive wherever the radiance is, even when only a pole row is bright.
+        let sin_floor = libm::sin(core::f64::consts::PI / (4 * ny) as f64);
+        for y in 0..height {
+            let sin_t = libm::sin(core::f64::consts::PI * y as f64 / ny as f64).max(sin_floor);
+            for x in 0..width {
+                weights.push((f64::from(luminance(pixels[y * width + x])) * sin_t) as f32);
+            }
+        }
+        let corner = |x: usize, y: usize| f64::from(weights[y * width + x % width]);
+        let lum = |x: usize, y: usize| f64::from(luminance(pixels[y * width + x % width]));
+        let mut cells = Vec::with_capacity(nx * ny);
+        let (mut total, mut integral) = (0.0f64, 0.0f64);
+        for j in 0..ny {
+            // Solid angle of a cell: (cos theta0 - cos theta1) * 2 pi / width.
+            let theta0 = core::f64::consts::PI * j as f64 / ny as f64;
+            let theta1 = core::f64::consts::PI * (j + 1) as f64 / ny as f64;
+            let band = libm::cos(theta0) - libm::cos(theta1);
+            for i in 0..nx {
+                let mean = 0.25
+                    * (corner(i, j) + corner(i + 1, j) + corner(i, j + 1) + corner(i + 1, j + 1));
+                total += mean;
+                cells.push(mean as f32);
+                integral +=
+                    0.25 * (lum(i, j) + lum(i + 1, j) + lum(i, j + 1) + lum(i + 1, j + 1)) * band;
+            }
+        }
+        let integral = (integral * core::f64::consts::TAU / nx as f64) as f32;
+        let pdf_scale = ((nx * ny) as f64 / total) as f32;
+        Some(EnvMap {
+            dist: Distribution2D::new(&cells, nx, ny),
+            weights,
+            pdf_scale: if pdf_scale.is_finite() {
+                pdf_scale
+            } else {
+                0.0
+            },
+            pixels,
+            width,
+            height,
+            to_world,
+            to_local: to_world.transpose(),
+            integral,
+        })
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> usize {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> usize {
+        self.height
+    }
+
+    /// Integral of the radiance's luminance over the sphere of directions.
+    pub fn luminance_integral(&self) -> f32 {
+        self.integral
+    }
+
+    /// Image coordinates `(s, v)` of a local unit direction: `s` in `[0, width)` counts pixel
+    /// centres from column 0 (the `u` of Mitsuba shifted by half a pixel), `v` in `[0, 1]`.
+    #[inline]
+    fn coords(&self, l: Vec3) -> (f32, f32) {
+        let w = self.width as f32;
+        let mut s = libm::atan2f(l.x, -l.z) * INV_TWO_PI * w - 0.5;
+        if s < 0.0 {
+            s += w;
+        }
+        if s < 0.0 {
+            s += w;
+        }
+        if s >= w {
+            s -= w;
+        }
+        let v = libm::acosf(l.y.clamp(-1.0, 1.0)) * INV_PI;
+        (s, v)
+    }
+
+    /// Bilinear interpolation of per-pixel values `at(x, y)` at image coordinates `(s, v)` (see
+    /// [`EnvMap::coords`]).
+    #[inline]
+    fn bilinear<T>(&self, s: f32, v: f32, at: impl Fn(usize) -> T) -> T
+    where
+        T: core::ops::Mul<f32, Output = T> + core::ops::Add<Output = T>,
+    {
+        let (w, h) = (self.width, self.height);
+        let x0 = (s.max(0.0) as usize).min(w - 1);
+        let fx = (s - x0 as f32).clamp(0.0, 1.0);
+        let x1 = if x0 + 1 == w { 0 } else { x0 + 1 };
+        let t = v.clamp(0.0, 1.0) * (h - 1) as f32;
+        let y0 = (t as usize).min(h - 2);
+        let fy = (t - y0 as f32).clamp(0.0, 1.0);
+        let (r0, r1) = (y0 * w, (y0 + 1) * w);
+        let top = at(r0 + x0) * (1.0 - fx) + at(r0 + x1) * fx;
+        let bottom = at(r1 + x0) * (1.0 - fx) + at(r1 + x1) * fx;
+        top * (1.0 - fy) + bottom * fy
+    }
+
+    /// Radiance at image coordinates `(s, v)`.
+    #[inline]
+    fn lookup(&self, s: f32, v: f32) -> Color {
+        self.bilinear(s, v, |i| self.pixels[i])
+    }
+
+    /// Density on the `(u, v)` square at image coordinates `(s, v)`.
+    #[inline]
+    fn pdf_uv(&self, s: f32, v: f32) -> f32 {
+        self.bilinear(s, v, |i| self.weights[i]) * self.pdf_scale
+    }
+
+    /// Radiance arriving along the escaping unit direction `d`.
+    #[inline]
+    pub fn eval(&self, d: Vec3) -> Color {
+        let l = (self.to_local * d).normalize_or_zero();
+        if l == Vec3::ZERO {
+            return Color::ZERO;
+        }
+        let (s, v) = self.coords(l);
+        self.lookup(s, v)
+    }
+
+    /// Solid-angle density of `sample` for the world direction `d`.
+    #[inline]
+    pub fn pdf(&self, d: Vec3) -> f32 {
+        if self.dist.is_none() {
+            return 0.0;
+        }
+        let l = (self.to_local * d).normalize_or_zero();
+        let sin_t = libm::sqrtf(l.x * l.x + l.z * l.z);
+        if !(sin_t > 0.0) {
+            return 0.0;
+        }
+        let (s, v) = self.coords(l);
+        self.pdf_uv(s, v) / (2.0 * PI * PI * sin_t)
+    }
+
+    /// A direction by importance: a cell of the image by its weight, then a point of the cell
+    /// from the bilinear interpolant of the weights.
+    pub fn sample(&self, _it: &Interaction, u: Vec2) -> Option<EmitterSample> {
+        let (i, j, r, _) = self.dist.as_ref()?.sample_cell(u)?;
+        let w = self.width;
+        let c = |x: usize, y: usize| self.weights[y * w + x % w];
+        let (c00, c10, c01, c11) = (c(i, j), c(i + 1, j), c(i, j + 1), c(i + 1, j + 1));
+        let fy = sample_linear(r.y, c00 + c10, c01 + c11);
+        let fx = sample_linear(r.x, c00 + (c01 - c00) * fy, c10 + (c11 - c10) * fy);
+        let s = i as f32 + fx;
+        let v = (j as f32 + fy) / (self.height - 1) as f32;
+        let phi = 2.0 * PI * (s + 0.5) / w as f32;
+        let theta = PI * v;
+        let (sin_t, cos_t) = (libm::sinf(theta), libm::cosf(theta));
+        if !(sin_t > 0.0) {
+            return None;
+        }
+        let (sin_p, cos_p) = (libm::sinf(phi), libm::cosf(phi));
+        let local = Vec3::new(sin_p * sin_t, cos_t, -cos_p * sin_t);
+        let wo = (self.to_world * local).normalize_or_zero();
+        let pdf = self.pdf_uv(s, v) / (2.0 * PI * PI * sin_t);
+        let le = self.lookup(s, v);
+        if wo == Vec3::ZERO || le == Color::ZERO || !(pdf > 0.0) || !pdf.is_finite() {
+            return None;
+        }
+        Some(EmitterSample {
+            wo,
+            target: None,
+            weight: le / pdf,
+            pdf,
+            delta: false,
+        })
+    }
+}
+
+/// `t` in `[0, 1]` with density proportional to `(1 - t) a + t b` (`a, b >= 0`), for `u`
+/// uniform in `[0, 1)`: the inverse of its cdf, in a form without cancellation.
+#[inline]
+fn sample_linear(u: f32, a: f32, b: f32) -> f32 {
+    if a == b {
+        return u;
+    }
+    let den = a + libm::sqrtf(((1.0 - u) * a * a + u * b * b).max(0.0));
+    if !(den > 0.0) {
+        return 0.0;
+    }
+    (u * (a + b) / den).clamp(0.0, 1.0)
+}
