@@ -5,7 +5,7 @@
 //! the origin of a large diffuse plane (or at a diffuse sphere), with direct lighting only
 //! (`max_depth` 2) unless said otherwise, and tests the pixel's mean per channel against the
 //! analytic radiance at significance 0.01, Sidak-corrected over every test in this file. BSDF
-//! sampling alone never finds a delta light: `path_mats` must give exactly 0 for those. A
+//! sampling alone never finds a delta light: `path_mats` and `direct_mats` must give exactly 0. A
 //! control shows that the test rejects a reference 1% off.
 use statrs::distribution::{ContinuousCDF, StudentsT};
 use std::f64::consts::PI;
@@ -14,11 +14,21 @@ use tessera::stats::{sidak_alpha, t_test_from_sums};
 use tessera_tests::{load_xml, render_loaded};
 
 /// Number of t-tests in this file (cases x integrators x channels), for the Sidak correction:
-/// delta lights (spot 2 cases, directional 2) x 3 integrators, distant disk 4 cases x 4, the
-/// distant disk of 180 degrees, a constant envmap and an envmap lit at its pole x 4; 3 channels.
-const N_TESTS: usize = (4 * 3 + 4 * 4 + 3 * 4) * 3;
-/// The path tracers that can find lights that rays can hit.
-const INTEGRATORS: [&str; 4] = ["path_mats", "path_ems", "path_half", "path_mis"];
+/// delta lights (spot 2 cases, directional 2) x 6 integrators, distant disk 4 cases x 8, the
+/// distant disk of 180 degrees, a constant envmap and an envmap lit at its pole x 8; 3 channels.
+const N_TESTS: usize = (4 * 6 + 4 * 8 + 3 * 8) * 3;
+/// The integrators that can find lights that rays can hit: the path tracers (max_depth 2 in the
+/// plane scenes) and the direct-lighting integrators.
+const INTEGRATORS: [&str; 8] = [
+    "path_mats",
+    "path_ems",
+    "path_half",
+    "path_mis",
+    "direct_ems",
+    "direct_mats",
+    "direct_mis",
+    "direct",
+];
 const ALBEDO: [f64; 3] = [0.7, 0.5, 0.3];
 
 fn alpha() -> f64 {
@@ -27,7 +37,20 @@ fn alpha() -> f64 {
 
 /// Renders `xml` (a 1x1 image) and t-tests each channel against `expected`.
 fn check(label: &str, xml: &str, defines: &[(&str, &str)], spp: u64, expected: [f64; 3]) {
-    let loaded = load_xml(xml, defines);
+    // The file names path_mis (with its max_depth); switch by name, keeping that depth.
+    let integ = defines
+        .iter()
+        .find(|(k, _)| *k == "integrator")
+        .map(|(_, v)| *v);
+    let others: Vec<(&str, &str)> = defines
+        .iter()
+        .copied()
+        .filter(|(k, _)| *k != "integrator")
+        .collect();
+    let mut loaded = load_xml(xml, &others);
+    loaded
+        .set_integrator(integ, None)
+        .expect("known integrator");
     let fb = render_loaded(&loaded, spp, 7);
     let p = fb.at(0, 0);
     assert_eq!(p.dropped, 0, "{label}: non-finite samples");
@@ -98,7 +121,14 @@ fn sphere_scene(lights: &str) -> String {
 /// Checks a delta-light scene with the two integrators that sample lights, and that BSDF
 /// sampling alone gives exactly 0.
 fn check_delta(label: &str, xml: &str, expected: [f64; 3]) {
-    for integ in ["path_ems", "path_half", "path_mis"] {
+    for integ in [
+        "path_ems",
+        "path_half",
+        "path_mis",
+        "direct_ems",
+        "direct_mis",
+        "direct",
+    ] {
         check(
             &format!("{label} {integ}"),
             xml,
@@ -107,13 +137,18 @@ fn check_delta(label: &str, xml: &str, expected: [f64; 3]) {
             expected,
         );
     }
-    let loaded = load_xml(xml, &[("integrator", "path_mats")]);
-    let fb = render_loaded(&loaded, 10_000, 7);
-    assert_eq!(
-        fb.at(0, 0).sum,
-        [0.0; 3],
-        "{label}: path_mats found a delta light"
-    );
+    for integ in ["path_mats", "direct_mats"] {
+        let mut loaded = load_xml(xml, &[]);
+        loaded
+            .set_integrator(Some(integ), None)
+            .expect("known integrator");
+        let fb = render_loaded(&loaded, 10_000, 7);
+        assert_eq!(
+            fb.at(0, 0).sum,
+            [0.0; 3],
+            "{label}: {integ} found a delta light"
+        );
+    }
 }
 
 /// A spot light of intensity I at height h straight above the viewed point, shining down:
@@ -204,7 +239,7 @@ fn distant_disk_over_plane() {
         ));
         let s2 = theta.to_radians().sin().powi(2);
         for integ in INTEGRATORS {
-            let spp = if (integ == "path_mats" || integ == "path_half") && theta < 10.0 {
+            let spp = if (integ.ends_with("mats") || integ == "path_half") && theta < 10.0 {
                 1_000_000
             } else {
                 200_000
