@@ -66,3 +66,63 @@ pub fn z_p_value(z: f64) -> f64 {
     let n = Normal::new(0.0, 1.0).expect("standard normal");
     2.0 * n.sf(z.abs())
 }
+
+/// Asserts that each channel of pixel `p` matches `expected` by a two-sided Student t-test at
+/// `alpha`. The renderer computes in f32, so its answer carries a few ulps of rounding that no
+/// number of samples removes: `(4 f32 ulps of the reference)^2` joins the squared standard
+/// error, holding near-zero-variance estimators (BSDF sampling in a furnace, delta lights) to f32
+/// precision rather than beyond it.
+pub fn assert_pixel_matches(
+    label: &str,
+    p: &tessera_core::film::PixelAccum,
+    expected: [f64; 3],
+    alpha: f64,
+) {
+    use statrs::distribution::{ContinuousCDF, StudentsT};
+    assert_eq!(p.dropped, 0, "{label}: non-finite samples");
+    for k in 0..3 {
+        let (n, mean) = (p.count as f64, p.sum[k] / p.count as f64);
+        let var = ((p.sum_sq[k] - n * mean * mean) / (n - 1.0)).max(0.0);
+        let ulp = (expected[k] as f32).abs() as f64 * f32::EPSILON as f64;
+        let se = (var / n + (4.0 * ulp).powi(2)).sqrt();
+        let t = (mean - expected[k]) / se;
+        let p_value = 2.0
+            * StudentsT::new(0.0, 1.0, n - 1.0)
+                .expect("dof > 0")
+                .sf(t.abs());
+        assert!(
+            p_value >= alpha,
+            "{label} channel {k}: mean {mean} vs expected {} (t = {t:.3}, p = {p_value:.3e})",
+            expected[k]
+        );
+    }
+}
+
+/// Smallest z-test p-value over the `block`-pixel regions and channels of a `res x res` render
+/// `a` against `b(bx, by, k)` = (mean, variance of the mean) of the other image's region; with
+/// a description of where it was.
+pub fn worst_region(
+    a: &Framebuffer,
+    res: u32,
+    block: u32,
+    b: impl Fn(u32, u32, usize) -> (f64, f64),
+) -> (f64, String) {
+    let mut worst = (1.0, String::new());
+    for by in 0..res / block {
+        for bx in 0..res / block {
+            let sa = region_stats(a, bx * block, by * block, block, block);
+            for (k, &(ma, va)) in sa.iter().enumerate() {
+                let (mb, vb) = b(bx, by, k);
+                let z = (ma - mb) / (va + vb).sqrt();
+                let p = z_p_value(z);
+                if p < worst.0 {
+                    worst = (
+                        p,
+                        format!("region ({bx},{by}) channel {k}: {ma:.5} vs {mb:.5}, z = {z:.2}"),
+                    );
+                }
+            }
+        }
+    }
+    worst
+}

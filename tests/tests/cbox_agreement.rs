@@ -6,7 +6,7 @@
 use tessera::image_io::read_image;
 use tessera::render::Framebuffer;
 use tessera::stats::sidak_alpha;
-use tessera_tests::{load_file, region_stats, render_loaded, scenes_dir, z_p_value};
+use tessera_tests::{load_file, region_stats, render_loaded, scenes_dir, worst_region};
 
 const RES: u32 = 64;
 const BLOCK: u32 = 8;
@@ -21,29 +21,6 @@ fn render_scene(file: &str, strategy: &str, spp: u64, seed: u64) -> Framebuffer 
         .set_integrator(Some(strategy), None)
         .expect("known integrator");
     render_loaded(&loaded, spp, seed)
-}
-
-/// Smallest p-value over all regions and channels of two renders (b may be a reference with a
-/// known variance per region, given by `b_var`).
-fn worst_region(a: &Framebuffer, b_mean: impl Fn(u32, u32, usize) -> (f64, f64)) -> (f64, String) {
-    let mut worst = (1.0, String::new());
-    for by in 0..RES / BLOCK {
-        for bx in 0..RES / BLOCK {
-            let sa = region_stats(a, bx * BLOCK, by * BLOCK, BLOCK, BLOCK);
-            for (k, &(ma, va)) in sa.iter().enumerate() {
-                let (mb, vb) = b_mean(bx, by, k);
-                let z = (ma - mb) / (va + vb).sqrt();
-                let p = z_p_value(z);
-                if p < worst.0 {
-                    worst = (
-                        p,
-                        format!("region ({bx},{by}) channel {k}: {ma:.5} vs {mb:.5}, z = {z:.2}"),
-                    );
-                }
-            }
-        }
-    }
-    worst
 }
 
 /// path_mats, path_half, path_mis and path_ems converge to the same image.
@@ -63,7 +40,7 @@ fn integrators_agree_on_the_cornell_box() {
             let (na, a) = (&renders[i].0, &renders[i].1);
             let (nb, b) = (&renders[j].0, &renders[j].1);
             assert_eq!(a.dropped() + b.dropped(), 0);
-            let (p, what) = worst_region(a, |bx, by, k| {
+            let (p, what) = worst_region(&a, RES, BLOCK, |bx, by, k| {
                 region_stats(b, bx * BLOCK, by * BLOCK, BLOCK, BLOCK)[k]
             });
             eprintln!("{na} vs {nb}: worst p = {p:.3e} at {what}");
@@ -86,7 +63,7 @@ fn matches_mitsuba(name: &str) {
         .expect("reference image");
     assert_eq!((reference.width, reference.height), (RES, RES));
     let alpha = sidak_alpha(0.01, (RES / BLOCK).pow(2) as usize * 3);
-    let (p, what) = worst_region(&ours, |bx, by, k| {
+    let (p, what) = worst_region(&ours, RES, BLOCK, |bx, by, k| {
         let mut m = 0.0;
         for y in by * BLOCK..(by + 1) * BLOCK {
             for x in bx * BLOCK..(bx + 1) * BLOCK {
@@ -121,7 +98,7 @@ fn cs500_spheres_match_mitsuba() {
 #[test]
 fn comparison_rejects_a_two_percent_bias() {
     let ours = render_with("path_mis", 512, 11);
-    let (p, _) = worst_region(&ours, |bx, by, k| {
+    let (p, _) = worst_region(&ours, RES, BLOCK, |bx, by, k| {
         let (m, v) = region_stats(&ours, bx * BLOCK, by * BLOCK, BLOCK, BLOCK)[k];
         (m * 1.02, v * 512.0 / 16384.0)
     });
@@ -141,7 +118,7 @@ fn light_selection_by_power_or_uniform_agrees() {
     loaded.scene.set_light_selection(LightSelection::Uniform);
     let uniform = render_loaded(&loaded, 256, 22);
     let alpha = sidak_alpha(0.01, (RES / BLOCK).pow(2) as usize * 3);
-    let (p, what) = worst_region(&power, |bx, by, k| {
+    let (p, what) = worst_region(&power, RES, BLOCK, |bx, by, k| {
         region_stats(&uniform, bx * BLOCK, by * BLOCK, BLOCK, BLOCK)[k]
     });
     eprintln!("power vs uniform light selection: worst p = {p:.3e} at {what}");

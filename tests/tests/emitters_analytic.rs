@@ -7,7 +7,6 @@
 //! analytic radiance at significance 0.01, Sidak-corrected over every test in this file. BSDF
 //! sampling alone never finds a delta light: `path_mats` and `direct_mats` must give exactly 0. A
 //! control shows that the test rejects a reference 1% off.
-use statrs::distribution::{ContinuousCDF, StudentsT};
 use std::f64::consts::PI;
 use tessera::image_io::{write_image, RgbImage};
 use tessera::stats::{sidak_alpha, t_test_from_sums};
@@ -53,29 +52,7 @@ fn check(label: &str, xml: &str, defines: &[(&str, &str)], spp: u64, expected: [
         .expect("known integrator");
     let fb = render_loaded(&loaded, spp, 7);
     let p = fb.at(0, 0);
-    assert_eq!(p.dropped, 0, "{label}: non-finite samples");
-    for k in 0..3 {
-        let (n, mean) = (p.count as f64, p.sum[k] / p.count as f64);
-        let var = ((p.sum_sq[k] - n * mean * mean) / (n - 1.0)).max(0.0);
-        // f32 rounding floor of the renderer's answer (see analytic.rs): delta lights give the
-        // same value for every sample.
-        let ulp = (expected[k] as f32).abs() as f64 * f32::EPSILON as f64;
-        let se = (var / n + (4.0 * ulp).powi(2)).sqrt();
-        let t = (mean - expected[k]) / se;
-        let p_value = 2.0
-            * StudentsT::new(0.0, 1.0, n - 1.0)
-                .expect("dof > 0")
-                .sf(t.abs());
-        println!(
-            "{label} channel {k}: mean {mean:.6} expected {:.6} p = {p_value:.3e}",
-            expected[k]
-        );
-        assert!(
-            p_value >= alpha(),
-            "{label} channel {k}: mean {mean} vs expected {} (t = {t:.3}, p = {p_value:.3e})",
-            expected[k]
-        );
-    }
+    tessera_tests::assert_pixel_matches(label, p, expected, alpha());
 }
 
 /// A diffuse square (z = 0, normal +z, albedo [`ALBEDO`], 20 wide: only its centre is lit in

@@ -9,7 +9,7 @@
 use tessera::image_io::read_image;
 use tessera::render::Framebuffer;
 use tessera::stats::sidak_alpha;
-use tessera_tests::{load_file, region_stats, render_loaded, scenes_dir, z_p_value};
+use tessera_tests::{load_file, region_stats, render_loaded, scenes_dir, worst_region};
 
 const RES: u32 = 64;
 const BLOCK: u32 = 8;
@@ -21,29 +21,6 @@ fn render(integrator: &str, spp: u64, seed: u64) -> Framebuffer {
         .set_integrator(Some(integrator), None)
         .expect("known integrator");
     render_loaded(&loaded, spp, seed)
-}
-
-/// Smallest p-value over all regions and channels of `a` against `b_mean(bx, by, k)` = (mean,
-/// variance of the mean) of the other image's region.
-fn worst_region(a: &Framebuffer, b_mean: impl Fn(u32, u32, usize) -> (f64, f64)) -> (f64, String) {
-    let mut worst = (1.0, String::new());
-    for by in 0..RES / BLOCK {
-        for bx in 0..RES / BLOCK {
-            let sa = region_stats(a, bx * BLOCK, by * BLOCK, BLOCK, BLOCK);
-            for (k, &(ma, va)) in sa.iter().enumerate() {
-                let (mb, vb) = b_mean(bx, by, k);
-                let z = (ma - mb) / (va + vb).sqrt();
-                let p = z_p_value(z);
-                if p < worst.0 {
-                    worst = (
-                        p,
-                        format!("region ({bx},{by}) channel {k}: {ma:.5} vs {mb:.5}, z = {z:.2}"),
-                    );
-                }
-            }
-        }
-    }
-    worst
 }
 
 /// Image mean per channel.
@@ -75,7 +52,7 @@ fn integrators_agree_on_the_envmap_scene() {
     println!("path_mis: image mean {:.5?}", image_mean(&reference));
     for (name, fb) in &others {
         assert_eq!(fb.dropped() + reference.dropped(), 0);
-        let (p, what) = worst_region(fb, |bx, by, k| {
+        let (p, what) = worst_region(&fb, RES, BLOCK, |bx, by, k| {
             region_stats(&reference, bx * BLOCK, by * BLOCK, BLOCK, BLOCK)[k]
         });
         println!(
@@ -113,7 +90,7 @@ fn envmap_scene_matches_mitsuba() {
         ref_mean
     );
     let alpha = sidak_alpha(0.01, (RES / BLOCK).pow(2) as usize * 3);
-    let (p, what) = worst_region(&ours, |bx, by, k| {
+    let (p, what) = worst_region(&ours, RES, BLOCK, |bx, by, k| {
         let mut m = 0.0;
         for y in by * BLOCK..(by + 1) * BLOCK {
             for x in bx * BLOCK..(bx + 1) * BLOCK {
@@ -138,7 +115,7 @@ fn worst_against_reference(loaded: &tessera::scene::LoadedScene) -> (f64, String
     let ours = render_loaded(loaded, 512, 11);
     let reference =
         read_image(&scenes_dir().join("refs/envmap_64x64_mitsuba.exr")).expect("reference image");
-    worst_region(&ours, |bx, by, k| {
+    worst_region(&ours, RES, BLOCK, |bx, by, k| {
         let mut m = 0.0;
         for y in by * BLOCK..(by + 1) * BLOCK {
             for x in bx * BLOCK..(bx + 1) * BLOCK {
