@@ -118,3 +118,47 @@ fn ply_and_obj_meshes_load_alike() {
     );
     assert_eq!(fa, fb);
 }
+
+/// `hide_emitters` hides what the camera sees directly (an area light, the environment) and
+/// nothing else: light reflected off a surface is the same with or without it. (Mitsuba 3,
+/// measured: a camera ray meeting an emitter gives 0 even where the emitter's BSDF reflects.)
+#[test]
+fn hide_emitters_hides_only_what_the_camera_sees_directly() {
+    let xml = |hide: bool| {
+        format!(
+            r#"<scene version="3.0.0">
+  <integrator type="path"><boolean name="hide_emitters" value="{hide}"/></integrator>
+  <sensor type="perspective"><float name="fov" value="60"/>
+    <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/><rfilter type="box"/></film></sensor>
+  <shape type="sphere"><point name="center" value="-1, 0, 0"/><float name="radius" value="0.6"/>
+    <bsdf type="diffuse"/><emitter type="area"><rgb name="radiance" value="3"/></emitter></shape>
+  <shape type="sphere"><point name="center" value="1, 0, 0"/><float name="radius" value="0.6"/></shape>
+  <emitter type="constant"><rgb name="radiance" value="0.5"/></emitter>
+</scene>"#
+        )
+    };
+    let shown = render_loaded(&load_xml(&xml(false), &[]), 16, 5);
+    let hidden = render_loaded(&load_xml(&xml(true), &[]), 16, 5);
+    let (light, diffuse, sky) = ((3, 8), (12, 8), (8, 1));
+    assert!(shown.at(light.0, light.1).sum[0] > 0.0 && shown.at(sky.0, sky.1).sum[0] > 0.0);
+    assert_eq!(
+        hidden.at(light.0, light.1).sum,
+        [0.0; 3],
+        "the light is still visible"
+    );
+    assert_eq!(
+        hidden.at(sky.0, sky.1).sum,
+        [0.0; 3],
+        "the environment is still visible"
+    );
+    assert!(
+        hidden.at(diffuse.0, diffuse.1).sum[0] > 0.0,
+        "reflected light vanished"
+    );
+    assert_eq!(
+        hidden.at(diffuse.0, diffuse.1),
+        shown.at(diffuse.0, diffuse.1),
+        "reflected light changed"
+    );
+}

@@ -3,7 +3,8 @@
 //! Scene parameters (`<integrator type="path_mats|path_ems|path_half|path_mis|path">`): `max_depth`
 //! (integer, default -1 = unbounded; 1 = only emitters seen directly, 2 = direct lighting),
 //! `rr_depth` (integer, default 5: Russian roulette from that depth on, with survival probability
-//! min(max throughput, 0.95)), `hide_emitters` (boolean, default false). These follow Mitsuba 3's
+//! min(max throughput, 0.95)), `hide_emitters` (boolean, default false: when set, a camera ray
+//! that meets an emitter or escapes to the environment contributes nothing, as in Mitsuba 3). These follow Mitsuba 3's
 //! `path` integrator exactly.
 //!
 //! Strategies:
@@ -105,6 +106,14 @@ impl PathIntegrator {
         loop {
             let visible = !(depth == 0 && self.hide_emitters);
             let hit = scene.intersect(&ray);
+            // Mitsuba 3's hide_emitters: a camera ray that meets an emitter sees nothing at all.
+            if !visible
+                && hit
+                    .as_ref()
+                    .is_some_and(|si| scene.shapes[si.shape as usize].emitter.is_some())
+            {
+                break;
+            }
             if visible && (hit.is_some() || features.has_environment) {
                 let d = ray.d.normalize();
                 let with_pdf = self.strategy == Strategy::Mis && prev.is_some_and(|p| p.nee);

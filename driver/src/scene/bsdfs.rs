@@ -15,6 +15,7 @@ pub struct Bsdfs {
     pub list: Vec<Bsdf>,
     by_object: HashMap<*const Object, u32>,
     default: Option<u32>,
+    default_emitter: Option<u32>,
 }
 
 impl Bsdfs {
@@ -30,14 +31,23 @@ impl Bsdfs {
         self.by_object.insert(key, i);
         Ok(i)
     }
-    /// The default BSDF of shapes without one: one-sided diffuse, reflectance 0.5 (Mitsuba 3).
-    pub fn default_index(&mut self) -> u32 {
-        *self.default.get_or_insert_with(|| {
-            self.list.push(Bsdf::Diffuse(Diffuse {
-                reflectance: glam::Vec3::splat(0.5),
-            }));
-            self.list.len() as u32 - 1
-        })
+    /// The default BSDF of shapes without one: one-sided diffuse, reflectance 0.5, or 0 for a
+    /// shape that emits (both as Mitsuba 3 does; measured).
+    pub fn default_index(&mut self, emitting: bool) -> u32 {
+        let (slot, albedo) = if emitting {
+            (&mut self.default_emitter, 0.0)
+        } else {
+            (&mut self.default, 0.5)
+        };
+        if let Some(i) = *slot {
+            return i;
+        }
+        self.list.push(Bsdf::Diffuse(Diffuse {
+            reflectance: glam::Vec3::splat(albedo),
+        }));
+        let i = self.list.len() as u32 - 1;
+        *slot = Some(i);
+        i
     }
 }
 

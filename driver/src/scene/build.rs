@@ -48,7 +48,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
                 let shape_index = shapes.len() as u32;
                 let bsdf = match parts.bsdf {
                     Some(b) => bsdfs.index_of(&b.obj)?,
-                    None => bsdfs.default_index(),
+                    None => bsdfs.default_index(parts.emitter.is_some()),
                 };
                 let emitter = match parts.emitter {
                     Some(e) => {

@@ -4,7 +4,8 @@
 //! to_world * translate(center) * scale(radius), as Mitsuba 3 does). `obj`, `ply`: `filename`
 //! (relative to the scene file), `face_normals` (false). `rectangle`, `cube`, `disk`: unit shapes
 //! placed by `to_world`. Every shape: `to_world`, `flip_normals` (false), an optional `<bsdf>`
-//! (nested or `<ref>`; default diffuse 0.5), an optional `<emitter type="area">`.
+//! (nested or `<ref>`; default diffuse 0.5, or black diffuse on an emitting shape, as in Mitsuba
+//! 3), an optional `<emitter type="area">`.
 use super::util::{float_checked, transform, vec3, Result};
 use crate::error::InputError;
 use crate::mesh::{self, MeshData};
