@@ -126,3 +126,38 @@ pub fn worst_region(
     }
     worst
 }
+
+/// Smallest z-test p-value over the `block`-pixel regions of our `res x res` render `ours`
+/// (`spp` samples) against a converged reference image of `ref_spp` samples (Mitsuba 3's, made
+/// by scripts/make_refs.sh). The reference's own variance is estimated as ours scaled by the
+/// ratio of sample counts (same scene, a path tracer of the same kind), plus a rounding bound:
+/// Mitsuba's film sums each 256-spp pass in f32, 256 ulps, which matters only where a region
+/// has no noise at all (the bare environment).
+pub fn worst_against_reference(
+    ours: &Framebuffer,
+    spp: u64,
+    reference: &tessera::image_io::RgbImage,
+    ref_spp: f64,
+    res: u32,
+    block: u32,
+) -> (f64, String) {
+    assert_eq!(
+        (reference.width, reference.height),
+        (res, res),
+        "reference size"
+    );
+    worst_region(ours, res, block, |bx, by, k| {
+        let mut m = 0.0;
+        for y in by * block..(by + 1) * block {
+            for x in bx * block..(bx + 1) * block {
+                m += reference.data[(y * res + x) as usize][k] as f64;
+            }
+        }
+        let m = m / (block * block) as f64;
+        let ours_var = region_stats(ours, bx * block, by * block, block, block)[k].1;
+        let rounding = 256.0 * f32::EPSILON as f64 * m.abs();
+        (m, ours_var * spp as f64 / ref_spp + rounding * rounding)
+    })
+}
+
+pub mod cap;

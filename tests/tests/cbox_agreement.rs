@@ -6,7 +6,9 @@
 use tessera::image_io::read_image;
 use tessera::render::Framebuffer;
 use tessera::stats::sidak_alpha;
-use tessera_tests::{load_file, region_stats, render_loaded, scenes_dir, worst_region};
+use tessera_tests::{
+    load_file, region_stats, render_loaded, scenes_dir, worst_against_reference, worst_region,
+};
 
 const RES: u32 = 64;
 const BLOCK: u32 = 8;
@@ -53,30 +55,15 @@ fn integrators_agree_on_the_cornell_box() {
 }
 
 /// Our render of a scene file agrees with Mitsuba 3's (`scenes/refs/NAME_64x64_mitsuba.exr`,
-/// 16384 spp, made by scripts/make_refs.sh). The reference's own variance is estimated as ours
-/// scaled by the ratio of sample counts (same scene, a path tracer of the same kind).
+/// 16384 spp, made by scripts/make_refs.sh).
 fn matches_mitsuba(name: &str) {
     let spp = 512;
     let ref_spp = 16384.0;
     let ours = render_scene(&format!("{name}.xml"), "path_mis", spp, 11);
     let reference = read_image(&scenes_dir().join(format!("refs/{name}_64x64_mitsuba.exr")))
         .expect("reference image");
-    assert_eq!((reference.width, reference.height), (RES, RES));
     let alpha = sidak_alpha(0.01, (RES / BLOCK).pow(2) as usize * 3);
-    let (p, what) = worst_region(&ours, RES, BLOCK, |bx, by, k| {
-        let mut m = 0.0;
-        for y in by * BLOCK..(by + 1) * BLOCK {
-            for x in bx * BLOCK..(bx + 1) * BLOCK {
-                m += reference.data[(y * RES + x) as usize][k] as f64;
-            }
-        }
-        let ours_var = region_stats(&ours, bx * BLOCK, by * BLOCK, BLOCK, BLOCK)[k].1;
-        let m = m / (BLOCK * BLOCK) as f64;
-        // Mitsuba's film sums each 256-spp pass in f32: a rounding bound of 256 ulps, which
-        // matters only where a region has no noise at all (the bare environment).
-        let rounding = 256.0 * f32::EPSILON as f64 * m.abs();
-        (m, ours_var * spp as f64 / ref_spp + rounding * rounding)
-    });
+    let (p, what) = worst_against_reference(&ours, spp, &reference, ref_spp, RES, BLOCK);
     eprintln!("{name}: Tessera vs Mitsuba 3: worst p = {p:.3e} at {what}");
     assert!(
         p >= alpha,

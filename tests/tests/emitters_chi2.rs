@@ -17,6 +17,7 @@ use tessera_core::geometry::Interaction;
 use tessera_core::math::Frame;
 use tessera_core::sampling::Distribution2D;
 use tessera_core::Color;
+use tessera_tests::cap::{cap_coords, cap_dir, frame_around};
 
 /// Number of chi-square tests in this file (one per seed):
 ///  1 Distribution2D on a grid with empty cells and an empty row,
@@ -109,37 +110,6 @@ impl<'a> Sampler<'a> {
             self.mismatches
         );
     }
-}
-
-/// An orthonormal frame `[s, t, a]` (f64) with `a` the given unit axis.
-fn frame_around(a: DVec3) -> [DVec3; 3] {
-    let helper = if a.x.abs() < 0.6 { DVec3::X } else { DVec3::Y };
-    let s = helper.cross(a).normalize();
-    let t = a.cross(s);
-    [s, t, a]
-}
-
-/// Maps a direction to the unit square by `x = (1 - cos θ) / omc_box`, `y = φ / 2π` around
-/// `frame[2]`; a solid-angle density `p` becomes `p · 2π · omc_box` there.
-fn cap_coords(d: Vec3, frame: &[DVec3; 3], omc_box: f64) -> Vec2 {
-    let d = d.as_dvec3();
-    let (x, y, z) = (d.dot(frame[0]), d.dot(frame[1]), d.dot(frame[2]));
-    let len = (x * x + y * y + z * z).sqrt();
-    let omc = (x * x + y * y) / (len * (len + z));
-    let mut phi = y.atan2(x);
-    if phi < 0.0 {
-        phi += TAU;
-    }
-    Vec2::new((omc / omc_box) as f32, (phi / TAU) as f32)
-}
-
-/// Inverse of [`cap_coords`].
-fn cap_dir(p: Vec2, frame: &[DVec3; 3], omc_box: f64) -> DVec3 {
-    let omc = f64::from(p.x) * omc_box;
-    let cos = 1.0 - omc;
-    let sin = (omc * (2.0 - omc)).max(0.0).sqrt();
-    let phi = TAU * f64::from(p.y);
-    frame[0] * (sin * phi.cos()) + frame[1] * (sin * phi.sin()) + frame[2] * cos
 }
 
 /// A rotation (f64) by `deg` degrees about `axis`.

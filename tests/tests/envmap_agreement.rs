@@ -9,7 +9,9 @@
 use tessera::image_io::read_image;
 use tessera::render::Framebuffer;
 use tessera::stats::sidak_alpha;
-use tessera_tests::{load_file, region_stats, render_loaded, scenes_dir, worst_region};
+use tessera_tests::{
+    load_file, region_stats, render_loaded, scenes_dir, worst_against_reference, worst_region,
+};
 
 const RES: u32 = 64;
 const BLOCK: u32 = 8;
@@ -77,7 +79,6 @@ fn envmap_scene_matches_mitsuba() {
     assert_eq!(ours.dropped(), 0);
     let reference =
         read_image(&scenes_dir().join("refs/envmap_64x64_mitsuba.exr")).expect("reference image");
-    assert_eq!((reference.width, reference.height), (RES, RES));
     let mut ref_mean = [0.0f64; 3];
     for p in &reference.data {
         for k in 0..3 {
@@ -90,19 +91,7 @@ fn envmap_scene_matches_mitsuba() {
         ref_mean
     );
     let alpha = sidak_alpha(0.01, (RES / BLOCK).pow(2) as usize * 3);
-    let (p, what) = worst_region(&ours, RES, BLOCK, |bx, by, k| {
-        let mut m = 0.0;
-        for y in by * BLOCK..(by + 1) * BLOCK {
-            for x in bx * BLOCK..(bx + 1) * BLOCK {
-                m += reference.data[(y * RES + x) as usize][k] as f64;
-            }
-        }
-        let ours_var = region_stats(&ours, bx * BLOCK, by * BLOCK, BLOCK, BLOCK)[k].1;
-        let m = m / (BLOCK * BLOCK) as f64;
-        // Mitsuba's film sums each 256-spp pass in f32 (see cbox_agreement.rs).
-        let rounding = 256.0 * f32::EPSILON as f64 * m.abs();
-        (m, ours_var * spp as f64 / ref_spp + rounding * rounding)
-    });
+    let (p, what) = worst_against_reference(&ours, spp, &reference, ref_spp, RES, BLOCK);
     println!("envmap: Tessera vs Mitsuba 3: worst p = {p:.3e} at {what}");
     assert!(
         p >= alpha,
@@ -111,20 +100,11 @@ fn envmap_scene_matches_mitsuba() {
 }
 
 /// Worst region p-value of `loaded` at 512 spp against the Mitsuba reference.
-fn worst_against_reference(loaded: &tessera::scene::LoadedScene) -> (f64, String) {
+fn worst_against_mitsuba(loaded: &tessera::scene::LoadedScene) -> (f64, String) {
     let ours = render_loaded(loaded, 512, 11);
     let reference =
         read_image(&scenes_dir().join("refs/envmap_64x64_mitsuba.exr")).expect("reference image");
-    worst_region(&ours, RES, BLOCK, |bx, by, k| {
-        let mut m = 0.0;
-        for y in by * BLOCK..(by + 1) * BLOCK {
-            for x in bx * BLOCK..(bx + 1) * BLOCK {
-                m += reference.data[(y * RES + x) as usize][k] as f64;
-            }
-        }
-        let ours_var = region_stats(&ours, bx * BLOCK, by * BLOCK, BLOCK, BLOCK)[k].1;
-        (m / (BLOCK * BLOCK) as f64, ours_var * 512.0 / 16384.0)
-    })
+    worst_against_reference(&ours, 512, &reference, 16384.0, RES, BLOCK)
 }
 
 /// The comparison has power: a sky 2% too bright (`env_scale` 1.02) is rejected.
@@ -134,7 +114,7 @@ fn comparison_rejects_a_two_percent_brighter_sky() {
         SCENE,
         &[("res", "64"), ("rfilter", "box"), ("env_scale", "1.02")],
     );
-    let (p, what) = worst_against_reference(&loaded);
+    let (p, what) = worst_against_mitsuba(&loaded);
     println!("sky 2% brighter: worst p = {p:.3e} at {what}");
     assert!(
         p < sidak_alpha(0.01, (RES / BLOCK).pow(2) as usize * 3),
@@ -163,7 +143,7 @@ fn comparison_rejects_a_turned_sky() {
         ],
     )
     .expect("scene");
-    let (p, what) = worst_against_reference(&loaded);
+    let (p, what) = worst_against_mitsuba(&loaded);
     println!("sky turned by 3 degrees: worst p = {p:.3e} at {what}");
     assert!(
         p < sidak_alpha(0.01, (RES / BLOCK).pow(2) as usize * 3),
