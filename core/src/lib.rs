@@ -20,6 +20,7 @@ pub mod math;
 pub mod render;
 pub mod sampling;
 pub mod scene;
+pub mod texture;
 
 pub use glam;
 

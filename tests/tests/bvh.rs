@@ -6,6 +6,7 @@ use tessera_core::geometry::{Disk, Mesh, Shape, ShapeKind, Sphere};
 use tessera_core::glam::{Mat4, Vec2, Vec3};
 use tessera_core::math::{Ray, Transform};
 use tessera_core::scene::{Scene, SceneParts};
+use tessera_core::texture::Texture;
 
 /// A small deterministic generator (SplitMix64) for test data.
 struct Rng(u64);
@@ -68,7 +69,7 @@ fn random_scene(rng: &mut Rng, triangles: usize) -> Scene {
         shapes,
         disks,
         bsdfs: vec![Bsdf::Diffuse(Diffuse {
-            reflectance: Vec3::splat(0.5),
+            reflectance: Texture::constant(0.5),
         })],
         emitters: vec![],
         camera,

@@ -6,6 +6,7 @@
 use super::BsdfSample;
 use crate::math::INV_PI;
 use crate::sampling::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
+use crate::texture::Texture;
 use crate::Color;
 use glam::{Vec2, Vec3};
 
@@ -13,16 +14,16 @@ use glam::{Vec2, Vec3};
 #[derive(Clone, Debug)]
 pub struct Diffuse {
     /// Albedo in `[0, 1]` per channel.
-    pub reflectance: Color,
+    pub reflectance: Texture,
 }
 
 impl Diffuse {
     /// `reflectance / pi * cos theta_o` on the front side, else 0.
-    pub fn eval(&self, wi: Vec3, wo: Vec3, _uv: Vec2) -> Color {
+    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
         if wi.z <= 0.0 || wo.z <= 0.0 {
             return Color::ZERO;
         }
-        self.reflectance * (INV_PI * wo.z)
+        self.reflectance.eval(uv) * (INV_PI * wo.z)
     }
     /// Cosine-hemisphere density.
     pub fn pdf(&self, wi: Vec3, wo: Vec3, _uv: Vec2) -> f32 {
@@ -32,7 +33,7 @@ impl Diffuse {
         cosine_hemisphere_pdf(wo)
     }
     /// Cosine-weighted sample; the weight is the reflectance.
-    pub fn sample(&self, wi: Vec3, _u1: f32, u2: Vec2, _uv: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, wi: Vec3, _u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
         if wi.z <= 0.0 {
             return None;
         }
@@ -43,9 +44,21 @@ impl Diffuse {
         }
         Some(BsdfSample {
             wo,
-            weight: self.reflectance,
+            weight: self.reflectance.eval(uv),
             pdf,
             delta: false,
+            eta: 1.0,
         })
+    }
+}
+
+impl Diffuse {
+    /// Always smooth.
+    pub fn has_smooth(&self) -> bool {
+        true
+    }
+    /// Never delta.
+    pub fn has_delta(&self) -> bool {
+        false
     }
 }

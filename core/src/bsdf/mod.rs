@@ -2,12 +2,43 @@
 //!
 //! Conventions: `wi` points from the surface toward the previous path vertex (the viewer), `wo`
 //! toward the next one (the light); both are unit vectors in the shading frame (normal = +z).
-//! `eval` includes the cosine factor `|cos theta_o|`.
+//! `eval` includes the cosine factor `|cos theta_o|` and covers the smooth components only;
+//! delta components (mirrors, smooth glass) are reached only through `sample`, whose `pdf` for
+//! them is the discrete probability of choosing that component. Radiance is transported: a
+//! refraction from index `eta_i` into `eta_t` scales the weight by `(eta_i / eta_t)^2`.
+mod blend;
+mod blinnphong;
+mod blinnphong_metal;
+mod conductor;
+mod dielectric;
 mod diffuse;
+pub mod fresnel;
+mod mask;
+pub mod microfacet;
+mod mirror;
+mod plastic;
+mod roughconductor;
+mod roughdielectric;
+mod roughplastic;
+mod thindielectric;
 mod twosided;
+mod wakame_microfacet;
 
+pub use blend::Blend;
+pub use blinnphong::BlinnPhong;
+pub use blinnphong_metal::BlinnPhongMetal;
+pub use conductor::Conductor;
+pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
+pub use mask::Mask;
+pub use mirror::Mirror;
+pub use plastic::Plastic;
+pub use roughconductor::RoughConductor;
+pub use roughdielectric::RoughDielectric;
+pub use roughplastic::RoughPlastic;
+pub use thindielectric::ThinDielectric;
 pub use twosided::TwoSided;
+pub use wakame_microfacet::WakameMicrofacet;
 
 use crate::Color;
 use glam::{Vec2, Vec3};
@@ -17,50 +48,96 @@ use glam::{Vec2, Vec3};
 pub struct BsdfSample {
     /// Sampled direction (local).
     pub wo: Vec3,
-    /// `eval(wi, wo) / pdf`: the throughput factor.
+    /// `f(wi, wo) |cos theta_o| / pdf`: the throughput factor.
     pub weight: Color,
     /// Solid-angle density (for a delta component: its discrete probability).
     pub pdf: f32,
     /// Whether a delta (specular) component was sampled.
     pub delta: bool,
+    /// Relative index of refraction `eta_t / eta_i` of a refraction (1 for reflection), for
+    /// Russian roulette to see through the radiance scaling.
+    pub eta: f32,
 }
 
 /// Surface scattering models.
 #[derive(Clone, Debug)]
 pub enum Bsdf {
-    /// Lambertian reflection.
+    /// Lambertian reflection (`diffuse`).
     Diffuse(Diffuse),
-    /// A front and back model on one surface.
+    /// A front and a back model on one surface (`twosided`).
     TwoSided(TwoSided),
+    /// Smooth metal with complex Fresnel (`conductor`).
+    Conductor(Conductor),
+    /// Rough metal, microfacet (`roughconductor`).
+    RoughConductor(RoughConductor),
+    /// Smooth glass: Fresnel reflection and refraction (`dielectric`).
+    Dielectric(Dielectric),
+    /// Rough glass, Walter et al. 2007 (`roughdielectric`).
+    RoughDielectric(RoughDielectric),
+    /// A thin glass sheet (`thindielectric`).
+    ThinDielectric(ThinDielectric),
+    /// Smooth coating over a diffuse base (`plastic`).
+    Plastic(Plastic),
+    /// Rough coating over a diffuse base (`roughplastic`).
+    RoughPlastic(RoughPlastic),
+    /// Nori's perfect mirror (`mirror`).
+    Mirror(Mirror),
+    /// Wakame's Beckmann microfacet over diffuse (`microfacet`).
+    WakameMicrofacet(WakameMicrofacet),
+    /// Chalmers' Blinn-Phong dielectric layer over a nested model (`blinnphong`).
+    BlinnPhong(BlinnPhong),
+    /// Chalmers' tinted Blinn-Phong metal (`blinnphong_metal`).
+    BlinnPhongMetal(BlinnPhongMetal),
+    /// Linear blend of two models (`blendbsdf`, Chalmers' `blend`).
+    Blend(Blend),
+    /// Opacity mask over a model (`mask`).
+    Mask(Mask),
+}
+
+macro_rules! dispatch {
+    ($self:expr, $b:ident => $e:expr) => {
+        match $self {
+            Bsdf::Diffuse($b) => $e,
+            Bsdf::TwoSided($b) => $e,
+            Bsdf::Conductor($b) => $e,
+            Bsdf::RoughConductor($b) => $e,
+            Bsdf::Dielectric($b) => $e,
+            Bsdf::RoughDielectric($b) => $e,
+            Bsdf::ThinDielectric($b) => $e,
+            Bsdf::Plastic($b) => $e,
+            Bsdf::RoughPlastic($b) => $e,
+            Bsdf::Mirror($b) => $e,
+            Bsdf::WakameMicrofacet($b) => $e,
+            Bsdf::BlinnPhong($b) => $e,
+            Bsdf::BlinnPhongMetal($b) => $e,
+            Bsdf::Blend($b) => $e,
+            Bsdf::Mask($b) => $e,
+        }
+    };
 }
 
 impl Bsdf {
-    /// `f(wi, wo) |cos theta_o|`.
+    /// `f(wi, wo) |cos theta_o|` of the smooth components.
+    #[inline]
     pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
-        match self {
-            Bsdf::Diffuse(b) => b.eval(wi, wo, uv),
-            Bsdf::TwoSided(b) => b.eval(wi, wo, uv),
-        }
+        dispatch!(self, b => b.eval(wi, wo, uv))
     }
     /// Solid-angle density with which `sample` produces `wo` (smooth components only).
+    #[inline]
     pub fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
-        match self {
-            Bsdf::Diffuse(b) => b.pdf(wi, wo, uv),
-            Bsdf::TwoSided(b) => b.pdf(wi, wo, uv),
-        }
+        dispatch!(self, b => b.pdf(wi, wo, uv))
     }
-    /// Samples `wo` for `wi` from two uniform numbers (one for choosing a component).
+    /// Samples `wo` for `wi` from three uniform numbers (`u1` chooses a component).
+    #[inline]
     pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
-        match self {
-            Bsdf::Diffuse(b) => b.sample(wi, u1, u2, uv),
-            Bsdf::TwoSided(b) => b.sample(wi, u1, u2, uv),
-        }
+        dispatch!(self, b => b.sample(wi, u1, u2, uv))
     }
     /// Whether any component is smooth (non-delta): emitter sampling is useful.
     pub fn has_smooth(&self) -> bool {
-        match self {
-            Bsdf::Diffuse(_) => true,
-            Bsdf::TwoSided(b) => b.front.has_smooth() || b.back.has_smooth(),
-        }
+        dispatch!(self, b => b.has_smooth())
+    }
+    /// Whether any component is a delta distribution.
+    pub fn has_delta(&self) -> bool {
+        dispatch!(self, b => b.has_delta())
     }
 }

@@ -49,4 +49,12 @@ impl TwoSided {
             Some(s)
         }
     }
+    /// Whether either side has a smooth component.
+    pub fn has_smooth(&self) -> bool {
+        self.front.has_smooth() || self.back.has_smooth()
+    }
+    /// Whether either side has a delta component.
+    pub fn has_delta(&self) -> bool {
+        self.front.has_delta() || self.back.has_delta()
+    }
 }

@@ -3,7 +3,7 @@
 //! Scene parameters (`<integrator type="path_mats|path_ems|path_half|path_mis|path">`): `max_depth`
 //! (integer, default -1 = unbounded; 1 = only emitters seen directly, 2 = direct lighting),
 //! `rr_depth` (integer, default 5: Russian roulette from that depth on, with survival probability
-//! min(max throughput, 0.95)), `hide_emitters` (boolean, default false: when set, a camera ray
+//! min(max throughput * eta^2, 0.95), eta the relative index crossed so far), `hide_emitters` (boolean, default false: when set, a camera ray
 //! that meets an emitter or escapes to the environment contributes nothing, as in Mitsuba 3). These follow Mitsuba 3's
 //! `path` integrator exactly.
 //!
@@ -101,6 +101,9 @@ impl PathIntegrator {
         let features = &scene.features;
         let mut result = Color::ZERO;
         let mut throughput = Color::ONE;
+        // Product of the relative indices crossed: radiance scaling at refractions is undone
+        // for Russian roulette, as in Mitsuba 3.
+        let mut eta = 1.0f32;
         let mut depth = 0u32;
         let mut prev: Option<Prev> = None;
         loop {
@@ -146,6 +149,7 @@ impl PathIntegrator {
                 break;
             };
             throughput *= bs.weight;
+            eta *= bs.eta;
             prev = Some(Prev {
                 p: si.p,
                 pdf: bs.pdf,
@@ -154,7 +158,7 @@ impl PathIntegrator {
             ray = si.spawn_ray(si.frame.to_world(bs.wo));
             depth += 1;
             if depth >= self.rr_depth {
-                let q = throughput.max_element().min(0.95);
+                let q = (throughput.max_element() * eta * eta).min(0.95);
                 if !(sampler.next_1d() < q) {
                     break;
                 }

@@ -1,12 +1,12 @@
-//! `<bsdf>` objects to core BSDFs, each built once however often it is referenced.
-//!
-//! `diffuse`: `reflectance` (rgb, default 0.5). `twosided`: one nested bsdf (both sides) or two
-//! (front, back).
-use super::util::{color, Result};
-use crate::xml::{Kind, Object};
+//! `<bsdf>` objects to core BSDFs, each built once however often it is referenced. The
+//! builders for each plugin live in `materials/`.
+use super::materials::build_bsdf;
+use super::util::Result;
+use crate::xml::Object;
 use std::collections::HashMap;
 use std::rc::Rc;
-use tessera_core::bsdf::{Bsdf, Diffuse, TwoSided};
+use tessera_core::bsdf::{Bsdf, Diffuse};
+use tessera_core::texture::Texture;
 
 /// The BSDF table under construction.
 #[derive(Default)]
@@ -43,50 +43,10 @@ impl Bsdfs {
             return i;
         }
         self.list.push(Bsdf::Diffuse(Diffuse {
-            reflectance: glam::Vec3::splat(albedo),
+            reflectance: Texture::constant(albedo),
         }));
         let i = self.list.len() as u32 - 1;
         *slot = Some(i);
         i
     }
-}
-
-/// Builds one BSDF (recursively for wrappers).
-pub fn build_bsdf(obj: &Object) -> Result<Bsdf> {
-    let b = match obj.plugin.as_str() {
-        "diffuse" => Bsdf::Diffuse(Diffuse {
-            reflectance: color(obj, "reflectance", [0.5; 3])?,
-        }),
-        "twosided" => {
-            let inner: Vec<_> = obj
-                .children
-                .iter()
-                .filter(|c| c.obj.kind == Kind::Bsdf)
-                .collect();
-            let (front, back) = match inner.as_slice() {
-                [one] => {
-                    one.mark_used();
-                    let b = build_bsdf(&one.obj)?;
-                    (b.clone(), b)
-                }
-                [f, b] => {
-                    f.mark_used();
-                    b.mark_used();
-                    (build_bsdf(&f.obj)?, build_bsdf(&b.obj)?)
-                }
-                _ => return Err(obj.error("a twosided bsdf needs one or two nested bsdfs")),
-            };
-            Bsdf::TwoSided(TwoSided {
-                front: Box::new(front),
-                back: Box::new(back),
-            })
-        }
-        other => {
-            return Err(obj.error(format!(
-                "unknown bsdf \"{other}\" (known: diffuse, twosided)"
-            )))
-        }
-    };
-    obj.check_unused()?;
-    Ok(b)
 }

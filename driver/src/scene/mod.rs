@@ -4,6 +4,7 @@ mod bsdfs;
 mod build;
 mod emitters;
 mod integrator;
+pub(crate) mod materials;
 mod sensor;
 mod shapes;
 mod util;

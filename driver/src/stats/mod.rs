@@ -10,6 +10,8 @@
 //!   for running many tests at one overall significance level.
 //! - [`sphere_chi2`]: chi-square test of a direction sampler against its claimed solid-angle
 //!   pdf, on equal-area cells of the unit sphere.
+//! - [`bsdf_chi2`]: the same for a BSDF's `sample` against its `pdf`, delta components by
+//!   their discrete probabilities, with per-sample `eval`/`pdf` consistency checks.
 //! - [`plane_chi2`]: the same for a sampler of the unit square `[0,1]^2` against its area pdf.
 //! - [`ttest`]: Student's one-sample t-test of a mean against a reference value (from samples
 //!   or from accumulated sums), and Welch's two-sample t-test.
@@ -21,6 +23,7 @@
 //! sides: correct samplers and means pass, and wrong pdfs (by as little as 2%) and biased means
 //! are rejected.
 
+pub mod bsdf_chi2;
 pub mod chi2;
 pub mod plane_chi2;
 mod quadrature;
@@ -28,6 +31,7 @@ pub mod rng;
 pub mod sphere_chi2;
 pub mod ttest;
 
+pub use bsdf_chi2::{sampled_albedo, BsdfChi2};
 pub use chi2::{chi2_test, sidak_alpha, Chi2Result, DEFAULT_MIN_EXPECTED, PDF_INTEGRAL_TOLERANCE};
 pub use plane_chi2::PlaneChi2;
 pub use rng::Pcg32;

@@ -1,0 +1,69 @@
+//! Indices of refraction: a number or one of Mitsuba 3's named materials.
+use super::super::util::{at_prop, Result};
+use crate::xml::{Object, Value};
+
+/// Named indices of refraction (at 589 nm), as Mitsuba 3 accepts them.
+pub const NAMED: &[(&str, f64)] = &[
+    ("vacuum", 1.0),
+    ("helium", 1.000036),
+    ("hydrogen", 1.000132),
+    ("air", 1.000277),
+    ("carbon dioxide", 1.00045),
+    ("water", 1.3330),
+    ("acetone", 1.36),
+    ("ethanol", 1.361),
+    ("carbon tetrachloride", 1.461),
+    ("glycerol", 1.4729),
+    ("benzene", 1.501),
+    ("silicone oil", 1.52045),
+    ("bromine", 1.661),
+    ("water ice", 1.31),
+    ("fused quartz", 1.458),
+    ("pyrex", 1.470),
+    ("acrylic glass", 1.49),
+    ("polypropylene", 1.49),
+    ("bk7", 1.5046),
+    ("sodium chloride", 1.544),
+    ("amber", 1.55),
+    ("pet", 1.5750),
+    ("diamond", 2.419),
+];
+
+/// The index of refraction `name` of `obj`: a `<float>` or a `<string>` naming a material;
+/// `default` names the value used when absent. Must be finite and positive.
+pub fn ior(obj: &Object, name: &str, default: &str) -> Result<f64> {
+    let lookup = |s: &str| NAMED.iter().find(|(n, _)| *n == s).map(|&(_, v)| v);
+    let v = match obj.prop(name).map(|p| &p.value) {
+        Some(Value::String(s)) => {
+            obj.prop(name).unwrap().mark_used();
+            match lookup(s.as_str()) {
+                Some(v) => v,
+                None => {
+                    let names: Vec<&str> = NAMED.iter().map(|(n, _)| *n).collect();
+                    return Err(at_prop(
+                        obj,
+                        name,
+                        format!(
+                            "\"{name}\" of {}: unknown material \"{s}\" (known: {})",
+                            obj.describe(),
+                            names.join(", ")
+                        ),
+                    ));
+                }
+            }
+        }
+        Some(_) => obj.float(name, 1.0)?,
+        None => lookup(default).expect("default index names a known material"),
+    };
+    if !(v.is_finite() && v > 0.0) {
+        return Err(at_prop(
+            obj,
+            name,
+            format!(
+                "\"{name}\" of {} must be positive, found {v}",
+                obj.describe()
+            ),
+        ));
+    }
+    Ok(v)
+}
