@@ -79,3 +79,19 @@ pub fn load_scene_str(
     let root = crate::xml::load_str(text, virtual_path, defines)?;
     build::build(&root)
 }
+
+/// Builds a standalone BSDF from a parsed `<bsdf>` object (e.g. one inside a `chi2test`).
+pub fn build_bsdf_object(obj: &crate::xml::Object) -> Result<tessera_core::bsdf::Bsdf, InputError> {
+    materials::build_bsdf(obj)
+}
+
+/// Loads the first top-level `<bsdf>` of a scene file (other children are ignored), for tests
+/// and tools that study one material. Relative paths (bitmaps) resolve beside the file.
+pub fn load_bsdf_file(path: &Path) -> Result<tessera_core::bsdf::Bsdf, InputError> {
+    let root = crate::xml::load_file(path, &[])?;
+    let child = root
+        .children_of(crate::xml::Kind::Bsdf)
+        .next()
+        .ok_or_else(|| root.error("the file has no top-level <bsdf>"))?;
+    materials::build_bsdf(&child.obj)
+}
