@@ -2,7 +2,8 @@
 """Write scenes/textures/sky.exr, the small latitude-longitude environment of scenes/envmap.xml.
 
 Usage:
-    scripts/make_envmap.py [-o scenes/textures/sky.exr] [--width 128]
+    scripts/make_envmap.py [-o scenes/textures/sky.exr] [--width 128] [--no-sun]
+    scripts/make_envmap.py -o scenes/textures/sky_soft.exr --width 64 --no-sun
 
 A procedural sky in Mitsuba 3's latitude-longitude convention (row y at polar angle
 theta = pi * y / (height - 1) from +y, column x at u = (x + 1/2) / width, direction
@@ -18,7 +19,7 @@ import os
 import numpy as np
 
 
-def sky(width):
+def sky(width, with_sun=True):
     height = width // 2 + 1
     y, x = np.mgrid[0:height, 0:width].astype(np.float64)
     theta = np.pi * y / (height - 1)
@@ -43,7 +44,8 @@ def sky(width):
     elev, azim = np.radians(35), np.radians(60)
     sun = np.array([np.cos(elev) * np.sin(azim), np.sin(elev), -np.cos(elev) * np.cos(azim)])
     cos_sun = d @ sun
-    img[cos_sun > np.cos(np.radians(6.0))] = [80.0, 72.0, 60.0]
+    if with_sun:
+        img[cos_sun > np.cos(np.radians(6.0))] = [80.0, 72.0, 60.0]
     return img.astype(np.float32)
 
 
@@ -53,10 +55,12 @@ def main():
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     ap.add_argument("-o", "--output", default=os.path.join(root, "scenes/textures/sky.exr"))
     ap.add_argument("--width", type=int, default=128)
+    ap.add_argument("--no-sun", action="store_true",
+                    help="leave the sun out (scenes/textures/sky_soft.exr of scenes/materials.xml)")
     args = ap.parse_args()
     import mitsuba as mi
     mi.set_variant("scalar_rgb")
-    img = sky(args.width)
+    img = sky(args.width, with_sun=not args.no_sun)
     os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
     mi.Bitmap(img, mi.Bitmap.PixelFormat.RGB).write(args.output)
     print(f"{args.output}: {img.shape[1]}x{img.shape[0]}, max {img.max():.1f}, "

@@ -14,8 +14,9 @@ use tessera_tests::{load_xml, render_loaded};
 
 /// Number of t-tests in this file (cases x integrators x channels), for the Sidak correction:
 /// delta lights (spot 2 cases, directional 2) x 6 integrators, distant disk 4 cases x 8, the
-/// distant disk of 180 degrees, a constant envmap and an envmap lit at its pole x 8; 3 channels.
-const N_TESTS: usize = (4 * 6 + 4 * 8 + 3 * 8) * 3;
+/// distant disk of 180 degrees, a constant envmap and an envmap lit at its pole x 8, opposing
+/// disks x 8; 3 channels.
+const N_TESTS: usize = (4 * 6 + 4 * 8 + 3 * 8 + 8) * 3;
 /// The integrators that can find lights that rays can hit: the path tracers (max_depth 2 in the
 /// plane scenes) and the direct-lighting integrators.
 const INTEGRATORS: [&str; 8] = [
@@ -229,6 +230,46 @@ fn distant_disk_over_plane() {
                 ALBEDO.map(|a| a * l * s2),
             );
         }
+    }
+}
+
+/// Opposing disks under a distant disk: an opaque disk of radius 0.5 hangs 1.5 above the lit
+/// point, facing it, and hides the middle of a distant disk of half angle 30 degrees, whose
+/// centre is straight up. What is left is the ring between thetaB = atan(0.5 / 1.5) and
+/// thetaA, of projected solid angle pi (sin^2 thetaA - sin^2 thetaB), so the radiance is
+/// a L (sin^2 thetaA - sin^2 thetaB). The hanging disk's underside sees no light directly
+/// (max_depth 2), so no interreflection adds to it.
+#[test]
+fn opposing_disks_under_a_distant_disk() {
+    let l = 2.0f64;
+    let xml = plane_scene(
+        r#"<emitter type="distantdisk">
+    <rgb name="radiance" value="2"/>
+    <float name="theta_a" value="30"/>
+  </emitter>
+  <shape type="disk">
+    <transform name="to_world">
+      <scale value="0.5"/>
+      <rotate x="1" angle="180"/>
+      <translate z="1.5"/>
+    </transform>
+  </shape>"#,
+    );
+    let tb = (0.5f64 / 1.5).atan();
+    let ring = 30f64.to_radians().sin().powi(2) - tb.sin().powi(2);
+    for integ in INTEGRATORS {
+        let spp = if integ.ends_with("mats") || integ == "path_half" {
+            600_000
+        } else {
+            200_000
+        };
+        check(
+            &format!("opposing disks, distantdisk 30 deg {integ}"),
+            &xml,
+            &[("integrator", integ)],
+            spp,
+            ALBEDO.map(|a| a * l * ring),
+        );
     }
 }
 
