@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Writes tests/scenes/test-lambert.xml: a Nori-style scene t-test file whose references are
-computed here, independently of Tessera, with numpy.
+"""Writes tests/scenes/test-lambert.xml and tests/scenes/test-lights.xml: Nori-style scene t-test
+files whose references are computed here, independently of Tessera, with numpy.
 
 Each scene: a diffuse floor (albedo a) seen straight down through a tiny field of view at the
 origin, lit by one emitter; max_depth 2 for path tracers, so the answer is direct light only:
@@ -8,6 +8,15 @@ origin, lit by one emitter; max_depth 2 for path tracers, so the answer is direc
   a/pi * E with E from Lambert's polygon formula E = L/2 |sum theta_i n.unit(v_i x v_i+1)|;
 - a point light of intensity I at height h: a I / (pi h^2);
 - a closed emitting box seen from inside: 1/(1-a) for path tracers, 1+a for direct lighting.
+test-lights.xml uses the same floor under the other light types:
+- a spot light of intensity I at height h pointing down (the lit point inside the full beam):
+  a I / (pi h^2);
+- a directional light of irradiance E at angle t from the normal: a E cos(t) / pi;
+- a distant disk (Nori's `distantdisk`, `thetaA`) of radiance L centred on the normal:
+  a L sin^2(thetaA); tilted by `toWorld` so its centre is at angle t (cap above the horizon):
+  a L sin^2(thetaA) cos(t);
+- a constant environment of radiance L, and an `envmap` whose image is constant L
+  (tests/scenes/const_env.exr, written here): a L.
 References are luminances (Nori's weights), as Nori's ttest compares.
 """
 import numpy as np
@@ -118,5 +127,71 @@ def main():
     print(f"wrote {len(refs)} cases")
 
 
+def lights():
+    """tests/scenes/test-lights.xml (and the constant map it uses)."""
+    import mitsuba as mi
+    mi.set_variant("scalar_rgb")
+    env = np.full((8, 16, 3), 0.8, dtype=np.float32)
+    mi.Bitmap(env, mi.Bitmap.PixelFormat.RGB).write("tests/scenes/const_env.exr")
+    albedo = np.array([0.7, 0.5, 0.3])
+    a_text = ", ".join(str(v) for v in albedo)
+    scenes, refs = [], []
+
+    def add(name, light, ref):
+        scenes.append(f"""  <scene>
+{integrator(name)}
+{CAMERA}
+{FLOOR.format(a=a_text)}
+    {light}
+  </scene>""")
+        refs.append(float(ref))
+
+    delta_integrators = ["direct_ems", "direct_mis", "direct", "path_mis", "path_ems"]
+    all_integrators = delta_integrators + ["direct_mats", "path_mats", "path_half"]
+    h, intensity = 2.0, 6.0
+    spot = (f'<emitter type="spot"><color name="intensity" value="{intensity}"/>'
+            f'<float name="cutoffAngle" value="30"/><float name="beamWidth" value="20"/>'
+            f'<transform name="toWorld"><lookat origin="0, 0, {h}" target="0, 0, 0" up="0, 1, 0"/></transform></emitter>')
+    for name in delta_integrators:
+        add(name, spot, LUM @ (albedo * intensity / (np.pi * h * h)))
+    e, t = 3.0, 40.0
+    d = np.array([np.sin(np.radians(t)), 0.0, -np.cos(np.radians(t))])
+    directional = (f'<emitter type="directional"><color name="irradiance" value="{e}"/>'
+                   f'<vector name="direction" value="{d[0]:.9f}, {d[1]:.9f}, {d[2]:.9f}"/></emitter>')
+    for name in delta_integrators:
+        add(name, directional, LUM @ (albedo * e * np.cos(np.radians(t)) / np.pi))
+    big_l, theta_a = 2.0, 25.0
+    disk = (f'<emitter type="distantdisk"><color name="radiance" value="{big_l}"/>'
+            f'<float name="thetaA" value="{theta_a}"/></emitter>')
+    for name in all_integrators:
+        add(name, disk, LUM @ (albedo * big_l * np.sin(np.radians(theta_a)) ** 2))
+    tilt = 50.0
+    tilted = (f'<emitter type="distantdisk"><color name="radiance" value="{big_l}"/>'
+              f'<float name="thetaA" value="{theta_a}"/>'
+              f'<transform name="toWorld"><rotate y="1" angle="{tilt}"/></transform></emitter>')
+    for name in all_integrators:
+        add(name, tilted, LUM @ (albedo * big_l * np.sin(np.radians(theta_a)) ** 2
+                                 * np.cos(np.radians(tilt))))
+    const = '<emitter type="constant"><color name="radiance" value="0.8"/></emitter>'
+    envmap = '<emitter type="envmap"><string name="filename" value="const_env.exr"/></emitter>'
+    for name in all_integrators:
+        add(name, const, LUM @ (albedo * 0.8))
+        add(name, envmap, LUM @ (albedo * 0.8))
+    ref_text = ", ".join(f"{r:.9g}" for r in refs)
+    body = "\n".join(scenes)
+    out = f"""<?xml version="1.0" encoding="utf-8"?>
+<!-- Written by scripts/make_ttest_files.py (references computed there with numpy). -->
+<test type="ttest">
+  <string name="references" value="{ref_text}"/>
+  <integer name="sampleCount" value="100000"/>
+{body}
+</test>
+"""
+    with open("tests/scenes/test-lights.xml", "w") as f:
+        f.write(out)
+    print(f"wrote {len(refs)} light cases")
+
+
 if __name__ == "__main__":
     main()
+    lights()
