@@ -12,3 +12,7 @@ PYTHON="${PYTHON:-python3}"
     --spp 16384 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
 "$PYTHON" scripts/mitsuba_ref.py scenes/envmap.xml -o scenes/refs/envmap_64x64_mitsuba.exr \
     --spp 16384 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
+"$PYTHON" scripts/mitsuba_ref.py scenes/materials.xml -o scenes/refs/materials_64x64_mitsuba.exr \
+    --spp 16384 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
+"$PYTHON" scripts/mitsuba_ref.py scenes/veach_mis.xml -o scenes/refs/veach_mis_64x64_mitsuba.exr \
+    --spp 16384 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
