@@ -92,6 +92,22 @@ impl Mesh {
         };
         (p, err, ng, ns, uv)
     }
+    /// Derivative of position along u on triangle `i`: from the texture coordinates, or, for a
+    /// mesh without them, from the implicit (0,0), (1,0), (0,1) of Mitsuba 3 (`p1 - p0`). Zero
+    /// where the uv map is degenerate.
+    pub fn dpdu(&self, i: usize) -> Vec3 {
+        let [i0, i1, i2] = self.indices[i].map(|k| k as usize);
+        let [p0, p1, p2] = [self.positions[i0], self.positions[i1], self.positions[i2]];
+        if self.uvs.is_empty() {
+            return p1 - p0;
+        }
+        let (d0, d1) = (self.uvs[i1] - self.uvs[i0], self.uvs[i2] - self.uvs[i0]);
+        let det = d0.x * d1.y - d0.y * d1.x;
+        if det == 0.0 || !det.is_finite() {
+            return Vec3::ZERO;
+        }
+        ((p1 - p0) * d1.y - (p2 - p0) * d0.y) / det
+    }
     /// Uniform point by area: triangle chosen by area, then uniform barycentrics.
     /// Returns `(triangle, b1, b2)`; `None` for a mesh without area.
     pub fn sample(&self, u: Vec2) -> Option<(usize, f32, f32)> {

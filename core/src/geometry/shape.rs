@@ -65,9 +65,10 @@ impl Shape {
 
     /// The full interaction for a hit on primitive `prim` of this shape.
     pub fn interaction(&self, hit: &Hit, prim: &Prim, ray: &Ray, disks: &[Disk]) -> Interaction {
-        let (p, p_err, ng, ns, uv) = match (&self.kind, prim) {
+        let (p, p_err, ng, ns, uv, dpdu) = match (&self.kind, prim) {
             (ShapeKind::Mesh(m), Prim::Triangle { face, .. }) => {
-                m.surface(*face as usize, hit.uv.x, hit.uv.y)
+                let (p, err, ng, ns, uv) = m.surface(*face as usize, hit.uv.x, hit.uv.y);
+                (p, err, ng, ns, uv, m.dpdu(*face as usize))
             }
             (ShapeKind::Sphere(s), _) => {
                 let (p, err) = s.project(ray.at(hit.t));
@@ -77,7 +78,8 @@ impl Shape {
                     (libm::atan2f(n.y, n.x) * crate::math::INV_TWO_PI + 1.0) % 1.0,
                     libm::acosf(n.z.clamp(-1.0, 1.0)) * crate::math::INV_PI,
                 );
-                (p, err, n, n, uv)
+                // Along increasing longitude, as Mitsuba 3's sphere.
+                (p, err, n, n, uv, Vec3::new(-n.y, n.x, 0.0))
             }
             (ShapeKind::Disk(d), _) => {
                 let disk = &disks[*d as usize];
@@ -86,7 +88,8 @@ impl Shape {
                     hit.uv.length(),
                     (libm::atan2f(hit.uv.y, hit.uv.x) * crate::math::INV_TWO_PI + 1.0) % 1.0,
                 );
-                (p, err, disk.normal, disk.normal, uv)
+                // Radial, as Mitsuba 3's disk (u is the radius).
+                (p, err, disk.normal, disk.normal, uv, p - disk.to_world.point(Vec3::ZERO))
             }
             _ => unreachable_shape(),
         };
@@ -97,7 +100,7 @@ impl Shape {
             p_err,
             t: hit.t,
             ng,
-            frame: Frame::from_normal(ns),
+            frame: Frame::from_normal_tangent(ns, dpdu),
             uv,
             shape: hit_shape(prim),
             wi: (-ray.d).normalize(),

@@ -22,6 +22,18 @@ impl Frame {
         let t = Vec3::new(b, sign + n.y * n.y * a, -n.y);
         Frame { s, t, n }
     }
+    /// A frame around a unit normal whose first tangent follows `dpdu` (the surface's
+    /// derivative along u, projected onto the tangent plane), as Mitsuba 3 orients anisotropic
+    /// materials; falls back to [`Frame::from_normal`] where `dpdu` is degenerate.
+    pub fn from_normal_tangent(n: Vec3, dpdu: Vec3) -> Self {
+        let s = dpdu - n * n.dot(dpdu);
+        let len2 = s.length_squared();
+        if !(len2 > 1e-20 * dpdu.length_squared().max(1e-30)) || !len2.is_finite() {
+            return Frame::from_normal(n);
+        }
+        let s = s / libm::sqrtf(len2);
+        Frame { s, t: n.cross(s), n }
+    }
     /// World direction to local coordinates.
     #[inline]
     pub fn to_local(&self, v: Vec3) -> Vec3 {
