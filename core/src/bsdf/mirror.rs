@@ -1,31 +1,43 @@
-//! Nori's perfect mirror (`mirror`). Not implemented yet: every method reports no scattering.
+//! Nori's perfect mirror (`mirror`): every ray is reflected about the normal with weight 1.
+//! One-sided, as in Nori (nothing is reflected from the back).
+//!
+//! Scene parameters (`<bsdf type="mirror">`): none.
 use super::BsdfSample;
 use crate::Color;
 use glam::{Vec2, Vec3};
 
-/// Nori's perfect mirror (`mirror`).
-#[derive(Clone, Debug)]
+/// A perfect mirror.
+#[derive(Clone, Debug, Default)]
 pub struct Mirror {}
 
 impl Mirror {
-    /// `f(wi, wo) |cos theta_o|`.
+    /// A delta lobe has no smooth part: 0.
     pub fn eval(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> Color {
         Color::ZERO
     }
-    /// Density of the smooth components.
+    /// A delta lobe has no smooth density: 0.
     pub fn pdf(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> f32 {
         0.0
     }
-    /// Samples an outgoing direction.
-    pub fn sample(&self, _wi: Vec3, _u1: f32, _u2: Vec2, _uv: Vec2) -> Option<BsdfSample> {
-        None
+    /// The mirror direction `(-x, -y, z)` with weight 1 and probability 1 (front side only).
+    pub fn sample(&self, wi: Vec3, _u1: f32, _u2: Vec2, _uv: Vec2) -> Option<BsdfSample> {
+        if !(wi.z > 0.0) {
+            return None;
+        }
+        Some(BsdfSample {
+            wo: Vec3::new(-wi.x, -wi.y, wi.z),
+            weight: Color::ONE,
+            pdf: 1.0,
+            delta: true,
+            eta: 1.0,
+        })
     }
-    /// Whether any component is smooth.
+    /// No smooth component.
     pub fn has_smooth(&self) -> bool {
         false
     }
-    /// Whether any component is a delta distribution.
+    /// The reflection is a delta distribution.
     pub fn has_delta(&self) -> bool {
-        false
+        true
     }
 }

@@ -17,6 +17,7 @@ mod mask;
 pub mod microfacet;
 mod mirror;
 mod plastic;
+pub mod plastic_common;
 mod roughconductor;
 mod roughdielectric;
 mod roughplastic;

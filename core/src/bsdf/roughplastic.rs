@@ -1,30 +1,177 @@
-//! Rough coating over a diffuse base (`roughplastic`). Not implemented yet: every method reports no scattering.
+//! Rough plastic (Mitsuba 3's `roughplastic`): a rough dielectric coating (microfacet
+//! reflection, Walter et al. 2007) over a diffuse base, one-sided (the back side is black).
+//!
+//! Scene parameters (`<bsdf type="roughplastic">`):
+//! - `distribution` (string, `beckmann` | `ggx`, default `beckmann`);
+//! - `alpha` (float > 0, default 0.1; isotropic only, as in Mitsuba 3; values below 1e-4 act as
+//!   1e-4, as in Mitsuba 3);
+//! - `sample_visible` (bool, default true): sample the normals visible from `wi`;
+//! - `diffuse_reflectance` (rgb or texture, default 0.5), `specular_reflectance` (rgb or
+//!   texture, default 1);
+//! - `int_ior` (default "polypropylene" = 1.49), `ext_ior` (default "air" = 1.000277): float or
+//!   material name; they must differ;
+//! - `nonlinear` (bool, default false).
+//!
+//! Model (as Mitsuba 3): `f cos = s F(wi.h) D(h) G(wi, wo, h) / (4 cos theta_i)` for the coating
+//! plus `d' / pi / eta^2 cos theta_o T(cos theta_i) T(cos theta_o)` for the base, where `T` is the
+//! coating's tabulated external transmittance and `d' = d / (1 - R_int)` (or `d / (1 - d R_int)`
+//! with `nonlinear`), `R_int` the coating's internal diffuse reflectance; both are computed when
+//! the material is built ([`super::plastic_common::rough_tables`]). The coating is chosen with
+//! probability proportional to `(1 - T(cos theta_i)) w` against `T(cos theta_i) (1 - w)`.
+use super::fresnel::{fresnel_dielectric, reflect};
+use super::microfacet::{Microfacet, MicrofacetKind};
+use super::plastic_common::{
+    coating_probability, internal_scattering, lerp_table, rough_tables, specular_sampling_weight,
+    TABLE_RES,
+};
 use super::BsdfSample;
+use crate::math::INV_PI;
+use crate::sampling::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
+use crate::texture::Texture;
 use crate::Color;
+use alloc::boxed::Box;
 use glam::{Vec2, Vec3};
 
-/// Rough coating over a diffuse base (`roughplastic`).
+/// Rough coating over a diffuse base.
 #[derive(Clone, Debug)]
-pub struct RoughPlastic {}
+pub struct RoughPlastic {
+    diffuse: Texture,
+    specular: Texture,
+    distr: Microfacet,
+    eta: f32,
+    nonlinear: bool,
+    inv_eta_2: f32,
+    spec_weight: f32,
+    transmittance: Box<[f32; TABLE_RES]>,
+    internal_reflectance: f32,
+}
 
 impl RoughPlastic {
-    /// `f(wi, wo) |cos theta_o|`.
-    pub fn eval(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> Color {
-        Color::ZERO
+    /// A rough plastic with the given base albedo, coating factor, distribution `kind`,
+    /// roughness `alpha` (> 0; at least 1e-4 is used), visible-normal sampling switch, relative
+    /// index `eta = int_ior / ext_ior` (> 0, != 1) and `nonlinear` switch. Integrates the
+    /// coating's tables (a few hundred thousand microfacet samples).
+    pub fn new(
+        diffuse: Texture,
+        specular: Texture,
+        kind: MicrofacetKind,
+        alpha: f32,
+        sample_visible: bool,
+        eta: f32,
+        nonlinear: bool,
+    ) -> Self {
+        let alpha = alpha.max(1e-4);
+        let (transmittance, internal_reflectance) = rough_tables(kind, alpha, eta);
+        let spec_weight = specular_sampling_weight(&diffuse, &specular);
+        RoughPlastic {
+            diffuse,
+            specular,
+            distr: Microfacet {
+                kind,
+                alpha_u: alpha,
+                alpha_v: alpha,
+                sample_visible,
+            },
+            eta,
+            nonlinear,
+            inv_eta_2: 1.0 / (eta * eta),
+            spec_weight,
+            transmittance,
+            internal_reflectance,
+        }
     }
-    /// Density of the smooth components.
-    pub fn pdf(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> f32 {
-        0.0
+
+    /// The coating's internal diffuse reflectance `R_int`.
+    pub fn internal_reflectance(&self) -> f32 {
+        self.internal_reflectance
     }
-    /// Samples an outgoing direction.
-    pub fn sample(&self, _wi: Vec3, _u1: f32, _u2: Vec2, _uv: Vec2) -> Option<BsdfSample> {
-        None
+
+    /// The coating's external transmittance for incident cosine `mu` (interpolated).
+    pub fn transmittance(&self, mu: f32) -> f32 {
+        lerp_table(&self.transmittance, mu)
     }
-    /// Whether any component is smooth.
+
+    /// `f(wi, wo) cos theta_o`: coating plus base, front side only.
+    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+        if !(wi.z > 0.0 && wo.z > 0.0) {
+            return Color::ZERO;
+        }
+        let h = (wi + wo).normalize();
+        let d = self.distr.d(h);
+        let f = fresnel_dielectric(wi.dot(h), self.eta).f;
+        let g = self.distr.g(wi, wo, h);
+        let spec = self.specular.eval(uv) * (f * d * g / (4.0 * wi.z));
+        let (ti, to) = (self.transmittance(wi.z), self.transmittance(wo.z));
+        let base = internal_scattering(
+            self.diffuse.eval(uv),
+            self.internal_reflectance,
+            self.nonlinear,
+        );
+        let r = spec + base * (INV_PI * self.inv_eta_2 * wo.z * ti * to);
+        if r.is_finite() {
+            r
+        } else {
+            Color::ZERO
+        }
+    }
+
+    /// Mixture of the microfacet reflection density and the cosine density, weighted by the
+    /// component probabilities.
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, _uv: Vec2) -> f32 {
+        if !(wi.z > 0.0 && wo.z > 0.0) {
+            return 0.0;
+        }
+        let Some(ps) = coating_probability(1.0 - self.transmittance(wi.z), self.spec_weight) else {
+            return 0.0;
+        };
+        let h = (wi + wo).normalize();
+        let spec = if self.distr.sample_visible {
+            self.distr.d(h) * self.distr.g1(wi, h) / (4.0 * wi.z)
+        } else {
+            self.distr.pdf(wi, h) / (4.0 * wo.dot(h))
+        };
+        let p = ps * spec + (1.0 - ps) * cosine_hemisphere_pdf(wo);
+        if p.is_finite() {
+            p
+        } else {
+            0.0
+        }
+    }
+
+    /// `u1` chooses the coating (a microfacet normal, then the mirror direction about it) or
+    /// the base (cosine); the weight is `eval / pdf` of the whole mixture.
+    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+        if !(wi.z > 0.0) {
+            return None;
+        }
+        let ps = coating_probability(1.0 - self.transmittance(wi.z), self.spec_weight)?;
+        let wo = if u1 < ps {
+            let (m, _) = self.distr.sample(wi, u2)?;
+            reflect(wi, m)
+        } else {
+            square_to_cosine_hemisphere(u2)
+        };
+        if !(wo.z > 0.0) {
+            return None;
+        }
+        let pdf = self.pdf(wi, wo, uv);
+        if !(pdf > 0.0) {
+            return None;
+        }
+        Some(BsdfSample {
+            wo,
+            weight: self.eval(wi, wo, uv) / pdf,
+            pdf,
+            delta: false,
+            eta: 1.0,
+        })
+    }
+
+    /// Both components are smooth.
     pub fn has_smooth(&self) -> bool {
-        false
+        true
     }
-    /// Whether any component is a delta distribution.
+    /// No delta component.
     pub fn has_delta(&self) -> bool {
         false
     }

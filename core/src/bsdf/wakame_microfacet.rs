@@ -1,30 +1,121 @@
-//! Wakame's Beckmann microfacet over diffuse (`microfacet`). Not implemented yet: every method reports no scattering.
+//! Wakame's (Nori's) `microfacet`: a Beckmann rough dielectric reflection over a Lambertian
+//! base, one-sided (the back side is black).
+//!
+//! Scene parameters (`<bsdf type="microfacet">`; the Nori names `intIOR` / `extIOR` arrive as
+//! `int_ior` / `ext_ior`):
+//! - `alpha` (float > 0, default 0.1): Beckmann roughness;
+//! - `int_ior` (float or material name, default 1.5046), `ext_ior` (default 1.000277);
+//! - `kd` (rgb in `[0, 1]`, default 0.5): diffuse reflectance.
+//!
+//! Model (the assignment's formula): `f = kd / pi + ks D(h) F(h.wi) G1(wi, h) G1(wo, h) /
+//! (4 cos theta_i cos theta_o)` with `ks = 1 - max(kd)`, Beckmann `D`, dielectric Fresnel `F`
+//! and the rational Smith approximation. Sampling picks the specular lobe with probability `ks`
+//! (a half vector by `D(h) cos theta_h`, reflected) and the cosine lobe otherwise, so
+//! `pdf = ks D(h) cos theta_h / (4 h.wo) + (1 - ks) cos theta_o / pi`.
+use super::fresnel::{fresnel_dielectric, reflect};
+use super::microfacet::{Microfacet, MicrofacetKind};
 use super::BsdfSample;
+use crate::math::INV_PI;
+use crate::sampling::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 use crate::Color;
 use glam::{Vec2, Vec3};
 
-/// Wakame's Beckmann microfacet over diffuse (`microfacet`).
+/// Beckmann microfacet reflection over diffuse.
 #[derive(Clone, Debug)]
-pub struct WakameMicrofacet {}
+pub struct WakameMicrofacet {
+    distr: Microfacet,
+    eta: f32,
+    kd: Color,
+    ks: f32,
+}
 
 impl WakameMicrofacet {
-    /// `f(wi, wo) |cos theta_o|`.
-    pub fn eval(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> Color {
-        Color::ZERO
+    /// The model for roughness `alpha` (> 0), relative index `eta = int_ior / ext_ior` (> 0)
+    /// and diffuse reflectance `kd` in `[0, 1]`.
+    pub fn new(alpha: f32, eta: f32, kd: Color) -> Self {
+        WakameMicrofacet {
+            distr: Microfacet {
+                kind: MicrofacetKind::Beckmann,
+                alpha_u: alpha,
+                alpha_v: alpha,
+                sample_visible: false,
+            },
+            eta,
+            kd,
+            ks: (1.0 - kd.max_element()).clamp(0.0, 1.0),
+        }
     }
-    /// Density of the smooth components.
-    pub fn pdf(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> f32 {
-        0.0
+
+    /// The specular weight `ks = 1 - max(kd)`.
+    pub fn ks(&self) -> f32 {
+        self.ks
     }
-    /// Samples an outgoing direction.
-    pub fn sample(&self, _wi: Vec3, _u1: f32, _u2: Vec2, _uv: Vec2) -> Option<BsdfSample> {
-        None
+
+    /// `f(wi, wo) cos theta_o` on the front side.
+    pub fn eval(&self, wi: Vec3, wo: Vec3, _uv: Vec2) -> Color {
+        if !(wi.z > 0.0 && wo.z > 0.0) {
+            return Color::ZERO;
+        }
+        let h = (wi + wo).normalize();
+        let spec =
+            self.distr.d(h) * fresnel_dielectric(h.dot(wi), self.eta).f * self.distr.g(wi, wo, h)
+                / (4.0 * wi.z * wo.z);
+        let f = self.kd * INV_PI + Color::splat(self.ks * spec);
+        let r = f * wo.z;
+        if r.is_finite() {
+            r
+        } else {
+            Color::ZERO
+        }
     }
-    /// Whether any component is smooth.
+
+    /// `ks D(h) cos theta_h / (4 h.wo) + (1 - ks) cos theta_o / pi` on the front side.
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, _uv: Vec2) -> f32 {
+        if !(wi.z > 0.0 && wo.z > 0.0) {
+            return 0.0;
+        }
+        let h = (wi + wo).normalize();
+        let spec = self.distr.d(h) * h.z / (4.0 * h.dot(wo));
+        let p = self.ks * spec + (1.0 - self.ks) * cosine_hemisphere_pdf(wo);
+        if p.is_finite() {
+            p
+        } else {
+            0.0
+        }
+    }
+
+    /// `u1 < ks` samples the specular lobe, otherwise the cosine lobe.
+    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+        if !(wi.z > 0.0) {
+            return None;
+        }
+        let wo = if u1 < self.ks {
+            let (m, _) = self.distr.sample(wi, u2)?;
+            reflect(wi, m)
+        } else {
+            square_to_cosine_hemisphere(u2)
+        };
+        if !(wo.z > 0.0) {
+            return None;
+        }
+        let pdf = self.pdf(wi, wo, uv);
+        if !(pdf > 0.0) {
+            return None;
+        }
+        Some(BsdfSample {
+            wo,
+            weight: self.eval(wi, wo, uv) / pdf,
+            pdf,
+            delta: false,
+            eta: 1.0,
+        })
+    }
+
+    /// Both lobes are smooth.
     pub fn has_smooth(&self) -> bool {
-        false
+        true
     }
-    /// Whether any component is a delta distribution.
+    /// No delta lobe.
     pub fn has_delta(&self) -> bool {
         false
     }
