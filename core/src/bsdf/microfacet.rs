@@ -186,7 +186,7 @@ impl Microfacet {
 /// Slopes of a visible unit-roughness Beckmann normal for a direction with cosine `cos_t` in
 /// the x-z plane, from two uniform numbers. Computed in f64.
 fn beckmann_visible_slope(cos_t: f64, u1: f64, u2: f64) -> (f64, f64) {
-    const INV_SQRT_PI: f64 = 0.564_189_583_547_756_3;
+    const INV_SQRT_PI: f64 = 0.5 * core::f64::consts::FRAC_2_SQRT_PI;
     let u1 = u1.clamp(1e-9, 1.0 - 1e-9);
     let u2 = u2.clamp(1e-9, 1.0 - 1e-9);
     if cos_t > 0.999_999 {
@@ -268,7 +268,7 @@ pub fn erfinv(x: f64) -> f64 {
     let mut y = p * x;
     // Newton on erf(y) = x: derivative 2/sqrt(pi) exp(-y^2).
     for _ in 0..2 {
-        let d = 1.128_379_167_095_512_6 * libm::exp(-y * y);
+        let d = core::f64::consts::FRAC_2_SQRT_PI * libm::exp(-y * y);
         if d > 0.0 {
             y -= (libm::erf(y) - x) / d;
         }
