@@ -337,15 +337,21 @@ fn defaults_and_spellings_match_mitsuba() {
     }
 }
 
-/// The error of `xml` must name `case.xml` at the line and column where `needle` starts.
-fn assert_error_at(xml: &str, needle: &str, words: &str) {
-    let err = match bsdf(xml) {
+/// `props` inside `<bsdf type="plugin">` must be rejected with one line that contains
+/// `words` and names `case.xml` at the tag of the property `prop` (or, when no property has that
+/// name, where the text `prop` starts).
+fn bad(plugin: &str, props: &str, prop: &str, words: &str) {
+    let xml = format!("<bsdf type=\"{plugin}\">\n{props}\n</bsdf>");
+    let err = match bsdf(&xml) {
         Ok(_) => panic!("accepted: {xml}"),
         Err(e) => e.to_string(),
     };
     println!("{err}");
     let text = format!("<scene version=\"3.0.0\">\n{xml}\n</scene>\n");
-    let at = text.find(needle).expect("needle in the text");
+    let at = match text.find(&format!("name=\"{prop}\"")) {
+        Some(i) => text[..i].rfind('<').unwrap(),
+        None => text.find(prop).expect("prop in the text"),
+    };
     let line = text[..at].matches('\n').count() + 1;
     let col = at - text[..at].rfind('\n').map_or(0, |i| i + 1) + 1;
     let want = format!("case.xml:{line}:{col}:");
@@ -356,68 +362,58 @@ fn assert_error_at(xml: &str, needle: &str, words: &str) {
 
 #[test]
 fn bad_parameters_are_located_errors() {
-    let cases = [
-        (
-            r#"<bsdf type="roughconductor"><float name="alpha" value="-0.1"/></bsdf>"#,
-            r#"<float name="alpha""#,
-            "positive",
-        ),
-        (
-            r#"<bsdf type="roughconductor">
-                <float name="alpha_u" value="0.1"/> <float name="alpha_v" value="0"/></bsdf>"#,
-            r#"<float name="alpha_v""#,
-            "positive",
-        ),
-        (
-            r#"<bsdf type="roughconductor"><float name="alpha_u" value="0.1"/></bsdf>"#,
-            r#"<float name="alpha_u""#,
-            "alpha_v",
-        ),
-        (
-            r#"<bsdf type="roughconductor"><float name="alpha" value="0.1"/>
-                <float name="alpha_u" value="0.1"/> <float name="alpha_v" value="0.2"/></bsdf>"#,
-            r#"<float name="alpha""#,
-            "not both",
-        ),
-        (
-            r#"<bsdf type="roughconductor"><string name="distribution" value="phong"/></bsdf>"#,
-            r#"<string name="distribution""#,
-            "phong",
-        ),
-        (
-            r#"<bsdf type="conductor"><string name="material" value="Unobtainium"/></bsdf>"#,
-            r#"<string name="material""#,
-            "unknown conductor \"Unobtainium\"",
-        ),
-        (
-            r#"<bsdf type="roughconductor"><string name="material" value="au"/></bsdf>"#,
-            r#"<string name="material""#,
-            "unknown conductor",
-        ),
-        (
-            r#"<bsdf type="conductor"><string name="material" value="Au"/>
-                <float name="eta" value="2"/></bsdf>"#,
-            r#"<string name="material""#,
-            "not both",
-        ),
-        (
-            r#"<bsdf type="conductor"><string name="material" value="Au"/>
-                <float name="k" value="2"/></bsdf>"#,
-            r#"<float name="k""#,
-            "k",
-        ),
-        (
-            r#"<bsdf type="conductor"><float name="eta" value="-1"/></bsdf>"#,
-            r#"<float name="eta""#,
-            "non-negative",
-        ),
-        (
-            r#"<bsdf type="roughconductor"><boolean name="sample_visible" value="maybe"/></bsdf>"#,
-            r#"value="maybe""#,
-            "maybe",
-        ),
-    ];
-    for (xml, needle, words) in cases {
-        assert_error_at(xml, needle, words);
-    }
+    let (c, rc) = ("conductor", "roughconductor");
+    bad(
+        rc,
+        r#"<float name="alpha" value="-0.1"/>"#,
+        "alpha",
+        "positive",
+    );
+    let aniso = r#"<float name="alpha_u" value="0.1"/> <float name="alpha_v" value="0"/>"#;
+    bad(rc, aniso, "alpha_v", "positive");
+    bad(
+        rc,
+        r#"<float name="alpha_u" value="0.1"/>"#,
+        "alpha_u",
+        "alpha_v",
+    );
+    let both = r#"<float name="alpha" value="0.1"/>
+        <float name="alpha_u" value="0.1"/> <float name="alpha_v" value="0.2"/>"#;
+    bad(rc, both, "alpha", "not both");
+    bad(
+        rc,
+        r#"<string name="distribution" value="phong"/>"#,
+        "distribution",
+        "phong",
+    );
+    let unknown = r#"<string name="material" value="Unobtainium"/>"#;
+    bad(c, unknown, "material", "unknown conductor \"Unobtainium\"");
+    // Names are case-sensitive, as Mitsuba's file lookup is.
+    bad(
+        rc,
+        r#"<string name="material" value="au"/>"#,
+        "material",
+        "unknown conductor",
+    );
+    let au = r#"<string name="material" value="Au"/>"#;
+    bad(
+        c,
+        &format!(r#"{au} <float name="eta" value="2"/>"#),
+        "material",
+        "not both",
+    );
+    bad(
+        c,
+        &format!(r#"{au} <float name="k" value="2"/>"#),
+        "k",
+        "unused",
+    );
+    bad(
+        c,
+        r#"<float name="eta" value="-1"/>"#,
+        "eta",
+        "non-negative",
+    );
+    let maybe = r#"<boolean name="sample_visible" value="maybe"/>"#;
+    bad(rc, maybe, r#"value="maybe""#, "maybe");
 }

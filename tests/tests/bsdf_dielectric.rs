@@ -437,78 +437,78 @@ fn defaults_match_mitsuba() {
     );
 }
 
-/// The error of `xml` must name `case.xml` at the line and column where `needle` starts.
-fn assert_error_at(xml: &str, needle: &str, words: &str) {
-    let err = match bsdf(xml) {
+/// `props` inside `<bsdf type="plugin">` must be rejected with one line that contains
+/// `words` and names `case.xml` at the tag of the property `prop` (or, when no property has that
+/// name, where the text `prop` starts).
+fn bad(plugin: &str, props: &str, prop: &str, words: &str) {
+    let xml = format!("<bsdf type=\"{plugin}\">\n{props}\n</bsdf>");
+    let err = match bsdf(&xml) {
         Ok(_) => panic!("accepted: {xml}"),
         Err(e) => e.to_string(),
     };
     println!("{err}");
     let text = format!("<scene version=\"3.0.0\">\n{xml}\n</scene>\n");
-    let at = text.find(needle).expect("needle in the text");
+    let at = match text.find(&format!("name=\"{prop}\"")) {
+        Some(i) => text[..i].rfind('<').unwrap(),
+        None => text.find(prop).expect("prop in the text"),
+    };
     let line = text[..at].matches('\n').count() + 1;
     let col = at - text[..at].rfind('\n').map_or(0, |i| i + 1) + 1;
     let want = format!("case.xml:{line}:{col}:");
     assert!(err.contains(&want), "{err:?} does not start at {want}");
     assert!(err.contains(words), "{err:?} does not say {words:?}");
+    assert!(!err.contains('\n'), "{err:?}");
 }
 
 #[test]
 fn bad_parameters_are_located_errors() {
-    let cases = [
-        (
-            r#"<bsdf type="dielectric"><float name="int_ior" value="-1.5"/></bsdf>"#,
-            r#"<float name="int_ior""#,
-            "positive",
-        ),
-        (
-            r#"<bsdf type="thindielectric"><float name="ext_ior" value="0"/></bsdf>"#,
-            r#"<float name="ext_ior""#,
-            "positive",
-        ),
-        (
-            r#"<bsdf type="roughdielectric"><float name="int_ior" value="0"/></bsdf>"#,
-            r#"<float name="int_ior""#,
-            "positive",
-        ),
-        (
-            r#"<bsdf type="dielectric"><string name="int_ior" value="glass"/></bsdf>"#,
-            r#"<string name="int_ior""#,
-            "unknown material \"glass\"",
-        ),
-        (
-            r#"<bsdf type="roughdielectric"><float name="int_ior" value="1.33"/>
-                <float name="ext_ior" value="1.33"/></bsdf>"#,
-            r#"<float name="int_ior""#,
-            "must differ",
-        ),
-        (
-            r#"<bsdf type="roughdielectric"><float name="alpha" value="-0.2"/></bsdf>"#,
-            r#"<float name="alpha""#,
-            "positive",
-        ),
-        (
-            r#"<bsdf type="roughdielectric"><string name="distribution" value="blinn"/></bsdf>"#,
-            r#"<string name="distribution""#,
-            "blinn",
-        ),
-        (
-            r#"<bsdf type="roughdielectric"><float name="alpha_v" value="0.2"/></bsdf>"#,
-            r#"<float name="alpha_v""#,
-            "alpha_u",
-        ),
-        (
-            r#"<bsdf type="dielectric"><rgb name="specular_transmittance" value="1.5"/></bsdf>"#,
-            r#"<rgb name="specular_transmittance""#,
-            "[0, 1]",
-        ),
-        (
-            r#"<bsdf type="thindielectric"><float name="alpha" value="0.2"/></bsdf>"#,
-            r#"<float name="alpha""#,
-            "alpha",
-        ),
-    ];
-    for (xml, needle, words) in cases {
-        assert_error_at(xml, needle, words);
-    }
+    let (d, rd, td) = ("dielectric", "roughdielectric", "thindielectric");
+    bad(
+        d,
+        r#"<float name="int_ior" value="-1.5"/>"#,
+        "int_ior",
+        "positive",
+    );
+    bad(
+        td,
+        r#"<float name="ext_ior" value="0"/>"#,
+        "ext_ior",
+        "positive",
+    );
+    bad(
+        rd,
+        r#"<float name="int_ior" value="0"/>"#,
+        "int_ior",
+        "positive",
+    );
+    let glass = r#"<string name="int_ior" value="glass"/>"#;
+    bad(d, glass, "int_ior", "unknown material \"glass\"");
+    let same = r#"<float name="int_ior" value="1.33"/> <float name="ext_ior" value="1.33"/>"#;
+    bad(rd, same, "int_ior", "must differ");
+    bad(
+        rd,
+        r#"<float name="alpha" value="-0.2"/>"#,
+        "alpha",
+        "positive",
+    );
+    bad(
+        rd,
+        r#"<string name="distribution" value="blinn"/>"#,
+        "distribution",
+        "blinn",
+    );
+    bad(
+        rd,
+        r#"<float name="alpha_v" value="0.2"/>"#,
+        "alpha_v",
+        "alpha_u",
+    );
+    let bright = r#"<rgb name="specular_transmittance" value="1.5"/>"#;
+    bad(d, bright, "specular_transmittance", "[0, 1]");
+    bad(
+        td,
+        r#"<float name="alpha" value="0.2"/>"#,
+        "alpha",
+        "unused",
+    );
 }
