@@ -123,7 +123,7 @@ fn chi2_control_wrong_roughness_is_rejected() {
     let cfg = SphereChi2 {
         theta_bins: 20,
         phi_bins: 40,
-        samples: 1_000_000,
+        samples: 300_000,
     };
     let right = cfg.run(
         |u| a.sample(wi, 0.5, u, UV).map(|s| s.wo),

@@ -230,7 +230,7 @@ fn chi2_control_wrong_index_is_rejected() {
     let cfg = SphereChi2 {
         theta_bins: 20,
         phi_bins: 40,
-        samples: 1_000_000,
+        samples: 300_000,
     };
     let run = |other: &Bsdf| {
         let mut rng = Pcg32::new(5);
