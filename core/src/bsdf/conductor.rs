@@ -1,31 +1,62 @@
-//! Smooth metal with complex Fresnel (`conductor`). Not implemented yet: every method reports no scattering.
+//! Smooth metal: a perfect mirror weighted by the complex Fresnel reflectance (Mitsuba 3's
+//! `conductor`). One-sided: a ray arriving from the back (`wi.z <= 0`) scatters nothing.
+//!
+//! Scene parameters (`<bsdf type="conductor">`):
+//! - `material` (string, default `"none"`): a named metal from Mitsuba 3's list (`Au`, `Cu`,
+//!   `Al`, ...; RGB values tabulated by the driver), or `none` = a perfect mirror (`eta` 0,
+//!   `k` 1, reflectance 1 at every angle);
+//! - `eta`, `k` (rgb / float, defaults 0 and 1): the real and imaginary parts of the complex
+//!   index of refraction, instead of `material`;
+//! - `specular_reflectance` (rgb / texture, default 1): a tint (not physical).
+//!
+//! The only component is a delta reflection, so `eval` and `pdf` are zero and `sample` returns
+//! the mirror direction with probability 1.
+use super::fresnel::fresnel_conductor;
 use super::BsdfSample;
+use crate::texture::Texture;
 use crate::Color;
 use glam::{Vec2, Vec3};
 
 /// Smooth metal with complex Fresnel (`conductor`).
 #[derive(Clone, Debug)]
-pub struct Conductor {}
+pub struct Conductor {
+    /// Real part of the index of refraction (per channel).
+    pub eta: Texture,
+    /// Imaginary part (absorption coefficient, per channel).
+    pub k: Texture,
+    /// Tint multiplied into the reflectance.
+    pub specular_reflectance: Texture,
+}
 
 impl Conductor {
-    /// `f(wi, wo) |cos theta_o|`.
+    /// A delta model: always zero.
     pub fn eval(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> Color {
         Color::ZERO
     }
-    /// Density of the smooth components.
+    /// A delta model: always zero.
     pub fn pdf(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> f32 {
         0.0
     }
-    /// Samples an outgoing direction.
-    pub fn sample(&self, _wi: Vec3, _u1: f32, _u2: Vec2, _uv: Vec2) -> Option<BsdfSample> {
-        None
+    /// The mirror direction, with weight `F(cos theta_i) * specular_reflectance`.
+    pub fn sample(&self, wi: Vec3, _u1: f32, _u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+        if !(wi.z > 0.0) {
+            return None;
+        }
+        let f = fresnel_conductor(wi.z, self.eta.eval(uv), self.k.eval(uv));
+        Some(BsdfSample {
+            wo: Vec3::new(-wi.x, -wi.y, wi.z),
+            weight: f * self.specular_reflectance.eval(uv),
+            pdf: 1.0,
+            delta: true,
+            eta: 1.0,
+        })
     }
-    /// Whether any component is smooth.
+    /// No smooth component.
     pub fn has_smooth(&self) -> bool {
         false
     }
-    /// Whether any component is a delta distribution.
+    /// A delta reflection.
     pub fn has_delta(&self) -> bool {
-        false
+        true
     }
 }

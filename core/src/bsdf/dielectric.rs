@@ -1,31 +1,75 @@
-//! Smooth glass: Fresnel reflection and refraction (`dielectric`). Not implemented yet: every method reports no scattering.
+//! Smooth glass: a sharp interface between two dielectrics with Fresnel reflection and
+//! refraction (Mitsuba 3's `dielectric`). Works from both sides: `wi.z < 0` means the ray
+//! arrives from inside.
+//!
+//! Scene parameters (`<bsdf type="dielectric">`):
+//! - `int_ior` (float or a named material, default `"bk7"` = 1.5046): index inside;
+//! - `ext_ior` (float or named, default `"air"` = 1.000277): index outside;
+//! - `specular_reflectance`, `specular_transmittance` (rgb / texture, default 1): tints (not
+//!   physical).
+//!
+//! Two delta components: the mirror direction, chosen with probability `F` (the Fresnel
+//! reflectance at `cos theta_i`), and the refracted direction with probability `1 - F`
+//! (always reflection under total internal reflection). Both weights are the tints; the
+//! refraction's also carries the radiance scaling `1 / eta^2` (`eta` = `eta_t / eta_i`).
+use super::fresnel::{fresnel_dielectric, refract};
 use super::BsdfSample;
+use crate::texture::Texture;
 use crate::Color;
 use glam::{Vec2, Vec3};
 
 /// Smooth glass: Fresnel reflection and refraction (`dielectric`).
 #[derive(Clone, Debug)]
-pub struct Dielectric {}
+pub struct Dielectric {
+    /// Relative index `int_ior / ext_ior`.
+    pub eta: f32,
+    /// Tint of the reflection.
+    pub specular_reflectance: Texture,
+    /// Tint of the refraction.
+    pub specular_transmittance: Texture,
+}
 
 impl Dielectric {
-    /// `f(wi, wo) |cos theta_o|`.
+    /// A delta model: always zero.
     pub fn eval(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> Color {
         Color::ZERO
     }
-    /// Density of the smooth components.
+    /// A delta model: always zero.
     pub fn pdf(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> f32 {
         0.0
     }
-    /// Samples an outgoing direction.
-    pub fn sample(&self, _wi: Vec3, _u1: f32, _u2: Vec2, _uv: Vec2) -> Option<BsdfSample> {
-        None
+    /// Reflection with probability `F`, else refraction (`u1` chooses).
+    pub fn sample(&self, wi: Vec3, u1: f32, _u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+        if wi.z == 0.0 || !wi.is_finite() {
+            return None;
+        }
+        let fr = fresnel_dielectric(wi.z, self.eta);
+        // `<` rather than `<=`: a component of probability zero is never chosen.
+        if u1 < fr.f {
+            Some(BsdfSample {
+                wo: Vec3::new(-wi.x, -wi.y, wi.z),
+                weight: self.specular_reflectance.eval(uv),
+                pdf: fr.f,
+                delta: true,
+                eta: 1.0,
+            })
+        } else {
+            let wo = refract(wi, Vec3::Z, fr.cos_t, fr.eta_ti);
+            Some(BsdfSample {
+                wo,
+                weight: self.specular_transmittance.eval(uv) * (fr.eta_ti * fr.eta_ti),
+                pdf: 1.0 - fr.f,
+                delta: true,
+                eta: fr.eta_it,
+            })
+        }
     }
-    /// Whether any component is smooth.
+    /// No smooth component.
     pub fn has_smooth(&self) -> bool {
         false
     }
-    /// Whether any component is a delta distribution.
+    /// Delta reflection and refraction.
     pub fn has_delta(&self) -> bool {
-        false
+        true
     }
 }

@@ -1,30 +1,111 @@
-//! Rough metal, microfacet (`roughconductor`). Not implemented yet: every method reports no scattering.
+//! Rough metal: a Torrance-Sparrow microfacet reflection model with conductor Fresnel (Mitsuba
+//! 3's `roughconductor`). One-sided: nothing scatters when `wi` or `wo` is below the surface.
+//!
+//! Scene parameters (`<bsdf type="roughconductor">`):
+//! - `distribution` (string, `beckmann` (default) or `ggx`);
+//! - `alpha` (float, default 0.1), or both `alpha_u` and `alpha_v` (anisotropic roughness along
+//!   the tangent and bitangent); all must be positive;
+//! - `sample_visible` (boolean, default true): sample only the visible normals;
+//! - `material` (string, default `"none"` = perfect reflector), or `eta` and `k` (rgb / float,
+//!   defaults 0 and 1), as for `conductor`;
+//! - `specular_reflectance` (rgb / texture, default 1).
+//!
+//! `f(wi, wo) = F(wi.h) D(h) G(wi, wo, h) / (4 cos theta_i cos theta_o)` with the half vector
+//! `h = normalize(wi + wo)`. Sampling draws a microfacet normal `m` (visible normals by
+//! default) and reflects `wi` about it; the density of `wo` is `pdf_m(m) / (4 wo.m)`.
+use super::fresnel::{fresnel_conductor, reflect};
+use super::microfacet::Microfacet;
 use super::BsdfSample;
+use crate::texture::Texture;
 use crate::Color;
 use glam::{Vec2, Vec3};
 
 /// Rough metal, microfacet (`roughconductor`).
 #[derive(Clone, Debug)]
-pub struct RoughConductor {}
+pub struct RoughConductor {
+    /// Normal distribution, roughness and sampling strategy.
+    pub distribution: Microfacet,
+    /// Real part of the index of refraction (per channel).
+    pub eta: Texture,
+    /// Imaginary part (per channel).
+    pub k: Texture,
+    /// Tint multiplied into the reflectance.
+    pub specular_reflectance: Texture,
+}
 
 impl RoughConductor {
-    /// `f(wi, wo) |cos theta_o|`.
-    pub fn eval(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> Color {
-        Color::ZERO
+    /// The half vector of a front-side pair, or `None` when the micro- and macro-surface
+    /// disagree on the side (or the pair is degenerate).
+    #[inline]
+    fn half_vector(wi: Vec3, wo: Vec3) -> Option<Vec3> {
+        if !(wi.z > 0.0 && wo.z > 0.0) {
+            return None;
+        }
+        let h = (wi + wo).normalize();
+        (h.is_finite() && wi.dot(h) > 0.0 && wo.dot(h) > 0.0).then_some(h)
     }
-    /// Density of the smooth components.
-    pub fn pdf(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> f32 {
-        0.0
+
+    #[inline]
+    fn fresnel(&self, cos: f32, uv: Vec2) -> Color {
+        fresnel_conductor(cos, self.eta.eval(uv), self.k.eval(uv))
+            * self.specular_reflectance.eval(uv)
     }
-    /// Samples an outgoing direction.
-    pub fn sample(&self, _wi: Vec3, _u1: f32, _u2: Vec2, _uv: Vec2) -> Option<BsdfSample> {
-        None
+
+    /// `f(wi, wo) cos theta_o`.
+    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+        let Some(h) = Self::half_vector(wi, wo) else {
+            return Color::ZERO;
+        };
+        let md = &self.distribution;
+        let d = md.d(h);
+        if d == 0.0 {
+            return Color::ZERO;
+        }
+        let g = md.g(wi, wo, h);
+        self.fresnel(wi.dot(h), uv) * (d * g / (4.0 * wi.z))
     }
-    /// Whether any component is smooth.
+
+    /// Density of `sample`: the normal's density times the reflection Jacobian `1 / (4 wo.h)`.
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, _uv: Vec2) -> f32 {
+        let Some(h) = Self::half_vector(wi, wo) else {
+            return 0.0;
+        };
+        self.distribution.pdf(wi, h) / (4.0 * wo.dot(h))
+    }
+
+    /// Reflects `wi` about a sampled microfacet normal.
+    pub fn sample(&self, wi: Vec3, _u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+        if !(wi.z > 0.0) {
+            return None;
+        }
+        let md = &self.distribution;
+        let (m, pdf_m) = md.sample(wi, u2)?;
+        let cos_im = wi.dot(m);
+        let wo = reflect(wi, m);
+        if !(cos_im > 0.0 && wo.z > 0.0) {
+            return None;
+        }
+        let pdf = pdf_m / (4.0 * cos_im);
+        // f cos / pdf in closed form: D cancels (and G1(wi) too for visible normals).
+        let g = if md.sample_visible {
+            md.g1(wo, m)
+        } else {
+            md.g(wi, wo, m) * cos_im / (wi.z * m.z)
+        };
+        let weight = self.fresnel(cos_im, uv) * g;
+        (pdf.is_finite() && pdf > 0.0 && g > 0.0).then_some(BsdfSample {
+            wo: wo.normalize(),
+            weight,
+            pdf,
+            delta: false,
+            eta: 1.0,
+        })
+    }
+    /// A glossy reflection.
     pub fn has_smooth(&self) -> bool {
-        false
+        true
     }
-    /// Whether any component is a delta distribution.
+    /// No delta component.
     pub fn has_delta(&self) -> bool {
         false
     }

@@ -1,31 +1,74 @@
-//! A thin glass sheet (`thindielectric`). Not implemented yet: every method reports no scattering.
+//! A thin glass sheet (Mitsuba 3's `thindielectric`): two parallel interfaces so close that
+//! light leaves where it entered. Reflection sums every odd number of internal bounces,
+//! `R = F + (1-F)^2 F / (1 - F^2) = 2F / (1 + F)`, and transmission passes straight through
+//! (`wo = -wi`, no refraction, `eta` = 1) with `1 - R`. Both sides behave alike.
+//!
+//! Scene parameters (`<bsdf type="thindielectric">`):
+//! - `int_ior` (float or a named material, default `"bk7"`): index of the sheet;
+//! - `ext_ior` (float or named, default `"air"`): index around it;
+//! - `specular_reflectance`, `specular_transmittance` (rgb / texture, default 1): tints.
+//!
+//! Two delta components chosen with probabilities `R` and `1 - R`; the weights are the tints.
+use super::fresnel::fresnel_dielectric;
 use super::BsdfSample;
+use crate::texture::Texture;
 use crate::Color;
 use glam::{Vec2, Vec3};
 
 /// A thin glass sheet (`thindielectric`).
 #[derive(Clone, Debug)]
-pub struct ThinDielectric {}
+pub struct ThinDielectric {
+    /// Relative index `int_ior / ext_ior`.
+    pub eta: f32,
+    /// Tint of the reflection.
+    pub specular_reflectance: Texture,
+    /// Tint of the transmission.
+    pub specular_transmittance: Texture,
+}
 
 impl ThinDielectric {
-    /// `f(wi, wo) |cos theta_o|`.
+    /// Total reflectance of the sheet at incident cosine `cos` (either side).
+    pub fn reflectance(&self, cos: f32) -> f32 {
+        let f = fresnel_dielectric(cos.abs(), self.eta).f;
+        2.0 * f / (1.0 + f)
+    }
+    /// A delta model: always zero.
     pub fn eval(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> Color {
         Color::ZERO
     }
-    /// Density of the smooth components.
+    /// A delta model: always zero.
     pub fn pdf(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> f32 {
         0.0
     }
-    /// Samples an outgoing direction.
-    pub fn sample(&self, _wi: Vec3, _u1: f32, _u2: Vec2, _uv: Vec2) -> Option<BsdfSample> {
-        None
+    /// Mirror reflection with probability `R`, else straight through.
+    pub fn sample(&self, wi: Vec3, u1: f32, _u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+        if wi.z == 0.0 || !wi.is_finite() {
+            return None;
+        }
+        let r = self.reflectance(wi.z);
+        let (wo, weight, pdf) = if u1 < r {
+            (
+                Vec3::new(-wi.x, -wi.y, wi.z),
+                self.specular_reflectance.eval(uv),
+                r,
+            )
+        } else {
+            (-wi, self.specular_transmittance.eval(uv), 1.0 - r)
+        };
+        Some(BsdfSample {
+            wo,
+            weight,
+            pdf,
+            delta: true,
+            eta: 1.0,
+        })
     }
-    /// Whether any component is smooth.
+    /// No smooth component.
     pub fn has_smooth(&self) -> bool {
         false
     }
-    /// Whether any component is a delta distribution.
+    /// Delta reflection and transmission.
     pub fn has_delta(&self) -> bool {
-        false
+        true
     }
 }
