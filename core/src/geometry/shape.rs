@@ -89,7 +89,14 @@ impl Shape {
                     (libm::atan2f(hit.uv.y, hit.uv.x) * crate::math::INV_TWO_PI + 1.0) % 1.0,
                 );
                 // Radial, as Mitsuba 3's disk (u is the radius).
-                (p, err, disk.normal, disk.normal, uv, p - disk.to_world.point(Vec3::ZERO))
+                (
+                    p,
+                    err,
+                    disk.normal,
+                    disk.normal,
+                    uv,
+                    p - disk.to_world.point(Vec3::ZERO),
+                )
             }
             _ => unreachable_shape(),
         };

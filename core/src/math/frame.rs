@@ -32,7 +32,11 @@ impl Frame {
             return Frame::from_normal(n);
         }
         let s = s / libm::sqrtf(len2);
-        Frame { s, t: n.cross(s), n }
+        Frame {
+            s,
+            t: n.cross(s),
+            n,
+        }
     }
     /// World direction to local coordinates.
     #[inline]
