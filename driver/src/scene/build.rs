@@ -43,6 +43,8 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
                 bsdfs.index_of(obj)?;
             }
             Kind::Emitter => emitters.push(build_scene_emitter(obj)?),
+            // Declared to be referenced (`<ref>`); built where it is used.
+            Kind::Texture => {}
             Kind::Shape => {
                 let parts = build_shape(obj)?;
                 let shape_index = shapes.len() as u32;
