@@ -17,6 +17,7 @@ use super::super::util::{at_prop, Result};
 use crate::image_io::read_image;
 use crate::xml::{Kind, Object};
 use glam::{DMat4, Vec3};
+use std::path::Path;
 use tessera_core::texture::{Bitmap, Checkerboard, FilterType, Texture, UvTransform, WrapMode};
 
 /// The texture parameter `name` of `obj` (constant `default` when absent). With `unit`, every
@@ -141,14 +142,47 @@ fn bitmap(obj: &Object, unit: bool) -> Result<Bitmap> {
         .parent()
         .map(|p| p.to_path_buf())
         .unwrap_or_default();
-    let path = base.join(&name);
-    let file_error = |msg: String| at_prop(obj, "filename", msg);
-    let img = read_image(&path).map_err(file_error)?;
+    let settings = BitmapSettings {
+        raw,
+        unit,
+        filter,
+        wrap,
+        to_uv,
+        scale: Vec3::ONE,
+    };
+    load_bitmap(&base.join(&name), &name, settings).map_err(|msg| at_prop(obj, "filename", msg))
+}
+
+/// How to read and look up an image texture.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BitmapSettings {
+    /// Keep PNG values as stored (no sRGB decoding).
+    pub raw: bool,
+    /// Require values in [0, 1].
+    pub unit: bool,
+    /// Reconstruction filter.
+    pub filter: FilterType,
+    /// Wrap mode.
+    pub wrap: WrapMode,
+    /// Map applied to uv.
+    pub to_uv: UvTransform,
+    /// Factor applied to every pixel (after sRGB decoding).
+    pub scale: Vec3,
+}
+
+/// Reads the image at `path` (named `name` in messages) as a bitmap texture; the message of an
+/// error names the file and the problem.
+pub(crate) fn load_bitmap(
+    path: &Path,
+    name: &str,
+    s: BitmapSettings,
+) -> std::result::Result<Bitmap, String> {
+    let img = read_image(path)?;
     let png = path
         .extension()
         .and_then(|e| e.to_str())
         .is_some_and(|e| e.eq_ignore_ascii_case("png"));
-    let decode = png && !raw;
+    let decode = png && !s.raw;
     let mut pixels = Vec::with_capacity(img.data.len());
     for (i, p) in img.data.iter().enumerate() {
         let mut c = Vec3::from(*p);
@@ -159,17 +193,18 @@ fn bitmap(obj: &Object, unit: bool) -> Result<Bitmap> {
                 srgb_to_linear(c.z),
             );
         }
-        if !(c.is_finite() && c.min_element() >= 0.0 && (!unit || c.max_element() <= 1.0)) {
+        c *= s.scale;
+        if !(c.is_finite() && c.min_element() >= 0.0 && (!s.unit || c.max_element() <= 1.0)) {
             let (x, y) = (i % img.width as usize, i / img.width as usize);
-            return Err(file_error(format!(
+            return Err(format!(
                 "\"{name}\": pixel ({x}, {y}) is {:?}; values of this parameter must be {}",
                 c.to_array(),
-                range(unit)
-            )));
+                range(s.unit)
+            ));
         }
         pixels.push(c);
     }
     let (w, h) = (img.width as usize, img.height as usize);
-    Bitmap::new(w, h, pixels, filter, wrap, to_uv)
-        .ok_or_else(|| file_error(format!("\"{name}\": unusable image size {w}x{h}")))
+    Bitmap::new(w, h, pixels, s.filter, s.wrap, s.to_uv)
+        .ok_or_else(|| format!("\"{name}\": unusable image size {w}x{h}"))
 }
