@@ -239,3 +239,22 @@ fn checkerboard_scalar_lookup_picks_the_same_patch_as_the_colour() {
         assert!((f.x - a * inv_pi).abs() < 1e-6, "uv {uv:?}: {f}");
     }
 }
+
+#[test]
+fn extreme_uv_values_do_not_panic() {
+    let b = load_bsdf_file(&case_dir().join("bitmap_clamp_to_uv.xml")).unwrap();
+    let c = load_bsdf_file(&case_dir().join("bitmap_nearest_mirror.xml")).unwrap();
+    for v in [
+        f32::NAN,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::MAX,
+        -f32::MAX,
+        1e30,
+    ] {
+        for uv in [Vec2::new(v, 0.3), Vec2::new(0.3, v), Vec2::splat(v)] {
+            assert!(b.eval(wi(), wo(), uv).is_finite(), "{uv}");
+            assert!(c.eval(wi(), wo(), uv).is_finite(), "{uv}");
+        }
+    }
+}

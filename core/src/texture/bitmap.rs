@@ -38,6 +38,13 @@ pub enum WrapMode {
     Clamp,
 }
 
+/// A pixel index from a floored coordinate, kept far from integer overflow.
+#[inline]
+fn index(v: f32) -> i64 {
+    const LIMIT: f32 = (1u64 << 40) as f32;
+    v.clamp(-LIMIT, LIMIT) as i64
+}
+
 /// Rec. 709 luminance weights (Mitsuba 3's `luminance`).
 const LUMINANCE: Color = Color::new(0.212_671, 0.715_160, 0.072_169);
 
@@ -111,21 +118,23 @@ impl Bitmap {
         self.pixels[y * self.width + x]
     }
 
-    /// The colour at surface coordinates `uv`.
+    /// The colour at surface coordinates `uv` (a non-finite `uv` reads as `(0, 0)`; pixel
+    /// indices come from coordinates clamped to +-2^40).
     pub fn eval(&self, uv: Vec2) -> Color {
         let uv = self.to_uv.apply(uv);
+        let uv = if uv.is_finite() { uv } else { Vec2::ZERO };
         let (w, h) = (self.width as f32, self.height as f32);
         match self.filter {
             FilterType::Nearest => {
-                let x = libm::floorf(uv.x * w) as i64;
-                let y = libm::floorf(uv.y * h) as i64;
+                let x = index(libm::floorf(uv.x * w));
+                let y = index(libm::floorf(uv.y * h));
                 self.texel(x, y)
             }
             FilterType::Bilinear => {
                 let (x, y) = (uv.x * w - 0.5, uv.y * h - 0.5);
                 let (xf, yf) = (libm::floorf(x), libm::floorf(y));
                 let (fx, fy) = (x - xf, y - yf);
-                let (x0, y0) = (xf as i64, yf as i64);
+                let (x0, y0) = (index(xf), index(yf));
                 let top = self.texel(x0, y0) * (1.0 - fx) + self.texel(x0 + 1, y0) * fx;
                 let bottom = self.texel(x0, y0 + 1) * (1.0 - fx) + self.texel(x0 + 1, y0 + 1) * fx;
                 top * (1.0 - fy) + bottom * fy
