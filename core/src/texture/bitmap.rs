@@ -118,11 +118,16 @@ impl Bitmap {
         self.pixels[y * self.width + x]
     }
 
-    /// The colour at surface coordinates `uv` (a non-finite `uv` reads as `(0, 0)`; pixel
-    /// indices come from coordinates clamped to +-2^40).
+    /// The colour at surface coordinates `uv` (a non-finite `uv` reads as `(0, 0)`, a huge one
+    /// as if clamped to +-1e9).
     pub fn eval(&self, uv: Vec2) -> Color {
         let uv = self.to_uv.apply(uv);
-        let uv = if uv.is_finite() { uv } else { Vec2::ZERO };
+        let uv = if uv.is_finite() {
+            // Beyond 2^30 an f32 has no fractional digits left: nothing is lost.
+            uv.clamp(Vec2::splat(-1.0e9), Vec2::splat(1.0e9))
+        } else {
+            Vec2::ZERO
+        };
         let (w, h) = (self.width as f32, self.height as f32);
         match self.filter {
             FilterType::Nearest => {
