@@ -1,31 +1,95 @@
-//! Linear blend of two models (`blendbsdf`, Chalmers' `blend`). Not implemented yet: every method reports no scattering.
-use super::BsdfSample;
+//! Linear blend of two models (`blendbsdf` as in Mitsuba 3; Chalmers' `LinearBlend` is the
+//! alias `blend`).
+//!
+//! Scene parameters (`<bsdf type="blendbsdf">` or `"blend"`): `weight` (float or texture in
+//! [0, 1], default 0.5; a texture is read as a scalar, see `Texture::eval_1`), exactly two
+//! nested `<bsdf>`s. `f = (1 - w) f0 + w f1`: the weight belongs to the second model, so
+//! Chalmers' `LinearBlend(w, a, b) = w a + (1 - w) b` is `blend` with `b` first and `a` second.
+//!
+//! Sampling chooses the second model when `u1 < w` (then reuses `u1 / w`), the first otherwise
+//! (`(u1 - w) / (1 - w)`), as Mitsuba 3 does. A smooth sample reports the mixed density
+//! `(1 - w) p0 + w p1` and `weight = eval / pdf`; a delta sample keeps its own weight and its
+//! discrete probability times the probability of choosing its model.
+use super::{Bsdf, BsdfSample};
+use crate::texture::Texture;
 use crate::Color;
+use alloc::boxed::Box;
 use glam::{Vec2, Vec3};
 
 /// Linear blend of two models (`blendbsdf`, Chalmers' `blend`).
 #[derive(Clone, Debug)]
-pub struct Blend {}
+pub struct Blend {
+    /// Share of `second`, in `[0, 1]`.
+    pub weight: Texture,
+    /// The model weighted by `1 - weight`.
+    pub first: Box<Bsdf>,
+    /// The model weighted by `weight`.
+    pub second: Box<Bsdf>,
+}
 
 impl Blend {
+    fn w(&self, uv: Vec2) -> f32 {
+        let w = self.weight.eval_1(uv);
+        if w.is_finite() {
+            w.clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    }
     /// `f(wi, wo) |cos theta_o|`.
-    pub fn eval(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> Color {
-        Color::ZERO
+    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+        let w = self.w(uv);
+        let mut v = Color::ZERO;
+        if w < 1.0 {
+            v += self.first.eval(wi, wo, uv) * (1.0 - w);
+        }
+        if w > 0.0 {
+            v += self.second.eval(wi, wo, uv) * w;
+        }
+        v
     }
     /// Density of the smooth components.
-    pub fn pdf(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> f32 {
-        0.0
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
+        let w = self.w(uv);
+        let mut p = 0.0;
+        if w < 1.0 {
+            p += self.first.pdf(wi, wo, uv) * (1.0 - w);
+        }
+        if w > 0.0 {
+            p += self.second.pdf(wi, wo, uv) * w;
+        }
+        p
     }
-    /// Samples an outgoing direction.
-    pub fn sample(&self, _wi: Vec3, _u1: f32, _u2: Vec2, _uv: Vec2) -> Option<BsdfSample> {
-        None
+    /// Samples one of the two models by weight.
+    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+        let w = self.w(uv);
+        let (chosen, prob, u) = if u1 < w {
+            (&self.second, w, u1 / w)
+        } else {
+            (&self.first, 1.0 - w, (u1 - w) / (1.0 - w))
+        };
+        let s = chosen.sample(wi, u.clamp(0.0, 1.0 - f32::EPSILON), u2, uv)?;
+        if s.delta {
+            return Some(BsdfSample {
+                pdf: s.pdf * prob,
+                ..s
+            });
+        }
+        let pdf = self.pdf(wi, s.wo, uv);
+        if !(pdf > 0.0 && pdf.is_finite()) {
+            return None;
+        }
+        let weight = self.eval(wi, s.wo, uv) / pdf;
+        weight
+            .is_finite()
+            .then_some(BsdfSample { weight, pdf, ..s })
     }
-    /// Whether any component is smooth.
+    /// Whether either model has a smooth component.
     pub fn has_smooth(&self) -> bool {
-        false
+        self.first.has_smooth() || self.second.has_smooth()
     }
-    /// Whether any component is a delta distribution.
+    /// Whether either model has a delta component.
     pub fn has_delta(&self) -> bool {
-        false
+        self.first.has_delta() || self.second.has_delta()
     }
 }

@@ -1,30 +1,69 @@
-//! Chalmers' tinted Blinn-Phong metal (`blinnphong_metal`). Not implemented yet: every method reports no scattering.
+//! Chalmers' tinted Blinn-Phong metal (`blinnphong_metal`), from the Chalmers path-tracer
+//! tutorial (task 4).
+//!
+//! Scene parameters (`<bsdf type="blinnphong_metal">`): `color` (rgb or texture in [0, 1],
+//! default 0.5: the tint), `shininess` (float >= 0, default 25), `r0` or its alias `fresnel`
+//! (float in [0, 1], default 0.04; at most one of the two names).
+//!
+//! `f = color F D G / (4 (n.wi)(n.wo))` with the terms of [`BlinnPhong`](super::BlinnPhong)'s
+//! lobe; the refracted share `1 - F` is absorbed (the tutorial's `refraction_brdf` of a metal
+//! is zero). One-sided. Sampling always draws the lobe (the tutorial's 50% choice of the
+//! absorbing "refraction" would only waste samples; the pdf is the lobe's exactly).
+use super::blinnphong::Lobe;
 use super::BsdfSample;
+use crate::texture::Texture;
 use crate::Color;
 use glam::{Vec2, Vec3};
 
 /// Chalmers' tinted Blinn-Phong metal (`blinnphong_metal`).
 #[derive(Clone, Debug)]
-pub struct BlinnPhongMetal {}
+pub struct BlinnPhongMetal {
+    color: Texture,
+    lobe: Lobe,
+}
 
 impl BlinnPhongMetal {
+    /// A metal tinted by `color`, exponent `shininess >= 0`, Schlick `r0` in `[0, 1]`.
+    pub fn new(color: Texture, shininess: f32, r0: f32) -> Self {
+        BlinnPhongMetal {
+            color,
+            lobe: Lobe { shininess, r0 },
+        }
+    }
+
     /// `f(wi, wo) |cos theta_o|`.
-    pub fn eval(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> Color {
-        Color::ZERO
+    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+        let v = self.lobe.eval(wi, wo);
+        if v > 0.0 {
+            self.color.eval(uv) * v
+        } else {
+            Color::ZERO
+        }
     }
-    /// Density of the smooth components.
-    pub fn pdf(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> f32 {
-        0.0
+    /// Density of the lobe.
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, _uv: Vec2) -> f32 {
+        self.lobe.pdf(wi, wo)
     }
-    /// Samples an outgoing direction.
-    pub fn sample(&self, _wi: Vec3, _u1: f32, _u2: Vec2, _uv: Vec2) -> Option<BsdfSample> {
-        None
+    /// Samples the lobe.
+    pub fn sample(&self, wi: Vec3, _u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+        let wo = self.lobe.sample(wi, u2)?;
+        let pdf = self.lobe.pdf(wi, wo);
+        if !(pdf > 0.0 && pdf.is_finite()) {
+            return None;
+        }
+        Some(BsdfSample {
+            wo,
+            weight: self.color.eval(uv) * (self.lobe.eval(wi, wo) / pdf),
+            pdf,
+            delta: false,
+            eta: 1.0,
+        })
     }
-    /// Whether any component is smooth.
+    /// Always smooth.
     pub fn has_smooth(&self) -> bool {
-        false
+        true
     }
-    /// Whether any component is a delta distribution.
+    /// Never delta.
     pub fn has_delta(&self) -> bool {
         false
     }

@@ -1,31 +1,81 @@
-//! Opacity mask over a model (`mask`). Not implemented yet: every method reports no scattering.
-use super::BsdfSample;
+//! Opacity mask over a model (`mask`), as in Mitsuba 3: a surface that is partly not there.
+//!
+//! Scene parameters (`<bsdf type="mask">`): `opacity` (float or texture in [0, 1], default 0.5;
+//! a texture is read as a scalar, see `Texture::eval_1`), exactly one nested `<bsdf>`.
+//!
+//! With opacity `a`: `eval` and `pdf` are `a` times the nested model's (Mitsuba 3 measured); a
+//! ray passes straight through (`wo = -wi`, weight 1, `eta` 1) with probability `1 - a`, a
+//! delta component. Sampling chooses the nested model when `u1 < a` (reusing `u1 / a`); its
+//! smooth samples keep their weight and report the density `a p`, its delta samples their
+//! probability times `a`.
+use super::{Bsdf, BsdfSample};
+use crate::texture::Texture;
 use crate::Color;
+use alloc::boxed::Box;
 use glam::{Vec2, Vec3};
 
 /// Opacity mask over a model (`mask`).
 #[derive(Clone, Debug)]
-pub struct Mask {}
+pub struct Mask {
+    /// Probability that the surface is there, in `[0, 1]`.
+    pub opacity: Texture,
+    /// The model where it is.
+    pub nested: Box<Bsdf>,
+}
 
 impl Mask {
-    /// `f(wi, wo) |cos theta_o|`.
-    pub fn eval(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> Color {
-        Color::ZERO
+    fn a(&self, uv: Vec2) -> f32 {
+        let a = self.opacity.eval_1(uv);
+        if a.is_finite() {
+            a.clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
     }
-    /// Density of the smooth components.
-    pub fn pdf(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> f32 {
-        0.0
+    /// `opacity f(wi, wo) |cos theta_o|`.
+    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+        let a = self.a(uv);
+        if a > 0.0 {
+            self.nested.eval(wi, wo, uv) * a
+        } else {
+            Color::ZERO
+        }
     }
-    /// Samples an outgoing direction.
-    pub fn sample(&self, _wi: Vec3, _u1: f32, _u2: Vec2, _uv: Vec2) -> Option<BsdfSample> {
-        None
+    /// `opacity` times the nested density.
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
+        let a = self.a(uv);
+        if a > 0.0 {
+            self.nested.pdf(wi, wo, uv) * a
+        } else {
+            0.0
+        }
     }
-    /// Whether any component is smooth.
+    /// Passes through with probability `1 - opacity`, else samples the nested model.
+    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+        let a = self.a(uv);
+        if u1 >= a {
+            return Some(BsdfSample {
+                wo: -wi,
+                weight: Color::ONE,
+                pdf: 1.0 - a,
+                delta: true,
+                eta: 1.0,
+            });
+        }
+        let s = self
+            .nested
+            .sample(wi, (u1 / a).min(1.0 - f32::EPSILON), u2, uv)?;
+        Some(BsdfSample {
+            pdf: s.pdf * a,
+            ..s
+        })
+    }
+    /// Whether the nested model has a smooth component.
     pub fn has_smooth(&self) -> bool {
-        false
+        self.nested.has_smooth()
     }
-    /// Whether any component is a delta distribution.
+    /// Always: the pass-through is a delta component.
     pub fn has_delta(&self) -> bool {
-        false
+        true
     }
 }

@@ -1,5 +1,16 @@
 //! Textures: spatially varying parameters looked up by surface `uv`. A closed enum; constant
 //! values are the common case and cost one branch.
+//!
+//! Scalar lookups ([`Texture::eval_1`]) follow Mitsuba 3: the mean of the channels for a
+//! constant, the luminance for a bitmap.
+mod bitmap;
+mod checkerboard;
+mod to_uv;
+
+pub use bitmap::{Bitmap, FilterType, WrapMode};
+pub use checkerboard::Checkerboard;
+pub use to_uv::UvTransform;
+
 use crate::Color;
 use glam::Vec2;
 
@@ -8,6 +19,10 @@ use glam::Vec2;
 pub enum Texture {
     /// The same value everywhere.
     Constant(Color),
+    /// An image (`bitmap`).
+    Bitmap(Bitmap),
+    /// A two-colour checkerboard (`checkerboard`).
+    Checkerboard(Checkerboard),
 }
 
 impl Texture {
@@ -19,22 +34,27 @@ impl Texture {
     #[inline]
     pub fn eval(&self, uv: Vec2) -> Color {
         match self {
-            Texture::Constant(c) => {
-                let _ = uv;
-                *c
-            }
+            Texture::Constant(c) => *c,
+            Texture::Bitmap(b) => b.eval(uv),
+            Texture::Checkerboard(c) => c.eval(uv),
         }
     }
-    /// A scalar at `uv` (the mean of the channels), for weights and opacities.
+    /// A scalar at `uv`, for weights and opacities: the mean of the channels of a constant (as
+    /// Mitsuba 3's `rgb` does), the luminance of a bitmap (as Mitsuba 3's `bitmap` does).
     #[inline]
     pub fn eval_1(&self, uv: Vec2) -> f32 {
-        let c = self.eval(uv);
-        (c.x + c.y + c.z) * (1.0 / 3.0)
+        match self {
+            Texture::Constant(c) => (c.x + c.y + c.z) * (1.0 / 3.0),
+            Texture::Bitmap(b) => b.eval_1(uv),
+            Texture::Checkerboard(c) => c.eval_1(uv),
+        }
     }
     /// The largest channel value anywhere on the surface (an upper bound).
     pub fn max_value(&self) -> f32 {
         match self {
             Texture::Constant(c) => c.max_element(),
+            Texture::Bitmap(b) => b.max_value(),
+            Texture::Checkerboard(c) => c.max_value(),
         }
     }
 }

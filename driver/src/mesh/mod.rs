@@ -1,11 +1,15 @@
-//! Triangle mesh sources: OBJ and PLY files, and Mitsuba's built-in `rectangle` and `cube`.
+//! Triangle mesh sources: OBJ (with MTL materials) and PLY files, and Mitsuba's built-in
+//! `rectangle` and `cube`.
 mod builtin;
+pub mod mtl;
+mod mtl_material;
 mod obj;
 mod obj_locate;
 mod ply;
 
 pub use builtin::{cube, rectangle};
-pub use obj::load_obj;
+pub use mtl_material::{mtl_bsdf, MtlBsdf};
+pub use obj::{load_obj, load_obj_with_materials, ObjParts};
 pub use ply::load_ply;
 
 use crate::error::InputError;

@@ -31,6 +31,11 @@ impl Bsdfs {
         self.by_object.insert(key, i);
         Ok(i)
     }
+    /// Adds a BSDF built elsewhere (an OBJ's MTL material) and returns its index.
+    pub fn push(&mut self, b: Bsdf) -> u32 {
+        self.list.push(b);
+        self.list.len() as u32 - 1
+    }
     /// The default BSDF of shapes without one: one-sided diffuse, reflectance 0.5, or 0 for a
     /// shape that emits (both as Mitsuba 3 does; measured).
     pub fn default_index(&mut self, emitting: bool) -> u32 {

@@ -8,6 +8,7 @@ use super::util::Result;
 use super::LoadedScene;
 use crate::error::InputError;
 use crate::xml::{Kind, Object};
+use tessera_core::emitter::{AreaLight, Emitter};
 use tessera_core::geometry::{Shape, ShapeKind};
 use tessera_core::scene::{LightSelection, Scene, SceneParts};
 
@@ -43,34 +44,55 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
                 bsdfs.index_of(obj)?;
             }
             Kind::Emitter => emitters.push(build_scene_emitter(obj)?),
+            // Declared to be referenced (`<ref>`); built where it is used.
+            Kind::Texture => {}
             Kind::Shape => {
                 let parts = build_shape(obj)?;
-                let shape_index = shapes.len() as u32;
-                let bsdf = match parts.bsdf {
-                    Some(b) => bsdfs.index_of(&b.obj)?,
-                    None => bsdfs.default_index(parts.emitter.is_some()),
-                };
-                let emitter = match parts.emitter {
-                    Some(e) => {
-                        emitters.push(build_area(&e.obj, shape_index)?);
-                        Some(emitters.len() as u32 - 1)
-                    }
-                    None => None,
-                };
-                let kind = match (parts.kind, parts.disk) {
-                    (ShapeKind::Disk(_), Some(d)) => {
-                        disks.push(d);
-                        ShapeKind::Disk(disks.len() as u32 - 1)
-                    }
-                    (k, _) => k,
-                };
+                if let Some(kind) = parts.kind {
+                    let shape_index = shapes.len() as u32;
+                    let bsdf = match parts.bsdf {
+                        Some(b) => bsdfs.index_of(&b.obj)?,
+                        None => bsdfs.default_index(parts.emitter.is_some()),
+                    };
+                    let emitter = match parts.emitter {
+                        Some(e) => {
+                            emitters.push(build_area(&e.obj, shape_index)?);
+                            Some(emitters.len() as u32 - 1)
+                        }
+                        None => None,
+                    };
+                    let kind = match (kind, parts.disk) {
+                        (ShapeKind::Disk(_), Some(d)) => {
+                            disks.push(d);
+                            ShapeKind::Disk(disks.len() as u32 - 1)
+                        }
+                        (k, _) => k,
+                    };
+                    shapes.push(Shape {
+                        kind,
+                        bsdf,
+                        emitter,
+                        flip_normals: parts.flip_normals,
+                    });
+                }
+                // OBJ faces with MTL materials: one shape each, with its own BSDF and light.
+                for part in parts.mtl_parts {
+                    let shape_index = shapes.len() as u32;
+                    let emitter = part.material.emission.map(|radiance| {
+                        emitters.push(Emitter::Area(AreaLight {
+                            shape: shape_index,
+                            radiance,
+                        }));
+                        emitters.len() as u32 - 1
+                    });
+                    shapes.push(Shape {
+                        kind: ShapeKind::Mesh(part.mesh),
+                        bsdf: bsdfs.push(part.material.bsdf),
+                        emitter,
+                        flip_normals: parts.flip_normals,
+                    });
+                }
                 obj.check_unused()?;
-                shapes.push(Shape {
-                    kind,
-                    bsdf,
-                    emitter,
-                    flip_normals: parts.flip_normals,
-                });
             }
             _ => {
                 return Err(InputError::at(

@@ -6,17 +6,35 @@
 //! placed by `to_world`. Every shape: `to_world`, `flip_normals` (false), an optional `<bsdf>`
 //! (nested or `<ref>`; default diffuse 0.5, or black diffuse on an emitting shape, as in Mitsuba
 //! 3), an optional `<emitter type="area">`.
+//!
+//! `obj` only: `use_mtl` (boolean, default false; a Tessera extension, Mitsuba 3 ignores MTL
+//! files). When true, the file's `mtllib` materials apply: the mesh is split into one shape per
+//! `usemtl` material, each with the BSDF and `Ke` area light that `mesh/mtl_material.rs` maps
+//! the material to; faces before any `usemtl` form one more shape with the shape's `<bsdf>` and
+//! `<emitter>` (which are then an error if there are no such faces).
 use super::util::{float_checked, transform, vec3, Result};
 use crate::error::InputError;
-use crate::mesh::{self, MeshData};
+use crate::mesh::{self, MeshData, MtlBsdf};
 use crate::xml::{Kind, Object};
 use glam::{Vec2, Vec3};
 use tessera_core::geometry::{Disk, Mesh, ShapeKind, Sphere};
 use tessera_core::math::Transform;
 
+/// A part of an OBJ mesh with its MTL material.
+pub struct MtlPart {
+    /// The faces of the material, in world space.
+    pub mesh: Mesh,
+    /// The material's BSDF and emission.
+    pub material: MtlBsdf,
+}
+
 /// A shape's geometry and what is attached to it, before indices are assigned.
 pub struct ShapeParts<'a> {
-    pub kind: ShapeKind,
+    /// The geometry that takes the shape's `<bsdf>` and `<emitter>` (none when every face of an
+    /// OBJ has an MTL material).
+    pub kind: Option<ShapeKind>,
+    /// The OBJ's faces with MTL materials (`use_mtl`).
+    pub mtl_parts: Vec<MtlPart>,
     pub disk: Option<Disk>,
     pub flip_normals: bool,
     pub bsdf: Option<&'a crate::xml::Child>,
@@ -51,6 +69,7 @@ fn to_world_mesh(obj: &Object, data: MeshData, tf: &Transform, face_normals: boo
 pub fn build_shape(obj: &Object) -> Result<ShapeParts<'_>> {
     let flip_normals = obj.boolean("flip_normals", false)?;
     let mut disk = None;
+    let mut mtl_parts = Vec::new();
     let kind = match obj.plugin.as_str() {
         "sphere" => {
             let center = vec3(obj.point("center", [0.0; 3])?);
@@ -71,10 +90,10 @@ pub fn build_shape(obj: &Object) -> Result<ShapeParts<'_>> {
             if !(r > 0.0 && r.is_finite() && c.is_finite()) {
                 return Err(obj.error("the sphere's size or position is out of range"));
             }
-            ShapeKind::Sphere(Sphere {
+            Some(ShapeKind::Sphere(Sphere {
                 center: c,
                 radius: r,
-            })
+            }))
         }
         "obj" | "ply" => {
             let name = obj
@@ -87,14 +106,39 @@ pub fn build_shape(obj: &Object) -> Result<ShapeParts<'_>> {
                 .map(|p| p.to_path_buf())
                 .unwrap_or_default();
             let path = base.join(&name);
-            let data = if obj.plugin == "obj" {
-                mesh::load_obj(&path)?
-            } else {
-                mesh::load_ply(&path)?
-            };
+            let use_mtl = obj.plugin == "obj" && obj.boolean("use_mtl", false)?;
             let face_normals = obj.boolean("face_normals", false)?;
             let tf = transform(obj, "to_world")?;
-            ShapeKind::Mesh(to_world_mesh(obj, data, &tf, face_normals)?)
+            if use_mtl {
+                let parts = mesh::load_obj_with_materials(&path)?;
+                for (i, data) in parts.by_material {
+                    mtl_parts.push(MtlPart {
+                        mesh: to_world_mesh(obj, data, &tf, face_normals)?,
+                        material: mesh::mtl_bsdf(&parts.materials[i])?,
+                    });
+                }
+                match parts.plain {
+                    Some(data) => Some(ShapeKind::Mesh(to_world_mesh(
+                        obj,
+                        data,
+                        &tf,
+                        face_normals,
+                    )?)),
+                    None => None,
+                }
+            } else {
+                let data = if obj.plugin == "obj" {
+                    mesh::load_obj(&path)?
+                } else {
+                    mesh::load_ply(&path)?
+                };
+                Some(ShapeKind::Mesh(to_world_mesh(
+                    obj,
+                    data,
+                    &tf,
+                    face_normals,
+                )?))
+            }
         }
         "rectangle" | "cube" => {
             let data = if obj.plugin == "cube" {
@@ -103,12 +147,12 @@ pub fn build_shape(obj: &Object) -> Result<ShapeParts<'_>> {
                 mesh::rectangle()
             };
             let tf = transform(obj, "to_world")?;
-            ShapeKind::Mesh(to_world_mesh(obj, data, &tf, false)?)
+            Some(ShapeKind::Mesh(to_world_mesh(obj, data, &tf, false)?))
         }
         "disk" => {
             let tf = transform(obj, "to_world")?;
             disk = Some(Disk::new(tf).ok_or_else(|| obj.error("the disk's to_world flattens it"))?);
-            ShapeKind::Disk(0)
+            Some(ShapeKind::Disk(0))
         }
         other => {
             return Err(obj.error(format!(
@@ -130,11 +174,23 @@ pub fn build_shape(obj: &Object) -> Result<ShapeParts<'_>> {
                 format!("{} has more than one {}", obj.describe(), c.obj.kind),
             ));
         }
+        if kind.is_none() {
+            return Err(InputError::at(
+                &c.loc,
+                format!(
+                    "every face of {} has an MTL material (use_mtl), so its {} would apply to \
+                     nothing",
+                    obj.describe(),
+                    c.obj.kind
+                ),
+            ));
+        }
         c.mark_used();
         *slot = Some(c);
     }
     Ok(ShapeParts {
         kind,
+        mtl_parts,
         disk,
         flip_normals,
         bsdf,

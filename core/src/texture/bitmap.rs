@@ -1,0 +1,159 @@
+//! Image textures (`bitmap`), looked up as Mitsuba 3 does (measured against it by
+//! `scripts/mitsuba_texture_eval.py`).
+//!
+//! Scene parameters (`<texture type="bitmap">`, read by the driver): `filename` (string,
+//! required: PNG, EXR, PFM or RGBE `.hdr`, relative to the scene file), `raw` (boolean, default
+//! false: when false, PNG values are sRGB-decoded to linear; EXR, PFM and `.hdr` are linear
+//! already), `filter_type` (`bilinear` (default) | `nearest`), `wrap_mode` (`repeat` (default) |
+//! `mirror` | `clamp`), `to_uv` (transform, see [`UvTransform`]).
+//!
+//! Conventions: the first (top) image row is at `v = 0`; pixel `(i, j)` covers
+//! `[i/W, (i+1)/W) x [j/H, (j+1)/H)` with its value at the centre, so bilinear filtering
+//! interpolates between centres at `((i + 1/2)/W, (j + 1/2)/H)` and `nearest` takes the pixel
+//! the point falls in. The wrap mode applies to pixel indices: `repeat` tiles, `mirror`
+//! reflects at every edge (a period of `2W`), `clamp` repeats the edge pixels. A scalar lookup
+//! ([`Bitmap::eval_1`]) is the luminance of the colour, as in Mitsuba 3.
+use super::to_uv::UvTransform;
+use crate::Color;
+use alloc::sync::Arc;
+use glam::Vec2;
+
+/// How pixel values are reconstructed between pixel centres.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FilterType {
+    /// The value of the pixel the point falls in.
+    Nearest,
+    /// Bilinear interpolation of the four nearest pixel centres.
+    Bilinear,
+}
+
+/// How pixel indices outside the image are mapped back in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WrapMode {
+    /// Tile the image.
+    Repeat,
+    /// Tile the image, mirrored every other time.
+    Mirror,
+    /// Extend the edge pixels.
+    Clamp,
+}
+
+/// A pixel index from a floored coordinate, kept far from integer overflow.
+#[inline]
+fn index(v: f32) -> i64 {
+    const LIMIT: f32 = (1u64 << 40) as f32;
+    v.clamp(-LIMIT, LIMIT) as i64
+}
+
+/// Rec. 709 luminance weights (Mitsuba 3's `luminance`).
+const LUMINANCE: Color = Color::new(0.212_671, 0.715_160, 0.072_169);
+
+/// An RGB image (linear values, top row first) with its lookup settings.
+#[derive(Clone, Debug)]
+pub struct Bitmap {
+    width: usize,
+    height: usize,
+    pixels: Arc<[Color]>,
+    filter: FilterType,
+    wrap: WrapMode,
+    to_uv: UvTransform,
+    max: f32,
+}
+
+impl Bitmap {
+    /// A texture from `width * height` linear pixels, top row first (a `Vec`, or an `Arc`
+    /// shared with other textures of the same image); `None` when the size is zero or does not
+    /// match.
+    pub fn new(
+        width: usize,
+        height: usize,
+        pixels: impl Into<Arc<[Color]>>,
+        filter: FilterType,
+        wrap: WrapMode,
+        to_uv: UvTransform,
+    ) -> Option<Self> {
+        let pixels: Arc<[Color]> = pixels.into();
+        if width == 0 || height == 0 || width.checked_mul(height)? != pixels.len() {
+            return None;
+        }
+        let max = pixels.iter().fold(0.0f32, |m, p| m.max(p.max_element()));
+        Some(Bitmap {
+            width,
+            height,
+            pixels,
+            filter,
+            wrap,
+            to_uv,
+            max,
+        })
+    }
+
+    /// Image size in pixels `(width, height)`.
+    pub fn size(&self) -> (usize, usize) {
+        (self.width, self.height)
+    }
+
+    fn wrap_index(&self, i: i64, n: usize) -> usize {
+        let n = n as i64;
+        let k = match self.wrap {
+            WrapMode::Repeat => i.rem_euclid(n),
+            WrapMode::Clamp => i.clamp(0, n - 1),
+            WrapMode::Mirror => {
+                let p = i.rem_euclid(2 * n);
+                if p < n {
+                    p
+                } else {
+                    2 * n - 1 - p
+                }
+            }
+        };
+        k as usize
+    }
+
+    fn texel(&self, x: i64, y: i64) -> Color {
+        let (x, y) = (
+            self.wrap_index(x, self.width),
+            self.wrap_index(y, self.height),
+        );
+        self.pixels[y * self.width + x]
+    }
+
+    /// The colour at surface coordinates `uv` (a non-finite `uv` reads as `(0, 0)`, a huge one
+    /// as if clamped to +-1e9).
+    pub fn eval(&self, uv: Vec2) -> Color {
+        let uv = self.to_uv.apply(uv);
+        let uv = if uv.is_finite() {
+            // Beyond 2^30 an f32 has no fractional digits left: nothing is lost.
+            uv.clamp(Vec2::splat(-1.0e9), Vec2::splat(1.0e9))
+        } else {
+            Vec2::ZERO
+        };
+        let (w, h) = (self.width as f32, self.height as f32);
+        match self.filter {
+            FilterType::Nearest => {
+                let x = index(libm::floorf(uv.x * w));
+                let y = index(libm::floorf(uv.y * h));
+                self.texel(x, y)
+            }
+            FilterType::Bilinear => {
+                let (x, y) = (uv.x * w - 0.5, uv.y * h - 0.5);
+                let (xf, yf) = (libm::floorf(x), libm::floorf(y));
+                let (fx, fy) = (x - xf, y - yf);
+                let (x0, y0) = (index(xf), index(yf));
+                let top = self.texel(x0, y0) * (1.0 - fx) + self.texel(x0 + 1, y0) * fx;
+                let bottom = self.texel(x0, y0 + 1) * (1.0 - fx) + self.texel(x0 + 1, y0 + 1) * fx;
+                top * (1.0 - fy) + bottom * fy
+            }
+        }
+    }
+
+    /// The luminance at `uv` (what Mitsuba 3 uses for scalar parameters such as weights).
+    pub fn eval_1(&self, uv: Vec2) -> f32 {
+        self.eval(uv).dot(LUMINANCE)
+    }
+
+    /// The largest channel value of any pixel.
+    pub fn max_value(&self) -> f32 {
+        self.max
+    }
+}
