@@ -160,4 +160,5 @@ pub fn worst_against_reference(
     })
 }
 
+pub mod bsdf;
 pub mod cap;

@@ -9,13 +9,13 @@
 //! chi-square test uses 1e6 samples with its own seed (its index in [`chi2_cases`]), each
 //! t-test 1e6 samples. Controls (not counted) show that a 2%-off density, a blend choosing with
 //! the wrong probability and a 1%-off albedo are rejected.
-use std::path::Path;
 
 use glam::{Vec2, Vec3};
 use tessera::stats::{
     sampled_albedo, sidak_alpha, t_test_mean, BsdfChi2, Chi2Result, Moments, Pcg32, SphereChi2,
 };
 use tessera_core::bsdf::Bsdf;
+use tessera_tests::bsdf::{build_bsdf_xml, load_bsdf_xml};
 
 /// Chi-square cases (11) plus albedo t-tests (11).
 const N_TESTS: usize = 22;
@@ -24,28 +24,13 @@ fn alpha() -> f64 {
     sidak_alpha(0.01, N_TESTS)
 }
 
-/// Builds the first `<bsdf>` of a scene snippet (relative paths resolve in `scenes/`).
 fn bsdf(xml: &str) -> Bsdf {
-    let text = format!("<scene version=\"3.0.0\">{xml}</scene>");
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/inline.xml");
-    let root = tessera::xml::load_str(&text, &path, &[]).unwrap_or_else(|e| panic!("{e}"));
-    let child = root
-        .children_of(tessera::xml::Kind::Bsdf)
-        .next()
-        .expect("a bsdf");
-    tessera::scene::build_bsdf_object(&child.obj).unwrap_or_else(|e| panic!("{xml}: {e}"))
+    load_bsdf_xml(xml)
 }
 
 /// The load error of a snippet.
 fn error_of(xml: &str) -> String {
-    let text = format!("<scene version=\"3.0.0\">\n{xml}\n</scene>");
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/inline.xml");
-    let root = match tessera::xml::load_str(&text, &path, &[]) {
-        Ok(r) => r,
-        Err(e) => return e.to_string(),
-    };
-    let child = root.children_of(tessera::xml::Kind::Bsdf).next().unwrap();
-    match tessera::scene::build_bsdf_object(&child.obj) {
+    match build_bsdf_xml(xml, false) {
         Ok(_) => panic!("{xml}: loaded"),
         Err(e) => e.to_string(),
     }
@@ -406,7 +391,7 @@ fn bad_parameters_are_located_errors() {
     ];
     for (xml, marker, needle) in cases {
         let col = xml.find(marker).expect("marker") + 1;
-        let at = format!("inline.xml:2:{col}: ");
+        let at = format!("case.xml:2:{col}: ");
         let e = error_of(xml);
         assert!(
             e.contains(&at) && e.contains(needle),

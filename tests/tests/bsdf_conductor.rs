@@ -9,13 +9,10 @@
 //! control that must fail: a 5% wrong roughness for the chi-square test, the wrong metal for the
 //! Mitsuba sample table, a refraction for the reciprocity check.
 
-use std::path::Path;
-
 use glam::{Vec2, Vec3};
-use tessera::error::InputError;
 use tessera::stats::{sampled_albedo, sidak_alpha, BsdfChi2, Chi2Result, Pcg32, SphereChi2};
-use tessera::xml::Kind;
 use tessera_core::bsdf::Bsdf;
+use tessera_tests::bsdf::{assert_bad_bsdf, dir_at, load_bsdf_xml};
 
 const UV: Vec2 = Vec2::new(0.25, 0.75);
 
@@ -30,22 +27,12 @@ const CHI2: BsdfChi2 = BsdfChi2 {
     samples: 500_000,
 };
 
-/// Builds the single `<bsdf>` given in Mitsuba 3 syntax.
-fn bsdf(xml: &str) -> Result<Bsdf, InputError> {
-    let text = format!("<scene version=\"3.0.0\">\n{xml}\n</scene>\n");
-    let root = tessera::xml::load_str(&text, Path::new("case.xml"), &[])?;
-    let child = root.children_of(Kind::Bsdf).next().expect("a <bsdf>");
-    tessera::scene::build_bsdf_object(&child.obj)
-}
-
 fn load(xml: &str) -> Bsdf {
-    bsdf(xml).unwrap_or_else(|e| panic!("{e}\n{xml}"))
+    load_bsdf_xml(xml)
 }
 
-/// A unit direction at polar angle `deg` (degrees) and azimuth `phi`.
 fn dir(deg: f32, phi: f32) -> Vec3 {
-    let t = deg.to_radians();
-    Vec3::new(t.sin() * phi.cos(), t.sin() * phi.sin(), t.cos())
+    dir_at(deg, phi)
 }
 
 fn check_chi2(name: &str, r: &Chi2Result) {
@@ -337,27 +324,8 @@ fn defaults_and_spellings_match_mitsuba() {
     }
 }
 
-/// `props` inside `<bsdf type="plugin">` must be rejected with one line that contains
-/// `words` and names `case.xml` at the tag of the property `prop` (or, when no property has that
-/// name, where the text `prop` starts).
 fn bad(plugin: &str, props: &str, prop: &str, words: &str) {
-    let xml = format!("<bsdf type=\"{plugin}\">\n{props}\n</bsdf>");
-    let err = match bsdf(&xml) {
-        Ok(_) => panic!("accepted: {xml}"),
-        Err(e) => e.to_string(),
-    };
-    println!("{err}");
-    let text = format!("<scene version=\"3.0.0\">\n{xml}\n</scene>\n");
-    let at = match text.find(&format!("name=\"{prop}\"")) {
-        Some(i) => text[..i].rfind('<').unwrap(),
-        None => text.find(prop).expect("prop in the text"),
-    };
-    let line = text[..at].matches('\n').count() + 1;
-    let col = at - text[..at].rfind('\n').map_or(0, |i| i + 1) + 1;
-    let want = format!("case.xml:{line}:{col}:");
-    assert!(err.contains(&want), "{err:?} does not start at {want}");
-    assert!(err.contains(words), "{err:?} does not say {words:?}");
-    assert!(!err.contains('\n'), "{err:?}");
+    assert_bad_bsdf(plugin, props, prop, words)
 }
 
 #[test]

@@ -6,17 +6,15 @@
 //! The chi-square tests (listed in [`N_CHI2`]) run at the Šidák-corrected level of 0.01 over
 //! the file; test `k` uses seed `k`. Run with `--nocapture` to see every p-value.
 
-use std::path::Path;
-
 use glam::{Vec2, Vec3};
 use tessera::error::InputError;
 use tessera::stats::{sampled_albedo, sidak_alpha, BsdfChi2, Pcg32, SphereChi2};
-use tessera::xml::Kind;
 use tessera_core::bsdf::fresnel::fresnel_dielectric;
 use tessera_core::bsdf::microfacet::MicrofacetKind;
 use tessera_core::bsdf::plastic_common::fresnel_diffuse_reflectance;
 use tessera_core::bsdf::{Bsdf, RoughPlastic};
 use tessera_core::texture::Texture;
+use tessera_tests::bsdf::build_bsdf_xml;
 
 /// Chi-square tests in this file: 5 `plastic` cases, 11 `roughplastic` cases.
 const N_CHI2: usize = 16;
@@ -27,12 +25,8 @@ fn alpha() -> f64 {
     sidak_alpha(0.01, N_CHI2)
 }
 
-/// Builds the `<bsdf>` written in `xml` (Mitsuba 3 syntax).
 fn build(xml: &str) -> Result<Bsdf, InputError> {
-    let text = format!("<scene version=\"3.0.0\">\n{xml}\n</scene>");
-    let root = tessera::xml::load_str(&text, Path::new("inline.xml"), &[])?;
-    let child = root.children_of(Kind::Bsdf).next().expect("a <bsdf>");
-    tessera::scene::build_bsdf_object(&child.obj)
+    build_bsdf_xml(xml, false)
 }
 
 fn bsdf(xml: &str) -> Bsdf {

@@ -6,15 +6,13 @@
 //! the Šidák-corrected level of 0.01 over their group; run with `--nocapture` to see the
 //! p-values.
 
-use std::path::Path;
-
 use glam::{Vec2, Vec3};
 use tessera::error::InputError;
 use tessera::stats::{
     sampled_albedo, sidak_alpha, t_test_mean, BsdfChi2, Moments, Pcg32, SphereChi2,
 };
-use tessera::xml::Kind;
 use tessera_core::bsdf::Bsdf;
+use tessera_tests::bsdf::build_bsdf_xml;
 
 /// Chi-square tests of `microfacet` sampling.
 const N_CHI2: usize = 7;
@@ -23,12 +21,8 @@ const N_TTESTS: usize = 24;
 
 const UV: Vec2 = Vec2::new(0.25, 0.75);
 
-/// Builds the `<bsdf>` written in `xml` inside a Nori `<scene>` (camelCase names, `<color>`).
 fn build(xml: &str) -> Result<Bsdf, InputError> {
-    let text = format!("<scene>\n{xml}\n</scene>");
-    let root = tessera::xml::load_str(&text, Path::new("inline.xml"), &[])?;
-    let child = root.children_of(Kind::Bsdf).next().expect("a <bsdf>");
-    tessera::scene::build_bsdf_object(&child.obj)
+    build_bsdf_xml(xml, true)
 }
 
 fn bsdf(xml: &str) -> Bsdf {

@@ -1,0 +1,59 @@
+//! Helpers shared by the material tests: build one `<bsdf>` from XML text, directions by angle,
+//! and the located-error check for bad parameters.
+use glam::Vec3;
+use tessera::error::InputError;
+use tessera::xml::Kind;
+use tessera_core::bsdf::Bsdf;
+
+/// Builds the first `<bsdf>` of `xml`, written inside `<scene version="3.0.0">` (Mitsuba 3) or,
+/// with `nori`, inside a plain `<scene>` (Nori's camelCase names). The text is read as if it
+/// were `scenes/case.xml`, so relative paths resolve in `scenes/`; the snippet starts on line 2.
+pub fn build_bsdf_xml(xml: &str, nori: bool) -> Result<Bsdf, InputError> {
+    let open = if nori {
+        "<scene>"
+    } else {
+        "<scene version=\"3.0.0\">"
+    };
+    let text = format!("{open}\n{xml}\n</scene>\n");
+    let path = crate::scenes_dir().join("case.xml");
+    let root = tessera::xml::load_str(&text, &path, &[])?;
+    let child = root
+        .children_of(Kind::Bsdf)
+        .next()
+        .ok_or_else(|| root.error("no <bsdf> in the snippet"))?;
+    tessera::scene::build_bsdf_object(&child.obj)
+}
+
+/// [`build_bsdf_xml`] for Mitsuba 3 syntax, panicking with the error.
+pub fn load_bsdf_xml(xml: &str) -> Bsdf {
+    build_bsdf_xml(xml, false).unwrap_or_else(|e| panic!("{e}\n{xml}"))
+}
+
+/// The unit direction at polar angle `deg` degrees and azimuth `phi` radians.
+pub fn dir_at(deg: f32, phi: f32) -> Vec3 {
+    let t = deg.to_radians();
+    Vec3::new(t.sin() * phi.cos(), t.sin() * phi.sin(), t.cos())
+}
+
+/// `props` inside `<bsdf type="plugin">` (Mitsuba 3 syntax) must be rejected with one line that
+/// contains `words` and points at `case.xml:line:column` of the tag of the property `prop` (or,
+/// when no property has that name, where the text `prop` starts).
+pub fn assert_bad_bsdf(plugin: &str, props: &str, prop: &str, words: &str) {
+    let xml = format!("<bsdf type=\"{plugin}\">\n{props}\n</bsdf>");
+    let err = match build_bsdf_xml(&xml, false) {
+        Ok(_) => panic!("accepted: {xml}"),
+        Err(e) => e.to_string(),
+    };
+    println!("{err}");
+    let text = format!("<scene version=\"3.0.0\">\n{xml}\n</scene>\n");
+    let at = match text.find(&format!("name=\"{prop}\"")) {
+        Some(i) => text[..i].rfind('<').unwrap(),
+        None => text.find(prop).expect("prop in the text"),
+    };
+    let line = text[..at].matches('\n').count() + 1;
+    let col = at - text[..at].rfind('\n').map_or(0, |i| i + 1) + 1;
+    let want = format!("case.xml:{line}:{col}:");
+    assert!(err.contains(&want), "{err:?} does not start at {want}");
+    assert!(err.contains(words), "{err:?} does not say {words:?}");
+    assert!(!err.contains('\n'), "{err:?}");
+}
