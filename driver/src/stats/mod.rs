@@ -12,6 +12,8 @@
 //!   pdf, on equal-area cells of the unit sphere.
 //! - [`bsdf_chi2`]: the same for a BSDF's `sample` against its `pdf`, delta components by
 //!   their discrete probabilities, with per-sample `eval`/`pdf` consistency checks.
+//! - [`albedo_ttest`]: Student t-test of a BSDF's mean sampled weight (its directional albedo)
+//!   against a reference, as Nori's BSDF `ttest` does.
 //! - [`plane_chi2`]: the same for a sampler of the unit square `[0,1]^2` against its area pdf.
 //! - [`ttest`]: Student's one-sample t-test of a mean against a reference value (from samples
 //!   or from accumulated sums), and Welch's two-sample t-test.
@@ -23,6 +25,7 @@
 //! sides: correct samplers and means pass, and wrong pdfs (by as little as 2%) and biased means
 //! are rejected.
 
+pub mod albedo_ttest;
 pub mod bsdf_chi2;
 pub mod chi2;
 pub mod plane_chi2;
@@ -31,6 +34,7 @@ pub mod rng;
 pub mod sphere_chi2;
 pub mod ttest;
 
+pub use albedo_ttest::{albedo_t_test, luminance, AlbedoReference, AlbedoTTest};
 pub use bsdf_chi2::{sampled_albedo, BsdfChi2};
 pub use chi2::{chi2_test, sidak_alpha, Chi2Result, DEFAULT_MIN_EXPECTED, PDF_INTEGRAL_TOLERANCE};
 pub use plane_chi2::PlaneChi2;
