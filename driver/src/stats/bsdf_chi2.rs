@@ -15,7 +15,9 @@
 //!   comes up.
 //!
 //! One Pearson test over all cells and delta bins then checks the smooth shape and the split
-//! between components at once. The smooth pdf integral plus the delta probabilities must be 1
+//! between components at once. Where only one outcome is possible (a mirror, total internal
+//! reflection) there is nothing to compare: the test passes when every sample took that outcome
+//! and its claimed probability is 1, and fails otherwise. The smooth pdf integral plus the delta probabilities must be 1
 //! (at most 1 if sampling ever failed).
 //!
 //! Each smooth sample must also be consistent with `eval` and `pdf` at its direction:
@@ -28,7 +30,7 @@ use std::collections::HashMap;
 use std::f64::consts::TAU;
 
 use glam::{Vec2, Vec3};
-use tessera_core::bsdf::Bsdf;
+use tessera_core::bsdf::{Bsdf, BsdfSample};
 
 use super::chi2::{chi2_test, Chi2Result, DEFAULT_MIN_EXPECTED};
 use super::quadrature::grid_probabilities;
@@ -75,6 +77,22 @@ impl BsdfChi2 {
     /// # Panics
     /// If any bin count or `samples` is zero.
     pub fn run(&self, bsdf: &Bsdf, wi: Vec3, uv: Vec2, seed: u64) -> Chi2Result {
+        self.run_with(
+            |u1, u2| bsdf.sample(wi, u1, u2, uv),
+            |wo| bsdf.pdf(wi, wo, uv),
+            |wo| bsdf.eval(wi, wo, uv),
+            seed,
+        )
+    }
+
+    /// [`BsdfChi2::run`] for any sampler with its claimed `pdf` and `eval` (at a fixed `wi`).
+    pub fn run_with(
+        &self,
+        mut sample: impl FnMut(f32, Vec2) -> Option<BsdfSample>,
+        pdf_of: impl Fn(Vec3) -> f32,
+        eval_of: impl Fn(Vec3) -> tessera_core::Color,
+        seed: u64,
+    ) -> Chi2Result {
         let (nt, np) = (self.theta_bins, self.phi_bins);
         assert!(
             nt > 0 && np > 0 && self.samples > 0,
@@ -89,7 +107,7 @@ impl BsdfChi2 {
         for k in 0..self.samples {
             let u1 = rng.next_f32();
             let u2 = rng.next_vec2();
-            let Some(s) = bsdf.sample(wi, u1, u2, uv) else {
+            let Some(s) = sample(u1, u2) else {
                 failures += 1;
                 continue;
             };
@@ -126,8 +144,8 @@ impl BsdfChi2 {
                 bin.count += 1.0;
                 continue;
             }
-            let pdf = bsdf.pdf(wi, s.wo, uv);
-            let f = bsdf.eval(wi, s.wo, uv);
+            let pdf = pdf_of(s.wo);
+            let f = eval_of(s.wo);
             let fw = s.weight * s.pdf;
             let ok = rel_close(s.pdf, pdf, 1e-3, 1e-6)
                 && (0..3).all(|c| rel_close(fw[c], f[c], 1e-3, 1e-6));
@@ -152,7 +170,7 @@ impl BsdfChi2 {
         let mut density = |z: f64, phi: f64| {
             let r = (1.0 - z * z).max(0.0).sqrt();
             let w = Vec3::new((r * phi.cos()) as f32, (r * phi.sin()) as f32, z as f32);
-            let v = f64::from(bsdf.pdf(wi, w, uv));
+            let v = f64::from(pdf_of(w));
             if !(v.is_finite() && v >= 0.0) && bad_pdf.is_none() {
                 bad_pdf = Some((w, v));
             }
@@ -172,7 +190,28 @@ impl BsdfChi2 {
             expected.push(f64::from(b.prob) * n);
             total += f64::from(b.prob);
         }
-        let mut result = chi2_test(&observed, &expected, DEFAULT_MIN_EXPECTED);
+        // A single possible outcome (a mirror; total internal reflection) leaves nothing for a
+        // chi-square to compare: the test is then that every sample took it and that its
+        // claimed probability is 1 (the integral check below).
+        let outcomes = expected.iter().filter(|&&e| e > 0.0).count();
+        let single = outcomes == 1
+            && failures == 0
+            && observed
+                .iter()
+                .zip(&expected)
+                .all(|(&o, &e)| (e > 0.0) == (o > 0.0) && (e == 0.0 || o == n));
+        let mut result = if single {
+            Chi2Result {
+                statistic: 0.0,
+                dof: 0,
+                p_value: 1.0,
+                pooled_cells: 0,
+                pdf_integral: None,
+                message: None,
+            }
+        } else {
+            chi2_test(&observed, &expected, DEFAULT_MIN_EXPECTED)
+        };
         result.check_pdf_integral(total, failures);
         if inconsistent * 10_000 > self.samples {
             result.fail_with(format!(
@@ -223,6 +262,25 @@ mod tests {
         assert!(r.passes(0.01), "{r}");
         let (m, _) = sampled_albedo(&diffuse(0.7), wi, Vec2::ZERO, 1000, 2);
         assert!((m - Vec3::splat(0.7)).abs().max_element() < 1e-6);
+    }
+
+    #[test]
+    fn a_single_outcome_passes_only_with_probability_one() {
+        let mirror = |prob: f32| {
+            move |wi: Vec3| tessera_core::bsdf::BsdfSample {
+                wo: Vec3::new(-wi.x, -wi.y, wi.z),
+                weight: Vec3::ONE,
+                pdf: prob,
+                delta: true,
+                eta: 1.0,
+            }
+        };
+        let wi = Vec3::new(0.3, 0.2, 0.9).normalize();
+        let t = BsdfChi2::default();
+        let ok = t.run_with(|_, _| Some(mirror(1.0)(wi)), |_| 0.0, |_| Vec3::ZERO, 1);
+        assert!(ok.passes(0.01), "{ok}");
+        let bad = t.run_with(|_, _| Some(mirror(0.9)(wi)), |_| 0.0, |_| Vec3::ZERO, 1);
+        assert!(!bad.passes(0.01), "{bad}");
     }
 
     #[test]
