@@ -18,7 +18,7 @@ pub struct Cli {
 pub enum Command {
     /// Render a scene file to one or more images.
     Render(render::RenderArgs),
-    /// Run a Nori-style test file (`<test type="ttest">`) and report each case.
+    /// Run a Nori-style test file (`ttest` with scenes or BSDFs, `chi2test`) and report each case.
     Test(test::TestArgs),
 }
 
