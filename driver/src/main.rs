@@ -24,6 +24,7 @@ fn main() {
     let code = match cli.command {
         Command::Render(args) => tessera::cli::render::run(&args),
         Command::Test(args) => tessera::cli::test::run(&args),
+        Command::Bench(args) => tessera::cli::bench::run(&args),
     };
     std::process::exit(code);
 }
