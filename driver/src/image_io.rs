@@ -60,7 +60,7 @@ pub fn to_srgb8(img: &RgbImage) -> Vec<u8> {
     img.data.iter().flat_map(|p| p.map(srgb8)).collect()
 }
 
-fn temp_path(path: &Path) -> PathBuf {
+pub(crate) fn temp_path(path: &Path) -> PathBuf {
     let name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())

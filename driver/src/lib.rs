@@ -1,3 +1,4 @@
+pub mod bench;
 pub mod cli;
 pub mod error;
 pub mod image_io;

@@ -11,12 +11,20 @@ fn main() {
             e.exit()
         }
         Err(e) => {
-            // One line, like every other bad-input message: clap's first line says it all.
+            // One line, like every other bad-input message: clap's first paragraph (which may
+            // list missing arguments on the lines after the first) joined into one.
             let text = e.render().to_string();
-            let first = text
+            let first: Vec<&str> = text
                 .lines()
-                .find(|l| !l.trim().is_empty())
-                .unwrap_or("error: bad usage");
+                .skip_while(|l| l.trim().is_empty())
+                .take_while(|l| !l.trim().is_empty())
+                .map(str::trim)
+                .collect();
+            let first = if first.is_empty() {
+                "error: bad usage".to_string()
+            } else {
+                first.join(" ")
+            };
             eprintln!("{first} (see tessera --help)");
             std::process::exit(tessera::error::InputError::EXIT_CODE);
         }
@@ -24,6 +32,7 @@ fn main() {
     let code = match cli.command {
         Command::Render(args) => tessera::cli::render::run(&args),
         Command::Test(args) => tessera::cli::test::run(&args),
+        Command::Bench(args) => tessera::cli::bench::run(&args),
     };
     std::process::exit(code);
 }

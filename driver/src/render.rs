@@ -96,6 +96,41 @@ pub fn render(
     opts: &RenderOptions,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Framebuffer {
+    render_tiles(scene, integrator, opts, None, progress)
+}
+
+/// Adds the samples `opts.samples` of every pixel to the sums already in `fb`, as if the render
+/// had gone on: rendering `0..a` and then `a..b` into the same buffer gives the same bits as
+/// rendering `0..b` at once (each pixel continues its own sum, in sample-index order).
+///
+/// # Panics
+/// If `fb` is not the scene's size (a caller's mistake: start from `Framebuffer::new`).
+pub fn render_into(
+    scene: &Scene,
+    integrator: &Integrator,
+    opts: &RenderOptions,
+    fb: &mut Framebuffer,
+    progress: &mut dyn FnMut(usize, usize),
+) {
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    assert!(
+        (fb.width, fb.height) == (w, h) && fb.pixels.len() == w as usize * h as usize,
+        "render_into: the framebuffer is {}x{}, the scene {w}x{h}",
+        fb.width,
+        fb.height
+    );
+    *fb = render_tiles(scene, integrator, opts, Some(&fb.pixels), progress);
+}
+
+/// The tile loop: each tile's accumulators start from `start` (or empty) and take the samples
+/// `opts.samples` in order.
+fn render_tiles(
+    scene: &Scene,
+    integrator: &Integrator,
+    opts: &RenderOptions,
+    start: Option<&[PixelAccum]>,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Framebuffer {
     let (w, h) = (scene.camera.width, scene.camera.height);
     let list = tiles(w, h, opts.tile_size);
     let mut fb = Framebuffer::new(w, h);
@@ -109,7 +144,18 @@ pub fn render(
             s.spawn(move || loop {
                 let i = cursor.fetch_add(1, Ordering::Relaxed);
                 let Some(t) = list.get(i) else { break };
-                let mut acc = vec![PixelAccum::default(); ((t.x1 - t.x0) * (t.y1 - t.y0)) as usize];
+                let mut acc = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
+                for y in t.y0..t.y1 {
+                    match start {
+                        Some(p) => {
+                            let row = y as usize * w as usize;
+                            acc.extend_from_slice(&p[row + t.x0 as usize..row + t.x1 as usize]);
+                        }
+                        None => {
+                            acc.resize(acc.len() + (t.x1 - t.x0) as usize, PixelAccum::default())
+                        }
+                    }
+                }
                 let mut k = 0;
                 for y in t.y0..t.y1 {
                     for x in t.x0..t.x1 {

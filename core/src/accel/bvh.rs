@@ -60,6 +60,12 @@ impl Bvh {
         (Bvh { nodes }, items.iter().map(|it| it.index).collect())
     }
 
+    /// Bytes the hierarchy's nodes occupy (not counting the primitive array it indexes, nor
+    /// spare vector capacity).
+    pub fn memory_bytes(&self) -> usize {
+        core::mem::size_of_val(self.nodes.as_slice())
+    }
+
     /// Bounds of the whole hierarchy.
     pub fn bounds(&self) -> Aabb {
         self.nodes.first().map_or(Aabb::EMPTY, |n| n.bounds)

@@ -1,4 +1,5 @@
 //! Command-line interface: argument definitions and the subcommands.
+pub mod bench;
 pub mod render;
 pub mod test;
 
@@ -20,6 +21,9 @@ pub enum Command {
     Render(render::RenderArgs),
     /// Run a Nori-style test file (`ttest` with scenes or BSDFs, `chi2test`) and report each case.
     Test(test::TestArgs),
+    /// Measure error against time in waves of 1, 2, 4, ... spp against a reference image; write
+    /// a CSV report and a log-log plot (or plot an existing report).
+    Bench(bench::BenchArgs),
 }
 
 /// Parses `name=value` for `-D`.

@@ -1,0 +1,191 @@
+//! Inputs for Tessera's micro-benchmarks (`cargo bench -p tessera-benches`): procedural meshes
+//! of a chosen size, scenes holding them, and batches of coherent and incoherent rays. Nothing
+//! is read from disk, so the benchmarks need no big files in the repository.
+use glam::{Vec2, Vec3};
+use tessera_core::bsdf::{Bsdf, Diffuse};
+use tessera_core::camera::{Filter, FovAxis, Perspective};
+use tessera_core::geometry::{Mesh, Shape, ShapeKind};
+use tessera_core::math::{Ray, Transform};
+use tessera_core::scene::{Scene, SceneParts};
+use tessera_core::texture::Texture;
+
+/// A small deterministic generator (SplitMix64).
+pub struct Rng(pub u64);
+
+impl Rng {
+    /// Uniform in [0, 1).
+    pub fn f(&mut self) -> f32 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
+    }
+
+    /// Uniform on the unit sphere.
+    pub fn dir(&mut self) -> Vec3 {
+        let z = 1.0 - 2.0 * self.f();
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        let phi = std::f32::consts::TAU * self.f();
+        Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    }
+}
+
+/// Triangles of a geodesic sphere of frequency `n`: each icosahedron face cut into n^2.
+pub fn geodesic_triangles(n: u32) -> usize {
+    20 * (n as usize) * (n as usize)
+}
+
+/// The smallest geodesic frequency with at least `triangles` triangles.
+pub fn frequency_for(triangles: usize) -> u32 {
+    let mut n = 1;
+    while geodesic_triangles(n) < triangles {
+        n += 1;
+    }
+    n
+}
+
+/// A bumpy geodesic sphere of radius about 1 with `20 n^2` triangles: the icosahedron's faces
+/// are subdivided `n` times per edge, projected to the sphere and displaced radially by a smooth
+/// function of position, so the mesh is not a perfect sphere (the BVH sees uneven boxes).
+/// Vertices on face edges are duplicated (each face is its own grid), which costs memory but
+/// does not change what rays hit.
+pub fn bumpy_sphere(n: u32) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+    let t = (1.0 + 5f32.sqrt()) / 2.0;
+    let v = [
+        Vec3::new(-1.0, t, 0.0),
+        Vec3::new(1.0, t, 0.0),
+        Vec3::new(-1.0, -t, 0.0),
+        Vec3::new(1.0, -t, 0.0),
+        Vec3::new(0.0, -1.0, t),
+        Vec3::new(0.0, 1.0, t),
+        Vec3::new(0.0, -1.0, -t),
+        Vec3::new(0.0, 1.0, -t),
+        Vec3::new(t, 0.0, -1.0),
+        Vec3::new(t, 0.0, 1.0),
+        Vec3::new(-t, 0.0, -1.0),
+        Vec3::new(-t, 0.0, 1.0),
+    ];
+    const FACES: [[usize; 3]; 20] = [
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    let displace = |p: Vec3| {
+        let d = p.normalize();
+        let r = 1.0
+            + 0.08 * (9.0 * d.x).sin() * (7.0 * d.y).sin() * (5.0 * d.z).sin()
+            + 0.03 * (23.0 * d.x + 17.0 * d.z).sin();
+        d * r
+    };
+    let n = n.max(1);
+    let mut positions = Vec::new();
+    let mut indices = Vec::new();
+    for f in FACES {
+        let (a, b, c) = (v[f[0]], v[f[1]], v[f[2]]);
+        let base = positions.len() as u32;
+        // Grid point (i, j), i + j <= n, at a + (b - a) i/n + (c - a) j/n.
+        let id = |i: u32, j: u32| base + i * (n + 1) - i * i.saturating_sub(1) / 2 + j;
+        let mut count = 0;
+        for i in 0..=n {
+            for j in 0..=(n - i) {
+                let p = a + (b - a) * (i as f32 / n as f32) + (c - a) * (j as f32 / n as f32);
+                positions.push(displace(p));
+                debug_assert_eq!(id(i, j), base + count);
+                count += 1;
+            }
+        }
+        for i in 0..n {
+            for j in 0..(n - i) {
+                indices.push([id(i, j), id(i + 1, j), id(i, j + 1)]);
+                if i + j + 1 < n {
+                    indices.push([id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
+                }
+            }
+        }
+    }
+    (positions, indices)
+}
+
+/// Scene parts holding one mesh (diffuse, no lights).
+pub fn mesh_parts(positions: Vec<Vec3>, indices: Vec<[u32; 3]>) -> SceneParts {
+    SceneParts {
+        shapes: vec![Shape {
+            kind: ShapeKind::Mesh(Mesh::new(positions, vec![], vec![], indices)),
+            bsdf: 0,
+            emitter: None,
+            flip_normals: false,
+        }],
+        disks: vec![],
+        bsdfs: vec![Bsdf::Diffuse(Diffuse {
+            reflectance: Texture::constant(0.5),
+        })],
+        emitters: vec![],
+        camera: Perspective::new(Transform::IDENTITY, 4, 4, 40.0, FovAxis::X, 0.01, 1e4),
+        filter: Filter::Box,
+        light_selection: Default::default(),
+    }
+}
+
+/// A scene holding a bumpy sphere with at least `triangles` triangles.
+pub fn sphere_scene(triangles: usize) -> Scene {
+    let (p, i) = bumpy_sphere(frequency_for(triangles));
+    Scene::new(mesh_parts(p, i)).expect("a valid mesh scene")
+}
+
+/// Coherent primary rays: a pinhole 3.5 units away looking at the sphere, `side x side` rays in
+/// scanline order over a field of view that just frames it (most rays hit).
+pub fn camera_rays(side: u32) -> Vec<Ray> {
+    let o = Vec3::new(0.0, 0.0, 3.5);
+    let half = 0.28;
+    let mut out = Vec::with_capacity((side * side) as usize);
+    for y in 0..side {
+        for x in 0..side {
+            let p = Vec2::new(
+                (x as f32 + 0.5) / side as f32 * 2.0 - 1.0,
+                1.0 - (y as f32 + 0.5) / side as f32 * 2.0,
+            ) * half;
+            out.push(Ray::new(o, Vec3::new(p.x, p.y, -1.0).normalize()));
+        }
+    }
+    out
+}
+
+/// Incoherent rays: origins uniform in the cube [-1.2, 1.2]^3 (mostly inside the sphere, like
+/// bounces), directions uniform on the sphere; every ray has its own direction and origin.
+pub fn random_rays(count: usize, seed: u64) -> Vec<Ray> {
+    let mut rng = Rng(seed);
+    (0..count)
+        .map(|_| {
+            let o = Vec3::new(rng.f(), rng.f(), rng.f()) * 2.4 - Vec3::splat(1.2);
+            Ray::new(o, rng.dir())
+        })
+        .collect()
+}
+
+/// Bytes of the acceleration structure per triangle: (BVH nodes, primitive array with the
+/// triangles' corners inline).
+pub fn bytes_per_triangle(scene: &Scene) -> (f64, f64) {
+    let n = scene.prims.len().max(1) as f64;
+    (
+        scene.bvh.memory_bytes() as f64 / n,
+        std::mem::size_of_val(scene.prims.as_slice()) as f64 / n,
+    )
+}

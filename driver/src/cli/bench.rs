@@ -1,0 +1,235 @@
+//! `tessera bench`: error against time for one or more integrators (see `crate::bench`), or
+//! (`--plot-only`) just the plot of an existing report, e.g. one with Mitsuba 3 rows appended by
+//! `scripts/mitsuba_bench.py`.
+use crate::bench::plot::write_plot;
+use crate::bench::{curves, read_csv, run_waves, time_to_target, write_csv, Row, WaveLimits};
+use crate::image_io::{read_image, Format};
+use crate::render::RenderOptions;
+use crate::scene::load_scene;
+use clap::Args;
+use std::path::{Path, PathBuf};
+
+/// Arguments of `tessera bench`.
+#[derive(Args, Debug, Clone)]
+pub struct BenchArgs {
+    /// The scene file (Mitsuba 3 or Nori XML).
+    #[arg(required_unless_present = "plot_only")]
+    pub scene: Option<PathBuf>,
+    /// The converged reference image (EXR or PFM, the scene's size).
+    #[arg(long, required_unless_present = "plot_only")]
+    pub reference: Option<PathBuf>,
+    /// Integrators to measure, comma separated (default: the scene file's).
+    #[arg(long, value_delimiter = ',')]
+    pub integrators: Vec<String>,
+    /// Stop a curve before a wave that would end after this many seconds.
+    #[arg(long, default_value_t = 60.0)]
+    pub max_seconds: f64,
+    /// Stop a curve at this many samples per pixel.
+    #[arg(long, default_value_t = 1 << 20)]
+    pub max_spp: u64,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Seed (default: the sampler's `seed`, else 0).
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Longest path (-1 = unbounded), overriding the scene file.
+    #[arg(long, allow_hyphen_values = true)]
+    pub max_depth: Option<i64>,
+    /// Tile edge in pixels.
+    #[arg(long, default_value_t = 32)]
+    pub tile_size: u32,
+    /// The relMSE whose time to reach is printed per integrator.
+    #[arg(long, default_value_t = 0.01)]
+    pub target_relmse: f64,
+    /// Override a scene `<default>`: -D name=value.
+    #[arg(short = 'D', value_parser = super::parse_define)]
+    pub defines: Vec<(String, String)>,
+    /// The CSV report to write.
+    #[arg(short = 'o', long = "output", required_unless_present = "plot_only")]
+    pub output: Option<PathBuf>,
+    /// Also draw the log-log plot of relMSE against seconds to this PNG.
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+    /// Render nothing: read this report and draw `--plot` from it.
+    #[arg(long, requires = "plot", conflicts_with_all = ["scene", "reference", "output"])]
+    pub plot_only: Option<PathBuf>,
+    /// Title of the plot (default: the scene or report file name).
+    #[arg(long)]
+    pub title: Option<String>,
+    /// No line per wave.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+fn usage(msg: impl std::fmt::Display) -> i32 {
+    eprintln!("error: {msg}");
+    crate::error::InputError::EXIT_CODE
+}
+
+fn file_name(p: &Path) -> String {
+    p.file_name().map_or_else(
+        || p.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
+}
+
+/// Prints each curve's time to reach the target relMSE.
+fn print_times(rows: &[Row], target: f64) {
+    for (name, c) in curves(rows) {
+        let threads = c.first().map_or(0, |r| r.threads);
+        println!(
+            "{name} ({threads} threads): time to relMSE {target}: {}",
+            time_to_target(&c, target)
+        );
+    }
+}
+
+/// Runs the command; returns the exit code.
+pub fn run(args: &BenchArgs) -> i32 {
+    if let Some(p) = &args.plot {
+        if Format::from_path(p) != Some(Format::Png) {
+            return usage(format!("{}: the plot must be a .png file", p.display()));
+        }
+    }
+    if !(args.target_relmse > 0.0 && args.target_relmse.is_finite()) {
+        return usage(format!(
+            "--target-relmse must be positive, found {}",
+            args.target_relmse
+        ));
+    }
+    if let Some(csv) = &args.plot_only {
+        return plot_only(args, csv);
+    }
+    let (Some(scene_path), Some(ref_path), Some(output)) =
+        (&args.scene, &args.reference, &args.output)
+    else {
+        return usage("give SCENE, --reference and -o (or --plot-only REPORT --plot PNG)");
+    };
+    if !(args.max_seconds > 0.0) {
+        return usage(format!(
+            "--max-seconds must be positive, found {}",
+            args.max_seconds
+        ));
+    }
+    if args.max_spp == 0 {
+        return usage("--max-spp must be at least 1");
+    }
+    if args.tile_size == 0 || args.tile_size > 4096 {
+        return usage(format!(
+            "--tile-size must be between 1 and 4096, found {}",
+            args.tile_size
+        ));
+    }
+    let threads = args
+        .threads
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    if threads == 0 {
+        return usage("--threads must be at least 1");
+    }
+    let reference = match read_image(ref_path) {
+        Ok(r) => r,
+        Err(e) => return usage(e),
+    };
+    let mut loaded = match load_scene(scene_path, &args.defines) {
+        Ok(l) => l,
+        Err(e) => return usage(e),
+    };
+    for w in &loaded.warnings {
+        eprintln!("warning: {w}");
+    }
+    let (w, h) = (loaded.scene.camera.width, loaded.scene.camera.height);
+    if (reference.width, reference.height) != (w, h) {
+        return usage(format!(
+            "{}: the reference is {}x{} but the scene renders {w}x{h}",
+            ref_path.display(),
+            reference.width,
+            reference.height
+        ));
+    }
+    let names: Vec<String> = if args.integrators.is_empty() {
+        vec![loaded.integrator_spec.name.clone()]
+    } else {
+        args.integrators.clone()
+    };
+    // Check every name before spending time on any.
+    for n in &names {
+        if let Err(e) = loaded.set_integrator(Some(n), args.max_depth) {
+            return usage(e);
+        }
+    }
+    let opts = RenderOptions {
+        samples: 0..1,
+        threads,
+        tile_size: args.tile_size,
+        seed: args.seed.unwrap_or(loaded.seed),
+    };
+    let limits = WaveLimits {
+        max_seconds: args.max_seconds,
+        max_spp: args.max_spp,
+    };
+    let mut rows = Vec::new();
+    for n in &names {
+        if let Err(e) = loaded.set_integrator(Some(n), args.max_depth) {
+            return usage(e);
+        }
+        let (r, _) = run_waves(
+            &loaded.scene,
+            &loaded.integrator,
+            n,
+            &opts,
+            &reference,
+            limits,
+            &mut |row| {
+                if !args.quiet {
+                    eprintln!(
+                        "{n}: {:>7} spp {:>9.3} s {:>7.3} M samples/s  relMSE {:.4e}  RMSE {:.4e}  MAE {:.4e}",
+                        row.spp,
+                        row.seconds,
+                        row.samples_per_second / 1e6,
+                        row.errors.relmse,
+                        row.errors.rmse,
+                        row.errors.mae
+                    );
+                }
+            },
+        );
+        rows.extend(r);
+    }
+    print_times(&rows, args.target_relmse);
+    let mut code = 0;
+    if let Err(e) = write_csv(output, &rows) {
+        eprintln!("error: {e}");
+        code = 1;
+    }
+    if let Some(p) = &args.plot {
+        let title = args
+            .title
+            .clone()
+            .unwrap_or_else(|| format!("{} ({w}x{h}, {threads} threads)", file_name(scene_path)));
+        if let Err(e) = write_plot(p, &rows, &title, Some(args.target_relmse)) {
+            eprintln!("error: {e}");
+            code = 1;
+        }
+    }
+    code
+}
+
+fn plot_only(args: &BenchArgs, csv: &Path) -> i32 {
+    let Some(png) = &args.plot else {
+        return usage("--plot-only needs --plot OUT.png");
+    };
+    let rows = match read_csv(csv) {
+        Ok(r) => r,
+        Err(e) => return usage(e),
+    };
+    print_times(&rows, args.target_relmse);
+    let title = args.title.clone().unwrap_or_else(|| file_name(csv));
+    match write_plot(png, &rows, &title, Some(args.target_relmse)) {
+        Ok(()) => 0,
+        Err(e) => {
+            eprintln!("error: {e}");
+            1
+        }
+    }
+}
