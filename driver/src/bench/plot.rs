@@ -3,6 +3,8 @@
 use super::text::{Anchor, TextPainter};
 use super::{curves, Row};
 use crate::image_io::temp_path;
+use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+use image::{ExtendedColorType, ImageEncoder};
 use std::path::Path;
 use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Stroke, StrokeDash, Transform};
 
@@ -265,13 +267,25 @@ pub fn write_plot(
 ) -> Result<(), String> {
     let err = |e: String| format!("{}: cannot write plot: {e}", path.display());
     let pm = render_plot(rows, title, target).ok_or_else(|| err("cannot draw".into()))?;
-    // The background is opaque, so premultiplied bytes are the straight RGBA bytes.
-    let buf = image::RgbaImage::from_raw(pm.width(), pm.height(), pm.data().to_vec())
-        .ok_or_else(|| err("image size mismatch".into()))?;
+    // The background is opaque, so premultiplied bytes are the straight RGB bytes; alpha is
+    // dropped and the PNG compressed hard (the plots are committed).
+    let rgb: Vec<u8> = pm
+        .data()
+        .chunks_exact(4)
+        .flat_map(|p| [p[0], p[1], p[2]])
+        .collect();
     let tmp = temp_path(path);
-    let result = buf
-        .save_with_format(&tmp, image::ImageFormat::Png)
+    let result = std::fs::File::create(&tmp)
         .map_err(|e| e.to_string())
+        .and_then(|f| {
+            let enc = PngEncoder::new_with_quality(
+                std::io::BufWriter::new(f),
+                CompressionType::Best,
+                FilterType::Adaptive,
+            );
+            enc.write_image(&rgb, pm.width(), pm.height(), ExtendedColorType::Rgb8)
+                .map_err(|e| e.to_string())
+        })
         .and_then(|_| std::fs::rename(&tmp, path).map_err(|e| e.to_string()));
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
