@@ -77,9 +77,9 @@ fn power_of_ten(t: &TextPainter, pm: &mut Pixmap, e: i32, x: f32, y: f32, anchor
         Anchor::Right => x - w,
     };
     let black = Color::from_rgba8(20, 20, 20, 255);
-    t.draw(pm, "10", x0, y, big, Anchor::Left, black);
+    t.draw(pm, "10", (x0, y), big, Anchor::Left, black);
     let x1 = x0 + t.width("10", big);
-    t.draw(pm, &exp, x1, y - 0.45 * big, small, Anchor::Left, black);
+    t.draw(pm, &exp, (x1, y - 0.45 * big), small, Anchor::Left, black);
 }
 
 /// Draws the report's curves; `target` adds a dashed horizontal line at that relMSE.
@@ -89,11 +89,7 @@ pub fn render_plot(rows: &[Row], title: &str, target: Option<f64>) -> Option<Pix
     let text = TextPainter::new();
     let curves = curves(rows);
     let (x0, x1) = decades(rows.iter().map(|r| r.seconds));
-    let (y0, y1) = decades(
-        rows.iter()
-            .map(|r| r.errors.relmse)
-            .chain(target.into_iter()),
-    );
+    let (y0, y1) = decades(rows.iter().map(|r| r.errors.relmse).chain(target));
     let (pl, pr) = (LEFT, WIDTH as f32 - RIGHT);
     let (pt, pb) = (TOP, HEIGHT as f32 - BOTTOM);
     let sx = |s: f64| pl + ((s.log10() - x0 as f64) / (x1 - x0) as f64) as f32 * (pr - pl);
@@ -149,8 +145,7 @@ pub fn render_plot(rows: &[Row], title: &str, target: Option<f64>) -> Option<Pix
             tp.draw(
                 &mut pm,
                 &label,
-                pl + 6.0,
-                sy(t) - 4.0,
+                (pl + 6.0, sy(t) - 4.0),
                 12.0,
                 Anchor::Left,
                 c,
@@ -200,8 +195,7 @@ pub fn render_plot(rows: &[Row], title: &str, target: Option<f64>) -> Option<Pix
     tp.draw(
         &mut pm,
         xlabel,
-        mid,
-        HEIGHT as f32 - 12.0,
+        (mid, HEIGHT as f32 - 12.0),
         15.0,
         Anchor::Center,
         black,
@@ -209,13 +203,12 @@ pub fn render_plot(rows: &[Row], title: &str, target: Option<f64>) -> Option<Pix
     tp.draw(
         &mut pm,
         "relMSE (log)",
-        8.0,
-        pt - 10.0,
+        (8.0, pt - 10.0),
         15.0,
         Anchor::Left,
         black,
     );
-    tp.draw(&mut pm, title, mid, 24.0, 17.0, Anchor::Center, black);
+    tp.draw(&mut pm, title, (mid, 24.0), 17.0, Anchor::Center, black);
 
     // Legend in the top right corner of the plot area, on white.
     let size = 13.0;
@@ -253,7 +246,7 @@ pub fn render_plot(rows: &[Row], title: &str, target: Option<f64>) -> Option<Pix
             &solid(r, g, b),
             &wide,
         );
-        tp.draw(&mut pm, name, lx + 38.0, y, size, Anchor::Left, black);
+        tp.draw(&mut pm, name, (lx + 38.0, y), size, Anchor::Left, black);
     }
     Some(pm)
 }
