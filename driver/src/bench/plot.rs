@@ -3,6 +3,8 @@
 use super::text::{Anchor, TextPainter};
 use super::{curves, Row};
 use crate::image_io::temp_path;
+use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+use image::{ExtendedColorType, ImageEncoder};
 use std::path::Path;
 use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Stroke, StrokeDash, Transform};
 
@@ -75,9 +77,9 @@ fn power_of_ten(t: &TextPainter, pm: &mut Pixmap, e: i32, x: f32, y: f32, anchor
         Anchor::Right => x - w,
     };
     let black = Color::from_rgba8(20, 20, 20, 255);
-    t.draw(pm, "10", x0, y, big, Anchor::Left, black);
+    t.draw(pm, "10", (x0, y), big, Anchor::Left, black);
     let x1 = x0 + t.width("10", big);
-    t.draw(pm, &exp, x1, y - 0.45 * big, small, Anchor::Left, black);
+    t.draw(pm, &exp, (x1, y - 0.45 * big), small, Anchor::Left, black);
 }
 
 /// Draws the report's curves; `target` adds a dashed horizontal line at that relMSE.
@@ -87,11 +89,7 @@ pub fn render_plot(rows: &[Row], title: &str, target: Option<f64>) -> Option<Pix
     let text = TextPainter::new();
     let curves = curves(rows);
     let (x0, x1) = decades(rows.iter().map(|r| r.seconds));
-    let (y0, y1) = decades(
-        rows.iter()
-            .map(|r| r.errors.relmse)
-            .chain(target.into_iter()),
-    );
+    let (y0, y1) = decades(rows.iter().map(|r| r.errors.relmse).chain(target));
     let (pl, pr) = (LEFT, WIDTH as f32 - RIGHT);
     let (pt, pb) = (TOP, HEIGHT as f32 - BOTTOM);
     let sx = |s: f64| pl + ((s.log10() - x0 as f64) / (x1 - x0) as f64) as f32 * (pr - pl);
@@ -147,8 +145,7 @@ pub fn render_plot(rows: &[Row], title: &str, target: Option<f64>) -> Option<Pix
             tp.draw(
                 &mut pm,
                 &label,
-                pl + 6.0,
-                sy(t) - 4.0,
+                (pl + 6.0, sy(t) - 4.0),
                 12.0,
                 Anchor::Left,
                 c,
@@ -198,8 +195,7 @@ pub fn render_plot(rows: &[Row], title: &str, target: Option<f64>) -> Option<Pix
     tp.draw(
         &mut pm,
         xlabel,
-        mid,
-        HEIGHT as f32 - 12.0,
+        (mid, HEIGHT as f32 - 12.0),
         15.0,
         Anchor::Center,
         black,
@@ -207,13 +203,12 @@ pub fn render_plot(rows: &[Row], title: &str, target: Option<f64>) -> Option<Pix
     tp.draw(
         &mut pm,
         "relMSE (log)",
-        8.0,
-        pt - 10.0,
+        (8.0, pt - 10.0),
         15.0,
         Anchor::Left,
         black,
     );
-    tp.draw(&mut pm, title, mid, 24.0, 17.0, Anchor::Center, black);
+    tp.draw(&mut pm, title, (mid, 24.0), 17.0, Anchor::Center, black);
 
     // Legend in the top right corner of the plot area, on white.
     let size = 13.0;
@@ -251,7 +246,7 @@ pub fn render_plot(rows: &[Row], title: &str, target: Option<f64>) -> Option<Pix
             &solid(r, g, b),
             &wide,
         );
-        tp.draw(&mut pm, name, lx + 38.0, y, size, Anchor::Left, black);
+        tp.draw(&mut pm, name, (lx + 38.0, y), size, Anchor::Left, black);
     }
     Some(pm)
 }
@@ -265,13 +260,25 @@ pub fn write_plot(
 ) -> Result<(), String> {
     let err = |e: String| format!("{}: cannot write plot: {e}", path.display());
     let pm = render_plot(rows, title, target).ok_or_else(|| err("cannot draw".into()))?;
-    // The background is opaque, so premultiplied bytes are the straight RGBA bytes.
-    let buf = image::RgbaImage::from_raw(pm.width(), pm.height(), pm.data().to_vec())
-        .ok_or_else(|| err("image size mismatch".into()))?;
+    // The background is opaque, so premultiplied bytes are the straight RGB bytes; alpha is
+    // dropped and the PNG compressed hard (the plots are committed).
+    let rgb: Vec<u8> = pm
+        .data()
+        .chunks_exact(4)
+        .flat_map(|p| [p[0], p[1], p[2]])
+        .collect();
     let tmp = temp_path(path);
-    let result = buf
-        .save_with_format(&tmp, image::ImageFormat::Png)
+    let result = std::fs::File::create(&tmp)
         .map_err(|e| e.to_string())
+        .and_then(|f| {
+            let enc = PngEncoder::new_with_quality(
+                std::io::BufWriter::new(f),
+                CompressionType::Best,
+                FilterType::Adaptive,
+            );
+            enc.write_image(&rgb, pm.width(), pm.height(), ExtendedColorType::Rgb8)
+                .map_err(|e| e.to_string())
+        })
         .and_then(|_| std::fs::rename(&tmp, path).map_err(|e| e.to_string()));
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);

@@ -51,17 +51,17 @@ impl TextPainter {
         self.font.as_scaled(PxScale::from(size)).ascent() * 0.72
     }
 
-    /// Draws `s` with its baseline at `y`, anchored at `x`, in `color`.
+    /// Draws `s` with its baseline at `at.1`, anchored at `at.0`, in `color`.
     pub fn draw(
         &self,
         pixmap: &mut Pixmap,
         s: &str,
-        x: f32,
-        y: f32,
+        at: (f32, f32),
         size: f32,
         anchor: Anchor,
         color: Color,
     ) {
+        let (x, y) = at;
         let scale = PxScale::from(size);
         let f = self.font.as_scaled(scale);
         let mut caret = match anchor {
@@ -92,7 +92,7 @@ impl TextPainter {
                 if px < 0 || py < 0 || px >= w || py >= h {
                     return;
                 }
-                let k = (cov.clamp(0.0, 1.0) * alpha) as f32;
+                let k = cov.clamp(0.0, 1.0) * alpha;
                 let i = (py * w + px) as usize;
                 let d = pixels[i];
                 let dst = [d.red(), d.green(), d.blue(), d.alpha()];

@@ -106,7 +106,7 @@ pub fn run(args: &BenchArgs) -> i32 {
     else {
         return usage("give SCENE, --reference and -o (or --plot-only REPORT --plot PNG)");
     };
-    if !(args.max_seconds > 0.0) {
+    if args.max_seconds.is_nan() || args.max_seconds <= 0.0 {
         return usage(format!(
             "--max-seconds must be positive, found {}",
             args.max_seconds

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Error against time, Tessera against Mitsuba 3, on the benchmark scenes at 128x128 (box filter,
+# the scene files' max_depth 8): writes docs/bench/NAME.csv (Tessera's rows, then Mitsuba's)
+# and docs/bench/NAME.png, and prints each curve's time to relMSE 0.01.
+#
+#   scripts/bench_scenes.sh [THREADS [MAX_SECONDS [OUTDIR]]]      (defaults: 2, 60, docs/bench)
+#
+# Needs a release build (cargo build --release), Mitsuba 3 (scripts/install_mitsuba.sh) and, for
+# llvm_ad_rgb, scripts/install_llvm.sh. Set VARIANTS=scalar_rgb to skip the LLVM variant.
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$ROOT"
+THREADS="${1:-2}"
+MAX="${2:-60}"
+OUT="${3:-docs/bench}"
+PYTHON="${PYTHON:-python3}"
+VARIANTS="${VARIANTS:-scalar_rgb,llvm_ad_rgb}"
+TESSERA="${TESSERA:-target/release/tessera}"
+mkdir -p "$OUT"
+for NAME in cbox veach_mis; do
+    REF="scenes/refs/${NAME}_128x128_mitsuba.exr"
+    "$TESSERA" bench "scenes/$NAME.xml" -D res=128 -D rfilter=box --reference "$REF" \
+        --integrators path_mis --threads "$THREADS" --max-seconds "$MAX" -o "$OUT/$NAME.csv"
+    "$PYTHON" scripts/mitsuba_bench.py "scenes/$NAME.xml" -D res=128 -D rfilter=box \
+        --reference "$REF" --variant "$VARIANTS" --threads "$THREADS" --max-seconds "$MAX" \
+        -o "$OUT/$NAME.csv"
+    "$TESSERA" bench --plot-only "$OUT/$NAME.csv" --plot "$OUT/$NAME.png" \
+        --title "$NAME.xml, 128x128, max_depth 8, $THREADS threads"
+done
