@@ -132,6 +132,24 @@ impl Microfacet {
         (pdf > 0.0 && pdf.is_finite()).then_some((m, pdf))
     }
 
+    /// A direction for a glossy lobe over a diffuse base: with probability `p_glossy` (chosen
+    /// by `u1`) the mirror of `wi` about a sampled microfacet normal, else cosine-weighted.
+    #[inline]
+    pub fn sample_glossy_or_diffuse(
+        &self,
+        wi: Vec3,
+        u1: f32,
+        u2: Vec2,
+        p_glossy: f32,
+    ) -> Option<Vec3> {
+        if u1 < p_glossy {
+            let (m, _) = self.sample(wi, u2)?;
+            Some(super::fresnel::reflect(wi, m))
+        } else {
+            Some(crate::sampling::warp::square_to_cosine_hemisphere(u2))
+        }
+    }
+
     /// All normals by `D(m) cos theta_m`: slopes drawn from the isotropic unit-roughness slope
     /// density, then stretched by the roughness.
     fn sample_all(&self, u: Vec2) -> Vec3 {

@@ -60,6 +60,24 @@ pub struct BsdfSample {
     pub eta: f32,
 }
 
+impl BsdfSample {
+    /// A sample of a smooth (non-delta) reflection toward `wo`, weighted `f / pdf`; `None`
+    /// unless `wo` is in the upper hemisphere and `pdf` is positive.
+    #[inline]
+    pub fn smooth_reflection(wo: Vec3, f: Color, pdf: f32) -> Option<BsdfSample> {
+        if !(wo.z > 0.0 && pdf > 0.0) {
+            return None;
+        }
+        Some(BsdfSample {
+            wo,
+            weight: f / pdf,
+            pdf,
+            delta: false,
+            eta: 1.0,
+        })
+    }
+}
+
 /// Surface scattering models.
 #[derive(Clone, Debug)]
 pub enum Bsdf {

@@ -18,7 +18,7 @@
 //! with `nonlinear`), `R_int` the coating's internal diffuse reflectance; both are computed when
 //! the material is built ([`super::plastic_common::rough_tables`]). The coating is chosen with
 //! probability proportional to `(1 - T(cos theta_i)) w` against `T(cos theta_i) (1 - w)`.
-use super::fresnel::{fresnel_dielectric, reflect};
+use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetKind};
 use super::plastic_common::{
     coating_probability, internal_scattering, lerp_table, rough_tables, specular_sampling_weight,
@@ -26,7 +26,7 @@ use super::plastic_common::{
 };
 use super::BsdfSample;
 use crate::math::INV_PI;
-use crate::sampling::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
+use crate::sampling::warp::cosine_hemisphere_pdf;
 use crate::texture::Texture;
 use crate::Color;
 use alloc::boxed::Box;
@@ -145,26 +145,8 @@ impl RoughPlastic {
             return None;
         }
         let ps = coating_probability(1.0 - self.transmittance(wi.z), self.spec_weight)?;
-        let wo = if u1 < ps {
-            let (m, _) = self.distr.sample(wi, u2)?;
-            reflect(wi, m)
-        } else {
-            square_to_cosine_hemisphere(u2)
-        };
-        if !(wo.z > 0.0) {
-            return None;
-        }
-        let pdf = self.pdf(wi, wo, uv);
-        if !(pdf > 0.0) {
-            return None;
-        }
-        Some(BsdfSample {
-            wo,
-            weight: self.eval(wi, wo, uv) / pdf,
-            pdf,
-            delta: false,
-            eta: 1.0,
-        })
+        let wo = self.distr.sample_glossy_or_diffuse(wi, u1, u2, ps)?;
+        BsdfSample::smooth_reflection(wo, self.eval(wi, wo, uv), self.pdf(wi, wo, uv))
     }
 
     /// Both components are smooth.

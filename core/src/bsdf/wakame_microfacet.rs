@@ -12,11 +12,11 @@
 //! and the rational Smith approximation. Sampling picks the specular lobe with probability `ks`
 //! (a half vector by `D(h) cos theta_h`, reflected) and the cosine lobe otherwise, so
 //! `pdf = ks D(h) cos theta_h / (4 h.wo) + (1 - ks) cos theta_o / pi`.
-use super::fresnel::{fresnel_dielectric, reflect};
+use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetKind};
 use super::BsdfSample;
 use crate::math::INV_PI;
-use crate::sampling::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
+use crate::sampling::warp::cosine_hemisphere_pdf;
 use crate::Color;
 use glam::{Vec2, Vec3};
 
@@ -89,26 +89,8 @@ impl WakameMicrofacet {
         if !(wi.z > 0.0) {
             return None;
         }
-        let wo = if u1 < self.ks {
-            let (m, _) = self.distr.sample(wi, u2)?;
-            reflect(wi, m)
-        } else {
-            square_to_cosine_hemisphere(u2)
-        };
-        if !(wo.z > 0.0) {
-            return None;
-        }
-        let pdf = self.pdf(wi, wo, uv);
-        if !(pdf > 0.0) {
-            return None;
-        }
-        Some(BsdfSample {
-            wo,
-            weight: self.eval(wi, wo, uv) / pdf,
-            pdf,
-            delta: false,
-            eta: 1.0,
-        })
+        let wo = self.distr.sample_glossy_or_diffuse(wi, u1, u2, self.ks)?;
+        BsdfSample::smooth_reflection(wo, self.eval(wi, wo, uv), self.pdf(wi, wo, uv))
     }
 
     /// Both lobes are smooth.
