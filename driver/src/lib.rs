@@ -1,3 +1,7 @@
+//! Tessera's driver: scene files, threaded tile rendering, images, the command line, and the
+//! statistics harness. As a library, start from [`load`] / [`load_str`] and [`render`]; see
+//! `driver/examples/render_scene.rs`.
+mod api;
 pub mod bench;
 pub mod cli;
 pub mod error;
@@ -8,3 +12,5 @@ pub mod scene;
 pub mod stats;
 pub mod testfile;
 pub mod xml;
+
+pub use api::{load, load_str, render, Image, Options};
