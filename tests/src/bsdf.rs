@@ -57,3 +57,20 @@ pub fn assert_bad_bsdf(plugin: &str, props: &str, prop: &str, words: &str) {
     assert!(err.contains(words), "{err:?} does not say {words:?}");
     assert!(!err.contains('\n'), "{err:?}");
 }
+
+/// Each `(plugin, property lines, words)` case, written as `<bsdf type="plugin">` with the
+/// properties on its second line (Mitsuba 3 syntax, or Nori's when `nori`), must be rejected with
+/// an error located on line 3 of the case file (the property's line) that contains `words`.
+pub fn assert_cases_rejected_on_their_line(cases: &[(&str, &str, &str)], nori: bool) {
+    for (plugin, prop, needle) in cases {
+        let xml = format!("<bsdf type=\"{plugin}\">\n{prop}</bsdf>");
+        let e = match build_bsdf_xml(&xml, nori) {
+            Ok(_) => panic!("{plugin} with {prop} was accepted"),
+            Err(e) => e,
+        };
+        let text = e.to_string();
+        println!("{text}");
+        assert!(text.contains(needle), "{text}");
+        assert_eq!(e.loc.as_ref().map(|l| l.line), Some(3), "{text}");
+    }
+}
