@@ -162,3 +162,4 @@ pub fn worst_against_reference(
 
 pub mod bsdf;
 pub mod cap;
+pub mod stress;

@@ -87,15 +87,26 @@ impl Sphere {
         (p, err)
     }
 
+    /// Whether `r` is clearly outside: farther from the centre than the radius plus the
+    /// rounding error a point of this sphere carries (that of [`Sphere::project`], which grows
+    /// with the distance of the centre from the origin). A point on the sphere itself (a flipped
+    /// emitting sphere lighting its own inside) is thus never taken for an outside one, at any
+    /// scale or offset. Returns the squared distance to the centre.
+    #[inline]
+    fn outside(&self, r: Vec3) -> Option<f32> {
+        let dist2 = (self.center - r).length_squared();
+        let slack = gamma(16) * (self.radius + self.center.abs().max_element());
+        let limit = self.radius + slack;
+        (dist2 > limit * limit).then_some(dist2)
+    }
+
     /// Samples the part of the sphere visible from `r` uniformly in solid angle (the cone of
-    /// directions toward it); `None` when `r` is inside, where callers sample by area instead.
+    /// directions toward it); `None` when `r` is inside or on the sphere (within rounding), where
+    /// callers sample by area instead.
     pub fn sample_cone(&self, r: Vec3, u: Vec2) -> Option<ConeSample> {
         let dc = self.center - r;
-        let dist2 = dc.length_squared();
+        let dist2 = self.outside(r)?;
         let r2 = self.radius * self.radius;
-        if dist2 <= r2 * (1.0 + 4.0 * gamma(4)) {
-            return None;
-        }
         let dist = libm::sqrtf(dist2);
         let sin2 = r2 / dist2;
         let cos_max = safe_sqrt(1.0 - sin2);
@@ -117,13 +128,11 @@ impl Sphere {
         })
     }
 
-    /// Solid-angle density of [`Sphere::sample_cone`] from `r`, or `None` when `r` is inside.
+    /// Solid-angle density of [`Sphere::sample_cone`] from `r`, or `None` when `r` is inside or
+    /// on the sphere.
     pub fn cone_pdf(&self, r: Vec3) -> Option<f32> {
-        let dist2 = (self.center - r).length_squared();
+        let dist2 = self.outside(r)?;
         let r2 = self.radius * self.radius;
-        if dist2 <= r2 * (1.0 + 4.0 * gamma(4)) {
-            return None;
-        }
         let sin2 = r2 / dist2;
         let cos_max = safe_sqrt(1.0 - sin2);
         Some(1.0 / (2.0 * PI * (sin2 / (1.0 + cos_max))))

@@ -64,6 +64,9 @@ pub fn intersect_triangle(
     if det == 0.0 || !det.is_finite() {
         return None;
     }
+    // The shear's error grows with the unscaled depths (|sx|, |sy| <= 1): keep their bound
+    // before z is divided by d.z, which makes it a ray parameter, not a length.
+    let max_z_len = Vec3::new(a.z, b.z, c.z).abs().max_element();
     a.z *= sz;
     b.z *= sz;
     c.z *= sz;
@@ -84,8 +87,8 @@ pub fn intersect_triangle(
     let delta_z = gamma(3) * max_zt;
     let max_xt = Vec3::new(a.x, b.x, c.x).abs().max_element();
     let max_yt = Vec3::new(a.y, b.y, c.y).abs().max_element();
-    let delta_x = gamma(5) * (max_xt + max_zt);
-    let delta_y = gamma(5) * (max_yt + max_zt);
+    let delta_x = gamma(5) * (max_xt + max_z_len);
+    let delta_y = gamma(5) * (max_yt + max_z_len);
     let delta_e = 2.0 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
     let max_e = Vec3::new(e0, e1, e2).abs().max_element();
     let delta_t =
