@@ -5,6 +5,7 @@ pub mod image_io;
 pub mod mesh;
 pub mod render;
 pub mod scene;
+pub mod split;
 pub mod stats;
 pub mod testfile;
 pub mod xml;
