@@ -1,5 +1,6 @@
 pub mod bench;
 pub mod cli;
+pub mod compare;
 pub mod error;
 pub mod image_io;
 pub mod mesh;
