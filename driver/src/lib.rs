@@ -4,11 +4,13 @@
 mod api;
 pub mod bench;
 pub mod cli;
+pub mod compare;
 pub mod error;
 pub mod image_io;
 pub mod mesh;
 pub mod render;
 pub mod scene;
+pub mod split;
 pub mod stats;
 pub mod testfile;
 pub mod xml;

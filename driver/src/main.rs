@@ -33,6 +33,8 @@ fn main() {
         Command::Render(args) => tessera::cli::render::run(&args),
         Command::Test(args) => tessera::cli::test::run(&args),
         Command::Bench(args) => tessera::cli::bench::run(&args),
+        Command::Compare(args) => tessera::cli::compare::run(&args),
+        Command::Merge(args) => tessera::cli::merge::run(&args),
     };
     std::process::exit(code);
 }

@@ -3,6 +3,11 @@
 //! Each pixel belongs to exactly one tile and each tile to exactly one worker, which adds the
 //! pixel's samples in sample-index order; composition only copies tiles into place. The result
 //! is therefore the same bits for any thread count and any tile size.
+//!
+//! `RenderOptions::pixels` restricts the render to a crop window or a tile set (see
+//! [`PixelSelection`]); the selected pixels get exactly the bits the whole render gives them and
+//! the others stay empty.
+pub use crate::split::selection::PixelSelection;
 use crossbeam_channel::unbounded;
 use std::ops::Range;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -22,6 +27,8 @@ pub struct RenderOptions {
     pub tile_size: u32,
     /// Scene seed.
     pub seed: u64,
+    /// Which pixels to render (the rest of the framebuffer stays empty).
+    pub pixels: PixelSelection,
 }
 
 /// A rectangle of pixels `[x0, x1) x [y0, y1)`.
@@ -88,7 +95,7 @@ pub fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
     out
 }
 
-/// Renders every pixel; `progress(tiles_done, tiles_total)` is called on the calling thread as
+/// Renders the selected pixels (`opts.pixels`); `progress(tiles_done, tiles_total)` is called on the calling thread as
 /// tiles arrive.
 pub fn render(
     scene: &Scene,
@@ -99,7 +106,7 @@ pub fn render(
     render_tiles(scene, integrator, opts, None, progress)
 }
 
-/// Adds the samples `opts.samples` of every pixel to the sums already in `fb`, as if the render
+/// Adds the samples `opts.samples` of every selected pixel to the sums already in `fb`, as if the render
 /// had gone on: rendering `0..a` and then `a..b` into the same buffer gives the same bits as
 /// rendering `0..b` at once (each pixel continues its own sum, in sample-index order).
 ///
@@ -132,8 +139,15 @@ fn render_tiles(
     progress: &mut dyn FnMut(usize, usize),
 ) -> Framebuffer {
     let (w, h) = (scene.camera.width, scene.camera.height);
-    let list = tiles(w, h, opts.tile_size);
-    let mut fb = Framebuffer::new(w, h);
+    let list = opts.pixels.rects(w, h, opts.tile_size);
+    let mut fb = match start {
+        Some(p) => Framebuffer {
+            width: w,
+            height: h,
+            pixels: p.to_vec(),
+        },
+        None => Framebuffer::new(w, h),
+    };
     let cursor = AtomicUsize::new(0);
     let (tx, rx) = unbounded::<(usize, Vec<PixelAccum>)>();
     let threads = opts.threads.max(1).min(list.len().max(1));

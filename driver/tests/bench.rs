@@ -34,6 +34,7 @@ fn opts(samples: std::ops::Range<u64>, threads: usize) -> RenderOptions {
         threads,
         tile_size: 5,
         seed: 3,
+        pixels: Default::default(),
     }
 }
 

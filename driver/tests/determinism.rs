@@ -36,6 +36,7 @@ fn render_with(
         threads,
         tile_size,
         seed,
+        pixels: Default::default(),
     };
     let mut last = (0, 0);
     let fb = render(&l.scene, &l.integrator, &opts, &mut |done, total| {

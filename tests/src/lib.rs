@@ -35,6 +35,7 @@ pub fn render_loaded(l: &LoadedScene, spp: u64, seed: u64) -> Framebuffer {
         threads: 2,
         tile_size: 16,
         seed,
+        pixels: Default::default(),
     };
     render(&l.scene, &l.integrator, &opts, &mut |_, _| {})
 }

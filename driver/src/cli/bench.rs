@@ -163,6 +163,7 @@ pub fn run(args: &BenchArgs) -> i32 {
         threads,
         tile_size: args.tile_size,
         seed: args.seed.unwrap_or(loaded.seed),
+        pixels: Default::default(),
     };
     let limits = WaveLimits {
         max_seconds: args.max_seconds,

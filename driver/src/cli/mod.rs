@@ -1,6 +1,9 @@
 //! Command-line interface: argument definitions and the subcommands.
 pub mod bench;
+pub mod compare;
+pub mod merge;
 pub mod render;
+pub mod split_args;
 pub mod test;
 
 use clap::{Parser, Subcommand};
@@ -24,6 +27,11 @@ pub enum Command {
     /// Measure error against time in waves of 1, 2, 4, ... spp against a reference image; write
     /// a CSV report and a log-log plot (or plot an existing report).
     Bench(bench::BenchArgs),
+    /// Compare an image with a reference: means, RMSE, relMSE, MAE, largest difference; text or
+    /// JSON, optionally a false-colour difference PNG.
+    Compare(compare::CompareArgs),
+    /// Assemble part files (from a render with --crop, --tiles or --sample-range) into one image.
+    Merge(merge::MergeArgs),
 }
 
 /// Parses `name=value` for `-D`.

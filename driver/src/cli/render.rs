@@ -1,6 +1,6 @@
 //! `tessera render`: load, render on worker threads, write every requested output.
 use crate::error::InputError;
-use crate::image_io::{write_image, Format, RgbImage};
+use crate::image_io::Format;
 use crate::render::{render, RenderOptions};
 use crate::scene::load_scene;
 use clap::Args;
@@ -41,6 +41,9 @@ pub struct RenderArgs {
     /// No progress bar.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Render a piece of the image (a part, for `tessera merge`).
+    #[command(flatten)]
+    pub split: super::split_args::SplitArgs,
 }
 
 fn usage(msg: String) -> i32 {
@@ -85,10 +88,19 @@ pub fn run(args: &RenderArgs) -> i32 {
         return usage("--threads must be at least 1".into());
     }
     let opts = RenderOptions {
-        samples: 0..spp,
+        samples: args.split.samples(spp),
         threads,
         tile_size: args.tile_size,
         seed: args.seed.unwrap_or(loaded.seed),
+        pixels: args.split.selection(),
+    };
+    let spp = opts.samples.end - opts.samples.start;
+    let part = match args
+        .split
+        .part_info(&args.scene, &args.defines, &loaded, &opts)
+    {
+        Ok(p) => p,
+        Err(e) => return usage(e),
     };
     let scene = &loaded.scene;
     let bar = if args.quiet {
@@ -107,19 +119,14 @@ pub fn run(args: &RenderArgs) -> i32 {
     });
     bar.finish_and_clear();
     let secs = start.elapsed().as_secs_f64();
-    let img = RgbImage {
-        width: fb.width,
-        height: fb.height,
-        data: fb.rgb(),
-    };
     let mut code = 0;
     for o in &args.outputs {
-        if let Err(e) = write_image(o, &img) {
+        if let Err(e) = super::split_args::write_render_output(o, &fb, part.as_ref()) {
             eprintln!("error: {e}");
             code = 1;
         }
     }
-    let samples = spp as f64 * fb.width as f64 * fb.height as f64;
+    let samples: f64 = fb.pixels.iter().map(|p| (p.count + p.dropped) as f64).sum();
     if !args.quiet || code != 0 {
         eprintln!(
             "{}x{} at {spp} spp in {secs:.2} s ({:.2} M samples/s, {threads} threads); {} non-finite samples dropped",
