@@ -63,6 +63,7 @@ pub fn render(scene: &LoadedScene, options: &Options) -> Image {
             .max(1),
         tile_size: options.tile_size.max(1),
         seed: options.seed.unwrap_or(scene.seed),
+        ..Default::default()
     };
     let fb = crate::render::render(&scene.scene, &scene.integrator, &opts, &mut |_, _| {});
     RgbImage {

@@ -31,6 +31,19 @@ pub struct RenderOptions {
     pub pixels: PixelSelection,
 }
 
+impl Default for RenderOptions {
+    /// One sample per pixel (index 0), one thread, 32-pixel tiles, seed 0, the whole image.
+    fn default() -> Self {
+        RenderOptions {
+            samples: 0..1,
+            threads: 1,
+            tile_size: 32,
+            seed: 0,
+            pixels: PixelSelection::default(),
+        }
+    }
+}
+
 /// A rectangle of pixels `[x0, x1) x [y0, y1)`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Tile {

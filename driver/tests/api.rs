@@ -50,6 +50,7 @@ fn render_from_a_string_matches_the_tile_renderer_for_any_thread_count() {
             threads: 1,
             tile_size: 32,
             seed: 0,
+            ..Default::default()
         },
         &mut |_, _| {},
     );
