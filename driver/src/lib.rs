@@ -1,9 +1,11 @@
 pub mod bench;
 pub mod cli;
+pub mod debug_pixel;
 pub mod error;
 pub mod image_io;
 pub mod mesh;
 pub mod render;
+pub mod render_stats;
 pub mod scene;
 pub mod stats;
 pub mod testfile;

@@ -1,5 +1,6 @@
 //! Command-line interface: argument definitions and the subcommands.
 pub mod bench;
+pub mod probe_args;
 pub mod render;
 pub mod test;
 

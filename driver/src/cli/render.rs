@@ -1,7 +1,8 @@
 //! `tessera render`: load, render on worker threads, write every requested output.
 use crate::error::InputError;
 use crate::image_io::{write_image, Format, RgbImage};
-use crate::render::{render, RenderOptions};
+use crate::render::RenderOptions;
+use crate::render_stats::render_maybe_stats;
 use crate::scene::load_scene;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -14,7 +15,7 @@ pub struct RenderArgs {
     /// The scene file (Mitsuba 3 or Nori XML).
     pub scene: PathBuf,
     /// Output image; the extension picks the format (.exr, .pfm, .png). May be repeated.
-    #[arg(short = 'o', long = "output", required = true)]
+    #[arg(short = 'o', long = "output", required_unless_present = "debug_pixel")]
     pub outputs: Vec<PathBuf>,
     /// Samples per pixel (default: the scene's sampler).
     #[arg(long)]
@@ -41,6 +42,9 @@ pub struct RenderArgs {
     /// No progress bar.
     #[arg(short, long)]
     pub quiet: bool,
+    /// `--stats`, `--debug-pixel`.
+    #[command(flatten)]
+    pub probe: super::probe_args::ProbeArgs,
 }
 
 fn usage(msg: String) -> i32 {
@@ -90,6 +94,9 @@ pub fn run(args: &RenderArgs) -> i32 {
         tile_size: args.tile_size,
         seed: args.seed.unwrap_or(loaded.seed),
     };
+    if let Some(dp) = args.probe.debug_pixel {
+        return crate::debug_pixel::run(&loaded, &opts, dp);
+    }
     let scene = &loaded.scene;
     let bar = if args.quiet {
         ProgressBar::hidden()
@@ -101,10 +108,17 @@ pub fn run(args: &RenderArgs) -> i32 {
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     let start = Instant::now();
-    let fb = render(scene, &loaded.integrator, &opts, &mut |done, total| {
-        bar.set_length(total as u64);
-        bar.set_position(done as u64);
-    });
+    let stats = args.probe.stats;
+    let fb = render_maybe_stats(
+        stats,
+        scene,
+        &loaded.integrator,
+        &opts,
+        &mut |done, total| {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+        },
+    );
     bar.finish_and_clear();
     let secs = start.elapsed().as_secs_f64();
     let img = RgbImage {
