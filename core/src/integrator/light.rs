@@ -110,8 +110,10 @@ pub fn emission_along<P: Probe>(
             for &env in &scene.environments {
                 let e = &scene.emitters[env as usize];
                 let le = e.eval_environment(d);
+                probe.env_lookup();
                 if le != Color::ZERO {
                     let pdf = if with_pdf {
+                        probe.env_lookup();
                         e.pdf_environment(from, d) * scene.emitter_select_pdf(env as usize)
                     } else {
                         0.0
