@@ -1,6 +1,6 @@
 //! The per-sample entry point: one camera sample of one pixel, replayable alone.
 use crate::film::PixelAccum;
-use crate::integrator::Integrator;
+use crate::integrator::{Integrator, NoProbe, Probe};
 use crate::sampling::{IndependentSampler, Sampler};
 use crate::scene::Scene;
 use crate::Color;
@@ -17,11 +17,26 @@ pub fn render_sample(
     y: u32,
     index: u64,
 ) -> Color {
+    render_sample_probed(scene, integrator, seed, x, y, index, &mut NoProbe)
+}
+
+/// [`render_sample`], telling `probe` about the work done: the same value for any probe.
+#[inline]
+pub fn render_sample_probed<P: Probe>(
+    scene: &Scene,
+    integrator: &Integrator,
+    seed: u64,
+    x: u32,
+    y: u32,
+    index: u64,
+    probe: &mut P,
+) -> Color {
     let mut sampler = IndependentSampler::new(seed, x, y, index);
     let offset = scene.filter.sample(sampler.next_2d());
     let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
     let ray = scene.camera.generate_ray(pos);
-    integrator.li(scene, ray, &mut sampler)
+    probe.camera(pos, &ray);
+    integrator.li_probed(scene, ray, &mut sampler, probe)
 }
 
 /// Adds samples `samples` of pixel `(x, y)` to `acc`, in index order.

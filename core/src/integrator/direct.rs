@@ -9,11 +9,13 @@
 //! count of zero, the other strategy gets weight one; a strategy that cannot produce a sample
 //! (a delta light for BSDF sampling, a delta BSDF for emitter sampling) leaves it to the other.
 use super::light::{emission_along, sample_light};
+use super::probe::{NoProbe, PathEnd, Probe, RayKind};
 use super::Heuristic;
 use crate::math::Ray;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
 use crate::Color;
+use glam::Vec3;
 
 /// Direct lighting with a number of samples per strategy.
 #[derive(Clone, Copy, Debug)]
@@ -30,9 +32,26 @@ pub struct DirectIntegrator {
 
 impl DirectIntegrator {
     /// Radiance along `ray` from emitters seen directly and light reflected once.
+    #[inline]
     pub fn li<S: Sampler>(&self, scene: &Scene, ray: Ray, sampler: &mut S) -> Color {
+        self.li_probed(scene, ray, sampler, &mut NoProbe)
+    }
+
+    /// [`DirectIntegrator::li`], telling `probe` about the work done. Skipped without changing
+    /// the value: emitter sampling without emitters or on an all-delta BSDF (its `eval` is
+    /// zero); the BSDF density when no BSDF samples are taken (the weight is then 1); BSDF
+    /// sampling when no emitter can be hit by a ray.
+    pub fn li_probed<S: Sampler, P: Probe>(
+        &self,
+        scene: &Scene,
+        ray: Ray,
+        sampler: &mut S,
+        probe: &mut P,
+    ) -> Color {
         let mut result = Color::ZERO;
         let hit = scene.intersect(&ray);
+        probe.ray(RayKind::Camera);
+        probe.hit(scene, hit.as_ref(), ray.d);
         if !self.hide_emitters {
             emission_along(
                 scene,
@@ -40,47 +59,75 @@ impl DirectIntegrator {
                 ray.d.normalize(),
                 hit.as_ref(),
                 false,
-                |le, _| result += le,
+                probe,
+                |probe, le, _| {
+                    result += le;
+                    probe.emission(le, 1.0, le);
+                },
             );
         }
-        let Some(si) = hit else { return result };
+        let Some(si) = hit else {
+            probe.end(PathEnd::Escaped);
+            return result;
+        };
         let bsdf = &scene.bsdfs[scene.shapes[si.shape as usize].bsdf as usize];
         let wi = si.frame.to_local(si.wi);
         let (ne, nb) = (self.emitter_samples as f32, self.bsdf_samples as f32);
         if scene.features.has_emitters && bsdf.has_smooth() {
+            let want_pdf = self.bsdf_samples > 0;
             for _ in 0..self.emitter_samples {
-                if let Some(ls) = sample_light(scene, &si, bsdf, wi, sampler) {
+                if let Some(ls) = sample_light(scene, &si, bsdf, wi, sampler, want_pdf, probe) {
                     let w = if ls.delta || self.bsdf_samples == 0 {
                         1.0
                     } else {
+                        probe.mis_weight();
                         self.heuristic.weight(ne * ls.light_pdf, nb * ls.bsdf_pdf)
                     };
-                    result += ls.value * (w / ne);
+                    let c = ls.value * (w / ne);
+                    result += c;
+                    probe.light(&ls, w, c);
                 }
             }
         }
         if !scene.features.has_hittable_emitters {
+            probe.end(PathEnd::NothingAhead);
             return result;
         }
         for _ in 0..self.bsdf_samples {
             let u1 = sampler.next_1d();
             let u2 = sampler.next_2d();
             let Some(bs) = bsdf.sample(wi, u1, u2, si.uv) else {
+                probe.bsdf_sample(None, Vec3::ZERO, Color::ZERO);
                 continue;
             };
             let d = si.frame.to_world(bs.wo);
+            probe.bsdf_sample(Some(&bs), d, bs.weight);
             let next = scene.intersect(&si.spawn_ray(d));
+            probe.ray(RayKind::Continuation);
+            probe.hit(scene, next.as_ref(), d);
             // Emitter sampling only runs on smooth BSDFs and cannot produce a delta direction.
             let mis = self.emitter_samples > 0 && !bs.delta && bsdf.has_smooth();
-            emission_along(scene, si.p, d, next.as_ref(), mis, |le, light_pdf| {
-                let w = if mis {
-                    self.heuristic.weight(nb * bs.pdf, ne * light_pdf)
-                } else {
-                    1.0
-                };
-                result += bs.weight * le * (w / nb);
-            });
+            emission_along(
+                scene,
+                si.p,
+                d,
+                next.as_ref(),
+                mis,
+                probe,
+                |probe, le, light_pdf| {
+                    let w = if mis {
+                        probe.mis_weight();
+                        self.heuristic.weight(nb * bs.pdf, ne * light_pdf)
+                    } else {
+                        1.0
+                    };
+                    let c = bs.weight * le * (w / nb);
+                    result += c;
+                    probe.emission(le, w, c);
+                },
+            );
         }
+        probe.end(PathEnd::MaxDepth);
         result
     }
 }

@@ -1,6 +1,7 @@
 //! The two ways an integrator finds light, shared by every integrator: sampling an emitter from a
 //! surface point, and reading what a BSDF-sampled ray ran into. Each returns the densities both
 //! strategies would have had, so the caller applies its own weights.
+use super::probe::{Probe, RayKind};
 use crate::bsdf::Bsdf;
 use crate::emitter::Emitter;
 use crate::geometry::Interaction;
@@ -16,27 +17,35 @@ pub struct LightSample {
     pub value: Color,
     /// Density of emitter sampling for this direction, selection included (solid angle).
     pub light_pdf: f32,
-    /// Density with which the BSDF would have sampled the same direction.
+    /// Density with which the BSDF would have sampled the same direction (0 when the caller
+    /// did not ask for it, or for a delta light).
     pub bsdf_pdf: f32,
     /// Whether the light is a delta distribution (BSDF sampling cannot find it).
     pub delta: bool,
 }
 
 /// Picks a light, samples it from `si`, evaluates the BSDF and traces the shadow ray. `None` when
-/// nothing arrives (no light, back side, blocked, zero BSDF).
+/// nothing arrives (no light, back side, blocked, zero BSDF). The BSDF density is evaluated only
+/// when `want_bsdf_pdf` (callers that do not weigh strategies by density skip its cost; it
+/// feeds no other value, so skipping it changes nothing else).
 #[inline]
-pub fn sample_light<S: Sampler>(
+pub fn sample_light<S: Sampler, P: Probe>(
     scene: &Scene,
     si: &Interaction,
     bsdf: &Bsdf,
     wi: Vec3,
     sampler: &mut S,
+    want_bsdf_pdf: bool,
+    probe: &mut P,
 ) -> Option<LightSample> {
     let (idx, sel_pdf) = scene.select_emitter(sampler.next_1d())?;
     let u = sampler.next_2d();
-    let es = scene.emitters[idx].sample(&scene.emitter_ctx(), si, u)?;
+    let es = scene.emitters[idx].sample(&scene.emitter_ctx(), si, u);
+    probe.emitter_sample(idx, sel_pdf, es.as_ref());
+    let es = es?;
     let wo = si.frame.to_local(es.wo);
     let f = bsdf.eval(wi, wo, si.uv);
+    probe.bsdf_eval(f);
     if f == Color::ZERO {
         return None;
     }
@@ -44,13 +53,18 @@ pub fn sample_light<S: Sampler>(
         Some(t) => si.spawn_ray_to(t),
         None => si.spawn_ray(es.wo),
     };
-    if scene.occluded(&shadow) {
+    let blocked = scene.occluded(&shadow);
+    probe.ray(RayKind::Shadow);
+    probe.shadow(blocked);
+    if blocked {
         return None;
     }
-    let bsdf_pdf = if es.delta {
+    let bsdf_pdf = if es.delta || !want_bsdf_pdf {
         0.0
     } else {
-        bsdf.pdf(wi, wo, si.uv)
+        let pdf = bsdf.pdf(wi, wo, si.uv);
+        probe.bsdf_pdf(pdf);
+        pdf
     };
     Some(LightSample {
         value: f * es.weight / sel_pdf,
@@ -60,18 +74,19 @@ pub fn sample_light<S: Sampler>(
     })
 }
 
-/// Calls `add(le, light_pdf)` for each emitter a ray from `from` along unit direction `d` sees:
+/// Calls `add(probe, le, light_pdf)` for each emitter a ray from `from` along unit direction `d` sees:
 /// the area emitter of the surface it hit, or every environment when it escaped. `light_pdf` is
 /// the density emitter sampling from `from` has for that direction (selection included), or 0
 /// when `with_pdf` is false (callers that do not weigh strategies skip its cost).
 #[inline]
-pub fn emission_along(
+pub fn emission_along<P: Probe>(
     scene: &Scene,
     from: Vec3,
     d: Vec3,
     hit: Option<&Interaction>,
     with_pdf: bool,
-    mut add: impl FnMut(Color, f32),
+    probe: &mut P,
+    mut add: impl FnMut(&mut P, Color, f32),
 ) {
     match hit {
         Some(si) => {
@@ -87,7 +102,7 @@ pub fn emission_along(
                     } else {
                         0.0
                     };
-                    add(le, pdf);
+                    add(probe, le, pdf);
                 }
             }
         }
@@ -95,13 +110,15 @@ pub fn emission_along(
             for &env in &scene.environments {
                 let e = &scene.emitters[env as usize];
                 let le = e.eval_environment(d);
+                probe.env_lookup();
                 if le != Color::ZERO {
                     let pdf = if with_pdf {
+                        probe.env_lookup();
                         e.pdf_environment(from, d) * scene.emitter_select_pdf(env as usize)
                     } else {
                         0.0
                     };
-                    add(le, pdf);
+                    add(probe, le, pdf);
                 }
             }
         }

@@ -3,11 +3,15 @@ mod direct;
 mod light;
 mod mis;
 mod path;
+mod probe;
+mod record;
 
 pub use direct::DirectIntegrator;
 pub use light::{emission_along, sample_light, LightSample};
 pub use mis::{balance_heuristic, power_heuristic, Heuristic};
 pub use path::{PathIntegrator, Strategy};
+pub use probe::{Counters, NoProbe, PathEnd, Probe, RayKind};
+pub use record::{Event, PathRecord};
 
 use crate::math::Ray;
 use crate::sampling::Sampler;
@@ -31,6 +35,21 @@ impl Integrator {
         match self {
             Integrator::Path(p) => p.li(scene, ray, sampler),
             Integrator::Direct(d) => d.li(scene, ray, sampler),
+        }
+    }
+
+    /// [`Integrator::li`], telling `probe` about the work done; the same value for any probe.
+    #[inline]
+    pub fn li_probed<S: Sampler, P: Probe>(
+        &self,
+        scene: &Scene,
+        ray: Ray,
+        sampler: &mut S,
+        probe: &mut P,
+    ) -> Color {
+        match self {
+            Integrator::Path(p) => p.li_probed(scene, ray, sampler, probe),
+            Integrator::Direct(d) => d.li_probed(scene, ray, sampler, probe),
         }
     }
 }

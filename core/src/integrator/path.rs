@@ -18,6 +18,7 @@
 //! - `path_mis` / `path`: the same two strategies combined by the power heuristic (Tessera's own
 //!   parameter `heuristic`, string power|balance, default power).
 use super::light::{emission_along, sample_light};
+use super::probe::{NoProbe, PathEnd, Probe, RayKind};
 use super::Heuristic;
 use crate::math::Ray;
 use crate::sampling::Sampler;
@@ -79,7 +80,7 @@ impl PathIntegrator {
     /// Weight of light found by hitting an emitter; `light_pdf` gives the density with which
     /// emitter sampling at the previous vertex would have produced the same direction.
     #[inline]
-    fn hit_weight(&self, prev: Option<Prev>, light_pdf: f32) -> f32 {
+    fn hit_weight<P: Probe>(&self, prev: Option<Prev>, light_pdf: f32, probe: &mut P) -> f32 {
         let Some(prev) = prev else { return 1.0 };
         if !prev.nee {
             return 1.0;
@@ -88,14 +89,43 @@ impl PathIntegrator {
             Strategy::Bsdf => 1.0,
             Strategy::Emitter => 0.0,
             Strategy::Half => 0.5,
-            Strategy::Mis => self.heuristic.weight(prev.pdf, light_pdf),
+            Strategy::Mis => {
+                probe.mis_weight();
+                self.heuristic.weight(prev.pdf, light_pdf)
+            }
         }
     }
 
     /// Radiance along `ray`.
-    pub fn li<S: Sampler>(&self, scene: &Scene, mut ray: Ray, sampler: &mut S) -> Color {
+    #[inline]
+    pub fn li<S: Sampler>(&self, scene: &Scene, ray: Ray, sampler: &mut S) -> Color {
+        self.li_probed(scene, ray, sampler, &mut NoProbe)
+    }
+
+    /// Radiance along `ray`, telling `probe` about the work done (the value does not depend on
+    /// the probe).
+    ///
+    /// Work a scene does not need is skipped, each skip leaving the value unchanged:
+    /// - no emitter sampling without emitters or at a vertex whose BSDF is all delta (`eval` is
+    ///   zero there, so every such sample would add nothing);
+    /// - no BSDF density unless the strategy weighs by it (`path_mis`);
+    /// - no environment lookups without an environment;
+    /// - no emission lookup where its weight is zero (`path_ems` after a vertex whose emitter
+    ///   sampling could reach the light);
+    /// - no last segment (BSDF sample and ray) when all it could add is light that no ray can
+    ///   hit (only delta lights) or that has weight zero (`path_ems`, non-delta bounce). The
+    ///   last segment is the last use of the sampler in this sample, and each sample has its
+    ///   own stream, so no other value moves.
+    pub fn li_probed<S: Sampler, P: Probe>(
+        &self,
+        scene: &Scene,
+        mut ray: Ray,
+        sampler: &mut S,
+        probe: &mut P,
+    ) -> Color {
         let max_depth = self.max_depth.unwrap_or(u32::MAX);
         if max_depth == 0 {
+            probe.end(PathEnd::MaxDepth);
             return Color::ZERO;
         }
         let features = &scene.features;
@@ -109,62 +139,114 @@ impl PathIntegrator {
         loop {
             let visible = !(depth == 0 && self.hide_emitters);
             let hit = scene.intersect(&ray);
+            probe.ray(if depth == 0 {
+                RayKind::Camera
+            } else {
+                RayKind::Continuation
+            });
+            probe.hit(scene, hit.as_ref(), ray.d);
             // Mitsuba 3's hide_emitters: a camera ray that meets an emitter sees nothing at all.
             if !visible
                 && hit
                     .as_ref()
                     .is_some_and(|si| scene.shapes[si.shape as usize].emitter.is_some())
             {
+                probe.end(PathEnd::HiddenEmitter);
                 break;
             }
-            if visible && (hit.is_some() || features.has_environment) {
+            // path_ems gives light found after a vertex that sampled emitters weight zero.
+            let weighted = !(self.strategy == Strategy::Emitter && prev.is_some_and(|p| p.nee));
+            if visible && weighted && (hit.is_some() || features.has_environment) {
                 let d = ray.d.normalize();
                 let with_pdf = self.strategy == Strategy::Mis && prev.is_some_and(|p| p.nee);
                 let from = prev.map_or(ray.o, |p| p.p);
-                emission_along(scene, from, d, hit.as_ref(), with_pdf, |le, light_pdf| {
-                    result += throughput * le * self.hit_weight(prev, light_pdf);
-                });
+                emission_along(
+                    scene,
+                    from,
+                    d,
+                    hit.as_ref(),
+                    with_pdf,
+                    probe,
+                    |probe, le, light_pdf| {
+                        let w = self.hit_weight(prev, light_pdf, probe);
+                        let c = throughput * le * w;
+                        result += c;
+                        probe.emission(le, w, c);
+                    },
+                );
             }
-            let Some(si) = hit else { break };
+            let Some(si) = hit else {
+                probe.end(PathEnd::Escaped);
+                break;
+            };
             let shape = &scene.shapes[si.shape as usize];
             if depth + 1 >= max_depth {
+                probe.end(PathEnd::MaxDepth);
                 break;
             }
             let bsdf = &scene.bsdfs[shape.bsdf as usize];
             let wi = si.frame.to_local(si.wi);
             let nee = self.strategy != Strategy::Bsdf && features.has_emitters && bsdf.has_smooth();
             if nee {
-                if let Some(ls) = sample_light(scene, &si, bsdf, wi, sampler) {
+                let want_pdf = self.strategy == Strategy::Mis;
+                if let Some(ls) = sample_light(scene, &si, bsdf, wi, sampler, want_pdf, probe) {
                     let w = match (ls.delta, self.strategy) {
                         (true, _) | (_, Strategy::Emitter) => 1.0,
                         (_, Strategy::Half) => 0.5,
-                        _ => self.heuristic.weight(ls.light_pdf, ls.bsdf_pdf),
+                        _ => {
+                            probe.mis_weight();
+                            self.heuristic.weight(ls.light_pdf, ls.bsdf_pdf)
+                        }
                     };
-                    result += throughput * ls.value * w;
+                    let c = throughput * ls.value * w;
+                    result += c;
+                    probe.light(&ls, w, c);
                 }
+            }
+            // The next vertex is the last: it only adds the light its ray hits.
+            let last = depth + 2 >= max_depth;
+            if last && !features.has_hittable_emitters {
+                probe.end(PathEnd::NothingAhead);
+                break;
             }
             let u1 = sampler.next_1d();
             let u2 = sampler.next_2d();
             let Some(bs) = bsdf.sample(wi, u1, u2, si.uv) else {
+                probe.bsdf_sample(None, Vec3::ZERO, throughput);
+                probe.end(PathEnd::BsdfSampleFailed);
                 break;
             };
+            let nee_next = nee && !bs.delta && features.has_hittable_emitters;
+            if last && self.strategy == Strategy::Emitter && nee_next {
+                probe.bsdf_sample(Some(&bs), si.frame.to_world(bs.wo), throughput * bs.weight);
+                probe.end(PathEnd::NothingAhead);
+                break;
+            }
             throughput *= bs.weight;
             eta *= bs.eta;
             prev = Some(Prev {
                 p: si.p,
                 pdf: bs.pdf,
-                nee: nee && !bs.delta && features.has_hittable_emitters,
+                nee: nee_next,
             });
-            ray = si.spawn_ray(si.frame.to_world(bs.wo));
+            let wo = si.frame.to_world(bs.wo);
+            probe.bsdf_sample(Some(&bs), wo, throughput);
+            ray = si.spawn_ray(wo);
             depth += 1;
             if depth >= self.rr_depth {
                 let q = (throughput.max_element() * eta * eta).min(0.95);
-                if !(sampler.next_1d() < q) {
+                let survived = sampler.next_1d() < q;
+                if survived {
+                    throughput /= q;
+                }
+                probe.roulette(q, survived, throughput);
+                if !survived {
+                    probe.end(PathEnd::Roulette);
                     break;
                 }
-                throughput /= q;
             }
             if throughput == Color::ZERO || !throughput.is_finite() {
+                probe.end(PathEnd::ZeroThroughput);
                 break;
             }
         }

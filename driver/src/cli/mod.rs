@@ -2,6 +2,7 @@
 pub mod bench;
 pub mod compare;
 pub mod merge;
+pub mod probe_args;
 pub mod render;
 pub mod split_args;
 pub mod test;

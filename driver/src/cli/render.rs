@@ -1,7 +1,8 @@
 //! `tessera render`: load, render on worker threads, write every requested output.
 use crate::error::InputError;
 use crate::image_io::Format;
-use crate::render::{render, RenderOptions};
+use crate::render::RenderOptions;
+use crate::render_stats::render_maybe_stats;
 use crate::scene::load_scene;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -14,7 +15,7 @@ pub struct RenderArgs {
     /// The scene file (Mitsuba 3 or Nori XML).
     pub scene: PathBuf,
     /// Output image; the extension picks the format (.exr, .pfm, .png). May be repeated.
-    #[arg(short = 'o', long = "output", required = true)]
+    #[arg(short = 'o', long = "output", required_unless_present = "debug_pixel")]
     pub outputs: Vec<PathBuf>,
     /// Samples per pixel (default: the scene's sampler).
     #[arg(long)]
@@ -44,6 +45,9 @@ pub struct RenderArgs {
     /// Render a piece of the image (a part, for `tessera merge`).
     #[command(flatten)]
     pub split: super::split_args::SplitArgs,
+    /// `--stats`, `--debug-pixel`.
+    #[command(flatten)]
+    pub probe: super::probe_args::ProbeArgs,
 }
 
 fn usage(msg: String) -> i32 {
@@ -102,6 +106,9 @@ pub fn run(args: &RenderArgs) -> i32 {
         Ok(p) => p,
         Err(e) => return usage(e),
     };
+    if let Some(dp) = args.probe.debug_pixel {
+        return crate::debug_pixel::run(&loaded, &opts, dp);
+    }
     let scene = &loaded.scene;
     let bar = if args.quiet {
         ProgressBar::hidden()
@@ -113,10 +120,17 @@ pub fn run(args: &RenderArgs) -> i32 {
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     let start = Instant::now();
-    let fb = render(scene, &loaded.integrator, &opts, &mut |done, total| {
-        bar.set_length(total as u64);
-        bar.set_position(done as u64);
-    });
+    let stats = args.probe.stats;
+    let fb = render_maybe_stats(
+        stats,
+        scene,
+        &loaded.integrator,
+        &opts,
+        &mut |done, total| {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+        },
+    );
     bar.finish_and_clear();
     let secs = start.elapsed().as_secs_f64();
     let mut code = 0;
