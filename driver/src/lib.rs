@@ -1,8 +1,10 @@
 pub mod bench;
+pub mod checkpoint;
 pub mod cli;
 pub mod error;
 pub mod image_io;
 pub mod mesh;
+pub mod progressive;
 pub mod render;
 pub mod scene;
 pub mod stats;

@@ -5,7 +5,7 @@
 //! is therefore the same bits for any thread count and any tile size.
 use crossbeam_channel::unbounded;
 use std::ops::Range;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use tessera_core::film::PixelAccum;
 use tessera_core::integrator::Integrator;
 use tessera_core::render::render_pixel;
@@ -96,7 +96,7 @@ pub fn render(
     opts: &RenderOptions,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Framebuffer {
-    render_tiles(scene, integrator, opts, None, progress)
+    render_tiles(scene, integrator, opts, None, None, progress)
 }
 
 /// Adds the samples `opts.samples` of every pixel to the sums already in `fb`, as if the render
@@ -119,21 +119,70 @@ pub fn render_into(
         fb.width,
         fb.height
     );
-    *fb = render_tiles(scene, integrator, opts, Some(&fb.pixels), progress);
+    *fb = render_tiles(scene, integrator, opts, Some(&fb.pixels), None, progress);
+}
+
+/// Brings every pixel of `fb` to `opts.samples.end` samples, each pixel continuing from its own
+/// count (`count + dropped`, so pixels may start at different sample indices; `opts.samples.start`
+/// is not used). Workers check `stop` before each tile and take no new tile once it is set; the
+/// tiles not rendered keep their sums. Returns whether every tile was rendered. The bits equal a
+/// single render of `0..opts.samples.end`, however the work was split or interrupted.
+///
+/// # Panics
+/// If `fb` is not the scene's size.
+pub fn render_into_until(
+    scene: &Scene,
+    integrator: &Integrator,
+    opts: &RenderOptions,
+    fb: &mut Framebuffer,
+    stop: &AtomicBool,
+    progress: &mut dyn FnMut(usize, usize),
+) -> bool {
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    assert!(
+        (fb.width, fb.height) == (w, h) && fb.pixels.len() == w as usize * h as usize,
+        "render_into_until: the framebuffer is {}x{}, the scene {w}x{h}",
+        fb.width,
+        fb.height
+    );
+    let mut done = 0;
+    let out = render_tiles(
+        scene,
+        integrator,
+        opts,
+        Some(&fb.pixels),
+        Some(stop),
+        &mut |d, t| {
+            done = d;
+            progress(d, t)
+        },
+    );
+    *fb = out;
+    done == tiles(w, h, opts.tile_size).len()
 }
 
 /// The tile loop: each tile's accumulators start from `start` (or empty) and take the samples
-/// `opts.samples` in order.
+/// `opts.samples` in order. With `stop` (resumable mode), each pixel instead continues from its
+/// own count up to `opts.samples.end`, and no tile is started once `stop` is set (the tiles not
+/// rendered keep `start`).
 fn render_tiles(
     scene: &Scene,
     integrator: &Integrator,
     opts: &RenderOptions,
     start: Option<&[PixelAccum]>,
+    stop: Option<&AtomicBool>,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Framebuffer {
     let (w, h) = (scene.camera.width, scene.camera.height);
     let list = tiles(w, h, opts.tile_size);
-    let mut fb = Framebuffer::new(w, h);
+    let mut fb = match (stop, start) {
+        (Some(_), Some(p)) => Framebuffer {
+            width: w,
+            height: h,
+            pixels: p.to_vec(),
+        },
+        _ => Framebuffer::new(w, h),
+    };
     let cursor = AtomicUsize::new(0);
     let (tx, rx) = unbounded::<(usize, Vec<PixelAccum>)>();
     let threads = opts.threads.max(1).min(list.len().max(1));
@@ -142,6 +191,9 @@ fn render_tiles(
             let tx = tx.clone();
             let (list, cursor) = (&list, &cursor);
             s.spawn(move || loop {
+                if stop.is_some_and(|f| f.load(Ordering::Relaxed)) {
+                    break;
+                }
                 let i = cursor.fetch_add(1, Ordering::Relaxed);
                 let Some(t) = list.get(i) else { break };
                 let mut acc = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
@@ -159,15 +211,11 @@ fn render_tiles(
                 let mut k = 0;
                 for y in t.y0..t.y1 {
                     for x in t.x0..t.x1 {
-                        render_pixel(
-                            scene,
-                            integrator,
-                            opts.seed,
-                            x,
-                            y,
-                            opts.samples.clone(),
-                            &mut acc[k],
-                        );
+                        let samples = match stop {
+                            Some(_) => acc[k].count + acc[k].dropped..opts.samples.end,
+                            None => opts.samples.clone(),
+                        };
+                        render_pixel(scene, integrator, opts.seed, x, y, samples, &mut acc[k]);
                         k += 1;
                     }
                 }

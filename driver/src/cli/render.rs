@@ -1,12 +1,23 @@
-//! `tessera render`: load, render on worker threads, write every requested output.
+//! `tessera render`: load, render progressively on worker threads, write every requested output.
+//!
+//! Stopping rule: `--spp N` (default: the scene's `sample_count`), `--time SECONDS` (a time
+//! budget; with `--spp` too, whichever comes first), `--forever` (until Ctrl-C / SIGTERM).
+//! SIGINT / SIGTERM stop at the next tile boundary, write the outputs (and the checkpoint, with
+//! `--checkpoint`) and exit 130 / 143; a second signal exits at once without writing.
+//! `--resume FILE` continues a checkpoint to the same bits as an uninterrupted render.
+use crate::checkpoint::{load_checkpoint, scene_hash, write_checkpoint, CheckpointMeta};
 use crate::error::InputError;
 use crate::image_io::{write_image, Format, RgbImage};
-use crate::render::{render, RenderOptions};
-use crate::scene::load_scene;
+use crate::progressive::{self, spp_range, Ending, Job, Plan, Status};
+use crate::render::Framebuffer;
+use crate::scene::{load_scene, MAX_EDGE, MAX_PIXELS};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
-use std::time::Instant;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+use tessera_core::camera::Perspective;
 
 /// Arguments of `tessera render`.
 #[derive(Args, Debug, Clone)]
@@ -16,9 +27,28 @@ pub struct RenderArgs {
     /// Output image; the extension picks the format (.exr, .pfm, .png). May be repeated.
     #[arg(short = 'o', long = "output", required = true)]
     pub outputs: Vec<PathBuf>,
-    /// Samples per pixel (default: the scene's sampler).
-    #[arg(long)]
+    /// Samples per pixel (default: the scene's sampler, or the resumed checkpoint's target).
+    #[arg(long, conflicts_with = "forever")]
     pub spp: Option<u64>,
+    /// Time budget in seconds: render passes until it is spent (with --spp, whichever first).
+    #[arg(long, conflicts_with = "forever")]
+    pub time: Option<f64>,
+    /// Render until interrupted (Ctrl-C or SIGTERM), writing the outputs on the way out.
+    #[arg(long)]
+    pub forever: bool,
+    /// Write the current average to every output (and the checkpoint) this often, in seconds.
+    #[arg(long)]
+    pub write_every: Option<f64>,
+    /// Checkpoint file, written at every --write-every, at the end and on interrupt.
+    #[arg(long)]
+    pub checkpoint: Option<PathBuf>,
+    /// Continue the render saved in this checkpoint (and keep checkpointing to it unless
+    /// --checkpoint names another file).
+    #[arg(long)]
+    pub resume: Option<PathBuf>,
+    /// Scale the film's width and height (e.g. 0.25 for a quick preview; at least 1 pixel).
+    #[arg(long)]
+    pub resolution_scale: Option<f64>,
     /// Worker threads (default: all cores). The image does not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
@@ -48,6 +78,32 @@ fn usage(msg: String) -> i32 {
     InputError::EXIT_CODE
 }
 
+fn seconds(name: &str, v: Option<f64>) -> Result<Option<Duration>, String> {
+    match v {
+        None => Ok(None),
+        Some(s) if s.is_finite() && s > 0.0 && s < 1e9 => Ok(Some(Duration::from_secs_f64(s))),
+        Some(s) => Err(format!(
+            "--{name} must be a positive number of seconds, found {s}"
+        )),
+    }
+}
+
+/// Ctrl-C / SIGTERM: the first sets `stop` (and `code` to 130 / 143), a second exits at once.
+fn register_signals(stop: &Arc<AtomicBool>, code: &Arc<AtomicUsize>) -> Result<(), String> {
+    use signal_hook::consts::{SIGINT, SIGTERM};
+    use signal_hook::flag;
+    let signalled = Arc::new(AtomicBool::new(false));
+    for (sig, exit) in [(SIGINT, 130), (SIGTERM, 143)] {
+        // The shutdown goes first: it fires only if an earlier signal already armed it.
+        flag::register_conditional_shutdown(sig, exit, Arc::clone(&signalled))
+            .and_then(|_| flag::register_usize(sig, Arc::clone(code), exit as usize))
+            .and_then(|_| flag::register(sig, Arc::clone(stop)))
+            .and_then(|_| flag::register(sig, Arc::clone(&signalled)))
+            .map_err(|e| format!("cannot install signal handlers: {e}"))?;
+    }
+    Ok(())
+}
+
 /// Runs the command; returns the exit code.
 pub fn run(args: &RenderArgs) -> i32 {
     for o in &args.outputs {
@@ -67,6 +123,13 @@ pub fn run(args: &RenderArgs) -> i32 {
     if args.spp == Some(0) {
         return usage("--spp must be at least 1".into());
     }
+    let (budget, write_every) = match (
+        seconds("time", args.time),
+        seconds("write-every", args.write_every),
+    ) {
+        (Ok(b), Ok(w)) => (b, w),
+        (Err(e), _) | (_, Err(e)) => return usage(e),
+    };
     let mut loaded = match load_scene(&args.scene, &args.defines) {
         Ok(l) => l,
         Err(e) => return usage(e.to_string()),
@@ -77,57 +140,237 @@ pub fn run(args: &RenderArgs) -> i32 {
     if let Err(e) = loaded.set_integrator(args.integrator.as_deref(), args.max_depth) {
         return usage(e);
     }
-    let spp = args.spp.unwrap_or(loaded.spp);
+    if let Some(f) = args.resolution_scale {
+        if let Err(e) = scale_resolution(&mut loaded.scene.camera, f) {
+            return usage(e);
+        }
+    }
     let threads = args
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     if threads == 0 {
         return usage("--threads must be at least 1".into());
     }
-    let opts = RenderOptions {
-        samples: 0..spp,
+    let scene_bytes = match std::fs::read(&args.scene) {
+        Ok(b) => b,
+        Err(e) => return usage(format!("{}: {e}", args.scene.display())),
+    };
+    let (w, h) = (loaded.scene.camera.width, loaded.scene.camera.height);
+    let mut meta = CheckpointMeta {
+        width: w,
+        height: h,
+        seed: args.seed.unwrap_or(loaded.seed),
+        target_spp: 0,
+        scene_hash: scene_hash(&scene_bytes, &args.defines),
+        passes: 0,
+        seconds: 0.0,
+        integrator: format!("{:?}", loaded.integrator),
+    };
+    let mut fb = Framebuffer::new(w, h);
+    let mut resumed_target = None;
+    if let Some(path) = &args.resume {
+        let ck = match load_checkpoint(path) {
+            Ok(c) => c,
+            Err(e) => return usage(e),
+        };
+        if let Err(e) = ck.meta.matches(&meta) {
+            return usage(format!("{}: {e}", path.display()));
+        }
+        meta.passes = ck.meta.passes;
+        meta.seconds = ck.meta.seconds;
+        resumed_target = (ck.meta.target_spp > 0).then_some(ck.meta.target_spp);
+        fb.pixels = ck.pixels;
+    }
+    let target = if args.forever {
+        None
+    } else if let Some(n) = args.spp {
+        Some(n)
+    } else if budget.is_some() {
+        None
+    } else {
+        Some(resumed_target.unwrap_or(loaded.spp))
+    };
+    let (_, high) = spp_range(&fb);
+    if let Some(t) = target.filter(|t| *t < high) {
+        let path = args.resume.as_deref().unwrap_or(args.scene.as_path());
+        return usage(format!(
+            "{}: the checkpoint already has pixels at {high} spp, more than the target {t}",
+            path.display()
+        ));
+    }
+    meta.target_spp = target.unwrap_or(0);
+    let checkpoint = args.checkpoint.clone().or_else(|| args.resume.clone());
+    let stop = Arc::new(AtomicBool::new(false));
+    let signal = Arc::new(AtomicUsize::new(0));
+    if let Err(e) = register_signals(&stop, &signal) {
+        eprintln!("error: {e}");
+        return 1;
+    }
+    let (bar, mode) = progress_bar(args.quiet, target, budget, w as u64 * h as u64);
+    let job = Job {
+        scene: &loaded.scene,
+        integrator: &loaded.integrator,
+        seed: meta.seed,
         threads,
         tile_size: args.tile_size,
-        seed: args.seed.unwrap_or(loaded.seed),
     };
-    let scene = &loaded.scene;
-    let bar = if args.quiet {
-        ProgressBar::hidden()
-    } else {
-        ProgressBar::new(1)
+    let plan = Plan {
+        target,
+        budget,
+        write_every,
     };
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} tiles {elapsed_precise} eta {eta}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
     let start = Instant::now();
-    let fb = render(scene, &loaded.integrator, &opts, &mut |done, total| {
-        bar.set_length(total as u64);
-        bar.set_position(done as u64);
-    });
+    let base = meta.clone();
+    let save = |fb: &Framebuffer, passes: u64| -> Result<(), String> {
+        let mut m = base.clone();
+        m.passes += passes;
+        m.seconds += start.elapsed().as_secs_f64();
+        write_all(&args.outputs, checkpoint.as_deref(), &m, fb)
+    };
+    let result = progressive::run(
+        job,
+        &mut fb,
+        &plan,
+        &stop,
+        &mut |s: &Status| update_bar(&bar, mode, s),
+        &mut |fb, passes| save(fb, passes),
+    );
     bar.finish_and_clear();
+    let (ending, passes) = match result {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return 1;
+        }
+    };
+    if let Err(e) = save(&fb, passes) {
+        eprintln!("error: {e}");
+        return 1;
+    }
     let secs = start.elapsed().as_secs_f64();
+    let (low, high) = spp_range(&fb);
+    let spp = if low == high {
+        format!("{low}")
+    } else {
+        format!("{low}-{high}")
+    };
+    let code = signal.load(Ordering::SeqCst) as i32;
+    if !args.quiet || code != 0 {
+        eprintln!(
+            "{w}x{h} at {spp} spp, {passes} passes in {secs:.2} s ({threads} threads); {} non-finite samples dropped{}",
+            fb.dropped(),
+            match ending {
+                Ending::Target => "",
+                Ending::Time => "; time budget spent",
+                Ending::Stopped => "; interrupted",
+            }
+        );
+    }
+    if code != 0 {
+        match &checkpoint {
+            Some(c) => eprintln!("checkpoint written: resume with --resume {}", c.display()),
+            None => eprintln!("no --checkpoint given: this render cannot be resumed"),
+        }
+    }
+    code
+}
+
+/// Writes the average to every output, then the checkpoint (each atomically).
+fn write_all(
+    outputs: &[PathBuf],
+    checkpoint: Option<&std::path::Path>,
+    meta: &CheckpointMeta,
+    fb: &Framebuffer,
+) -> Result<(), String> {
     let img = RgbImage {
         width: fb.width,
         height: fb.height,
         data: fb.rgb(),
     };
-    let mut code = 0;
-    for o in &args.outputs {
-        if let Err(e) = write_image(o, &img) {
-            eprintln!("error: {e}");
-            code = 1;
+    for o in outputs {
+        write_image(o, &img)?;
+    }
+    if let Some(c) = checkpoint {
+        write_checkpoint(c, meta, &fb.pixels)?;
+    }
+    Ok(())
+}
+
+/// `--resolution-scale`: multiplies the film's width and height (rounded, at least 1 pixel)
+/// keeping the field of view (the camera maps the film to the same view whatever its size).
+fn scale_resolution(camera: &mut Perspective, f: f64) -> Result<(), String> {
+    if !(f.is_finite() && f > 0.0 && f <= 16.0) {
+        return Err(format!("--resolution-scale must be in (0, 16], found {f}"));
+    }
+    let scale = |n: u32| ((n as f64 * f).round() as i64).clamp(1, MAX_EDGE);
+    let (w, h) = (scale(camera.width), scale(camera.height));
+    if w * h > MAX_PIXELS {
+        return Err(format!(
+            "--resolution-scale {f} gives {w}x{h} pixels, over the limit of {MAX_PIXELS}"
+        ));
+    }
+    (camera.width, camera.height) = (w as u32, h as u32);
+    Ok(())
+}
+
+/// What the progress bar counts.
+#[derive(Clone, Copy)]
+enum BarMode {
+    /// Samples (pixels x spp) against the target.
+    Samples { pixels: u64, target: u64 },
+    /// Milliseconds against the time budget.
+    Time,
+    /// Nothing to count against: a spinner.
+    Spinner,
+}
+
+fn progress_bar(
+    quiet: bool,
+    target: Option<u64>,
+    budget: Option<Duration>,
+    pixels: u64,
+) -> (ProgressBar, BarMode) {
+    let (len, template, mode) = match (target, budget) {
+        (Some(t), _) => (
+            t.saturating_mul(pixels),
+            "{bar:40} {msg} spp, {per_sec} samples, eta {eta} ({elapsed_precise})",
+            BarMode::Samples { pixels, target: t },
+        ),
+        (None, Some(b)) => (
+            b.as_millis() as u64,
+            "{bar:40} {msg} spp, time budget, eta {eta} ({elapsed_precise})",
+            BarMode::Time,
+        ),
+        (None, None) => (
+            0,
+            "{spinner} {msg} spp ({elapsed_precise}); Ctrl-C to stop",
+            BarMode::Spinner,
+        ),
+    };
+    if quiet {
+        return (ProgressBar::hidden(), mode);
+    }
+    let bar = ProgressBar::new(len);
+    bar.set_style(
+        ProgressStyle::with_template(template).unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    (bar, mode)
+}
+
+fn update_bar(bar: &ProgressBar, mode: BarMode, s: &Status) {
+    let pass = s.passes + 1;
+    match mode {
+        BarMode::Samples { pixels, target } => {
+            bar.set_message(format!("pass {pass}, {:.1}/{target}", s.spp_done));
+            bar.set_position((s.spp_done * pixels as f64) as u64);
+        }
+        BarMode::Time => {
+            bar.set_message(format!("pass {pass}, {:.1}", s.spp_done));
+            bar.set_position(s.elapsed.as_millis() as u64);
+        }
+        BarMode::Spinner => {
+            bar.set_message(format!("pass {pass}, {:.1}", s.spp_done));
+            bar.tick();
         }
     }
-    let samples = spp as f64 * fb.width as f64 * fb.height as f64;
-    if !args.quiet || code != 0 {
-        eprintln!(
-            "{}x{} at {spp} spp in {secs:.2} s ({:.2} M samples/s, {threads} threads); {} non-finite samples dropped",
-            fb.width,
-            fb.height,
-            samples / secs.max(1e-9) / 1e6,
-            fb.dropped()
-        );
-    }
-    code
 }
