@@ -4,6 +4,7 @@ pub mod cli;
 pub mod error;
 pub mod image_io;
 pub mod mesh;
+pub mod overlay;
 pub mod progressive;
 pub mod render;
 pub mod scene;

@@ -446,3 +446,55 @@ fn time_budget_stops_the_render() {
     assert!(stderr(&o).contains("at 3 spp"), "{}", stderr(&o));
     assert!(!stderr(&o).contains("time budget"));
 }
+
+/// `--resolution-scale 0.5` of a 24-pixel film is the 12-pixel film: the same bits.
+#[test]
+fn resolution_scale_gives_the_smaller_film() {
+    let dir = Tmp::new("scale");
+    let (a, b, c) = (dir.path("a.pfm"), dir.path("b.pfm"), dir.path("c.pfm"));
+    let o = run(&["--spp", "2", "-o", a.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = Command::new(BIN)
+        .arg("render")
+        .arg(cbox())
+        .args([
+            "-D",
+            "res=24",
+            "--spp",
+            "2",
+            "-q",
+            "--resolution-scale",
+            "0.5",
+            "-o",
+        ])
+        .arg(&b)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
+    // Control: the unscaled 24-pixel film is another image; a zero scale is refused.
+    let o = Command::new(BIN)
+        .arg("render")
+        .arg(cbox())
+        .args(["-D", "res=24", "--spp", "2", "-q", "-o"])
+        .arg(&c)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_ne!(std::fs::read(&a).unwrap(), std::fs::read(&c).unwrap());
+    one_line_exit_2(
+        &run(&["--resolution-scale", "0", "-o", c.to_str().unwrap()]),
+        &["--resolution-scale"],
+    );
+    // A scale that would drop below one pixel keeps one.
+    let o = run(&[
+        "--spp",
+        "1",
+        "--resolution-scale",
+        "0.001",
+        "-o",
+        c.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(std::fs::read(&c).unwrap().starts_with(b"PF\n1 1\n"));
+}

@@ -10,7 +10,7 @@
 //! samples_per_second, rmse, relmse, mae`; `samples_per_second` is pixels x spp / seconds.
 //! `scripts/mitsuba_bench.py` appends rows of the same form (integrator `mitsuba:NAME`).
 pub mod plot;
-mod text;
+pub(crate) mod text;
 
 use crate::image_io::{temp_path, RgbImage};
 use crate::render::{render_into, Framebuffer, RenderOptions};

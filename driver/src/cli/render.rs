@@ -7,12 +7,13 @@
 //! `--resume FILE` continues a checkpoint to the same bits as an uninterrupted render.
 use crate::checkpoint::{load_checkpoint, scene_hash, write_checkpoint, CheckpointMeta};
 use crate::error::InputError;
-use crate::image_io::{write_image, Format, RgbImage};
+use crate::image_io::{to_srgb8, write_image, write_png8, Format, RgbImage};
+use crate::overlay::{self, Overlay};
+use crate::progressive::bar::{progress_bar, update_bar};
 use crate::progressive::{self, spp_range, Ending, Job, Plan, Status};
 use crate::render::Framebuffer;
 use crate::scene::{load_scene, MAX_EDGE, MAX_PIXELS};
 use clap::Args;
-use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Arc;
@@ -49,6 +50,15 @@ pub struct RenderArgs {
     /// Scale the film's width and height (e.g. 0.25 for a quick preview; at least 1 pixel).
     #[arg(long)]
     pub resolution_scale: Option<f64>,
+    /// Label PNG outputs with integrator, sampler, spp, time and resolution (EXR/PFM untouched).
+    #[arg(long)]
+    pub overlay: bool,
+    /// Draw the tile grid on PNG outputs.
+    #[arg(long)]
+    pub overlay_grid: bool,
+    /// Draw a rectangle x0,y0,x1,y1 (pixels) on PNG outputs.
+    #[arg(long, value_parser = crate::overlay::parse_crop)]
+    pub overlay_crop: Option<[u32; 4]>,
     /// Worker threads (default: all cores). The image does not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
@@ -221,11 +231,22 @@ pub fn run(args: &RenderArgs) -> i32 {
     };
     let start = Instant::now();
     let base = meta.clone();
+    let spec = &loaded.integrator_spec;
+    let label = match (spec.name.starts_with("path"), spec.max_depth) {
+        (true, Some(d)) => format!("{}, max_depth {d}, independent sampler", spec.name),
+        (true, None) => format!("{}, unbounded depth, independent sampler", spec.name),
+        (false, _) => format!("{}, independent sampler", spec.name),
+    };
+    let decor = Decor {
+        label: args.overlay.then_some(label),
+        grid: args.overlay_grid.then_some(args.tile_size),
+        crop: args.overlay_crop,
+    };
     let save = |fb: &Framebuffer, passes: u64| -> Result<(), String> {
         let mut m = base.clone();
         m.passes += passes;
         m.seconds += start.elapsed().as_secs_f64();
-        write_all(&args.outputs, checkpoint.as_deref(), &m, fb)
+        write_all(&args.outputs, checkpoint.as_deref(), &m, fb, &decor)
     };
     let result = progressive::run(
         job,
@@ -248,12 +269,7 @@ pub fn run(args: &RenderArgs) -> i32 {
         return 1;
     }
     let secs = start.elapsed().as_secs_f64();
-    let (low, high) = spp_range(&fb);
-    let spp = if low == high {
-        format!("{low}")
-    } else {
-        format!("{low}-{high}")
-    };
+    let spp = spp_text(&fb);
     let code = signal.load(Ordering::SeqCst) as i32;
     if !args.quiet || code != 0 {
         eprintln!(
@@ -275,20 +291,58 @@ pub fn run(args: &RenderArgs) -> i32 {
     code
 }
 
+/// What `--overlay*` asks to draw on PNG outputs.
+struct Decor {
+    /// First label line (integrator and sampler); `None` without `--overlay`.
+    label: Option<String>,
+    grid: Option<u32>,
+    crop: Option<[u32; 4]>,
+}
+
+fn spp_text(fb: &Framebuffer) -> String {
+    match spp_range(fb) {
+        (lo, hi) if lo == hi => format!("{lo}"),
+        (lo, hi) => format!("{lo}-{hi}"),
+    }
+}
+
 /// Writes the average to every output, then the checkpoint (each atomically).
 fn write_all(
     outputs: &[PathBuf],
     checkpoint: Option<&std::path::Path>,
     meta: &CheckpointMeta,
     fb: &Framebuffer,
+    decor: &Decor,
 ) -> Result<(), String> {
     let img = RgbImage {
         width: fb.width,
         height: fb.height,
         data: fb.rgb(),
     };
+    let ov = Overlay {
+        lines: decor.label.iter().fold(Vec::new(), |mut v, l| {
+            v.push(l.clone());
+            v.push(format!(
+                "{} spp, {:.1} s, {}x{}",
+                spp_text(fb),
+                meta.seconds,
+                fb.width,
+                fb.height
+            ));
+            v
+        }),
+        grid: decor.grid,
+        crop: decor.crop,
+    };
+    let decorated = !ov.lines.is_empty() || ov.grid.is_some() || ov.crop.is_some();
     for o in outputs {
-        write_image(o, &img)?;
+        if decorated && Format::from_path(o) == Some(Format::Png) {
+            let mut rgb8 = to_srgb8(&img);
+            overlay::apply(&mut rgb8, img.width, img.height, &ov);
+            write_png8(o, img.width, img.height, rgb8)?;
+        } else {
+            write_image(o, &img)?;
+        }
     }
     if let Some(c) = checkpoint {
         write_checkpoint(c, meta, &fb.pixels)?;
@@ -311,66 +365,4 @@ fn scale_resolution(camera: &mut Perspective, f: f64) -> Result<(), String> {
     }
     (camera.width, camera.height) = (w as u32, h as u32);
     Ok(())
-}
-
-/// What the progress bar counts.
-#[derive(Clone, Copy)]
-enum BarMode {
-    /// Samples (pixels x spp) against the target.
-    Samples { pixels: u64, target: u64 },
-    /// Milliseconds against the time budget.
-    Time,
-    /// Nothing to count against: a spinner.
-    Spinner,
-}
-
-fn progress_bar(
-    quiet: bool,
-    target: Option<u64>,
-    budget: Option<Duration>,
-    pixels: u64,
-) -> (ProgressBar, BarMode) {
-    let (len, template, mode) = match (target, budget) {
-        (Some(t), _) => (
-            t.saturating_mul(pixels),
-            "{bar:40} {msg} spp, {per_sec} samples, eta {eta} ({elapsed_precise})",
-            BarMode::Samples { pixels, target: t },
-        ),
-        (None, Some(b)) => (
-            b.as_millis() as u64,
-            "{bar:40} {msg} spp, time budget, eta {eta} ({elapsed_precise})",
-            BarMode::Time,
-        ),
-        (None, None) => (
-            0,
-            "{spinner} {msg} spp ({elapsed_precise}); Ctrl-C to stop",
-            BarMode::Spinner,
-        ),
-    };
-    if quiet {
-        return (ProgressBar::hidden(), mode);
-    }
-    let bar = ProgressBar::new(len);
-    bar.set_style(
-        ProgressStyle::with_template(template).unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    (bar, mode)
-}
-
-fn update_bar(bar: &ProgressBar, mode: BarMode, s: &Status) {
-    let pass = s.passes + 1;
-    match mode {
-        BarMode::Samples { pixels, target } => {
-            bar.set_message(format!("pass {pass}, {:.1}/{target}", s.spp_done));
-            bar.set_position((s.spp_done * pixels as f64) as u64);
-        }
-        BarMode::Time => {
-            bar.set_message(format!("pass {pass}, {:.1}", s.spp_done));
-            bar.set_position(s.elapsed.as_millis() as u64);
-        }
-        BarMode::Spinner => {
-            bar.set_message(format!("pass {pass}, {:.1}", s.spp_done));
-            bar.tick();
-        }
-    }
 }

@@ -10,6 +10,8 @@
 //! Pass sizes: 1 spp first, then as many spp as fit in [`PASS_SECONDS`] at the measured speed
 //! (at most double the previous pass; at most half the write interval and at most the time left),
 //! never past the target. Pass sizes change nothing in the bits.
+pub mod bar;
+
 use crate::render::{render_into_until, Framebuffer, RenderOptions};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
