@@ -229,6 +229,8 @@ pub fn run(args: &RenderArgs) -> i32 {
         budget,
         write_every,
     };
+    let taken = |fb: &Framebuffer| fb.pixels.iter().map(|p| p.count + p.dropped).sum::<u64>();
+    let samples_before = taken(&fb);
     let start = Instant::now();
     let base = meta.clone();
     let spec = &loaded.integrator_spec;
@@ -273,7 +275,8 @@ pub fn run(args: &RenderArgs) -> i32 {
     let code = signal.load(Ordering::SeqCst) as i32;
     if !args.quiet || code != 0 {
         eprintln!(
-            "{w}x{h} at {spp} spp, {passes} passes in {secs:.2} s ({threads} threads); {} non-finite samples dropped{}",
+            "{w}x{h} at {spp} spp, {passes} passes in {secs:.2} s ({:.2} M samples/s, {threads} threads); {} non-finite samples dropped{}",
+            (taken(&fb) - samples_before) as f64 / secs.max(1e-9) / 1e6,
             fb.dropped(),
             match ending {
                 Ending::Target => "",
