@@ -85,6 +85,23 @@ pub fn write_image(path: &Path, img: &RgbImage) -> Result<(), String> {
     result.map_err(|e| format!("{}: cannot write image: {e}", path.display()))
 }
 
+/// Writes 8-bit sRGB pixels (`width * height * 3` bytes) to a PNG at `path`, atomically (for
+/// previews drawn on after conversion, e.g. overlays).
+pub fn write_png8(path: &Path, width: u32, height: u32, rgb: Vec<u8>) -> Result<(), String> {
+    let tmp = temp_path(path);
+    let result = image::RgbImage::from_raw(width, height, rgb)
+        .ok_or_else(|| "image size mismatch".to_string())
+        .and_then(|b| {
+            b.save_with_format(&tmp, image::ImageFormat::Png)
+                .map_err(|e| e.to_string())
+        })
+        .and_then(|_| std::fs::rename(&tmp, path).map_err(|e| e.to_string()));
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result.map_err(|e| format!("{}: cannot write image: {e}", path.display()))
+}
+
 fn write_format(path: &Path, fmt: Format, img: &RgbImage) -> Result<(), String> {
     match fmt {
         Format::Pfm => write_pfm(path, img).map_err(|e| e.to_string()),

@@ -3,12 +3,15 @@
 //! `driver/examples/render_scene.rs`.
 mod api;
 pub mod bench;
+pub mod checkpoint;
 pub mod cli;
 pub mod compare;
 pub mod debug_pixel;
 pub mod error;
 pub mod image_io;
 pub mod mesh;
+pub mod overlay;
+pub mod progressive;
 pub mod render;
 pub mod render_stats;
 pub mod scene;

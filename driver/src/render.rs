@@ -10,10 +10,11 @@
 pub use crate::split::selection::PixelSelection;
 use crossbeam_channel::unbounded;
 use std::ops::Range;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use tessera_core::film::PixelAccum;
 use tessera_core::integrator::Integrator;
-use tessera_core::render::render_pixel;
+use tessera_core::integrator::{Counters, NoProbe, Probe};
+use tessera_core::render::render_sample_probed;
 use tessera_core::scene::Scene;
 
 /// How to render.
@@ -108,20 +109,60 @@ pub fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
     out
 }
 
-/// Renders the selected pixels (`opts.pixels`); `progress(tiles_done, tiles_total)` is called on the calling thread as
-/// tiles arrive.
+/// A probe each worker thread owns while rendering tiles (see [`render_probed`]); the workers'
+/// probes are combined at the end.
+pub trait TileProbe: Probe + Default + Send {
+    /// Adds what another worker observed.
+    fn absorb(&mut self, other: Self);
+}
+
+impl TileProbe for NoProbe {
+    fn absorb(&mut self, _: Self) {}
+}
+
+impl TileProbe for Counters {
+    fn absorb(&mut self, other: Self) {
+        self.merge(&other);
+    }
+}
+
+/// Renders the selected pixels (`opts.pixels`); `progress(tiles_done, tiles_total)` is called on
+/// the calling thread as tiles arrive.
 pub fn render(
     scene: &Scene,
     integrator: &Integrator,
     opts: &RenderOptions,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Framebuffer {
-    render_tiles(scene, integrator, opts, None, progress)
+    render_tiles::<NoProbe>(scene, integrator, opts, None, None, progress).0
 }
 
-/// Adds the samples `opts.samples` of every selected pixel to the sums already in `fb`, as if the render
-/// had gone on: rendering `0..a` and then `a..b` into the same buffer gives the same bits as
-/// rendering `0..b` at once (each pixel continues its own sum, in sample-index order).
+/// [`render`] with a probe per worker thread observing every sample (e.g. [`Counters`] for
+/// `--stats`), combined at the end. A probe only observes: the image is the same bits, and sums
+/// of counts do not depend on the thread count or the tile size.
+pub fn render_probed<P: TileProbe>(
+    scene: &Scene,
+    integrator: &Integrator,
+    opts: &RenderOptions,
+    progress: &mut dyn FnMut(usize, usize),
+) -> (Framebuffer, P) {
+    render_tiles(scene, integrator, opts, None, None, progress)
+}
+
+/// Panics unless `fb` is the scene's size (a caller's mistake: start from `Framebuffer::new`).
+fn check_size(scene: &Scene, fb: &Framebuffer, what: &str) {
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    assert!(
+        (fb.width, fb.height) == (w, h) && fb.pixels.len() == w as usize * h as usize,
+        "{what}: the framebuffer is {}x{}, the scene {w}x{h}",
+        fb.width,
+        fb.height
+    );
+}
+
+/// Adds the samples `opts.samples` of every selected pixel to the sums already in `fb`, as if
+/// the render had gone on: rendering `0..a` and then `a..b` into the same buffer gives the same
+/// bits as rendering `0..b` at once (each pixel continues its own sum, in sample-index order).
 ///
 /// # Panics
 /// If `fb` is not the scene's size (a caller's mistake: start from `Framebuffer::new`).
@@ -132,25 +173,57 @@ pub fn render_into(
     fb: &mut Framebuffer,
     progress: &mut dyn FnMut(usize, usize),
 ) {
-    let (w, h) = (scene.camera.width, scene.camera.height);
-    assert!(
-        (fb.width, fb.height) == (w, h) && fb.pixels.len() == w as usize * h as usize,
-        "render_into: the framebuffer is {}x{}, the scene {w}x{h}",
-        fb.width,
-        fb.height
+    check_size(scene, fb, "render_into");
+    *fb = render_tiles::<NoProbe>(scene, integrator, opts, Some(&fb.pixels), None, progress).0;
+}
+
+/// Brings every selected pixel of `fb` to `opts.samples.end` samples, each pixel continuing from
+/// its own count (`count + dropped`, so pixels may start at different sample indices;
+/// `opts.samples.start` is not used). Workers check `stop` before each tile and take no new tile
+/// once it is set; the tiles not rendered keep their sums. Returns whether every tile was
+/// rendered. The bits equal a single render of `0..opts.samples.end`, however the work was split
+/// or interrupted.
+///
+/// # Panics
+/// If `fb` is not the scene's size.
+pub fn render_into_until(
+    scene: &Scene,
+    integrator: &Integrator,
+    opts: &RenderOptions,
+    fb: &mut Framebuffer,
+    stop: &AtomicBool,
+    progress: &mut dyn FnMut(usize, usize),
+) -> bool {
+    check_size(scene, fb, "render_into_until");
+    let (mut done, mut total) = (0, 0);
+    let out = render_tiles::<NoProbe>(
+        scene,
+        integrator,
+        opts,
+        Some(&fb.pixels),
+        Some(stop),
+        &mut |d, t| {
+            (done, total) = (d, t);
+            progress(d, t)
+        },
     );
-    *fb = render_tiles(scene, integrator, opts, Some(&fb.pixels), progress);
+    *fb = out.0;
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    done == total || opts.pixels.rects(w, h, opts.tile_size).is_empty()
 }
 
 /// The tile loop: each tile's accumulators start from `start` (or empty) and take the samples
-/// `opts.samples` in order.
-fn render_tiles(
+/// `opts.samples` in order. With `stop` (resumable mode), each pixel instead continues from its
+/// own count up to `opts.samples.end`, and no tile is started once `stop` is set (the tiles not
+/// rendered keep `start`). Pixels outside the selection keep `start` (or stay empty).
+fn render_tiles<P: TileProbe>(
     scene: &Scene,
     integrator: &Integrator,
     opts: &RenderOptions,
     start: Option<&[PixelAccum]>,
+    stop: Option<&AtomicBool>,
     progress: &mut dyn FnMut(usize, usize),
-) -> Framebuffer {
+) -> (Framebuffer, P) {
     let (w, h) = (scene.camera.width, scene.camera.height);
     let list = opts.pixels.rects(w, h, opts.tile_size);
     let mut fb = match start {
@@ -161,47 +234,56 @@ fn render_tiles(
         },
         None => Framebuffer::new(w, h),
     };
+    let mut total = P::default();
     let cursor = AtomicUsize::new(0);
     let (tx, rx) = unbounded::<(usize, Vec<PixelAccum>)>();
     let threads = opts.threads.max(1).min(list.len().max(1));
     std::thread::scope(|s| {
+        let mut workers = Vec::with_capacity(threads);
         for _ in 0..threads {
             let tx = tx.clone();
             let (list, cursor) = (&list, &cursor);
-            s.spawn(move || loop {
-                let i = cursor.fetch_add(1, Ordering::Relaxed);
-                let Some(t) = list.get(i) else { break };
-                let mut acc = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
-                for y in t.y0..t.y1 {
-                    match start {
-                        Some(p) => {
-                            let row = y as usize * w as usize;
-                            acc.extend_from_slice(&p[row + t.x0 as usize..row + t.x1 as usize]);
-                        }
-                        None => {
-                            acc.resize(acc.len() + (t.x1 - t.x0) as usize, PixelAccum::default())
+            workers.push(s.spawn(move || {
+                let mut probe = P::default();
+                loop {
+                    if stop.is_some_and(|f| f.load(Ordering::Relaxed)) {
+                        break;
+                    }
+                    let i = cursor.fetch_add(1, Ordering::Relaxed);
+                    let Some(t) = list.get(i) else { break };
+                    let mut acc = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
+                    for y in t.y0..t.y1 {
+                        match start {
+                            Some(p) => {
+                                let row = y as usize * w as usize;
+                                acc.extend_from_slice(&p[row + t.x0 as usize..row + t.x1 as usize]);
+                            }
+                            None => acc
+                                .resize(acc.len() + (t.x1 - t.x0) as usize, PixelAccum::default()),
                         }
                     }
-                }
-                let mut k = 0;
-                for y in t.y0..t.y1 {
-                    for x in t.x0..t.x1 {
-                        render_pixel(
-                            scene,
-                            integrator,
-                            opts.seed,
-                            x,
-                            y,
-                            opts.samples.clone(),
-                            &mut acc[k],
-                        );
-                        k += 1;
+                    let mut k = 0;
+                    for y in t.y0..t.y1 {
+                        for x in t.x0..t.x1 {
+                            let a = &mut acc[k];
+                            let samples = match stop {
+                                Some(_) => a.count + a.dropped..opts.samples.end,
+                                None => opts.samples.clone(),
+                            };
+                            for index in samples {
+                                a.add(render_sample_probed(
+                                    scene, integrator, opts.seed, x, y, index, &mut probe,
+                                ));
+                            }
+                            k += 1;
+                        }
+                    }
+                    if tx.send((i, acc)).is_err() {
+                        break;
                     }
                 }
-                if tx.send((i, acc)).is_err() {
-                    break;
-                }
-            });
+                probe
+            }));
         }
         drop(tx);
         let mut done = 0;
@@ -215,6 +297,12 @@ fn render_tiles(
             done += 1;
             progress(done, list.len());
         }
+        for worker in workers {
+            match worker.join() {
+                Ok(p) => total.absorb(p),
+                Err(e) => std::panic::resume_unwind(e),
+            }
+        }
     });
-    fb
+    (fb, total)
 }

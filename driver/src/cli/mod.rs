@@ -4,6 +4,7 @@ pub mod compare;
 pub mod merge;
 pub mod probe_args;
 pub mod render;
+pub mod render_once;
 pub mod split_args;
 pub mod test;
 

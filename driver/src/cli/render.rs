@@ -1,13 +1,24 @@
-//! `tessera render`: load, render on worker threads, write every requested output.
+//! `tessera render`: load, render progressively on worker threads, write every requested output.
+//!
+//! Stopping rule: `--spp N` (default: the scene's `sample_count`), `--time SECONDS` (a time
+//! budget; with `--spp` too, whichever comes first), `--forever` (until Ctrl-C / SIGTERM).
+//! SIGINT / SIGTERM stop at the next tile boundary, write the outputs (and the checkpoint, with
+//! `--checkpoint`) and exit 130 / 143; a second signal exits at once without writing.
+//! `--resume FILE` continues a checkpoint to the same bits as an uninterrupted render.
+use crate::checkpoint::{load_checkpoint, scene_hash, write_checkpoint, CheckpointMeta};
 use crate::error::InputError;
-use crate::image_io::Format;
-use crate::render::RenderOptions;
-use crate::render_stats::render_maybe_stats;
-use crate::scene::load_scene;
+use crate::image_io::{to_srgb8, write_image, write_png8, Format, RgbImage};
+use crate::overlay::{self, Overlay};
+use crate::progressive::bar::{progress_bar, update_bar};
+use crate::progressive::{self, spp_range, Ending, Job, Plan, Status};
+use crate::render::Framebuffer;
+use crate::scene::{load_scene, MAX_EDGE, MAX_PIXELS};
 use clap::Args;
-use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
-use std::time::Instant;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+use tessera_core::camera::Perspective;
 
 /// Arguments of `tessera render`.
 #[derive(Args, Debug, Clone)]
@@ -17,9 +28,37 @@ pub struct RenderArgs {
     /// Output image; the extension picks the format (.exr, .pfm, .png). May be repeated.
     #[arg(short = 'o', long = "output", required_unless_present = "debug_pixel")]
     pub outputs: Vec<PathBuf>,
-    /// Samples per pixel (default: the scene's sampler).
-    #[arg(long)]
+    /// Samples per pixel (default: the scene's sampler, or the resumed checkpoint's target).
+    #[arg(long, conflicts_with = "forever")]
     pub spp: Option<u64>,
+    /// Time budget in seconds: render passes until it is spent (with --spp, whichever first).
+    #[arg(long, conflicts_with = "forever")]
+    pub time: Option<f64>,
+    /// Render until interrupted (Ctrl-C or SIGTERM), writing the outputs on the way out.
+    #[arg(long)]
+    pub forever: bool,
+    /// Write the current average to every output (and the checkpoint) this often, in seconds.
+    #[arg(long)]
+    pub write_every: Option<f64>,
+    /// Checkpoint file, written at every --write-every, at the end and on interrupt.
+    #[arg(long)]
+    pub checkpoint: Option<PathBuf>,
+    /// Continue the render saved in this checkpoint (and keep checkpointing to it unless
+    /// --checkpoint names another file).
+    #[arg(long)]
+    pub resume: Option<PathBuf>,
+    /// Scale the film's width and height (e.g. 0.25 for a quick preview; at least 1 pixel).
+    #[arg(long)]
+    pub resolution_scale: Option<f64>,
+    /// Label PNG outputs with integrator, sampler, spp, time and resolution (EXR/PFM untouched).
+    #[arg(long)]
+    pub overlay: bool,
+    /// Draw the tile grid on PNG outputs.
+    #[arg(long)]
+    pub overlay_grid: bool,
+    /// Draw a rectangle x0,y0,x1,y1 (pixels) on PNG outputs.
+    #[arg(long, value_parser = crate::overlay::parse_crop)]
+    pub overlay_crop: Option<[u32; 4]>,
     /// Worker threads (default: all cores). The image does not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
@@ -55,6 +94,32 @@ fn usage(msg: String) -> i32 {
     InputError::EXIT_CODE
 }
 
+fn seconds(name: &str, v: Option<f64>) -> Result<Option<Duration>, String> {
+    match v {
+        None => Ok(None),
+        Some(s) if s.is_finite() && s > 0.0 && s < 1e9 => Ok(Some(Duration::from_secs_f64(s))),
+        Some(s) => Err(format!(
+            "--{name} must be a positive number of seconds, found {s}"
+        )),
+    }
+}
+
+/// Ctrl-C / SIGTERM: the first sets `stop` (and `code` to 130 / 143), a second exits at once.
+fn register_signals(stop: &Arc<AtomicBool>, code: &Arc<AtomicUsize>) -> Result<(), String> {
+    use signal_hook::consts::{SIGINT, SIGTERM};
+    use signal_hook::flag;
+    let signalled = Arc::new(AtomicBool::new(false));
+    for (sig, exit) in [(SIGINT, 130), (SIGTERM, 143)] {
+        // The shutdown goes first: it fires only if an earlier signal already armed it.
+        flag::register_conditional_shutdown(sig, exit, Arc::clone(&signalled))
+            .and_then(|_| flag::register_usize(sig, Arc::clone(code), exit as usize))
+            .and_then(|_| flag::register(sig, Arc::clone(stop)))
+            .and_then(|_| flag::register(sig, Arc::clone(&signalled)))
+            .map_err(|e| format!("cannot install signal handlers: {e}"))?;
+    }
+    Ok(())
+}
+
 /// Runs the command; returns the exit code.
 pub fn run(args: &RenderArgs) -> i32 {
     for o in &args.outputs {
@@ -74,6 +139,13 @@ pub fn run(args: &RenderArgs) -> i32 {
     if args.spp == Some(0) {
         return usage("--spp must be at least 1".into());
     }
+    let (budget, write_every) = match (
+        seconds("time", args.time),
+        seconds("write-every", args.write_every),
+    ) {
+        (Ok(b), Ok(w)) => (b, w),
+        (Err(e), _) | (_, Err(e)) => return usage(e),
+    };
     let mut loaded = match load_scene(&args.scene, &args.defines) {
         Ok(l) => l,
         Err(e) => return usage(e.to_string()),
@@ -84,71 +156,226 @@ pub fn run(args: &RenderArgs) -> i32 {
     if let Err(e) = loaded.set_integrator(args.integrator.as_deref(), args.max_depth) {
         return usage(e);
     }
-    let spp = args.spp.unwrap_or(loaded.spp);
+    if let Some(f) = args.resolution_scale {
+        if let Err(e) = scale_resolution(&mut loaded.scene.camera, f) {
+            return usage(e);
+        }
+    }
     let threads = args
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     if threads == 0 {
         return usage("--threads must be at least 1".into());
     }
-    let opts = RenderOptions {
-        samples: args.split.samples(spp),
+    let seed = args.seed.unwrap_or(loaded.seed);
+    if super::render_once::wanted(args) {
+        return super::render_once::run(args, &loaded, threads, seed);
+    }
+    let scene_bytes = match std::fs::read(&args.scene) {
+        Ok(b) => b,
+        Err(e) => return usage(format!("{}: {e}", args.scene.display())),
+    };
+    let (w, h) = (loaded.scene.camera.width, loaded.scene.camera.height);
+    let mut meta = CheckpointMeta {
+        width: w,
+        height: h,
+        seed,
+        target_spp: 0,
+        scene_hash: scene_hash(&scene_bytes, &args.defines),
+        passes: 0,
+        seconds: 0.0,
+        integrator: format!("{:?}", loaded.integrator),
+    };
+    let mut fb = Framebuffer::new(w, h);
+    let mut resumed_target = None;
+    if let Some(path) = &args.resume {
+        let ck = match load_checkpoint(path) {
+            Ok(c) => c,
+            Err(e) => return usage(e),
+        };
+        if let Err(e) = ck.meta.matches(&meta) {
+            return usage(format!("{}: {e}", path.display()));
+        }
+        meta.passes = ck.meta.passes;
+        meta.seconds = ck.meta.seconds;
+        resumed_target = (ck.meta.target_spp > 0).then_some(ck.meta.target_spp);
+        fb.pixels = ck.pixels;
+    }
+    let target = if args.forever {
+        None
+    } else if let Some(n) = args.spp {
+        Some(n)
+    } else if budget.is_some() {
+        None
+    } else {
+        Some(resumed_target.unwrap_or(loaded.spp))
+    };
+    let (_, high) = spp_range(&fb);
+    if let Some(t) = target.filter(|t| *t < high) {
+        let path = args.resume.as_deref().unwrap_or(args.scene.as_path());
+        return usage(format!(
+            "{}: the checkpoint already has pixels at {high} spp, more than the target {t}",
+            path.display()
+        ));
+    }
+    meta.target_spp = target.unwrap_or(0);
+    let checkpoint = args.checkpoint.clone().or_else(|| args.resume.clone());
+    let stop = Arc::new(AtomicBool::new(false));
+    let signal = Arc::new(AtomicUsize::new(0));
+    if let Err(e) = register_signals(&stop, &signal) {
+        eprintln!("error: {e}");
+        return 1;
+    }
+    let (bar, mode) = progress_bar(args.quiet, target, budget, w as u64 * h as u64);
+    let job = Job {
+        scene: &loaded.scene,
+        integrator: &loaded.integrator,
+        seed: meta.seed,
         threads,
         tile_size: args.tile_size,
-        seed: args.seed.unwrap_or(loaded.seed),
-        pixels: args.split.selection(),
     };
-    let spp = opts.samples.end - opts.samples.start;
-    let part = match args
-        .split
-        .part_info(&args.scene, &args.defines, &loaded, &opts)
-    {
-        Ok(p) => p,
-        Err(e) => return usage(e),
+    let plan = Plan {
+        target,
+        budget,
+        write_every,
     };
-    if let Some(dp) = args.probe.debug_pixel {
-        return crate::debug_pixel::run(&loaded, &opts, dp);
-    }
-    let scene = &loaded.scene;
-    let bar = if args.quiet {
-        ProgressBar::hidden()
-    } else {
-        ProgressBar::new(1)
-    };
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} tiles {elapsed_precise} eta {eta}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    let taken = |fb: &Framebuffer| fb.pixels.iter().map(|p| p.count + p.dropped).sum::<u64>();
+    let samples_before = taken(&fb);
     let start = Instant::now();
-    let stats = args.probe.stats;
-    let fb = render_maybe_stats(
-        stats,
-        scene,
-        &loaded.integrator,
-        &opts,
-        &mut |done, total| {
-            bar.set_length(total as u64);
-            bar.set_position(done as u64);
-        },
+    let base = meta.clone();
+    let spec = &loaded.integrator_spec;
+    let label = match (spec.name.starts_with("path"), spec.max_depth) {
+        (true, Some(d)) => format!("{}, max_depth {d}, independent sampler", spec.name),
+        (true, None) => format!("{}, unbounded depth, independent sampler", spec.name),
+        (false, _) => format!("{}, independent sampler", spec.name),
+    };
+    let decor = Decor {
+        label: args.overlay.then_some(label),
+        grid: args.overlay_grid.then_some(args.tile_size),
+        crop: args.overlay_crop,
+    };
+    let save = |fb: &Framebuffer, passes: u64| -> Result<(), String> {
+        let mut m = base.clone();
+        m.passes += passes;
+        m.seconds += start.elapsed().as_secs_f64();
+        write_all(&args.outputs, checkpoint.as_deref(), &m, fb, &decor)
+    };
+    let result = progressive::run(
+        job,
+        &mut fb,
+        &plan,
+        &stop,
+        &mut |s: &Status| update_bar(&bar, mode, s),
+        &mut |fb, passes| save(fb, passes),
     );
     bar.finish_and_clear();
-    let secs = start.elapsed().as_secs_f64();
-    let mut code = 0;
-    for o in &args.outputs {
-        if let Err(e) = super::split_args::write_render_output(o, &fb, part.as_ref()) {
+    let (ending, passes) = match result {
+        Ok(r) => r,
+        Err(e) => {
             eprintln!("error: {e}");
-            code = 1;
+            return 1;
         }
+    };
+    if let Err(e) = save(&fb, passes) {
+        eprintln!("error: {e}");
+        return 1;
     }
-    let samples: f64 = fb.pixels.iter().map(|p| (p.count + p.dropped) as f64).sum();
+    let secs = start.elapsed().as_secs_f64();
+    let spp = spp_text(&fb);
+    let code = signal.load(Ordering::SeqCst) as i32;
     if !args.quiet || code != 0 {
         eprintln!(
-            "{}x{} at {spp} spp in {secs:.2} s ({:.2} M samples/s, {threads} threads); {} non-finite samples dropped",
-            fb.width,
-            fb.height,
-            samples / secs.max(1e-9) / 1e6,
-            fb.dropped()
+            "{w}x{h} at {spp} spp, {passes} passes in {secs:.2} s ({:.2} M samples/s, {threads} threads); {} non-finite samples dropped{}",
+            (taken(&fb) - samples_before) as f64 / secs.max(1e-9) / 1e6,
+            fb.dropped(),
+            match ending {
+                Ending::Target => "",
+                Ending::Time => "; time budget spent",
+                Ending::Stopped => "; interrupted",
+            }
         );
     }
+    if code != 0 {
+        match &checkpoint {
+            Some(c) => eprintln!("checkpoint written: resume with --resume {}", c.display()),
+            None => eprintln!("no --checkpoint given: this render cannot be resumed"),
+        }
+    }
     code
+}
+
+/// What `--overlay*` asks to draw on PNG outputs.
+struct Decor {
+    /// First label line (integrator and sampler); `None` without `--overlay`.
+    label: Option<String>,
+    grid: Option<u32>,
+    crop: Option<[u32; 4]>,
+}
+
+fn spp_text(fb: &Framebuffer) -> String {
+    match spp_range(fb) {
+        (lo, hi) if lo == hi => format!("{lo}"),
+        (lo, hi) => format!("{lo}-{hi}"),
+    }
+}
+
+/// Writes the average to every output, then the checkpoint (each atomically).
+fn write_all(
+    outputs: &[PathBuf],
+    checkpoint: Option<&std::path::Path>,
+    meta: &CheckpointMeta,
+    fb: &Framebuffer,
+    decor: &Decor,
+) -> Result<(), String> {
+    let img = RgbImage {
+        width: fb.width,
+        height: fb.height,
+        data: fb.rgb(),
+    };
+    let ov = Overlay {
+        lines: decor.label.iter().fold(Vec::new(), |mut v, l| {
+            v.push(l.clone());
+            v.push(format!(
+                "{} spp, {:.1} s, {}x{}",
+                spp_text(fb),
+                meta.seconds,
+                fb.width,
+                fb.height
+            ));
+            v
+        }),
+        grid: decor.grid,
+        crop: decor.crop,
+    };
+    let decorated = !ov.lines.is_empty() || ov.grid.is_some() || ov.crop.is_some();
+    for o in outputs {
+        if decorated && Format::from_path(o) == Some(Format::Png) {
+            let mut rgb8 = to_srgb8(&img);
+            overlay::apply(&mut rgb8, img.width, img.height, &ov);
+            write_png8(o, img.width, img.height, rgb8)?;
+        } else {
+            write_image(o, &img)?;
+        }
+    }
+    if let Some(c) = checkpoint {
+        write_checkpoint(c, meta, &fb.pixels)?;
+    }
+    Ok(())
+}
+
+/// `--resolution-scale`: multiplies the film's width and height (rounded, at least 1 pixel)
+/// keeping the field of view (the camera maps the film to the same view whatever its size).
+fn scale_resolution(camera: &mut Perspective, f: f64) -> Result<(), String> {
+    if !(f.is_finite() && f > 0.0 && f <= 16.0) {
+        return Err(format!("--resolution-scale must be in (0, 16], found {f}"));
+    }
+    let scale = |n: u32| ((n as f64 * f).round() as i64).clamp(1, MAX_EDGE);
+    let (w, h) = (scale(camera.width), scale(camera.height));
+    if w * h > MAX_PIXELS {
+        return Err(format!(
+            "--resolution-scale {f} gives {w}x{h} pixels, over the limit of {MAX_PIXELS}"
+        ));
+    }
+    (camera.width, camera.height) = (w as u32, h as u32);
+    Ok(())
 }

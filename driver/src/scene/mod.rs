@@ -10,6 +10,7 @@ mod shapes;
 mod util;
 
 pub use integrator::{IntegratorSpec, INTEGRATOR_NAMES};
+pub use sensor::{MAX_EDGE, MAX_PIXELS};
 
 use crate::error::InputError;
 use std::path::Path;

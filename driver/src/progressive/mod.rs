@@ -1,0 +1,199 @@
+//! Progressive rendering: passes of whole-image samples until a target sample count, a time
+//! budget or a stop request, with the current average written out every so often.
+//!
+//! Every pass brings each pixel from its own sample count up to the pass's end
+//! ([`render_into_until`]), so the image is the same bits as one render of the same total
+//! samples, however many passes it took, wherever it was interrupted and resumed. A stop request
+//! (signal or time budget) is honoured at the next tile boundary; pixels of tiles not yet
+//! rendered in that pass keep their earlier sums.
+//!
+//! Pass sizes: 1 spp first, then as many spp as fit in [`PASS_SECONDS`] at the measured speed
+//! (at most double the previous pass; at most half the write interval and at most the time left),
+//! never past the target. Pass sizes change nothing in the bits.
+pub mod bar;
+
+use crate::render::{render_into_until, Framebuffer, RenderOptions};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+use tessera_core::integrator::Integrator;
+use tessera_core::scene::Scene;
+
+/// Longest pass aimed for (seconds): short enough for a responsive stop and timely writes, long
+/// enough that copying the sums between passes costs little.
+pub const PASS_SECONDS: f64 = 10.0;
+
+/// What to render with.
+#[derive(Clone, Copy)]
+pub struct Job<'a> {
+    /// The scene.
+    pub scene: &'a Scene,
+    /// The integrator.
+    pub integrator: &'a Integrator,
+    /// Seed of every random stream.
+    pub seed: u64,
+    /// Worker threads.
+    pub threads: usize,
+    /// Tile edge in pixels.
+    pub tile_size: u32,
+}
+
+/// When to stop and when to write.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Plan {
+    /// Stop when every pixel has this many samples (`None`: no limit).
+    pub target: Option<u64>,
+    /// Stop when this much time has been spent in this run (`None`: no limit).
+    pub budget: Option<Duration>,
+    /// Call the writer after a pass when this much time has passed since the last write.
+    pub write_every: Option<Duration>,
+}
+
+/// Why the passes ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Ending {
+    /// Every pixel reached the target.
+    Target,
+    /// The time budget ran out.
+    Time,
+    /// The stop flag was set from outside (a signal).
+    Stopped,
+}
+
+/// Where the render is, for a progress display.
+#[derive(Clone, Copy, Debug)]
+pub struct Status {
+    /// Passes completed in this run.
+    pub passes: u64,
+    /// Fewest samples of any pixel at the start of the current pass.
+    pub spp_low: u64,
+    /// The current pass's end.
+    pub pass_end: u64,
+    /// Estimated samples per pixel done so far (fractional within the pass).
+    pub spp_done: f64,
+    /// Time spent in this run.
+    pub elapsed: Duration,
+}
+
+/// Fewest and most samples (`count + dropped`) of any pixel.
+pub fn spp_range(fb: &Framebuffer) -> (u64, u64) {
+    fb.pixels
+        .iter()
+        .map(|p| p.count + p.dropped)
+        .fold((u64::MAX, 0), |(lo, hi), n| (lo.min(n), hi.max(n)))
+}
+
+/// Renders passes into `fb` (which may hold a resumed render) until `plan` says stop or `stop`
+/// is set. `progress` is called as tiles arrive; `write(fb, passes_done)` after each pass when the
+/// write interval is due (its error ends the render). Returns why it ended and the passes completed.
+pub fn run(
+    job: Job,
+    fb: &mut Framebuffer,
+    plan: &Plan,
+    stop: &AtomicBool,
+    progress: &mut dyn FnMut(&Status),
+    write: &mut dyn FnMut(&Framebuffer, u64) -> Result<(), String>,
+) -> Result<(Ending, u64), String> {
+    let start = Instant::now();
+    let deadline = plan.budget.map(|b| start + b);
+    let time_up = AtomicBool::new(false);
+    let finished = AtomicBool::new(false);
+    std::thread::scope(|s| {
+        if let Some(d) = deadline {
+            // Watcher: the time budget stops the pass in flight at the next tile boundary.
+            let (time_up, finished) = (&time_up, &finished);
+            s.spawn(move || {
+                while !finished.load(Ordering::SeqCst) {
+                    let now = Instant::now();
+                    if now >= d {
+                        time_up.store(true, Ordering::SeqCst);
+                        stop.store(true, Ordering::SeqCst);
+                        return;
+                    }
+                    std::thread::sleep((d - now).min(Duration::from_millis(20)));
+                }
+            });
+        }
+        let out = passes(job, fb, plan, deadline, stop, progress, write, start);
+        finished.store(true, Ordering::SeqCst);
+        out.map(|(e, n)| match e {
+            Ending::Stopped if time_up.load(Ordering::SeqCst) => (Ending::Time, n),
+            e => (e, n),
+        })
+    })
+}
+
+#[allow(clippy::too_many_arguments)]
+fn passes(
+    job: Job,
+    fb: &mut Framebuffer,
+    plan: &Plan,
+    deadline: Option<Instant>,
+    stop: &AtomicBool,
+    progress: &mut dyn FnMut(&Status),
+    write: &mut dyn FnMut(&Framebuffer, u64) -> Result<(), String>,
+    start: Instant,
+) -> Result<(Ending, u64), String> {
+    let target = plan.target.unwrap_or(u64::MAX);
+    let mut last_write = start;
+    let mut next = 1u64;
+    let mut rate = None::<f64>; // spp of the whole image per second
+    let mut done = 0u64;
+    loop {
+        if stop.load(Ordering::SeqCst) {
+            return Ok((Ending::Stopped, done));
+        }
+        let (low, _) = spp_range(fb);
+        if low >= target {
+            return Ok((Ending::Target, done));
+        }
+        let mut budget = PASS_SECONDS;
+        if let Some(w) = plan.write_every {
+            budget = budget.min(w.as_secs_f64() / 2.0);
+        }
+        if let Some(d) = deadline {
+            let left = d.saturating_duration_since(Instant::now()).as_secs_f64();
+            if left <= 0.0 {
+                return Ok((Ending::Time, done));
+            }
+            budget = budget.min(left);
+            // Not even one more spp fits: stop between passes rather than cut one short.
+            if rate.is_some_and(|r| r * left < 1.0) {
+                return Ok((Ending::Time, done));
+            }
+        }
+        if let Some(r) = rate {
+            next = ((r * budget) as u64).clamp(1, next.saturating_mul(2));
+        }
+        let end = low.saturating_add(next).min(target);
+        let opts = RenderOptions {
+            samples: low..end,
+            threads: job.threads,
+            tile_size: job.tile_size,
+            seed: job.seed,
+            ..Default::default()
+        };
+        let t0 = Instant::now();
+        let complete =
+            render_into_until(job.scene, job.integrator, &opts, fb, stop, &mut |d, t| {
+                progress(&Status {
+                    passes: done,
+                    spp_low: low,
+                    pass_end: end,
+                    spp_done: low as f64 + (end - low) as f64 * d as f64 / t.max(1) as f64,
+                    elapsed: start.elapsed(),
+                })
+            });
+        if !complete {
+            continue; // the stop flag is set: the loop's top returns
+        }
+        done += 1;
+        let dt = t0.elapsed().as_secs_f64().max(1e-6);
+        rate = Some((end - low) as f64 / dt);
+        next = end - low;
+        let due = plan.write_every.is_some_and(|w| last_write.elapsed() >= w);
+        if due && spp_range(fb).0 < target {
+            write(fb, done)?;
+            last_write = Instant::now();
+        }
+    }
+}
