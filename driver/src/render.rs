@@ -195,7 +195,9 @@ pub fn render_into_until(
     progress: &mut dyn FnMut(usize, usize),
 ) -> bool {
     check_size(scene, fb, "render_into_until");
-    let (mut done, mut total) = (0, 0);
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let total = opts.pixels.rects(w, h, opts.tile_size).len();
+    let mut done = 0;
     let out = render_tiles::<NoProbe>(
         scene,
         integrator,
@@ -203,13 +205,12 @@ pub fn render_into_until(
         Some(&fb.pixels),
         Some(stop),
         &mut |d, t| {
-            (done, total) = (d, t);
+            done = d;
             progress(d, t)
         },
     );
     *fb = out.0;
-    let (w, h) = (scene.camera.width, scene.camera.height);
-    done == total || opts.pixels.rects(w, h, opts.tile_size).is_empty()
+    done == total
 }
 
 /// The tile loop: each tile's accumulators start from `start` (or empty) and take the samples
