@@ -29,6 +29,9 @@ pub struct RenderArgs {
     /// direct_mats, direct_mis); keeps the file's max_depth etc.
     #[arg(long)]
     pub integrator: Option<String>,
+    /// Sampler (independent, zsobol), overriding the scene file.
+    #[arg(long)]
+    pub sampler: Option<String>,
     /// Longest path (-1 = unbounded), overriding the scene file.
     #[arg(long, allow_hyphen_values = true)]
     pub max_depth: Option<i64>,
@@ -78,6 +81,9 @@ pub fn run(args: &RenderArgs) -> i32 {
         return usage(e);
     }
     let spp = args.spp.unwrap_or(loaded.spp);
+    if let Err(e) = loaded.set_sampler(args.sampler.as_deref(), spp) {
+        return usage(e);
+    }
     let threads = args
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));

@@ -1,0 +1,53 @@
+//! Hash-based Owen scrambling (nested uniform scrambling in base 2) of 32-bit binary fractions
+//! and of 64-bit sequence indices.
+//!
+//! Owen scrambling flips each bit of a number by a random function of the bits *above* it. Such
+//! a map is a bijection that sends every aligned block of `2^k` consecutive values (an elementary
+//! interval, for a fraction) to another aligned block of the same size, so it keeps the
+//! stratification of a `(t, m, s)`-net while randomizing it. Computing one independent random
+//! bit per prefix is expensive; the Laine-Karras construction gets the same nested structure in a
+//! few instructions by reversing the bits (so "the bits above" become "the bits below") and
+//! applying operations whose output bit `k` depends only on input bits `0..=k`: adding a
+//! constant, multiplying by an odd number and `x ^= x * even`. The constants are those of Nathan
+//! Vegdahl's improved LK hash ("Building a Better LK Hash", psychopath.io, 2021), which is known
+//! to decorrelate well; the seed must be well mixed beforehand (callers pass hashes).
+
+/// The Laine-Karras-style permutation of a bit-reversed value: output bit `k` is input bit `k`
+/// flipped by a function of input bits `0..k` and the seed.
+#[inline]
+fn reversed_lk(mut n: u32, seed: u32) -> u32 {
+    n ^= n.wrapping_mul(0x3d20_adea);
+    n = n.wrapping_add(seed);
+    n = n.wrapping_mul((seed >> 16) | 1);
+    n ^= n.wrapping_mul(0x0552_6c56);
+    n ^= n.wrapping_mul(0x53a2_2864);
+    n
+}
+
+/// Owen-scrambles a 32-bit binary fraction (`v / 2^32`): bit `31 - k` is flipped by a
+/// pseudo-random function of `seed` and the `k` bits above it.
+#[inline]
+pub fn owen_scramble_u32(v: u32, seed: u32) -> u32 {
+    reversed_lk(v.reverse_bits(), seed).reverse_bits()
+}
+
+/// SplitMix64's finalizer: a bijective 64-bit mixer.
+#[inline]
+pub fn mix64(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// A nested random permutation of 64-bit indices: bit `j` is flipped by a pseudo-random function
+/// of `seed` and the bits above `j`. Every aligned block of `2^k` indices goes to an aligned
+/// block of `2^k` indices. The high half is scrambled alone; the low half's scramble is seeded by
+/// the (unscrambled) high half, so its flips depend on every bit above them.
+#[inline]
+pub fn scramble_index(i: u64, seed: u64) -> u64 {
+    let hi = (i >> 32) as u32;
+    let lo = i as u32;
+    let hi2 = owen_scramble_u32(hi, seed as u32);
+    let lo_seed = mix64((seed >> 32) ^ ((hi as u64) << 32) ^ 0x2545_f491_4f6c_dd1d) as u32;
+    ((hi2 as u64) << 32) | owen_scramble_u32(lo, lo_seed) as u64
+}
