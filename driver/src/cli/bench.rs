@@ -83,7 +83,7 @@ fn print_times(rows: &[Row], target: f64) {
     for (name, c) in curves(rows) {
         let threads = c.first().map_or(0, |r| r.threads);
         println!(
-            "{name}, {threads} threads: time to relMSE {target}: {}",
+            "{name} ({threads} threads): time to relMSE {target}: {}",
             time_to_target(&c, target)
         );
     }
