@@ -39,15 +39,21 @@ pub fn mix64(mut z: u64) -> u64 {
     z ^ (z >> 31)
 }
 
-/// A nested random permutation of 64-bit indices: bit `j` is flipped by a pseudo-random function
-/// of `seed` and the bits above `j`. Every aligned block of `2^k` indices goes to an aligned
-/// block of `2^k` indices. The high half is scrambled alone; the low half's scramble is seeded by
-/// the (unscrambled) high half, so its flips depend on every bit above them.
+/// A nested random permutation of indices `i < 2^(32 + k)` split as `(pixel << k) | sample`
+/// (`k <= 32`): bit `j` is flipped by a pseudo-random function of `seed` and the bits above `j`,
+/// so every aligned block of `2^j` indices goes to an aligned block of `2^j` indices. The pixel
+/// part is Owen-scrambled as a 32-bit word seeded by `seed`; the sample part's scramble is
+/// seeded by a fresh hash of `seed` and the whole (unscrambled) pixel part, so each pixel picks
+/// its block of samples independently of its neighbours.
 #[inline]
-pub fn scramble_index(i: u64, seed: u64) -> u64 {
-    let hi = (i >> 32) as u32;
-    let lo = i as u32;
-    let hi2 = owen_scramble_u32(hi, seed as u32);
-    let lo_seed = mix64((seed >> 32) ^ ((hi as u64) << 32) ^ 0x2545_f491_4f6c_dd1d) as u32;
-    ((hi2 as u64) << 32) | owen_scramble_u32(lo, lo_seed) as u64
+pub fn scramble_index(i: u64, k: u32, seed: u64) -> u64 {
+    let k = k.min(32);
+    let pixel = i >> k;
+    let hi = owen_scramble_u32(pixel as u32, seed as u32) as u64;
+    if k == 0 {
+        return hi;
+    }
+    let sample = (i as u32) << (32 - k);
+    let lo_seed = mix64(seed ^ pixel.wrapping_mul(0x2545_f491_4f6c_dd1d)) as u32;
+    (hi << k) | (owen_scramble_u32(sample, lo_seed) >> (32 - k)) as u64
 }

@@ -12,8 +12,9 @@
 //! *dimension* for `next_1d`, two for `next_2d`) then:
 //! 1. permutes `m` by a nested (Owen) scramble of its bits seeded by a hash of
 //!    (seed, dimension, epoch), so each dimension visits the sequence in a different order while
-//!    aligned blocks stay aligned blocks ([`scramble_index`]); the epoch is `s >> K`, so samples
-//!    beyond `2^K` start fresh randomizations instead of running into the next pixel;
+//!    aligned blocks stay aligned blocks ([`scramble_index`]: the pixel bits by one scramble per
+//!    dimension, the sample bits by one seeded by the pixel too); the epoch is `s >> K`, so
+//!    samples beyond `2^K` start fresh randomizations instead of running into the next pixel;
 //! 2. takes Sobol dimension 0 (and 1 for a 2D request) of the permuted index's low 32 bits
 //!    ([`sobol_dim0`], [`sobol_dim1`]);
 //! 3. Owen-scrambles each coordinate with a seed hashed from (seed, dimension, epoch, the
@@ -73,6 +74,8 @@ pub fn to_unit(v: u32) -> f32 {
 pub struct ZSobolSampler {
     /// The Morton index `(morton(x, y) << K) | (s mod 2^K)`.
     morton_index: u64,
+    /// `K`.
+    log2_spp: u32,
     /// Hash of the seed and the epoch.
     key: u64,
     /// The next dimension.
@@ -100,6 +103,7 @@ impl ZSobolSampler {
         let epoch = index >> k;
         ZSobolSampler {
             morton_index: (morton2(x, y) << k) | within,
+            log2_spp: k,
             key: mix64(seed ^ mix64(epoch ^ 0x6a09_e667_f3bc_c909)),
             dimension: 0,
         }
@@ -119,7 +123,7 @@ impl ZSobolSampler {
     #[inline]
     pub fn draw(&self, dim: u32) -> DimensionDraw {
         let h = mix64(self.key ^ (dim as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15));
-        let permuted = scramble_index(self.morton_index, h);
+        let permuted = scramble_index(self.morton_index, self.log2_spp, h);
         let s = mix64(h ^ (permuted >> 32) ^ 0xbb67_ae85_84ca_a73b);
         DimensionDraw {
             index: permuted as u32,
