@@ -420,8 +420,7 @@ fn scene_files_choose_the_sampler() {
     );
     let path = tessera_tests::scenes_dir().join("inline-test.xml");
     let err = tessera::scene::load_scene_str(&xml("sobol"), &path, &[])
-        .err()
-        .expect("unknown sampler is an error")
+        .expect_err("unknown sampler is an error")
         .to_string();
     assert!(err.contains("inline-test.xml:4:5"), "{err}");
     assert!(err.contains("unknown sampler \"sobol\""), "{err}");

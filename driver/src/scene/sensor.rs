@@ -78,7 +78,7 @@ pub fn build_sampler(obj: &Object, warnings: &mut Vec<String>) -> Result<(u64, u
         }
     };
     let spp = obj.integer("sample_count", 4)?;
-    if spp < 1 || spp > 1 << 40 {
+    if !(1..=1 << 40).contains(&spp) {
         return Err(at_prop(
             obj,
             "sample_count",
@@ -87,13 +87,14 @@ pub fn build_sampler(obj: &Object, warnings: &mut Vec<String>) -> Result<(u64, u
     }
     let seed = obj.integer("seed", 0)?;
     obj.check_unused()?;
-    let kind = SamplerKind::from_name(name, spp as u64).expect("a known sampler name");
+    // `name` is one of the two known names by the match above.
+    let kind = SamplerKind::from_name(name, spp as u64).unwrap_or_default();
     Ok((spp as u64, seed as u64, kind))
 }
 
 fn size(obj: &Object, name: &str, default: i64) -> Result<u32> {
     let v = obj.integer(name, default)?;
-    if v < 1 || v > MAX_EDGE {
+    if !(1..=MAX_EDGE).contains(&v) {
         return Err(at_prop(
             obj,
             name,
