@@ -15,7 +15,7 @@
 /// The Laine-Karras-style permutation of a bit-reversed value: output bit `k` is input bit `k`
 /// flipped by a function of input bits `0..k` and the seed.
 #[inline]
-fn reversed_lk(mut n: u32, seed: u32) -> u32 {
+pub fn reversed_lk(mut n: u32, seed: u32) -> u32 {
     n ^= n.wrapping_mul(0x3d20_adea);
     n = n.wrapping_add(seed);
     n = n.wrapping_mul((seed >> 16) | 1);
@@ -39,6 +39,12 @@ pub fn mix64(mut z: u64) -> u64 {
     z ^ (z >> 31)
 }
 
+/// The seed of the sample part's scramble in [`scramble_index`].
+#[inline]
+pub fn sample_seed(seed: u64, pixel: u64) -> u32 {
+    mix64(seed ^ pixel.wrapping_mul(0x2545_f491_4f6c_dd1d)) as u32
+}
+
 /// A nested random permutation of indices `i < 2^(32 + k)` split as `(pixel << k) | sample`
 /// (`k <= 32`): bit `j` is flipped by a pseudo-random function of `seed` and the bits above `j`,
 /// so every aligned block of `2^j` indices goes to an aligned block of `2^j` indices. The pixel
@@ -54,6 +60,6 @@ pub fn scramble_index(i: u64, k: u32, seed: u64) -> u64 {
         return hi;
     }
     let sample = (i as u32) << (32 - k);
-    let lo_seed = mix64(seed ^ pixel.wrapping_mul(0x2545_f491_4f6c_dd1d)) as u32;
+    let lo_seed = sample_seed(seed, pixel);
     (hi << k) | (owen_scramble_u32(sample, lo_seed) >> (32 - k)) as u64
 }

@@ -21,9 +21,17 @@ const fn dim1_columns() -> [u32; 32] {
     c
 }
 
-/// `TABLE[b][v]`: XOR of the columns `8b..8b+8` of dimension 1 selected by the bits of byte `v`.
-const fn dim1_tables() -> [[u32; 256]; 4] {
-    let cols = dim1_columns();
+/// `TABLE[b][v]`: XOR of the columns `8b..8b+8` of dimension 1 selected by the bits of byte `v`,
+/// bit-reversed if `reversed`.
+const fn dim1_tables(reversed: bool) -> [[u32; 256]; 4] {
+    let mut cols = dim1_columns();
+    if reversed {
+        let mut j = 0;
+        while j < 32 {
+            cols[j] = cols[j].reverse_bits();
+            j += 1;
+        }
+    }
     let mut t = [[0u32; 256]; 4];
     let mut b = 0;
     while b < 4 {
@@ -45,7 +53,8 @@ const fn dim1_tables() -> [[u32; 256]; 4] {
     t
 }
 
-static DIM1: [[u32; 256]; 4] = dim1_tables();
+static DIM1: [[u32; 256]; 4] = dim1_tables(false);
+static DIM1_REVERSED: [[u32; 256]; 4] = dim1_tables(true);
 
 /// Dimension 0 of point `i` (van der Corput), as a fraction of 2^32.
 #[inline]
@@ -60,6 +69,15 @@ pub fn sobol_dim1(i: u32) -> u32 {
         ^ DIM1[1][((i >> 8) & 0xff) as usize]
         ^ DIM1[2][((i >> 16) & 0xff) as usize]
         ^ DIM1[3][(i >> 24) as usize]
+}
+
+/// Dimension 1 of point `i` with its bits reversed (what Owen scrambling works on).
+#[inline]
+pub fn sobol_dim1_reversed(i: u32) -> u32 {
+    DIM1_REVERSED[0][(i & 0xff) as usize]
+        ^ DIM1_REVERSED[1][((i >> 8) & 0xff) as usize]
+        ^ DIM1_REVERSED[2][((i >> 16) & 0xff) as usize]
+        ^ DIM1_REVERSED[3][(i >> 24) as usize]
 }
 
 /// Dimension 1 by the plain matrix-vector product (the tables' definition; for tests).

@@ -30,8 +30,8 @@
 //! (unbiased, less evenly spread). The values of sample `s` depend on `K`, so an image rendered
 //! with `K` from 64 spp differs from the first 64 samples of one rendered with `K` from 1024 spp;
 //! for a fixed `K`, rendering samples `0..a` then `a..b` equals rendering `0..b`.
-use super::owen::{mix64, owen_scramble_u32, scramble_index};
-use super::sobol::{sobol_dim0, sobol_dim1};
+use super::owen::{mix64, reversed_lk, sample_seed};
+use super::sobol::sobol_dim1_reversed;
 use super::Sampler;
 use glam::Vec2;
 
@@ -76,6 +76,10 @@ pub struct ZSobolSampler {
     morton_index: u64,
     /// `K`.
     log2_spp: u32,
+    /// The pixel part `morton(x, y)`, bit-reversed as a 32-bit word.
+    pixel_reversed: u32,
+    /// The sample part `s mod 2^K` as the top `K` bits of a word, bit-reversed.
+    sample_reversed: u32,
     /// Hash of the seed and the epoch.
     key: u64,
     /// The next dimension.
@@ -101,9 +105,12 @@ impl ZSobolSampler {
         let k = log2_spp.min(MAX_LOG2_SPP);
         let within = index & ((1u64 << k) - 1);
         let epoch = index >> k;
+        let pixel = morton2(x, y);
         ZSobolSampler {
-            morton_index: (morton2(x, y) << k) | within,
+            morton_index: (pixel << k) | within,
             log2_spp: k,
+            pixel_reversed: (pixel as u32).reverse_bits(),
+            sample_reversed: ((within as u32).checked_shl(32 - k).unwrap_or(0)).reverse_bits(),
             key: mix64(seed ^ mix64(epoch ^ 0x6a09_e667_f3bc_c909)),
             dimension: 0,
         }
@@ -120,23 +127,39 @@ impl ZSobolSampler {
     }
 
     /// Where dimension `dim` of this sample reads the sequence (a pure function; for tests).
+    ///
+    /// The permuted index is `owen::scramble_index(morton_index, K, h)` for the dimension's hash
+    /// `h`; it is assembled here in bit-reversed form, which is what the scrambles compute, so
+    /// that only one bit reversal is left: `R(index) = (R(pixel') >> K) | (R(sample') << (32 - K))`.
     #[inline]
     pub fn draw(&self, dim: u32) -> DimensionDraw {
         let h = mix64(self.key ^ (dim as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15));
-        let permuted = scramble_index(self.morton_index, self.log2_spp, h);
-        let s = mix64(h ^ (permuted >> 32) ^ 0xbb67_ae85_84ca_a73b);
+        let k = self.log2_spp;
+        let pixel_r = reversed_lk(self.pixel_reversed, h as u32);
+        let index_r = if k == 0 {
+            pixel_r
+        } else {
+            let sample_r =
+                reversed_lk(self.sample_reversed, sample_seed(h, self.morton_index >> k));
+            pixel_r.checked_shr(k).unwrap_or(0) | (sample_r << (32 - k))
+        };
+        // The permuted index's bits above 32 (the top K bits of the pixel word), reversed: only
+        // hashed, so any bijection of them will do.
+        let top = if k == 0 { 0 } else { pixel_r << (32 - k) };
+        let s = mix64(h ^ top as u64 ^ 0xbb67_ae85_84ca_a73b);
         DimensionDraw {
-            index: permuted as u32,
+            index: index_r.reverse_bits(),
             seed_x: s as u32,
             seed_y: (s >> 32) as u32,
         }
     }
 
-    /// The 1D value of dimension `dim`, as a 32-bit fraction.
+    /// The 1D value of dimension `dim`, as a 32-bit fraction: the Owen-scrambled van der Corput
+    /// point, `R(LK(R(R(index))))`.
     #[inline]
     pub fn value_1d(&self, dim: u32) -> u32 {
         let d = self.draw(dim);
-        owen_scramble_u32(sobol_dim0(d.index), d.seed_x)
+        reversed_lk(d.index, d.seed_x).reverse_bits()
     }
 
     /// The 2D value starting at dimension `dim`, as 32-bit fractions.
@@ -144,9 +167,38 @@ impl ZSobolSampler {
     pub fn value_2d(&self, dim: u32) -> (u32, u32) {
         let d = self.draw(dim);
         (
-            owen_scramble_u32(sobol_dim0(d.index), d.seed_x),
-            owen_scramble_u32(sobol_dim1(d.index), d.seed_y),
+            reversed_lk(d.index, d.seed_x).reverse_bits(),
+            reversed_lk(sobol_dim1_reversed(d.index), d.seed_y).reverse_bits(),
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::owen::{mix64, owen_scramble_u32, scramble_index};
+    use super::super::sobol::{sobol_dim0, sobol_dim1};
+    use super::*;
+
+    /// The reversed-domain assembly equals the plain definition.
+    #[test]
+    fn draw_matches_the_definition() {
+        for t in 0..5000u64 {
+            let r = mix64(t);
+            let (seed, x, y) = (r & 7, (r >> 8) as u32 & 0xffff, (r >> 24) as u32 & 0xffff);
+            let k = (r >> 40) as u32 % 34;
+            let index = mix64(r) >> ((r >> 50) % 64);
+            let s = ZSobolSampler::new(seed, x, y, index, k);
+            let dim = (r >> 56) as u32;
+            let h = mix64(s.key ^ (dim as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15));
+            let kk = k.min(MAX_LOG2_SPP);
+            let full = scramble_index(s.morton_index, kk, h);
+            let d = s.draw(dim);
+            assert_eq!(d.index, full as u32, "k {k}");
+            let v = owen_scramble_u32(sobol_dim0(d.index), d.seed_x);
+            let w = owen_scramble_u32(sobol_dim1(d.index), d.seed_y);
+            assert_eq!(s.value_2d(dim), (v, w));
+            assert_eq!(s.value_1d(dim), v);
+        }
     }
 }
 
