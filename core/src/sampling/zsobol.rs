@@ -173,6 +173,23 @@ impl ZSobolSampler {
     }
 }
 
+impl Sampler for ZSobolSampler {
+    #[inline]
+    fn next_1d(&mut self) -> f32 {
+        let v = self.value_1d(self.dimension);
+        self.dimension = self.dimension.wrapping_add(1);
+        to_unit(v)
+    }
+
+    /// One 2D point of the pixel's (0, m, 2)-net; uses two dimension numbers, as in pbrt-v4.
+    #[inline]
+    fn next_2d(&mut self) -> Vec2 {
+        let (a, b) = self.value_2d(self.dimension);
+        self.dimension = self.dimension.wrapping_add(2);
+        Vec2::new(to_unit(a), to_unit(b))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::owen::{mix64, owen_scramble_u32, scramble_index};
@@ -199,22 +216,5 @@ mod tests {
             assert_eq!(s.value_2d(dim), (v, w));
             assert_eq!(s.value_1d(dim), v);
         }
-    }
-}
-
-impl Sampler for ZSobolSampler {
-    #[inline]
-    fn next_1d(&mut self) -> f32 {
-        let v = self.value_1d(self.dimension);
-        self.dimension = self.dimension.wrapping_add(1);
-        to_unit(v)
-    }
-
-    /// One 2D point of the pixel's (0, m, 2)-net; uses two dimension numbers, as in pbrt-v4.
-    #[inline]
-    fn next_2d(&mut self) -> Vec2 {
-        let (a, b) = self.value_2d(self.dimension);
-        self.dimension = self.dimension.wrapping_add(2);
-        Vec2::new(to_unit(a), to_unit(b))
     }
 }
