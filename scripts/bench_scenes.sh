@@ -20,7 +20,7 @@ mkdir -p "$OUT"
 for NAME in cbox veach_mis; do
     REF="scenes/refs/${NAME}_128x128_mitsuba.exr"
     "$TESSERA" bench "scenes/$NAME.xml" -D res=128 -D rfilter=box --reference "$REF" \
-        --integrators path_mis --threads "$THREADS" --max-seconds "$MAX" -o "$OUT/$NAME.csv"
+        --integrators path_mis --sampler independent,zsobol --threads "$THREADS" --max-seconds "$MAX" -o "$OUT/$NAME.csv"
     "$PYTHON" scripts/mitsuba_bench.py "scenes/$NAME.xml" -D res=128 -D rfilter=box \
         --reference "$REF" --variant "$VARIANTS" --threads "$THREADS" --max-seconds "$MAX" \
         -o "$OUT/$NAME.csv"

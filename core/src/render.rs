@@ -1,13 +1,14 @@
 //! The per-sample entry point: one camera sample of one pixel, replayable alone.
 use crate::film::PixelAccum;
 use crate::integrator::{Integrator, NoProbe, Probe};
-use crate::sampling::{IndependentSampler, Sampler};
+use crate::sampling::{IndependentSampler, Sampler, SamplerKind, ZSobolSampler};
 use crate::scene::Scene;
 use crate::Color;
 use core::ops::Range;
 use glam::Vec2;
 
-/// Radiance of sample `index` of pixel `(x, y)`: a pure function of its arguments.
+/// Radiance of sample `index` of pixel `(x, y)`: a pure function of its arguments (and of
+/// `scene.sampler`, which picks the sampler).
 #[inline]
 pub fn render_sample(
     scene: &Scene,
@@ -31,7 +32,36 @@ pub fn render_sample_probed<P: Probe>(
     index: u64,
     probe: &mut P,
 ) -> Color {
-    let mut sampler = IndependentSampler::new(seed, x, y, index);
+    match scene.sampler {
+        SamplerKind::Independent => trace(
+            scene,
+            integrator,
+            x,
+            y,
+            IndependentSampler::new(seed, x, y, index),
+            probe,
+        ),
+        SamplerKind::ZSobol { log2_spp } => trace(
+            scene,
+            integrator,
+            x,
+            y,
+            ZSobolSampler::new(seed, x, y, index, log2_spp),
+            probe,
+        ),
+    }
+}
+
+/// One camera sample of pixel `(x, y)` drawn from `sampler`.
+#[inline]
+fn trace<S: Sampler, P: Probe>(
+    scene: &Scene,
+    integrator: &Integrator,
+    x: u32,
+    y: u32,
+    mut sampler: S,
+    probe: &mut P,
+) -> Color {
     let offset = scene.filter.sample(sampler.next_2d());
     let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
     let ray = scene.camera.generate_ray(pos);

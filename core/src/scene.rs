@@ -81,6 +81,8 @@ pub struct Scene {
     pub camera: Perspective,
     /// The pixel filter.
     pub filter: Filter,
+    /// The sampler pixels are rendered with (default independent; the driver sets it).
+    pub sampler: crate::sampling::SamplerKind,
     /// What the scene contains.
     pub features: SceneFeatures,
     /// Centre of the scene's bounding sphere.
@@ -194,6 +196,7 @@ impl Scene {
             scene_radius: radius,
             camera: p.camera,
             filter: p.filter,
+            sampler: crate::sampling::SamplerKind::Independent,
             features,
         })
     }

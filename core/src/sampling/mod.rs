@@ -2,11 +2,17 @@
 mod discrete;
 mod distribution2d;
 mod independent;
+mod kind;
+pub mod owen;
+pub mod sobol;
 pub mod warp;
+pub mod zsobol;
 
 pub use discrete::Discrete1D;
 pub use distribution2d::Distribution2D;
 pub use independent::{pixel_key, IndependentSampler};
+pub use kind::{SamplerKind, SAMPLER_NAMES};
+pub use zsobol::ZSobolSampler;
 
 use glam::Vec2;
 

@@ -2,7 +2,9 @@
 //! against a converged reference, and keeps the rows of a CSV report.
 //!
 //! Wave `k` (k = 0, 1, 2, ...) adds the sample indices `[2^k / 2, 2^k)` (wave 0: `[0, 1)`) to
-//! one framebuffer, so after wave `k` the image is bit for bit a plain `2^k` spp render. A row's
+//! one framebuffer, so after wave `k` the image is bit for bit a plain `2^k` spp render (with the
+//! scene's sampler as it is set up: `tessera bench` sets zsobol up for `--max-spp` samples, so
+//! its waves are the first `2^k` samples of every pixel's block of that size). A row's
 //! `seconds` is the wall time spent rendering that image (the sum of its waves), never the time
 //! spent measuring it.
 //!
@@ -28,7 +30,7 @@ pub const CSV_HEADER: &str =
 pub struct Row {
     /// Curve label: a Tessera integrator name, or e.g. `mitsuba:path`.
     pub integrator: String,
-    /// Sampler name (`independent`).
+    /// Sampler name (`independent`, `zsobol`).
     pub sampler: String,
     /// Samples per pixel of the image.
     pub spp: u64,
@@ -114,7 +116,7 @@ pub fn run_waves(
         done = next;
         let row = Row {
             integrator: label.to_string(),
-            sampler: "independent".into(),
+            sampler: scene.sampler.name().into(),
             spp: done,
             threads: opts.threads,
             seconds,
@@ -210,13 +212,26 @@ pub fn read_csv(path: &Path) -> Result<Vec<Row>, String> {
         .collect()
 }
 
-/// The rows grouped into curves by label, in order of first appearance.
+impl Row {
+    /// The curve this row belongs to: the integrator label, followed by the sampler in
+    /// parentheses unless it is `independent`.
+    pub fn curve_label(&self) -> String {
+        if self.sampler == "independent" {
+            self.integrator.clone()
+        } else {
+            format!("{} ({})", self.integrator, self.sampler)
+        }
+    }
+}
+
+/// The rows grouped into curves by [`Row::curve_label`], in order of first appearance.
 pub fn curves(rows: &[Row]) -> Vec<(String, Vec<Row>)> {
     let mut out: Vec<(String, Vec<Row>)> = Vec::new();
     for r in rows {
-        match out.iter_mut().find(|(name, _)| *name == r.integrator) {
+        let label = r.curve_label();
+        match out.iter_mut().find(|(name, _)| *name == label) {
             Some((_, v)) => v.push(r.clone()),
-            None => out.push((r.integrator.clone(), vec![r.clone()])),
+            None => out.push((label, vec![r.clone()])),
         }
     }
     out

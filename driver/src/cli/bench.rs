@@ -21,6 +21,10 @@ pub struct BenchArgs {
     /// Integrators to measure, comma separated (default: the scene file's).
     #[arg(long, value_delimiter = ',')]
     pub integrators: Vec<String>,
+    /// Samplers to measure, comma separated (independent, zsobol; default: the scene file's).
+    /// Each integrator is measured with each sampler; zsobol is set up for --max-spp samples.
+    #[arg(long, value_delimiter = ',')]
+    pub sampler: Vec<String>,
     /// Stop a curve before a wave that would end after this many seconds.
     #[arg(long, default_value_t = 60.0)]
     pub max_seconds: f64,
@@ -152,9 +156,19 @@ pub fn run(args: &BenchArgs) -> i32 {
     } else {
         args.integrators.clone()
     };
+    let samplers: Vec<Option<&str>> = if args.sampler.is_empty() {
+        vec![None]
+    } else {
+        args.sampler.iter().map(|s| Some(s.as_str())).collect()
+    };
     // Check every name before spending time on any.
     for n in &names {
         if let Err(e) = loaded.set_integrator(Some(n), args.max_depth) {
+            return usage(e);
+        }
+    }
+    for s in &samplers {
+        if let Err(e) = loaded.set_sampler(*s, args.max_spp) {
             return usage(e);
         }
     }
@@ -170,10 +184,17 @@ pub fn run(args: &BenchArgs) -> i32 {
         max_spp: args.max_spp,
     };
     let mut rows = Vec::new();
-    for n in &names {
+    for (n, s) in names
+        .iter()
+        .flat_map(|n| samplers.iter().map(move |s| (n, *s)))
+    {
         if let Err(e) = loaded.set_integrator(Some(n), args.max_depth) {
             return usage(e);
         }
+        if let Err(e) = loaded.set_sampler(s, args.max_spp) {
+            return usage(e);
+        }
+        let sampler = loaded.scene.sampler.name();
         let (r, _) = run_waves(
             &loaded.scene,
             &loaded.integrator,
@@ -184,7 +205,7 @@ pub fn run(args: &BenchArgs) -> i32 {
             &mut |row| {
                 if !args.quiet {
                     eprintln!(
-                        "{n}: {:>7} spp {:>9.3} s {:>7.3} M samples/s  relMSE {:.4e}  RMSE {:.4e}  MAE {:.4e}",
+                        "{n} ({sampler}): {:>7} spp {:>9.3} s {:>7.3} M samples/s  relMSE {:.4e}  RMSE {:.4e}  MAE {:.4e}",
                         row.spp,
                         row.seconds,
                         row.samples_per_second / 1e6,

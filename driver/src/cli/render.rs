@@ -69,6 +69,9 @@ pub struct RenderArgs {
     /// direct_mats, direct_mis); keeps the file's max_depth etc.
     #[arg(long)]
     pub integrator: Option<String>,
+    /// Sampler (independent, zsobol), overriding the scene file.
+    #[arg(long)]
+    pub sampler: Option<String>,
     /// Longest path (-1 = unbounded), overriding the scene file.
     #[arg(long, allow_hyphen_values = true)]
     pub max_depth: Option<i64>,
@@ -156,6 +159,12 @@ pub fn run(args: &RenderArgs) -> i32 {
     if let Err(e) = loaded.set_integrator(args.integrator.as_deref(), args.max_depth) {
         return usage(e);
     }
+    // zsobol's pixel blocks follow the scene's sample count, never --spp or --time, so that
+    // progressive passes, resumed checkpoints and sample-range parts all draw one sequence.
+    let scene_spp = loaded.spp;
+    if let Err(e) = loaded.set_sampler(args.sampler.as_deref(), scene_spp) {
+        return usage(e);
+    }
     if let Some(f) = args.resolution_scale {
         if let Err(e) = scale_resolution(&mut loaded.scene.camera, f) {
             return usage(e);
@@ -184,7 +193,10 @@ pub fn run(args: &RenderArgs) -> i32 {
         scene_hash: scene_hash(&scene_bytes, &args.defines),
         passes: 0,
         seconds: 0.0,
-        integrator: format!("{:?}", loaded.integrator),
+        integrator: format!(
+            "{:?}, sampler {:?}",
+            loaded.integrator, loaded.scene.sampler
+        ),
     };
     let mut fb = Framebuffer::new(w, h);
     let mut resumed_target = None;
@@ -244,10 +256,11 @@ pub fn run(args: &RenderArgs) -> i32 {
     let start = Instant::now();
     let base = meta.clone();
     let spec = &loaded.integrator_spec;
+    let sampler = loaded.scene.sampler.name();
     let label = match (spec.name.starts_with("path"), spec.max_depth) {
-        (true, Some(d)) => format!("{}, max_depth {d}, independent sampler", spec.name),
-        (true, None) => format!("{}, unbounded depth, independent sampler", spec.name),
-        (false, _) => format!("{}, independent sampler", spec.name),
+        (true, Some(d)) => format!("{}, max_depth {d}, {sampler} sampler", spec.name),
+        (true, None) => format!("{}, unbounded depth, {sampler} sampler", spec.name),
+        (false, _) => format!("{}, {sampler} sampler", spec.name),
     };
     let decor = Decor {
         label: args.overlay.then_some(label),

@@ -66,7 +66,10 @@ impl SplitArgs {
             tile_size: opts.tile_size,
             samples: opts.samples.clone(),
             seed: opts.seed,
-            integrator: format!("{:?}", loaded.integrator_spec),
+            integrator: format!(
+                "{:?}, sampler {:?}",
+                loaded.integrator_spec, loaded.scene.sampler
+            ),
             scene_hash: scene_hash(scene_file, defines)?,
         }))
     }

@@ -10,6 +10,7 @@ use crate::error::InputError;
 use crate::xml::{Kind, Object};
 use tessera_core::emitter::{AreaLight, Emitter};
 use tessera_core::geometry::{Shape, ShapeKind};
+use tessera_core::sampling::SamplerKind;
 use tessera_core::scene::{LightSelection, Scene, SceneParts};
 
 /// Builds a loaded scene from the root `<scene>` object.
@@ -128,10 +129,14 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
     let integrator = integrator_spec
         .build()
         .expect("read_integrator checks the name");
-    let (spp, seed) = match (sensor.spp, scene_sampler) {
-        (Some(n), _) => (n, sensor.seed.unwrap_or(0)),
-        (None, Some((n, s))) => (n, s),
-        (None, None) => (4, 0),
+    let (spp, seed, sampler) = match (sensor.spp, scene_sampler) {
+        (Some(n), _) => (
+            n,
+            sensor.seed.unwrap_or(0),
+            sensor.sampler.unwrap_or_default(),
+        ),
+        (None, Some((n, s, k))) => (n, s, k),
+        (None, None) => (4, 0, SamplerKind::Independent),
     };
     root.check_unused()?;
     let parts = SceneParts {
@@ -143,8 +148,9 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         filter: sensor.filter,
         light_selection,
     };
-    let scene =
+    let mut scene =
         Scene::new(parts).map_err(|e| root.error(format!("cannot build the scene: {e:?}")))?;
+    scene.sampler = sampler;
     Ok(LoadedScene {
         scene,
         integrator,

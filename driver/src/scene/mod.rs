@@ -15,6 +15,7 @@ pub use sensor::{MAX_EDGE, MAX_PIXELS};
 use crate::error::InputError;
 use std::path::Path;
 use tessera_core::integrator::Integrator;
+use tessera_core::sampling::{SamplerKind, SAMPLER_NAMES};
 use tessera_core::scene::Scene;
 
 /// A loaded scene with the settings its file asks for.
@@ -35,6 +36,17 @@ pub struct LoadedScene {
 }
 
 impl LoadedScene {
+    /// Switches to another sampler by name (`None`: keep the file's) and sets it up for `spp`
+    /// samples per pixel (zsobol's pixel blocks depend on it; see `ZSobolSampler`).
+    pub fn set_sampler(&mut self, name: Option<&str>, spp: u64) -> Result<(), String> {
+        self.scene.sampler = match name {
+            Some(n) => SamplerKind::from_name(n, spp)
+                .ok_or_else(|| format!("unknown sampler \"{n}\" (known: {SAMPLER_NAMES})"))?,
+            None => self.scene.sampler.for_spp(spp),
+        };
+        Ok(())
+    }
+
     /// Switches to another integrator by name (keeping the file's parameters that apply) and/or
     /// another `max_depth` (-1 = unbounded).
     pub fn set_integrator(

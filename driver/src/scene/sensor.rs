@@ -7,11 +7,16 @@
 //! Film `hdrfilm`: `width` (768), `height` (576); `pixel_format`, `component_format` and
 //! `file_format` are accepted and have no effect (the output file's extension decides). Nori
 //! puts `width`/`height` (defaults 1280x720) on the camera. Filter: `box`, `gaussian` (`stddev`
-//! 0.5); default gaussian. Sampler: `independent` (`sample_count` 4, `seed` 0); Mitsuba's other
-//! samplers load and render with the independent sampler (a warning says so).
+//! 0.5); default gaussian. Sampler (`sample_count` 4, `seed` 0): `independent` (default), or
+//! Tessera's `zsobol` (Owen-scrambled Sobol in Morton order, see
+//! `tessera_core::sampling::ZSobolSampler`). Mitsuba's stratified low-discrepancy samplers
+//! (`ldsampler`, `stratified`, `multijitter`, `orthogonal`) render with `zsobol`, the closest
+//! Tessera has (not Mitsuba's exact points; a warning says so); `correlated` renders with the
+//! independent sampler (a warning says so).
 use super::util::{at_prop, float_checked, transform, Result};
 use crate::xml::{Kind, Object};
 use tessera_core::camera::{Filter, FovAxis, GaussianFilter, Perspective};
+use tessera_core::sampling::SamplerKind;
 
 /// Largest image edge accepted.
 pub const MAX_EDGE: i64 = 1 << 16;
@@ -24,6 +29,7 @@ pub struct SensorParts {
     pub filter: Filter,
     pub spp: Option<u64>,
     pub seed: Option<u64>,
+    pub sampler: Option<SamplerKind>,
 }
 
 /// Builds the pixel filter.
@@ -47,21 +53,32 @@ pub fn build_filter(obj: &Object) -> Result<Filter> {
     Ok(f)
 }
 
-/// Reads a sampler: `(sample_count, seed)`.
-pub fn build_sampler(obj: &Object, warnings: &mut Vec<String>) -> Result<(u64, u64)> {
-    match obj.plugin.as_str() {
-        "independent" => {}
-        "stratified" | "multijitter" | "orthogonal" | "ldsampler" | "correlated" => {
+/// Reads a sampler: `(sample_count, seed, which sampler)`.
+pub fn build_sampler(obj: &Object, warnings: &mut Vec<String>) -> Result<(u64, u64, SamplerKind)> {
+    let name = match obj.plugin.as_str() {
+        n @ ("independent" | "zsobol") => n,
+        n @ ("stratified" | "multijitter" | "orthogonal" | "ldsampler" | "correlated") => {
+            let sub = if n == "correlated" {
+                "independent"
+            } else {
+                "zsobol"
+            };
             warnings.push(format!(
-                "{}: sampler \"{}\" renders with the independent sampler",
-                obj.loc, obj.plugin
+                "{}: sampler \"{n}\" renders with Tessera's {sub} sampler",
+                obj.loc
             ));
             obj.boolean_opt("jitter")?;
+            sub
         }
-        other => return Err(obj.error(format!("unknown sampler \"{other}\""))),
-    }
+        other => {
+            return Err(obj.error(format!(
+                "unknown sampler \"{other}\" (known: independent, zsobol; Mitsuba's \
+                 ldsampler, stratified, multijitter, orthogonal map to zsobol)"
+            )))
+        }
+    };
     let spp = obj.integer("sample_count", 4)?;
-    if spp < 1 || spp > 1 << 40 {
+    if !(1..=1 << 40).contains(&spp) {
         return Err(at_prop(
             obj,
             "sample_count",
@@ -70,12 +87,14 @@ pub fn build_sampler(obj: &Object, warnings: &mut Vec<String>) -> Result<(u64, u
     }
     let seed = obj.integer("seed", 0)?;
     obj.check_unused()?;
-    Ok((spp as u64, seed as u64))
+    // `name` is one of the two known names by the match above.
+    let kind = SamplerKind::from_name(name, spp as u64).unwrap_or_default();
+    Ok((spp as u64, seed as u64, kind))
 }
 
 fn size(obj: &Object, name: &str, default: i64) -> Result<u32> {
     let v = obj.integer(name, default)?;
-    if v < 1 || v > MAX_EDGE {
+    if !(1..=MAX_EDGE).contains(&v) {
         return Err(at_prop(
             obj,
             name,
@@ -154,7 +173,7 @@ pub fn build_sensor(obj: &Object, warnings: &mut Vec<String>) -> Result<SensorPa
         width = size(obj, "width", 1280)?;
         height = size(obj, "height", 720)?;
     }
-    let (mut spp, mut seed) = (None, None);
+    let (mut spp, mut seed, mut sampler) = (None, None, None);
     for c in &obj.children {
         match c.obj.kind {
             Kind::Film => {
@@ -184,9 +203,10 @@ pub fn build_sensor(obj: &Object, warnings: &mut Vec<String>) -> Result<SensorPa
             }
             Kind::Sampler => {
                 c.mark_used();
-                let (n, s) = build_sampler(&c.obj, warnings)?;
+                let (n, s, k) = build_sampler(&c.obj, warnings)?;
                 spp = Some(n);
                 seed = Some(s);
+                sampler = Some(k);
             }
             _ => {}
         }
@@ -203,5 +223,6 @@ pub fn build_sensor(obj: &Object, warnings: &mut Vec<String>) -> Result<SensorPa
         filter,
         spp,
         seed,
+        sampler,
     })
 }

@@ -1,0 +1,220 @@
+//! The `zsobol` sampler: Owen-scrambled Sobol points laid out over the image in Morton (Z) order,
+//! in the spirit of pbrt-v4's `ZSobolSampler` (after Ahmed and Wonka, "Screen-space blue-noise
+//! diffusion of Monte Carlo sampling error via hierarchical ordering of pixels", 2020).
+//!
+//! Scene parameters (`<sampler type="zsobol">`, a Tessera extension): `sample_count` (integer,
+//! default 4), `seed` (integer, default 0); both read by the driver.
+//!
+//! How a value is made. Sample `s` of pixel `(x, y)` has the *Morton index*
+//! `m = (morton(x, y) << K) | (s mod 2^K)`, with `K = log2_spp` (the sample count rounded up to a
+//! power of two, at most 32): the pixel's samples are one aligned block of `2^K` indices, and
+//! the pixels of any aligned `2^j x 2^j` square form a larger aligned block. Each request (one
+//! *dimension* for `next_1d`, two for `next_2d`) then:
+//! 1. permutes `m` by a nested (Owen) scramble of its bits seeded by a hash of
+//!    (seed, dimension, epoch), so each dimension visits the sequence in a different order while
+//!    aligned blocks stay aligned blocks ([`scramble_index`]: the pixel bits by one scramble per
+//!    dimension, the sample bits by one seeded by the pixel too); the epoch is `s >> K`, so
+//!    samples beyond `2^K` start fresh randomizations instead of running into the next pixel;
+//! 2. takes Sobol dimension 0 (and 1 for a 2D request) of the permuted index's low 32 bits
+//!    ([`sobol_dim0`], [`sobol_dim1`]);
+//! 3. Owen-scrambles each coordinate with a seed hashed from (seed, dimension, epoch, the
+//!    permuted index's high 32 bits) ([`owen_scramble_u32`]), and keeps its top 24 bits.
+//!
+//! Properties. A value is a pure function of (seed, `K`, pixel, sample index, dimension): no
+//! state is shared between samples or pixels, nothing is allocated. For every dimension and
+//! every `k <= K`, the first `2^k` samples of a pixel are an aligned block of indices, so their
+//! 2D points form a (0, k, 2)-net (one point in every elementary interval of area `2^-k`) and
+//! their 1D values one point in each interval `[i / 2^k, (i + 1) / 2^k)`; each value on its own
+//! is uniform, and different dimensions are independent (up to the hash's quality). Power-of-two
+//! sample counts are best; any other count uses the first `spp` samples of the next power of two
+//! (unbiased, less evenly spread). The values of sample `s` depend on `K`, so an image rendered
+//! with `K` from 64 spp differs from the first 64 samples of one rendered with `K` from 1024 spp;
+//! for a fixed `K`, rendering samples `0..a` then `a..b` equals rendering `0..b`.
+use super::owen::{mix64, reversed_lk, sample_seed};
+use super::sobol::sobol_dim1_reversed;
+use super::Sampler;
+use glam::Vec2;
+
+/// Largest `log2_spp`: a pixel's block holds at most 2^32 samples before the epoch changes.
+pub const MAX_LOG2_SPP: u32 = 32;
+
+/// Spreads the 32 bits of `v` to the even bits of a `u64`.
+#[inline]
+fn spread_bits(v: u32) -> u64 {
+    let mut x = v as u64;
+    x = (x | (x << 16)) & 0x0000_ffff_0000_ffff;
+    x = (x | (x << 8)) & 0x00ff_00ff_00ff_00ff;
+    x = (x | (x << 4)) & 0x0f0f_0f0f_0f0f_0f0f;
+    x = (x | (x << 2)) & 0x3333_3333_3333_3333;
+    x = (x | (x << 1)) & 0x5555_5555_5555_5555;
+    x
+}
+
+/// The Morton (Z-order) code of a pixel: `x` on the even bits, `y` on the odd bits. Only the
+/// low 16 bits of each coordinate are kept (images are at most 65536 pixels wide).
+#[inline]
+pub fn morton2(x: u32, y: u32) -> u64 {
+    spread_bits(x & 0xffff) | (spread_bits(y & 0xffff) << 1)
+}
+
+/// The `K` for a sample count: `ceil(log2(spp))`, at most [`MAX_LOG2_SPP`].
+pub fn log2_spp_for(spp: u64) -> u32 {
+    let k = 64 - spp.max(1).saturating_sub(1).leading_zeros();
+    k.min(MAX_LOG2_SPP)
+}
+
+/// Converts a 32-bit fraction to an `f32` in `[0, 1)` (its top 24 bits: exact, below 1).
+#[inline]
+pub fn to_unit(v: u32) -> f32 {
+    (v >> 8) as f32 * (1.0 / 16_777_216.0)
+}
+
+/// One sample's view of the Morton-ordered, Owen-scrambled Sobol sequence.
+#[derive(Clone, Debug)]
+pub struct ZSobolSampler {
+    /// The Morton index `(morton(x, y) << K) | (s mod 2^K)`.
+    morton_index: u64,
+    /// `K`.
+    log2_spp: u32,
+    /// The pixel part `morton(x, y)`, bit-reversed as a 32-bit word.
+    pixel_reversed: u32,
+    /// The sample part `s mod 2^K` as the top `K` bits of a word, bit-reversed.
+    sample_reversed: u32,
+    /// Hash of the seed and the epoch.
+    key: u64,
+    /// The next dimension.
+    dimension: u32,
+}
+
+/// The scrambled 32-bit index and the two coordinate seeds of one dimension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DimensionDraw {
+    /// Low 32 bits of the permuted index (what the Sobol matrices see).
+    pub index: u32,
+    /// Owen-scrambling seed of the first coordinate.
+    pub seed_x: u32,
+    /// Owen-scrambling seed of the second coordinate.
+    pub seed_y: u32,
+}
+
+impl ZSobolSampler {
+    /// Sample `index` of pixel `(x, y)` under `seed`, with pixel blocks of `2^log2_spp` samples
+    /// (`log2_spp` is clamped to [`MAX_LOG2_SPP`]; use [`log2_spp_for`]).
+    #[inline]
+    pub fn new(seed: u64, x: u32, y: u32, index: u64, log2_spp: u32) -> Self {
+        let k = log2_spp.min(MAX_LOG2_SPP);
+        let within = index & ((1u64 << k) - 1);
+        let epoch = index >> k;
+        let pixel = morton2(x, y);
+        ZSobolSampler {
+            morton_index: (pixel << k) | within,
+            log2_spp: k,
+            pixel_reversed: (pixel as u32).reverse_bits(),
+            sample_reversed: ((within as u32).checked_shl(32 - k).unwrap_or(0)).reverse_bits(),
+            key: mix64(seed ^ mix64(epoch ^ 0x6a09_e667_f3bc_c909)),
+            dimension: 0,
+        }
+    }
+
+    /// The Morton index (before any permutation).
+    pub fn morton_index(&self) -> u64 {
+        self.morton_index
+    }
+
+    /// The next dimension to be drawn.
+    pub fn dimension(&self) -> u32 {
+        self.dimension
+    }
+
+    /// Where dimension `dim` of this sample reads the sequence (a pure function; for tests).
+    ///
+    /// The permuted index is `owen::scramble_index(morton_index, K, h)` for the dimension's hash
+    /// `h`; it is assembled here in bit-reversed form, which is what the scrambles compute, so
+    /// that only one bit reversal is left: `R(index) = (R(pixel') >> K) | (R(sample') << (32 - K))`.
+    #[inline]
+    pub fn draw(&self, dim: u32) -> DimensionDraw {
+        let h = mix64(self.key ^ (dim as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15));
+        let k = self.log2_spp;
+        let pixel_r = reversed_lk(self.pixel_reversed, h as u32);
+        let index_r = if k == 0 {
+            pixel_r
+        } else {
+            let sample_r =
+                reversed_lk(self.sample_reversed, sample_seed(h, self.morton_index >> k));
+            pixel_r.checked_shr(k).unwrap_or(0) | (sample_r << (32 - k))
+        };
+        // The permuted index's bits above 32 (the top K bits of the pixel word), reversed: only
+        // hashed, so any bijection of them will do.
+        let top = if k == 0 { 0 } else { pixel_r << (32 - k) };
+        let s = mix64(h ^ top as u64 ^ 0xbb67_ae85_84ca_a73b);
+        DimensionDraw {
+            index: index_r.reverse_bits(),
+            seed_x: s as u32,
+            seed_y: (s >> 32) as u32,
+        }
+    }
+
+    /// The 1D value of dimension `dim`, as a 32-bit fraction: the Owen-scrambled van der Corput
+    /// point, `R(LK(R(R(index))))`.
+    #[inline]
+    pub fn value_1d(&self, dim: u32) -> u32 {
+        let d = self.draw(dim);
+        reversed_lk(d.index, d.seed_x).reverse_bits()
+    }
+
+    /// The 2D value starting at dimension `dim`, as 32-bit fractions.
+    #[inline]
+    pub fn value_2d(&self, dim: u32) -> (u32, u32) {
+        let d = self.draw(dim);
+        (
+            reversed_lk(d.index, d.seed_x).reverse_bits(),
+            reversed_lk(sobol_dim1_reversed(d.index), d.seed_y).reverse_bits(),
+        )
+    }
+}
+
+impl Sampler for ZSobolSampler {
+    #[inline]
+    fn next_1d(&mut self) -> f32 {
+        let v = self.value_1d(self.dimension);
+        self.dimension = self.dimension.wrapping_add(1);
+        to_unit(v)
+    }
+
+    /// One 2D point of the pixel's (0, m, 2)-net; uses two dimension numbers, as in pbrt-v4.
+    #[inline]
+    fn next_2d(&mut self) -> Vec2 {
+        let (a, b) = self.value_2d(self.dimension);
+        self.dimension = self.dimension.wrapping_add(2);
+        Vec2::new(to_unit(a), to_unit(b))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::owen::{mix64, owen_scramble_u32, scramble_index};
+    use super::super::sobol::{sobol_dim0, sobol_dim1};
+    use super::*;
+
+    /// The reversed-domain assembly equals the plain definition.
+    #[test]
+    fn draw_matches_the_definition() {
+        for t in 0..5000u64 {
+            let r = mix64(t);
+            let (seed, x, y) = (r & 7, (r >> 8) as u32 & 0xffff, (r >> 24) as u32 & 0xffff);
+            let k = (r >> 40) as u32 % 34;
+            let index = mix64(r) >> ((r >> 50) % 64);
+            let s = ZSobolSampler::new(seed, x, y, index, k);
+            let dim = (r >> 56) as u32;
+            let h = mix64(s.key ^ (dim as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15));
+            let kk = k.min(MAX_LOG2_SPP);
+            let full = scramble_index(s.morton_index, kk, h);
+            let d = s.draw(dim);
+            assert_eq!(d.index, full as u32, "k {k}");
+            let v = owen_scramble_u32(sobol_dim0(d.index), d.seed_x);
+            let w = owen_scramble_u32(sobol_dim1(d.index), d.seed_y);
+            assert_eq!(s.value_2d(dim), (v, w));
+            assert_eq!(s.value_1d(dim), v);
+        }
+    }
+}
