@@ -2,9 +2,11 @@
 //! of a chosen size, scenes holding them, and batches of coherent and incoherent rays. Nothing
 //! is read from disk, so the benchmarks need no big files in the repository.
 use glam::{Vec2, Vec3};
+use std::time::Instant;
+use tessera_core::accel::Bvh;
 use tessera_core::bsdf::{Bsdf, Diffuse};
 use tessera_core::camera::{Filter, FovAxis, Perspective};
-use tessera_core::geometry::{Mesh, Shape, ShapeKind};
+use tessera_core::geometry::{Disk, Mesh, Prim, Shape, ShapeKind};
 use tessera_core::math::{Ray, Transform};
 use tessera_core::scene::{Scene, SceneParts};
 use tessera_core::texture::Texture;
@@ -188,4 +190,76 @@ pub fn bytes_per_triangle(scene: &Scene) -> (f64, f64) {
         scene.bvh.memory_bytes() as f64 / n,
         std::mem::size_of_val(scene.prims.as_slice()) as f64 / n,
     )
+}
+
+/// The binary SAH BVH over the same primitives, traversed as scenes did before the 4-wide BVH
+/// (one box per step, near child first by the split axis): the baseline of the comparison.
+pub struct BinaryScene {
+    /// The binary hierarchy.
+    pub bvh: Bvh,
+    /// The scene's primitives in this hierarchy's order.
+    pub prims: Vec<Prim>,
+    disks: Vec<Disk>,
+}
+
+impl BinaryScene {
+    /// Builds the binary hierarchy over `scene`'s primitives.
+    pub fn new(scene: &Scene) -> BinaryScene {
+        let bounds: Vec<_> = scene.prims.iter().map(|p| p.bounds(&scene.disks)).collect();
+        let (bvh, order) = Bvh::build(&bounds);
+        BinaryScene {
+            bvh,
+            prims: order.iter().map(|&i| scene.prims[i as usize]).collect(),
+            disks: scene.disks.clone(),
+        }
+    }
+
+    /// Closest hit: `(t, primitive index in this order)`.
+    pub fn intersect_hit(&self, ray: &Ray) -> Option<(f32, u32)> {
+        let mut best = None;
+        self.bvh.traverse(ray, |first, count, mut t_max| {
+            for i in first..first + count {
+                if let Some((t, _)) = self.prims[i].intersect(ray, t_max, &self.disks) {
+                    t_max = t;
+                    best = Some((t, i as u32));
+                }
+            }
+            Some(t_max)
+        });
+        best
+    }
+
+    /// Any hit.
+    pub fn occluded(&self, ray: &Ray) -> bool {
+        let mut hit = false;
+        self.bvh.traverse(ray, |first, count, t_max| {
+            for i in first..first + count {
+                if self.prims[i].intersect(ray, t_max, &self.disks).is_some() {
+                    hit = true;
+                    return None;
+                }
+            }
+            Some(t_max)
+        });
+        hit
+    }
+}
+
+/// Rays per second of `cast` over `rays`, best of `rounds` passes (at least 0.2 s each round).
+pub fn rays_per_second(rays: &[Ray], rounds: usize, mut cast: impl FnMut(&Ray) -> bool) -> f64 {
+    let mut best = 0.0f64;
+    for _ in 0..rounds {
+        let start = Instant::now();
+        let mut passes = 0usize;
+        let mut found = 0usize;
+        while passes == 0 || start.elapsed().as_secs_f64() < 0.2 {
+            for r in rays {
+                found += usize::from(cast(std::hint::black_box(r)));
+            }
+            passes += 1;
+        }
+        std::hint::black_box(found);
+        best = best.max((passes * rays.len()) as f64 / start.elapsed().as_secs_f64());
+    }
+    best
 }

@@ -1,5 +1,5 @@
 //! The flat, read-only scene: shapes, primitives under a BVH, BSDFs, emitters, camera.
-use crate::accel::Bvh;
+use crate::accel::Bvh4;
 use crate::bsdf::Bsdf;
 use crate::camera::{Filter, Perspective};
 use crate::emitter::{Emitter, EmitterCtx};
@@ -67,8 +67,8 @@ pub struct Scene {
     pub disks: Vec<Disk>,
     /// Primitives in BVH order.
     pub prims: Vec<Prim>,
-    /// The hierarchy over `prims`.
-    pub bvh: Bvh,
+    /// The 4-wide hierarchy over `prims`.
+    pub bvh: Bvh4,
     /// Materials.
     pub bsdfs: Vec<Bsdf>,
     /// Lights.
@@ -151,7 +151,7 @@ impl Scene {
             }
         }
         let bounds: Vec<Aabb> = prims.iter().map(|pr| pr.bounds(&p.disks)).collect();
-        let (bvh, order) = Bvh::build(&bounds);
+        let (bvh, order) = Bvh4::build(&bounds);
         let world = bvh.bounds();
         let (center, radius) = if world.is_empty() {
             (glam::Vec3::ZERO, 1.0)
@@ -251,7 +251,7 @@ impl Scene {
     /// The closest hit along the ray, if any.
     pub fn intersect_hit(&self, ray: &Ray) -> Option<Hit> {
         let mut best: Option<Hit> = None;
-        self.bvh.traverse(ray, |first, count, mut t_max| {
+        self.bvh.traverse_closest(ray, |first, count, mut t_max| {
             for i in first..first + count {
                 if let Some((t, uv)) = self.prims[i].intersect(ray, t_max, &self.disks) {
                     t_max = t;
@@ -262,7 +262,7 @@ impl Scene {
                     });
                 }
             }
-            Some(t_max)
+            t_max
         });
         best
     }
@@ -278,14 +278,10 @@ impl Scene {
     /// Whether anything blocks the ray within its extent (any hit, early exit).
     pub fn occluded(&self, ray: &Ray) -> bool {
         let mut hit = false;
-        self.bvh.traverse(ray, |first, count, t_max| {
-            for i in first..first + count {
-                if self.prims[i].intersect(ray, t_max, &self.disks).is_some() {
-                    hit = true;
-                    return None;
-                }
-            }
-            Some(t_max)
+        self.bvh.traverse_any(ray, |first, count, t_max| {
+            hit = (first..first + count)
+                .any(|i| self.prims[i].intersect(ray, t_max, &self.disks).is_some());
+            hit
         });
         hit
     }
