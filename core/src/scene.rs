@@ -3,7 +3,7 @@ use crate::accel::Bvh4;
 use crate::bsdf::Bsdf;
 use crate::camera::{Filter, Perspective};
 use crate::emitter::{Emitter, EmitterCtx};
-use crate::geometry::{Disk, Hit, Interaction, Prim, Shape, ShapeKind};
+use crate::geometry::{Disk, Hit, Interaction, Prim, Shape, ShapeKind, TriRay};
 use crate::math::{Aabb, Ray};
 use crate::sampling::Discrete1D;
 use alloc::vec::Vec;
@@ -251,9 +251,10 @@ impl Scene {
     /// The closest hit along the ray, if any.
     pub fn intersect_hit(&self, ray: &Ray) -> Option<Hit> {
         let mut best: Option<Hit> = None;
+        let tri = TriRay::new(ray);
         self.bvh.traverse_closest(ray, |first, count, mut t_max| {
             for i in first..first + count {
-                if let Some((t, uv)) = self.prims[i].intersect(ray, t_max, &self.disks) {
+                if let Some((t, uv)) = self.prims[i].intersect_pre(ray, &tri, t_max, &self.disks) {
                     t_max = t;
                     best = Some(Hit {
                         t,
@@ -278,9 +279,13 @@ impl Scene {
     /// Whether anything blocks the ray within its extent (any hit, early exit).
     pub fn occluded(&self, ray: &Ray) -> bool {
         let mut hit = false;
+        let tri = TriRay::new(ray);
         self.bvh.traverse_any(ray, |first, count, t_max| {
-            hit = (first..first + count)
-                .any(|i| self.prims[i].intersect(ray, t_max, &self.disks).is_some());
+            hit = (first..first + count).any(|i| {
+                self.prims[i]
+                    .intersect_pre(ray, &tri, t_max, &self.disks)
+                    .is_some()
+            });
             hit
         });
         hit

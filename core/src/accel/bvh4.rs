@@ -7,7 +7,7 @@
 //! first hit. Nodes are stored depth first, the root at index 0; a child is either an interior
 //! node (its index) or a leaf (a range of the primitive order returned by the build).
 use super::simd::{hit4, Boxes4, RayPre, MAX_X, MIN_X};
-use super::Bvh;
+use super::{BuildParams, Bvh};
 use crate::math::{Aabb, Ray};
 use alloc::vec::Vec;
 use glam::Vec3;
@@ -58,6 +58,8 @@ pub struct Bvh4 {
     /// Nodes, root first (empty for an empty scene).
     pub nodes: Vec<Bvh4Node>,
     bounds: Aabb,
+    /// Nodes on the longest root-to-leaf path.
+    depth: usize,
 }
 
 impl Default for Bvh4 {
@@ -65,6 +67,7 @@ impl Default for Bvh4 {
         Bvh4 {
             nodes: Vec::new(),
             bounds: Aabb::EMPTY,
+            depth: 0,
         }
     }
 }
@@ -77,16 +80,27 @@ struct Entry {
     t_near: f32,
 }
 
-/// Stack depth bound: the binary build stops splitting at depth 60 unless a range is longer than
-/// `u16::MAX` (at most 17 more halvings of a `u32` count), each 4-wide level consumes at least one
-/// binary level and pushes at most 3 entries: 3 * 78 + 1 < 256.
-const STACK: usize = 256;
+/// Entries of the traversal stack kept in the function's frame. A node pushes at most 3 entries
+/// and a path has `depth` nodes, so `3 * depth + 1` entries always suffice: hierarchies up to
+/// depth 21 (4^21 leaves; the binary build stops at depth about 60 only for pathological inputs)
+/// use this array, deeper ones a heap stack. Kept small because it is initialised per ray.
+const STACK: usize = 64;
 
 impl Bvh4 {
+    /// The leaf-size trade-off of the binary build collapsed into a 4-wide one: a step tests
+    /// four boxes, so leaves are larger than for binary traversal (measured with
+    /// `BVH4_PARAMS=leaf,cost cargo bench -p tessera-benches --bench bvh_compare`: leaves up to 4,
+    /// 8 or 16 primitives cast rays at the same speed within noise; larger leaves need fewer
+    /// nodes, 23 instead of 63 bytes per triangle).
+    pub const PARAMS: BuildParams = BuildParams {
+        max_leaf: 16,
+        traversal_cost: 2.0,
+    };
+
     /// Builds the binary SAH hierarchy and collapses it; returns the hierarchy and the order in
     /// which the caller must store its primitives (leaves refer to ranges of that order).
     pub fn build(bounds: &[Aabb]) -> (Bvh4, Vec<u32>) {
-        let (bin, order) = Bvh::build(bounds);
+        let (bin, order) = Bvh::build_with(bounds, Bvh4::PARAMS);
         (Bvh4::from_binary(&bin), order)
     }
 
@@ -95,12 +109,14 @@ impl Bvh4 {
     /// than four. Leaves (primitive ranges) are unchanged.
     pub fn from_binary(bin: &Bvh) -> Bvh4 {
         let mut nodes = Vec::with_capacity(bin.nodes.len() / 3 + 1);
+        let mut depth = 0;
         if !bin.nodes.is_empty() {
-            collapse(bin, 0, &mut nodes);
+            collapse(bin, 0, 1, &mut depth, &mut nodes);
         }
         Bvh4 {
             nodes,
             bounds: bin.bounds(),
+            depth,
         }
     }
 
@@ -108,6 +124,11 @@ impl Bvh4 {
     /// vector capacity).
     pub fn memory_bytes(&self) -> usize {
         core::mem::size_of_val(self.nodes.as_slice())
+    }
+
+    /// Nodes on the longest path from the root to a leaf.
+    pub fn depth(&self) -> usize {
+        self.depth
     }
 
     /// Bounds of the whole hierarchy.
@@ -129,17 +150,27 @@ impl Bvh4 {
     }
 
     #[inline]
-    fn walk<const ANY: bool>(
-        &self,
-        ray: &Ray,
-        mut leaf: impl FnMut(usize, usize, f32) -> Option<f32>,
-    ) {
+    fn walk<const ANY: bool>(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> Option<f32>) {
         if self.nodes.is_empty() {
             return;
         }
+        let need = 3 * self.depth + 1;
+        if need <= STACK {
+            self.walk_with::<ANY>(ray, &mut [Entry::default(); STACK], leaf);
+        } else {
+            self.walk_with::<ANY>(ray, &mut alloc::vec![Entry::default(); need], leaf);
+        }
+    }
+
+    #[inline(always)]
+    fn walk_with<const ANY: bool>(
+        &self,
+        ray: &Ray,
+        stack: &mut [Entry],
+        mut leaf: impl FnMut(usize, usize, f32) -> Option<f32>,
+    ) {
         let pre = RayPre::new(ray);
         let mut t_max = ray.t_max;
-        let mut stack = [Entry::default(); STACK];
         let mut sp = 0usize;
         let mut cur = Entry::default(); // the root node
         loop {
@@ -205,7 +236,14 @@ impl Bvh4 {
     }
 }
 
-fn collapse(bin: &Bvh, at: usize, nodes: &mut Vec<Bvh4Node>) -> u32 {
+fn collapse(
+    bin: &Bvh,
+    at: usize,
+    depth: usize,
+    max_depth: &mut usize,
+    nodes: &mut Vec<Bvh4Node>,
+) -> u32 {
+    *max_depth = (*max_depth).max(depth);
     let n = &bin.nodes[at];
     let mut kids = [at; 4];
     let mut k = 1;
@@ -217,7 +255,7 @@ fn collapse(bin: &Bvh, at: usize, nodes: &mut Vec<Bvh4Node>) -> u32 {
             let mut best: Option<(usize, f32)> = None;
             for (j, &c) in kids[..k].iter().enumerate() {
                 let cn = &bin.nodes[c];
-                if cn.count == 0 && best.map_or(true, |(_, a)| cn.bounds.area() > a) {
+                if cn.count == 0 && best.is_none_or(|(_, a)| cn.bounds.area() > a) {
                     best = Some((j, cn.bounds.area()));
                 }
             }
@@ -235,7 +273,7 @@ fn collapse(bin: &Bvh, at: usize, nodes: &mut Vec<Bvh4Node>) -> u32 {
         let (child, count) = if cn.count > 0 {
             (cn.offset, cn.count)
         } else {
-            (collapse(bin, c, nodes), 0)
+            (collapse(bin, c, depth + 1, max_depth, nodes), 0)
         };
         let node = &mut nodes[me];
         node.set_box(lane, cn.bounds);

@@ -3,5 +3,5 @@
 mod bvh;
 mod bvh4;
 pub mod simd;
-pub use bvh::{Bvh, BvhNode};
+pub use bvh::{BuildParams, Bvh, BvhNode};
 pub use bvh4::{Bvh4, Bvh4Node};

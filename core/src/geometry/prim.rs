@@ -1,5 +1,5 @@
 //! Primitives as the BVH stores them: triangles carry their corners inline.
-use super::{intersect_triangle, Disk, Sphere};
+use super::{Disk, Sphere, TriRay};
 use crate::math::{Aabb, Ray};
 use glam::Vec3;
 
@@ -58,8 +58,22 @@ impl Prim {
     /// Intersection in `(0, t_max)`: `(t, uv)`.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32, disks: &[Disk]) -> Option<(f32, glam::Vec2)> {
+        self.intersect_pre(ray, &TriRay::new(ray), t_max, disks)
+    }
+
+    /// [`Prim::intersect`] with the triangle test's per-ray part computed once by the caller
+    /// (`tri` must be `TriRay::new(ray)`); gives the same bits.
+    #[inline(always)]
+    pub fn intersect_pre(
+        &self,
+        ray: &Ray,
+        tri: &TriRay,
+        t_max: f32,
+        disks: &[Disk],
+    ) -> Option<(f32, glam::Vec2)> {
         match self {
-            Prim::Triangle { v, .. } => intersect_triangle(ray, t_max, v[0], v[1], v[2])
+            Prim::Triangle { v, .. } => tri
+                .intersect(t_max, v[0], v[1], v[2])
                 .map(|(t, _, b1, b2)| (t, glam::Vec2::new(b1, b2))),
             Prim::Sphere { sphere, .. } => {
                 sphere.intersect(ray, t_max).map(|t| (t, glam::Vec2::ZERO))
