@@ -31,16 +31,17 @@ fn accel(c: &mut Criterion) {
         let tris = geodesic_triangles(n);
         let scene = Scene::new(parts.clone()).expect("valid scene");
         assert_eq!(scene.prims.len(), tris);
-        let (nodes, prims) = bytes_per_triangle(&scene);
+        let (nodes, corners, prims) = bytes_per_triangle(&scene);
         let hits = camera
             .iter()
             .filter(|r| scene.intersect_hit(r).is_some())
             .count();
         println!(
-            "mesh {label}: {tris} triangles, {} BVH nodes; bytes/triangle: {nodes:.1} nodes + \
-             {prims:.1} primitives = {:.1}; camera rays hitting: {:.0}%",
+            "mesh {label}: {tris} triangles, {} BVH4 nodes; bytes/triangle: {nodes:.1} nodes + \
+             {corners:.1} triangle corners = {:.1} (+ {prims:.1} primitive ids); camera rays \
+             hitting: {:.0}%",
             scene.bvh.nodes.len(),
-            nodes + prims,
+            nodes + corners,
             100.0 * hits as f64 / camera.len() as f64
         );
 

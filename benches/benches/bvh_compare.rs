@@ -6,7 +6,8 @@
 //! e.g. `cargo bench -p tessera-benches --bench bvh_compare -- 1k 100k`.
 use std::time::Instant;
 use tessera_benches::{
-    bumpy_sphere, camera_rays, frequency_for, mesh_parts, random_rays, rays_per_second, BinaryScene,
+    bumpy_sphere, bytes_per_triangle, camera_rays, frequency_for, mesh_parts, random_rays,
+    rays_per_second, BinaryScene,
 };
 use tessera_core::scene::Scene;
 
@@ -45,21 +46,27 @@ fn main() {
                 max_leaf: l.parse().unwrap(),
                 traversal_cost: c.parse().unwrap(),
             };
-            let b: Vec<_> = scene.prims.iter().map(|p| p.bounds(&[])).collect();
+            let b: Vec<_> = (scene.prims.iter().zip(&scene.tris))
+                .map(|(p, v)| p.bounds(v, &[]))
+                .collect();
             let (bin, order) = tessera_core::accel::Bvh::build_with(&b, params);
             scene.bvh = tessera_core::accel::Bvh4::from_binary(&bin);
             scene.prims = order.iter().map(|&i| scene.prims[i as usize]).collect();
+            scene.tris = order.iter().map(|&i| scene.tris[i as usize]).collect();
         }
         let tris = scene.prims.len();
         let bin = BinaryScene::new(&scene);
         let n = tris as f64;
+        let (nodes, corners, ids) = bytes_per_triangle(&scene);
         println!(
-            "{label:>5}: bytes/triangle: bvh4 nodes {:.1} ({} nodes), binary nodes {:.1}, \
-             primitives {:.1}",
-            scene.bvh.memory_bytes() as f64 / n,
+            "{label:>5}: bytes/triangle: bvh4 nodes {nodes:.1} ({} nodes, depth {}) + corners \
+             {corners:.1} = {:.1} (+ primitive ids {ids:.1}); binary: nodes {:.1} + triangles \
+             {:.1}",
             scene.bvh.nodes.len(),
+            scene.bvh.depth(),
+            nodes + corners,
             bin.bvh.memory_bytes() as f64 / n,
-            std::mem::size_of_val(scene.prims.as_slice()) as f64 / n
+            std::mem::size_of_val(bin.tris.as_slice()) as f64 / n,
         );
         for (kind, rays) in [("camera", &camera), ("random", &random)] {
             for any in [false, true] {

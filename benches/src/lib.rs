@@ -6,8 +6,8 @@ use std::time::Instant;
 use tessera_core::accel::Bvh;
 use tessera_core::bsdf::{Bsdf, Diffuse};
 use tessera_core::camera::{Filter, FovAxis, Perspective};
-use tessera_core::geometry::{Disk, Mesh, Prim, Shape, ShapeKind};
-use tessera_core::math::{Ray, Transform};
+use tessera_core::geometry::{intersect_triangle, Mesh, Shape, ShapeKind};
+use tessera_core::math::{Aabb, Ray, Transform};
 use tessera_core::scene::{Scene, SceneParts};
 use tessera_core::texture::Texture;
 
@@ -182,44 +182,71 @@ pub fn random_rays(count: usize, seed: u64) -> Vec<Ray> {
         .collect()
 }
 
-/// Bytes of the acceleration structure per triangle: (BVH nodes, primitive array with the
-/// triangles' corners inline).
-pub fn bytes_per_triangle(scene: &Scene) -> (f64, f64) {
+/// Bytes per triangle of the ray-casting data: (BVH nodes, triangle corners in leaf order,
+/// primitive references: shape and face).
+pub fn bytes_per_triangle(scene: &Scene) -> (f64, f64, f64) {
     let n = scene.prims.len().max(1) as f64;
+    let m = scene.accel_memory();
     (
-        scene.bvh.memory_bytes() as f64 / n,
-        std::mem::size_of_val(scene.prims.as_slice()) as f64 / n,
+        m.nodes as f64 / n,
+        m.triangles as f64 / n,
+        m.prims as f64 / n,
     )
 }
 
-/// The binary SAH BVH over the same primitives, traversed as scenes did before the 4-wide BVH
-/// (one box per step, near child first by the split axis): the baseline of the comparison.
+/// A triangle as scenes stored it before the 4-wide BVH: corners inline with shape and face ids
+/// (padded to 48 bytes like the old primitive enum).
+#[derive(Clone, Copy)]
+pub struct OldTriangle {
+    /// Corners.
+    pub v: [Vec3; 3],
+    /// Shape, face, and the enum's tag and padding.
+    pub ids: [u32; 3],
+}
+
+/// The binary SAH BVH over a scene's triangles, traversed as scenes did before the 4-wide BVH
+/// (one box per step, near child first by the split axis, the triangle test's per-ray setup
+/// redone per triangle): the baseline of the comparison. Triangle meshes only.
 pub struct BinaryScene {
     /// The binary hierarchy.
     pub bvh: Bvh,
-    /// The scene's primitives in this hierarchy's order.
-    pub prims: Vec<Prim>,
-    disks: Vec<Disk>,
+    /// The triangles in this hierarchy's order.
+    pub tris: Vec<OldTriangle>,
 }
 
 impl BinaryScene {
-    /// Builds the binary hierarchy over `scene`'s primitives.
+    /// Builds the binary hierarchy over `scene`'s triangles.
     pub fn new(scene: &Scene) -> BinaryScene {
-        let bounds: Vec<_> = scene.prims.iter().map(|p| p.bounds(&scene.disks)).collect();
+        let bounds: Vec<_> = scene
+            .tris
+            .iter()
+            .map(|v| Aabb::point(v[0]).grow(v[1]).grow(v[2]))
+            .collect();
         let (bvh, order) = Bvh::build(&bounds);
         BinaryScene {
             bvh,
-            prims: order.iter().map(|&i| scene.prims[i as usize]).collect(),
-            disks: scene.disks.clone(),
+            tris: order
+                .iter()
+                .map(|&i| OldTriangle {
+                    v: scene.tris[i as usize],
+                    ids: [0, i, 0],
+                })
+                .collect(),
         }
     }
 
-    /// Closest hit: `(t, primitive index in this order)`.
+    #[inline(always)]
+    fn hit(&self, i: usize, ray: &Ray, t_max: f32) -> Option<f32> {
+        let v = &self.tris[i].v;
+        intersect_triangle(ray, t_max, v[0], v[1], v[2]).map(|h| h.0)
+    }
+
+    /// Closest hit: `(t, triangle index in this order)`.
     pub fn intersect_hit(&self, ray: &Ray) -> Option<(f32, u32)> {
         let mut best = None;
         self.bvh.traverse(ray, |first, count, mut t_max| {
             for i in first..first + count {
-                if let Some((t, _)) = self.prims[i].intersect(ray, t_max, &self.disks) {
+                if let Some(t) = self.hit(i, ray, t_max) {
                     t_max = t;
                     best = Some((t, i as u32));
                 }
@@ -234,7 +261,7 @@ impl BinaryScene {
         let mut hit = false;
         self.bvh.traverse(ray, |first, count, t_max| {
             for i in first..first + count {
-                if self.prims[i].intersect(ray, t_max, &self.disks).is_some() {
+                if self.hit(i, ray, t_max).is_some() {
                     hit = true;
                     return None;
                 }

@@ -6,7 +6,7 @@ use tessera_core::accel::simd::{hit4_scalar, Boxes4, RayPre, MAX_X, MIN_X};
 use tessera_core::accel::Bvh4;
 use tessera_core::bsdf::{Bsdf, Diffuse};
 use tessera_core::camera::{Filter, FovAxis, Perspective};
-use tessera_core::geometry::{Mesh, Shape, ShapeKind, Sphere};
+use tessera_core::geometry::{Mesh, Shape, ShapeKind, Sphere, TriRay};
 use tessera_core::glam::Vec3;
 use tessera_core::math::{Aabb, Ray, Transform};
 use tessera_core::scene::{Scene, SceneParts};
@@ -71,8 +71,11 @@ fn check_rays(scene: &Scene, rays: &[Ray]) -> usize {
     let (mut hits, mut ties) = (0, 0);
     for ray in rays {
         let mut best: Option<(f32, usize)> = None;
-        for (i, p) in scene.prims.iter().enumerate() {
-            if let Some((t, _)) = p.intersect(ray, best.map_or(ray.t_max, |b| b.0), &scene.disks) {
+        let tri = TriRay::new(ray);
+        for i in 0..scene.prims.len() {
+            if let Some((t, _)) =
+                scene.intersect_prim(i, ray, &tri, best.map_or(ray.t_max, |b| b.0))
+            {
                 best = Some((t, i));
             }
         }
@@ -90,7 +93,7 @@ fn check_rays(scene: &Scene, rays: &[Ray]) -> usize {
                 if i as u32 != h.prim {
                     // An exact tie (a ray along an edge shared by two triangles): the other
                     // primitive must be hit at the very same distance.
-                    let other = scene.prims[h.prim as usize].intersect(ray, ray.t_max, &[]);
+                    let other = scene.intersect_prim(h.prim as usize, ray, &tri, ray.t_max);
                     assert_eq!(other.map(|o| o.0), Some(t), "closest primitive differs");
                     ties += 1;
                 }
