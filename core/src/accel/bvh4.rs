@@ -82,8 +82,9 @@ struct Entry {
 
 /// Entries of the traversal stack kept in the function's frame. A node pushes at most 3 entries
 /// and a path has `depth` nodes, so `3 * depth + 1` entries always suffice: hierarchies up to
-/// depth 21 (4^21 leaves; the binary build stops at depth about 60 only for pathological inputs)
-/// use this array, deeper ones a heap stack. Kept small because it is initialised per ray.
+/// depth 10 (a million triangles) use half this array, up to depth 21 all of it, deeper ones (the
+/// binary build reaches depth 60 only for pathological inputs) a heap stack. Kept small because
+/// it is initialised per ray.
 const STACK: usize = 64;
 
 impl Bvh4 {
@@ -155,7 +156,9 @@ impl Bvh4 {
             return;
         }
         let need = 3 * self.depth + 1;
-        if need <= STACK {
+        if need <= STACK / 2 {
+            self.walk_with::<ANY>(ray, &mut [Entry::default(); STACK / 2], leaf);
+        } else if need <= STACK {
             self.walk_with::<ANY>(ray, &mut [Entry::default(); STACK], leaf);
         } else {
             self.walk_with::<ANY>(ray, &mut alloc::vec![Entry::default(); need], leaf);

@@ -109,7 +109,7 @@ impl TriRay {
         }
         let inv_det = 1.0 / det;
         let t = t_scaled * inv_det;
-        if !(t < t_max) {
+        if t.partial_cmp(&t_max) != Some(core::cmp::Ordering::Less) {
             return None;
         }
         // Conservative lower bound: t must exceed its own rounding error.
