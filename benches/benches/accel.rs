@@ -1,6 +1,7 @@
 //! BVH build (triangles per second) and ray casts (rays per second: coherent camera rays and
-//! incoherent random rays, closest hit and any hit) on bumpy geodesic spheres of about 10^3 to
-//! 10^6 triangles. Prints the acceleration structure's bytes per triangle first.
+//! incoherent random rays, closest hit and any hit; the scene's 4-wide BVH and, as `binary_*`,
+//! the binary BVH it is collapsed from) on bumpy geodesic spheres of about 10^3 to 10^6
+//! triangles. Prints the acceleration structure's bytes per triangle first.
 //!
 //! `cargo bench -p tessera-benches --bench accel` (all sizes), or a filter such as
 //! `cargo bench -p tessera-benches --bench accel -- 100k`.
@@ -9,7 +10,7 @@ use std::hint::black_box;
 use std::time::Duration;
 use tessera_benches::{
     bumpy_sphere, bytes_per_triangle, camera_rays, frequency_for, geodesic_triangles, mesh_parts,
-    random_rays,
+    random_rays, BinaryScene,
 };
 use tessera_core::scene::Scene;
 
@@ -60,6 +61,7 @@ fn accel(c: &mut Criterion) {
         });
         g.finish();
 
+        let bin = BinaryScene::new(&scene);
         let mut g = c.benchmark_group(format!("rays/{label}"));
         g.sample_size(10)
             .warm_up_time(Duration::from_secs(1))
@@ -80,6 +82,24 @@ fn accel(c: &mut Criterion) {
                     let mut found = 0u32;
                     for r in rays.iter() {
                         found += u32::from(scene.occluded(black_box(r)));
+                    }
+                    found
+                })
+            });
+            g.bench_function(format!("binary_{kind}_closest"), |b| {
+                b.iter(|| {
+                    let mut found = 0u32;
+                    for r in rays.iter() {
+                        found += u32::from(bin.intersect_hit(black_box(r)).is_some());
+                    }
+                    found
+                })
+            });
+            g.bench_function(format!("binary_{kind}_any"), |b| {
+                b.iter(|| {
+                    let mut found = 0u32;
+                    for r in rays.iter() {
+                        found += u32::from(bin.occluded(black_box(r)));
                     }
                     found
                 })
