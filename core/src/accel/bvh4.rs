@@ -27,6 +27,9 @@ pub struct Bvh4Node {
     pub used: u32,
 }
 
+// Two cache lines, as the memory figures assume.
+const _: () = assert!(core::mem::size_of::<Bvh4Node>() == 128);
+
 impl Bvh4Node {
     const EMPTY: Bvh4Node = Bvh4Node {
         boxes: Boxes4::EMPTY,
