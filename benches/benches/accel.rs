@@ -1,6 +1,7 @@
 //! BVH build (triangles per second) and ray casts (rays per second: coherent camera rays and
-//! incoherent random rays, closest hit and any hit) on bumpy geodesic spheres of about 10^3 to
-//! 10^6 triangles. Prints the acceleration structure's bytes per triangle first.
+//! incoherent random rays, closest hit and any hit; the scene's 4-wide BVH and, as `binary_*`,
+//! the binary BVH it is collapsed from) on bumpy geodesic spheres of about 10^3 to 10^6
+//! triangles. Prints the acceleration structure's bytes per triangle first.
 //!
 //! `cargo bench -p tessera-benches --bench accel` (all sizes), or a filter such as
 //! `cargo bench -p tessera-benches --bench accel -- 100k`.
@@ -9,7 +10,7 @@ use std::hint::black_box;
 use std::time::Duration;
 use tessera_benches::{
     bumpy_sphere, bytes_per_triangle, camera_rays, frequency_for, geodesic_triangles, mesh_parts,
-    random_rays,
+    random_rays, BinaryScene,
 };
 use tessera_core::scene::Scene;
 
@@ -31,16 +32,17 @@ fn accel(c: &mut Criterion) {
         let tris = geodesic_triangles(n);
         let scene = Scene::new(parts.clone()).expect("valid scene");
         assert_eq!(scene.prims.len(), tris);
-        let (nodes, prims) = bytes_per_triangle(&scene);
+        let (nodes, corners, prims) = bytes_per_triangle(&scene);
         let hits = camera
             .iter()
             .filter(|r| scene.intersect_hit(r).is_some())
             .count();
         println!(
-            "mesh {label}: {tris} triangles, {} BVH nodes; bytes/triangle: {nodes:.1} nodes + \
-             {prims:.1} primitives = {:.1}; camera rays hitting: {:.0}%",
+            "mesh {label}: {tris} triangles, {} BVH4 nodes; bytes/triangle: {nodes:.1} nodes + \
+             {corners:.1} triangle corners = {:.1} (+ {prims:.1} primitive ids); camera rays \
+             hitting: {:.0}%",
             scene.bvh.nodes.len(),
-            nodes + prims,
+            nodes + corners,
             100.0 * hits as f64 / camera.len() as f64
         );
 
@@ -59,6 +61,7 @@ fn accel(c: &mut Criterion) {
         });
         g.finish();
 
+        let bin = BinaryScene::new(&scene);
         let mut g = c.benchmark_group(format!("rays/{label}"));
         g.sample_size(10)
             .warm_up_time(Duration::from_secs(1))
@@ -79,6 +82,24 @@ fn accel(c: &mut Criterion) {
                     let mut found = 0u32;
                     for r in rays.iter() {
                         found += u32::from(scene.occluded(black_box(r)));
+                    }
+                    found
+                })
+            });
+            g.bench_function(format!("binary_{kind}_closest"), |b| {
+                b.iter(|| {
+                    let mut found = 0u32;
+                    for r in rays.iter() {
+                        found += u32::from(bin.intersect_hit(black_box(r)).is_some());
+                    }
+                    found
+                })
+            });
+            g.bench_function(format!("binary_{kind}_any"), |b| {
+                b.iter(|| {
+                    let mut found = 0u32;
+                    for r in rays.iter() {
+                        found += u32::from(bin.occluded(black_box(r)));
                     }
                     found
                 })

@@ -2,10 +2,12 @@
 //! of a chosen size, scenes holding them, and batches of coherent and incoherent rays. Nothing
 //! is read from disk, so the benchmarks need no big files in the repository.
 use glam::{Vec2, Vec3};
+use std::time::Instant;
+use tessera_core::accel::Bvh;
 use tessera_core::bsdf::{Bsdf, Diffuse};
 use tessera_core::camera::{Filter, FovAxis, Perspective};
-use tessera_core::geometry::{Mesh, Shape, ShapeKind};
-use tessera_core::math::{Ray, Transform};
+use tessera_core::geometry::{intersect_triangle, Mesh, Shape, ShapeKind};
+use tessera_core::math::{Aabb, Ray, Transform};
 use tessera_core::scene::{Scene, SceneParts};
 use tessera_core::texture::Texture;
 
@@ -180,12 +182,126 @@ pub fn random_rays(count: usize, seed: u64) -> Vec<Ray> {
         .collect()
 }
 
-/// Bytes of the acceleration structure per triangle: (BVH nodes, primitive array with the
-/// triangles' corners inline).
-pub fn bytes_per_triangle(scene: &Scene) -> (f64, f64) {
+/// Bytes per triangle of the ray-casting data: (BVH nodes, triangle corners in leaf order,
+/// primitive references: shape and face).
+pub fn bytes_per_triangle(scene: &Scene) -> (f64, f64, f64) {
     let n = scene.prims.len().max(1) as f64;
+    let m = scene.accel_memory();
     (
-        scene.bvh.memory_bytes() as f64 / n,
-        std::mem::size_of_val(scene.prims.as_slice()) as f64 / n,
+        m.nodes as f64 / n,
+        m.triangles as f64 / n,
+        m.prims as f64 / n,
     )
+}
+
+/// A triangle as scenes stored it before the 4-wide BVH: corners inline with shape and face ids
+/// (padded to 48 bytes like the old primitive enum).
+#[derive(Clone, Copy)]
+pub struct OldTriangle {
+    /// Corners.
+    pub v: [Vec3; 3],
+    /// Shape, face, and the enum's tag and padding.
+    pub ids: [u32; 3],
+}
+
+/// The binary SAH BVH over a scene's triangles, traversed as scenes did before the 4-wide BVH
+/// (one box per step, near child first by the split axis, the triangle test's per-ray setup
+/// redone per triangle): the baseline of the comparison. Triangle meshes only.
+pub struct BinaryScene {
+    /// The binary hierarchy.
+    pub bvh: Bvh,
+    /// The triangles in this hierarchy's order.
+    pub tris: Vec<OldTriangle>,
+}
+
+impl BinaryScene {
+    /// Builds the binary hierarchy over `scene`'s triangles.
+    pub fn new(scene: &Scene) -> BinaryScene {
+        let bounds: Vec<_> = scene
+            .tris
+            .iter()
+            .map(|v| Aabb::point(v[0]).grow(v[1]).grow(v[2]))
+            .collect();
+        let (bvh, order) = Bvh::build(&bounds);
+        BinaryScene {
+            bvh,
+            tris: order
+                .iter()
+                .map(|&i| OldTriangle {
+                    v: scene.tris[i as usize],
+                    ids: [0, i, 0],
+                })
+                .collect(),
+        }
+    }
+
+    #[inline(always)]
+    fn hit(&self, i: usize, ray: &Ray, t_max: f32) -> Option<f32> {
+        let v = &self.tris[i].v;
+        intersect_triangle(ray, t_max, v[0], v[1], v[2]).map(|h| h.0)
+    }
+
+    /// Closest hit: `(t, triangle index in this order)`.
+    pub fn intersect_hit(&self, ray: &Ray) -> Option<(f32, u32)> {
+        let mut best = None;
+        self.bvh.traverse(ray, |first, count, mut t_max| {
+            for i in first..first + count {
+                if let Some(t) = self.hit(i, ray, t_max) {
+                    t_max = t;
+                    best = Some((t, i as u32));
+                }
+            }
+            Some(t_max)
+        });
+        best
+    }
+
+    /// Any hit.
+    pub fn occluded(&self, ray: &Ray) -> bool {
+        let mut hit = false;
+        self.bvh.traverse(ray, |first, count, t_max| {
+            for i in first..first + count {
+                if self.hit(i, ray, t_max).is_some() {
+                    hit = true;
+                    return None;
+                }
+            }
+            Some(t_max)
+        });
+        hit
+    }
+}
+
+/// CPU time this thread has run, in seconds (Linux `/proc/thread-self/schedstat`), or `None`
+/// where unavailable. On a loaded machine it measures the work, not the wait for a core.
+pub fn thread_cpu_seconds() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns: u64 = s.split_whitespace().next()?.parse().ok()?;
+    Some(ns as f64 * 1e-9)
+}
+
+/// A clock: thread CPU time where available, else wall time since `start`.
+fn clock(start: Instant) -> f64 {
+    thread_cpu_seconds().unwrap_or_else(|| start.elapsed().as_secs_f64())
+}
+
+/// Rays per second of `cast` over `rays` (per second of this thread's CPU time where the OS
+/// reports it, else of wall time), best of `rounds` passes of at least 0.2 s each.
+pub fn rays_per_second(rays: &[Ray], rounds: usize, mut cast: impl FnMut(&Ray) -> bool) -> f64 {
+    let mut best = 0.0f64;
+    let epoch = Instant::now();
+    for _ in 0..rounds {
+        let start = clock(epoch);
+        let mut passes = 0usize;
+        let mut found = 0usize;
+        while passes == 0 || clock(epoch) - start < 0.2 {
+            for r in rays {
+                found += usize::from(cast(std::hint::black_box(r)));
+            }
+            passes += 1;
+        }
+        std::hint::black_box(found);
+        best = best.max((passes * rays.len()) as f64 / (clock(epoch) - start));
+    }
+    best
 }

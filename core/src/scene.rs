@@ -1,12 +1,13 @@
 //! The flat, read-only scene: shapes, primitives under a BVH, BSDFs, emitters, camera.
-use crate::accel::Bvh;
+use crate::accel::Bvh4;
 use crate::bsdf::Bsdf;
 use crate::camera::{Filter, Perspective};
 use crate::emitter::{Emitter, EmitterCtx};
-use crate::geometry::{Disk, Hit, Interaction, Prim, Shape, ShapeKind};
+use crate::geometry::{Disk, Hit, Interaction, Prim, Shape, ShapeKind, TriRay};
 use crate::math::{Aabb, Ray};
 use crate::sampling::Discrete1D;
 use alloc::vec::Vec;
+use glam::Vec3;
 
 /// How emitter sampling picks one light.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -67,8 +68,11 @@ pub struct Scene {
     pub disks: Vec<Disk>,
     /// Primitives in BVH order.
     pub prims: Vec<Prim>,
-    /// The hierarchy over `prims`.
-    pub bvh: Bvh,
+    /// Triangle corners, parallel to `prims` (the leaf loop's data; NaN for a primitive that is
+    /// not a triangle, which sends the loop to `prims`).
+    pub tris: Vec<[Vec3; 3]>,
+    /// The 4-wide hierarchy over `prims`.
+    pub bvh: Bvh4,
     /// Materials.
     pub bsdfs: Vec<Bsdf>,
     /// Lights.
@@ -107,6 +111,7 @@ impl Scene {
     /// Validates the parts, builds primitives and the BVH, and computes the features.
     pub fn new(p: SceneParts) -> Result<Scene, BuildError> {
         let mut prims = Vec::new();
+        let mut tris = Vec::new();
         for (si, s) in p.shapes.iter().enumerate() {
             if s.bsdf as usize >= p.bsdfs.len()
                 || s.emitter.is_some_and(|e| e as usize >= p.emitters.len())
@@ -122,19 +127,20 @@ impl Scene {
                             return Err(BuildError::BadMeshIndex);
                         }
                         let face = u32::try_from(f).map_err(|_| BuildError::TooLarge)?;
-                        prims.push(Prim::Triangle {
-                            v: m.vertices(f),
-                            shape,
-                            face,
-                        });
+                        prims.push(Prim::Triangle { shape, face });
+                        tris.push(m.vertices(f));
                     }
                 }
-                ShapeKind::Sphere(sp) => prims.push(Prim::Sphere { sphere: *sp, shape }),
+                ShapeKind::Sphere(sp) => {
+                    prims.push(Prim::Sphere { sphere: *sp, shape });
+                    tris.push(NOT_A_TRIANGLE);
+                }
                 ShapeKind::Disk(d) => {
                     if *d as usize >= p.disks.len() {
                         return Err(BuildError::BadIndex);
                     }
-                    prims.push(Prim::Disk { disk: *d, shape })
+                    prims.push(Prim::Disk { disk: *d, shape });
+                    tris.push(NOT_A_TRIANGLE);
                 }
             }
         }
@@ -152,8 +158,12 @@ impl Scene {
                 environments.push(i as u32);
             }
         }
-        let bounds: Vec<Aabb> = prims.iter().map(|pr| pr.bounds(&p.disks)).collect();
-        let (bvh, order) = Bvh::build(&bounds);
+        let bounds: Vec<Aabb> = prims
+            .iter()
+            .zip(&tris)
+            .map(|(pr, v)| pr.bounds(v, &p.disks))
+            .collect();
+        let (bvh, order) = Bvh4::build(&bounds);
         let world = bvh.bounds();
         let (center, radius) = if world.is_empty() {
             (glam::Vec3::ZERO, 1.0)
@@ -174,6 +184,7 @@ impl Scene {
             LightSelection::Uniform => None,
         };
         let prims: Vec<Prim> = order.iter().map(|&i| prims[i as usize]).collect();
+        let tris: Vec<[Vec3; 3]> = order.iter().map(|&i| tris[i as usize]).collect();
         let features = SceneFeatures {
             has_emitters: !p.emitters.is_empty(),
             has_environment: !environments.is_empty(),
@@ -187,6 +198,7 @@ impl Scene {
             shapes: p.shapes,
             disks: p.disks,
             prims,
+            tris,
             bvh,
             bsdfs: p.bsdfs,
             emitters: p.emitters,
@@ -251,12 +263,31 @@ impl Scene {
         }
     }
 
+    /// Intersection of the ray (within `(0, t_max)`) with primitive `i` alone: `(t, uv)`.
+    #[inline(always)]
+    pub fn intersect_prim(
+        &self,
+        i: usize,
+        ray: &Ray,
+        tri: &TriRay,
+        t_max: f32,
+    ) -> Option<(f32, glam::Vec2)> {
+        let v = &self.tris[i];
+        if v[0].x.is_nan() {
+            self.prims[i].intersect(ray, tri, v, t_max, &self.disks)
+        } else {
+            tri.intersect(t_max, v[0], v[1], v[2])
+                .map(|(t, _, b1, b2)| (t, glam::Vec2::new(b1, b2)))
+        }
+    }
+
     /// The closest hit along the ray, if any.
     pub fn intersect_hit(&self, ray: &Ray) -> Option<Hit> {
         let mut best: Option<Hit> = None;
-        self.bvh.traverse(ray, |first, count, mut t_max| {
+        let tri = TriRay::new(ray);
+        self.bvh.traverse_closest(ray, |first, count, mut t_max| {
             for i in first..first + count {
-                if let Some((t, uv)) = self.prims[i].intersect(ray, t_max, &self.disks) {
+                if let Some((t, uv)) = self.intersect_prim(i, ray, &tri, t_max) {
                     t_max = t;
                     best = Some(Hit {
                         t,
@@ -265,7 +296,7 @@ impl Scene {
                     });
                 }
             }
-            Some(t_max)
+            t_max
         });
         best
     }
@@ -281,15 +312,35 @@ impl Scene {
     /// Whether anything blocks the ray within its extent (any hit, early exit).
     pub fn occluded(&self, ray: &Ray) -> bool {
         let mut hit = false;
-        self.bvh.traverse(ray, |first, count, t_max| {
-            for i in first..first + count {
-                if self.prims[i].intersect(ray, t_max, &self.disks).is_some() {
-                    hit = true;
-                    return None;
-                }
-            }
-            Some(t_max)
+        let tri = TriRay::new(ray);
+        self.bvh.traverse_any(ray, |first, count, t_max| {
+            hit =
+                (first..first + count).any(|i| self.intersect_prim(i, ray, &tri, t_max).is_some());
+            hit
         });
         hit
     }
+
+    /// Bytes of the ray-casting data (not counting spare vector capacity).
+    pub fn accel_memory(&self) -> AccelMemory {
+        AccelMemory {
+            nodes: self.bvh.memory_bytes(),
+            triangles: core::mem::size_of_val(self.tris.as_slice()),
+            prims: core::mem::size_of_val(self.prims.as_slice()),
+        }
+    }
 }
+
+/// What [`Scene::accel_memory`] counts, in bytes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AccelMemory {
+    /// The 4-wide BVH's nodes.
+    pub nodes: usize,
+    /// The triangle test's data: three corners per primitive, in leaf order.
+    pub triangles: usize,
+    /// Per primitive, which shape and face it is (for shading, and for spheres and disks).
+    pub prims: usize,
+}
+
+/// The corners stored for a primitive that is not a triangle.
+const NOT_A_TRIANGLE: [Vec3; 3] = [Vec3::NAN; 3];

@@ -2,7 +2,7 @@
 //! (distance and primitive) and occlusion, on random triangle soups with spheres and disks.
 use tessera_core::bsdf::{Bsdf, Diffuse};
 use tessera_core::camera::{Filter, FovAxis, Perspective};
-use tessera_core::geometry::{Disk, Mesh, Shape, ShapeKind, Sphere};
+use tessera_core::geometry::{Disk, Mesh, Shape, ShapeKind, Sphere, TriRay};
 use tessera_core::glam::{Mat4, Vec2, Vec3};
 use tessera_core::math::{Ray, Transform};
 use tessera_core::scene::{Scene, SceneParts};
@@ -93,9 +93,10 @@ fn bvh_agrees_with_brute_force() {
                 ray.t_max = rng.f() * 40.0;
             }
             let mut best: Option<(f32, usize)> = None;
-            for (i, p) in scene.prims.iter().enumerate() {
+            let tri = TriRay::new(&ray);
+            for i in 0..scene.prims.len() {
                 if let Some((t, _)) =
-                    p.intersect(&ray, best.map_or(ray.t_max, |b| b.0), &scene.disks)
+                    scene.intersect_prim(i, &ray, &tri, best.map_or(ray.t_max, |b| b.0))
                 {
                     best = Some((t, i));
                 }

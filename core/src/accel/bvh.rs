@@ -8,10 +8,24 @@ use alloc::vec::Vec;
 use glam::Vec3;
 
 const BINS: usize = 16;
-const MAX_LEAF: usize = 4;
 const MAX_DEPTH: usize = 60;
-/// Cost of one traversal step relative to one primitive test.
-const TRAVERSAL_COST: f32 = 0.5;
+
+/// How the SAH build trades node visits against primitive tests.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BuildParams {
+    /// Ranges of at most this many primitives may become leaves when the SAH says so.
+    pub max_leaf: usize,
+    /// Cost of one traversal step relative to one primitive test.
+    pub traversal_cost: f32,
+}
+
+impl BuildParams {
+    /// For binary traversal (one box per step): small leaves.
+    pub const BINARY: BuildParams = BuildParams {
+        max_leaf: 4,
+        traversal_cost: 0.5,
+    };
+}
 
 /// A node: its box, and either a primitive range (leaf, `count > 0`) or the second child.
 #[derive(Clone, Copy, Debug)]
@@ -43,6 +57,11 @@ impl Bvh {
     /// Builds over primitive boxes; returns the hierarchy and the order in which the caller must
     /// store its primitives (leaves refer to ranges of that order).
     pub fn build(bounds: &[Aabb]) -> (Bvh, Vec<u32>) {
+        Bvh::build_with(bounds, BuildParams::BINARY)
+    }
+
+    /// [`Bvh::build`] with chosen leaf-size trade-off.
+    pub fn build_with(bounds: &[Aabb], params: BuildParams) -> (Bvh, Vec<u32>) {
         let mut items: Vec<Item> = bounds
             .iter()
             .enumerate()
@@ -55,7 +74,7 @@ impl Bvh {
         let mut nodes = Vec::with_capacity(2 * items.len().max(1));
         if !items.is_empty() {
             let n = items.len();
-            build_node(&mut items, 0, n, 0, &mut nodes);
+            build_node(&mut items, 0, n, 0, &params, &mut nodes);
         }
         (Bvh { nodes }, items.iter().map(|it| it.index).collect())
     }
@@ -128,6 +147,7 @@ fn build_node(
     start: usize,
     end: usize,
     depth: usize,
+    params: &BuildParams,
     nodes: &mut Vec<BvhNode>,
 ) {
     let slice = &items[start..end];
@@ -140,7 +160,7 @@ fn build_node(
     let ext = cb.extent();
     let mut best: Option<(f32, usize, usize)> = None; // (cost, axis, split bin)
     for axis in 0..3 {
-        if !(ext[axis] > 0.0) {
+        if ext[axis].partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
             continue;
         }
         let mut bin_bounds = [Aabb::EMPTY; BINS];
@@ -169,7 +189,7 @@ fn build_node(
                 continue;
             }
             let cost = lb.area() * lc as f32 + right_area[i + 1] * right_count[i + 1] as f32;
-            if best.map_or(true, |(c, _, _)| cost < c) {
+            if best.is_none_or(|(c, _, _)| cost < c) {
                 best = Some((cost, axis, i));
             }
         }
@@ -177,8 +197,8 @@ fn build_node(
     let area = bounds.area();
     let split = match best {
         Some((cost, axis, bin)) => {
-            let split_cost = TRAVERSAL_COST + if area > 0.0 { cost / area } else { 0.0 };
-            if count <= MAX_LEAF && split_cost >= count as f32 {
+            let split_cost = params.traversal_cost + if area > 0.0 { cost / area } else { 0.0 };
+            if count <= params.max_leaf && split_cost >= count as f32 {
                 return make_leaf(items, start, end, bounds, nodes);
             }
             let scale = BINS as f32 / ext[axis];
@@ -194,7 +214,7 @@ fn build_node(
         Some(s) if s.1 > start && s.1 < end => s,
         _ => {
             // All centroids coincide: a leaf if small, else split by index to bound leaf size.
-            if count <= MAX_LEAF * 4 {
+            if count <= params.max_leaf * 4 {
                 return make_leaf(items, start, end, bounds, nodes);
             }
             (0, start + count / 2)
@@ -207,9 +227,9 @@ fn build_node(
         count: 0,
         axis: axis as u16,
     });
-    build_node(items, start, mid, depth + 1, nodes);
+    build_node(items, start, mid, depth + 1, params, nodes);
     nodes[me].offset = nodes.len() as u32;
-    build_node(items, mid, end, depth + 1, nodes);
+    build_node(items, mid, end, depth + 1, params, nodes);
 }
 
 fn partition(items: &mut [Item], pred: impl Fn(&Item) -> bool) -> usize {

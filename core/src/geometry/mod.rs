@@ -13,4 +13,4 @@ pub use mesh::Mesh;
 pub use prim::{Hit, Prim};
 pub use shape::{area_to_solid_angle, PositionSample, Shape, ShapeKind};
 pub use sphere::{ConeSample, Sphere};
-pub use triangle::intersect_triangle;
+pub use triangle::{intersect_triangle, TriRay};

@@ -1,13 +1,15 @@
-//! Primitives as the BVH stores them: triangles carry their corners inline.
-use super::{intersect_triangle, Disk, Sphere};
+//! Primitives as the BVH stores them: which shape (and face) each is. A triangle's corners are
+//! kept apart, in a parallel array in the same order ([`crate::scene::Scene::tris`]), so the
+//! leaf loop reads 36 bytes per triangle and nothing else.
+use super::{Disk, Sphere, TriRay};
 use crate::math::{Aabb, Ray};
 use glam::Vec3;
 
 /// One intersectable primitive, referring back to the shape it belongs to.
 #[derive(Clone, Copy, Debug)]
 pub enum Prim {
-    /// Triangle `face` of mesh shape `shape`, corners copied for locality.
-    Triangle { v: [Vec3; 3], shape: u32, face: u32 },
+    /// Triangle `face` of mesh shape `shape` (its corners are in the scene's `tris`).
+    Triangle { shape: u32, face: u32 },
     /// A sphere shape.
     Sphere { sphere: Sphere, shape: u32 },
     /// Disk `disk` (index into the scene's disks) of shape `shape`.
@@ -26,10 +28,10 @@ pub struct Hit {
 }
 
 impl Prim {
-    /// Bounding box.
-    pub fn bounds(&self, disks: &[Disk]) -> Aabb {
+    /// Bounding box; `v` is the triangle's corners (ignored for other primitives).
+    pub fn bounds(&self, v: &[Vec3; 3], disks: &[Disk]) -> Aabb {
         match self {
-            Prim::Triangle { v, .. } => Aabb::point(v[0]).grow(v[1]).grow(v[2]),
+            Prim::Triangle { .. } => Aabb::point(v[0]).grow(v[1]).grow(v[2]),
             Prim::Sphere { sphere, .. } => {
                 let r = Vec3::splat(sphere.radius);
                 Aabb {
@@ -55,11 +57,20 @@ impl Prim {
             | Prim::Disk { shape, .. } => shape,
         }
     }
-    /// Intersection in `(0, t_max)`: `(t, uv)`.
-    #[inline]
-    pub fn intersect(&self, ray: &Ray, t_max: f32, disks: &[Disk]) -> Option<(f32, glam::Vec2)> {
+    /// Intersection in `(0, t_max)`: `(t, uv)`. `v` is the triangle's corners (ignored for
+    /// other primitives) and `tri` the triangle test's per-ray part (`TriRay::new(ray)`).
+    #[inline(always)]
+    pub fn intersect(
+        &self,
+        ray: &Ray,
+        tri: &TriRay,
+        v: &[Vec3; 3],
+        t_max: f32,
+        disks: &[Disk],
+    ) -> Option<(f32, glam::Vec2)> {
         match self {
-            Prim::Triangle { v, .. } => intersect_triangle(ray, t_max, v[0], v[1], v[2])
+            Prim::Triangle { .. } => tri
+                .intersect(t_max, v[0], v[1], v[2])
                 .map(|(t, _, b1, b2)| (t, glam::Vec2::new(b1, b2))),
             Prim::Sphere { sphere, .. } => {
                 sphere.intersect(ray, t_max).map(|t| (t, glam::Vec2::ZERO))

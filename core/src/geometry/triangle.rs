@@ -7,12 +7,135 @@
 use crate::math::{gamma, Ray};
 use glam::Vec3;
 
-#[inline]
-fn permute(v: Vec3, x: usize, y: usize, z: usize) -> Vec3 {
-    Vec3::new(v[x], v[y], v[z])
+/// The per-ray part of the test, computed once per ray and reused for every triangle: the axis
+/// permutation making the direction's largest component z, and the shear to +z.
+#[derive(Clone, Copy, Debug)]
+pub struct TriRay {
+    o: Vec3,
+    kz: usize,
+    sx: f32,
+    sy: f32,
+    sz: f32,
+}
+
+impl TriRay {
+    /// Precomputes the permutation and shear of `ray`.
+    #[inline]
+    pub fn new(ray: &Ray) -> TriRay {
+        let d_abs = ray.d.abs();
+        let kz = if d_abs.x > d_abs.y {
+            if d_abs.x > d_abs.z {
+                0
+            } else {
+                2
+            }
+        } else if d_abs.y > d_abs.z {
+            1
+        } else {
+            2
+        };
+        let kx = if kz == 2 { 0 } else { kz + 1 };
+        let ky = if kx == 2 { 0 } else { kx + 1 };
+        let sz = 1.0 / ray.d[kz];
+        TriRay {
+            o: ray.o,
+            kz,
+            sx: -ray.d[kx] * sz,
+            sy: -ray.d[ky] * sz,
+            sz,
+        }
+    }
+
+    /// Intersects the ray (within `[0, t_max)`) with the triangle; returns `(t, b0, b1, b2)`.
+    #[inline]
+    pub fn intersect(
+        &self,
+        t_max: f32,
+        p0: Vec3,
+        p1: Vec3,
+        p2: Vec3,
+    ) -> Option<(f32, f32, f32, f32)> {
+        match self.kz {
+            0 => self.hit::<1, 2, 0>(t_max, p0, p1, p2),
+            1 => self.hit::<2, 0, 1>(t_max, p0, p1, p2),
+            _ => self.hit::<0, 1, 2>(t_max, p0, p1, p2),
+        }
+    }
+
+    #[inline(always)]
+    fn hit<const KX: usize, const KY: usize, const KZ: usize>(
+        &self,
+        t_max: f32,
+        p0: Vec3,
+        p1: Vec3,
+        p2: Vec3,
+    ) -> Option<(f32, f32, f32, f32)> {
+        let permute = |v: Vec3| Vec3::new(v[KX], v[KY], v[KZ]);
+        let mut a = permute(p0 - self.o);
+        let mut b = permute(p1 - self.o);
+        let mut c = permute(p2 - self.o);
+        let (sx, sy, sz) = (self.sx, self.sy, self.sz);
+        a.x += sx * a.z;
+        a.y += sy * a.z;
+        b.x += sx * b.z;
+        b.y += sy * b.z;
+        c.x += sx * c.z;
+        c.y += sy * c.z;
+        let mut e0 = b.x * c.y - b.y * c.x;
+        let mut e1 = c.x * a.y - c.y * a.x;
+        let mut e2 = a.x * b.y - a.y * b.x;
+        if e0 == 0.0 || e1 == 0.0 || e2 == 0.0 {
+            let (ad, bd, cd) = (a.as_dvec3(), b.as_dvec3(), c.as_dvec3());
+            e0 = (bd.x * cd.y - bd.y * cd.x) as f32;
+            e1 = (cd.x * ad.y - cd.y * ad.x) as f32;
+            e2 = (ad.x * bd.y - ad.y * bd.x) as f32;
+        }
+        if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) && (e0 > 0.0 || e1 > 0.0 || e2 > 0.0) {
+            return None;
+        }
+        let det = e0 + e1 + e2;
+        if det == 0.0 || !det.is_finite() {
+            return None;
+        }
+        // The shear's error grows with the unscaled depths (|sx|, |sy| <= 1): keep their bound
+        // before z is divided by d.z, which makes it a ray parameter, not a length.
+        let max_z_len = Vec3::new(a.z, b.z, c.z).abs().max_element();
+        a.z *= sz;
+        b.z *= sz;
+        c.z *= sz;
+        let t_scaled = e0 * a.z + e1 * b.z + e2 * c.z;
+        if det < 0.0 && (t_scaled >= 0.0 || t_scaled < t_max * det) {
+            return None;
+        }
+        if det > 0.0 && (t_scaled <= 0.0 || t_scaled > t_max * det) {
+            return None;
+        }
+        let inv_det = 1.0 / det;
+        let t = t_scaled * inv_det;
+        if t.partial_cmp(&t_max) != Some(core::cmp::Ordering::Less) {
+            return None;
+        }
+        // Conservative lower bound: t must exceed its own rounding error.
+        let max_zt = Vec3::new(a.z, b.z, c.z).abs().max_element();
+        let delta_z = gamma(3) * max_zt;
+        let max_xt = Vec3::new(a.x, b.x, c.x).abs().max_element();
+        let max_yt = Vec3::new(a.y, b.y, c.y).abs().max_element();
+        let delta_x = gamma(5) * (max_xt + max_z_len);
+        let delta_y = gamma(5) * (max_yt + max_z_len);
+        let delta_e = 2.0 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
+        let max_e = Vec3::new(e0, e1, e2).abs().max_element();
+        let delta_t =
+            3.0 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * inv_det.abs();
+        if t <= delta_t {
+            return None;
+        }
+        Some((t, e0 * inv_det, e1 * inv_det, e2 * inv_det))
+    }
 }
 
 /// Intersects `ray` (within `[0, t_max)`) with the triangle; returns `(t, b0, b1, b2)`.
+/// Same as [`TriRay::intersect`] after [`TriRay::new`]; prefer those when testing many
+/// triangles against one ray.
 #[inline]
 pub fn intersect_triangle(
     ray: &Ray,
@@ -21,80 +144,5 @@ pub fn intersect_triangle(
     p1: Vec3,
     p2: Vec3,
 ) -> Option<(f32, f32, f32, f32)> {
-    let d_abs = ray.d.abs();
-    let kz = if d_abs.x > d_abs.y {
-        if d_abs.x > d_abs.z {
-            0
-        } else {
-            2
-        }
-    } else if d_abs.y > d_abs.z {
-        1
-    } else {
-        2
-    };
-    let kx = if kz == 2 { 0 } else { kz + 1 };
-    let ky = if kx == 2 { 0 } else { kx + 1 };
-    let d = permute(ray.d, kx, ky, kz);
-    let mut a = permute(p0 - ray.o, kx, ky, kz);
-    let mut b = permute(p1 - ray.o, kx, ky, kz);
-    let mut c = permute(p2 - ray.o, kx, ky, kz);
-    let sz = 1.0 / d.z;
-    let sx = -d.x * sz;
-    let sy = -d.y * sz;
-    a.x += sx * a.z;
-    a.y += sy * a.z;
-    b.x += sx * b.z;
-    b.y += sy * b.z;
-    c.x += sx * c.z;
-    c.y += sy * c.z;
-    let mut e0 = b.x * c.y - b.y * c.x;
-    let mut e1 = c.x * a.y - c.y * a.x;
-    let mut e2 = a.x * b.y - a.y * b.x;
-    if e0 == 0.0 || e1 == 0.0 || e2 == 0.0 {
-        let (ad, bd, cd) = (a.as_dvec3(), b.as_dvec3(), c.as_dvec3());
-        e0 = (bd.x * cd.y - bd.y * cd.x) as f32;
-        e1 = (cd.x * ad.y - cd.y * ad.x) as f32;
-        e2 = (ad.x * bd.y - ad.y * bd.x) as f32;
-    }
-    if (e0 < 0.0 || e1 < 0.0 || e2 < 0.0) && (e0 > 0.0 || e1 > 0.0 || e2 > 0.0) {
-        return None;
-    }
-    let det = e0 + e1 + e2;
-    if det == 0.0 || !det.is_finite() {
-        return None;
-    }
-    // The shear's error grows with the unscaled depths (|sx|, |sy| <= 1): keep their bound
-    // before z is divided by d.z, which makes it a ray parameter, not a length.
-    let max_z_len = Vec3::new(a.z, b.z, c.z).abs().max_element();
-    a.z *= sz;
-    b.z *= sz;
-    c.z *= sz;
-    let t_scaled = e0 * a.z + e1 * b.z + e2 * c.z;
-    if det < 0.0 && (t_scaled >= 0.0 || t_scaled < t_max * det) {
-        return None;
-    }
-    if det > 0.0 && (t_scaled <= 0.0 || t_scaled > t_max * det) {
-        return None;
-    }
-    let inv_det = 1.0 / det;
-    let t = t_scaled * inv_det;
-    if !(t < t_max) {
-        return None;
-    }
-    // Conservative lower bound: t must exceed its own rounding error.
-    let max_zt = Vec3::new(a.z, b.z, c.z).abs().max_element();
-    let delta_z = gamma(3) * max_zt;
-    let max_xt = Vec3::new(a.x, b.x, c.x).abs().max_element();
-    let max_yt = Vec3::new(a.y, b.y, c.y).abs().max_element();
-    let delta_x = gamma(5) * (max_xt + max_z_len);
-    let delta_y = gamma(5) * (max_yt + max_z_len);
-    let delta_e = 2.0 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
-    let max_e = Vec3::new(e0, e1, e2).abs().max_element();
-    let delta_t =
-        3.0 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * inv_det.abs();
-    if t <= delta_t {
-        return None;
-    }
-    Some((t, e0 * inv_det, e1 * inv_det, e2 * inv_det))
+    TriRay::new(ray).intersect(t_max, p0, p1, p2)
 }

@@ -1,0 +1,111 @@
+//! The 4-wide BVH against the binary one in the same run: rays per second (best of 5 alternating rounds)
+//! for coherent camera rays and incoherent random rays, closest and any hit, on bumpy spheres
+//! of about 10^3 to 10^6 triangles, the ratio, and build time against triangle count.
+//!
+//! `cargo bench -p tessera-benches --bench bvh_compare` (all sizes) or with sizes as arguments,
+//! e.g. `cargo bench -p tessera-benches --bench bvh_compare -- 1k 100k`.
+use std::time::Instant;
+use tessera_benches::{
+    bumpy_sphere, bytes_per_triangle, camera_rays, frequency_for, mesh_parts, random_rays,
+    rays_per_second, thread_cpu_seconds, BinaryScene,
+};
+use tessera_core::scene::Scene;
+
+const ROUNDS: usize = 5;
+const SIZES: [(&str, usize); 4] = [
+    ("1k", 1_000),
+    ("10k", 10_000),
+    ("100k", 100_000),
+    ("1M", 1_000_000),
+];
+
+fn main() {
+    let wanted: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| !a.starts_with('-'))
+        .collect();
+    let camera = camera_rays(256);
+    let random = random_rays(1 << 16, 7);
+    println!(
+        "{:>5} {:>8} {:>10} {:>7} {:>12} {:>12} {:>6}",
+        "mesh", "tris", "build ms", "ns/tri", "binary Mr/s", "bvh4 Mr/s", "ratio"
+    );
+    for (label, target) in SIZES {
+        if !wanted.is_empty() && !wanted.iter().any(|w| w == label) {
+            continue;
+        }
+        let (p, i) = bumpy_sphere(frequency_for(target));
+        let parts = mesh_parts(p, i);
+        // Build time per build in this thread's CPU time where available (the build is
+        // single-threaded), repeated to at least 0.3 s as that clock ticks coarsely.
+        let (wall, cpu) = (Instant::now(), thread_cpu_seconds());
+        let mut builds = 0;
+        let scene = loop {
+            let scene = Scene::new(parts.clone()).expect("valid scene");
+            builds += 1;
+            let spent = match (cpu, thread_cpu_seconds()) {
+                (Some(a), Some(b)) => b - a,
+                _ => wall.elapsed().as_secs_f64(),
+            };
+            if spent >= 0.3 {
+                break (scene, spent / builds as f64);
+            }
+        };
+        let (scene, build) = scene;
+        let mut scene = scene;
+        if let Ok(v) = std::env::var("BVH4_PARAMS") {
+            let (l, c) = v.split_once(',').expect("max_leaf,cost");
+            let params = tessera_core::accel::BuildParams {
+                max_leaf: l.parse().unwrap(),
+                traversal_cost: c.parse().unwrap(),
+            };
+            let b: Vec<_> = (scene.prims.iter().zip(&scene.tris))
+                .map(|(p, v)| p.bounds(v, &[]))
+                .collect();
+            let (bin, order) = tessera_core::accel::Bvh::build_with(&b, params);
+            scene.bvh = tessera_core::accel::Bvh4::from_binary(&bin);
+            scene.prims = order.iter().map(|&i| scene.prims[i as usize]).collect();
+            scene.tris = order.iter().map(|&i| scene.tris[i as usize]).collect();
+        }
+        let tris = scene.prims.len();
+        let bin = BinaryScene::new(&scene);
+        let n = tris as f64;
+        let (nodes, corners, ids) = bytes_per_triangle(&scene);
+        println!(
+            "{label:>5}: bytes/triangle: bvh4 nodes {nodes:.1} ({} nodes, depth {}) + corners \
+             {corners:.1} = {:.1} (+ primitive ids {ids:.1}); binary: nodes {:.1} + triangles \
+             {:.1}",
+            scene.bvh.nodes.len(),
+            scene.bvh.depth(),
+            nodes + corners,
+            bin.bvh.memory_bytes() as f64 / n,
+            std::mem::size_of_val(bin.tris.as_slice()) as f64 / n,
+        );
+        for (kind, rays) in [("camera", &camera), ("random", &random)] {
+            for any in [false, true] {
+                // Alternate the two so both see the same machine load; keep the best round.
+                let (mut b, mut w) = (0.0f64, 0.0f64);
+                for _ in 0..ROUNDS {
+                    if any {
+                        b = b.max(rays_per_second(rays, 1, |r| bin.occluded(r)));
+                        w = w.max(rays_per_second(rays, 1, |r| scene.occluded(r)));
+                    } else {
+                        b = b.max(rays_per_second(rays, 1, |r| bin.intersect_hit(r).is_some()));
+                        w = w.max(rays_per_second(rays, 1, |r| {
+                            scene.intersect_hit(r).is_some()
+                        }));
+                    }
+                }
+                println!(
+                    "{label:>5} {tris:>8} {:>10.1} {:>7.0} {:>12.2} {:>12.2} {:>6.2}  {kind} {}",
+                    build * 1e3,
+                    build * 1e9 / tris as f64,
+                    b / 1e6,
+                    w / 1e6,
+                    w / b,
+                    if any { "any" } else { "closest" }
+                );
+            }
+        }
+    }
+}
