@@ -70,7 +70,18 @@ fn convert_error(e: &roxmltree::Error, file: &Arc<PathBuf>, text: &str) -> Input
     use roxmltree::Error as E;
     let full = match e {
         E::DtdDetected => {
-            return InputError::file(file, "XML DTDs (<!DOCTYPE ...>) are not supported")
+            // roxmltree gives no position: point at the `<!DOCTYPE` when it can be found.
+            let msg = "XML DTDs (<!DOCTYPE ...>) are not supported";
+            return match text.find("<!DOCTYPE") {
+                Some(at) => {
+                    let before = &text[..at];
+                    let line = before.matches('\n').count() as u32 + 1;
+                    let start = before.rfind('\n').map_or(0, |i| i + 1);
+                    let col = text[start..at].chars().count() as u32 + 1;
+                    InputError::at(&Loc::new(file.clone(), line, col), msg)
+                }
+                None => InputError::file(file, msg),
+            };
         }
         E::NoRootNode => return InputError::file(file, "the file contains no XML element"),
         E::UnclosedRootNode => {
