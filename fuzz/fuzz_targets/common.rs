@@ -30,7 +30,9 @@ pub fn dir() -> &'static Path {
     })
 }
 
-/// Writes `data` to `name` in the scratch directory and returns its path.
+/// Writes `data` to `name` in the scratch directory and returns its path (unused by
+/// `xml_scene`).
+#[allow(dead_code)]
 pub fn put(name: &str, data: &[u8]) -> PathBuf {
     let p = dir().join(name);
     std::fs::write(&p, data).expect("scratch file");
