@@ -13,7 +13,41 @@ pub use obj::{load_obj, load_obj_with_materials, ObjParts};
 pub use ply::load_ply;
 
 use crate::error::InputError;
+use std::io::Read;
 use std::path::Path;
+
+/// Largest mesh file accepted (4 GiB: a mistake, not a mesh, beyond this).
+pub const MAX_MESH_BYTES: u64 = 4 << 30;
+
+/// Reads a whole mesh file. Refuses what is not a regular file (a directory, `/dev/zero`, a
+/// pipe) and anything over [`MAX_MESH_BYTES`], checking the size before reading and while
+/// reading (a file that grows cannot make it read more).
+pub fn read_mesh_bytes(path: &Path) -> Result<Vec<u8>, InputError> {
+    let err = |m: String| InputError::file(path, m);
+    let f = std::fs::File::open(path).map_err(|e| err(format!("cannot read mesh: {e}")))?;
+    let meta = f
+        .metadata()
+        .map_err(|e| err(format!("cannot read mesh: {e}")))?;
+    if !meta.is_file() {
+        return Err(err("cannot read mesh: not a regular file".into()));
+    }
+    let too_big = |n: u64| {
+        err(format!(
+            "mesh file is {n} bytes, over the {MAX_MESH_BYTES} limit"
+        ))
+    };
+    if meta.len() > MAX_MESH_BYTES {
+        return Err(too_big(meta.len()));
+    }
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    f.take(MAX_MESH_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| err(format!("cannot read mesh: {e}")))?;
+    if bytes.len() as u64 > MAX_MESH_BYTES {
+        return Err(too_big(bytes.len() as u64));
+    }
+    Ok(bytes)
+}
 
 /// Mesh data in object space, validated: indices in range, every number finite.
 #[derive(Clone, Debug, Default)]

@@ -8,15 +8,12 @@
 //! objects and groups of the file form one mesh and `mtllib` / `usemtl` are ignored, as in
 //! Mitsuba 3; with it, the faces are split by material.
 use super::mtl::{load_mtl, MtlMaterial};
-use super::{obj_locate::locate_obj_error, MeshData};
+use super::{obj_locate::locate_obj_error, read_mesh_bytes, MeshData};
 use crate::error::{InputError, Loc};
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::path::Path;
 use std::sync::Arc;
-
-/// Largest OBJ file accepted (a mistake, not a mesh, beyond this).
-const MAX_BYTES: u64 = 4 << 30;
 
 /// An OBJ file's triangles grouped by material.
 #[derive(Clone, Debug, Default)]
@@ -40,30 +37,23 @@ fn options() -> tobj::LoadOptions {
     }
 }
 
-fn check_size(path: &Path) -> Result<(), InputError> {
-    let meta = std::fs::metadata(path)
-        .map_err(|e| InputError::file(path, format!("cannot read mesh: {e}")))?;
-    if meta.len() > MAX_BYTES {
-        return Err(InputError::file(
-            path,
-            format!(
-                "mesh file is {} bytes, over the {MAX_BYTES} limit",
-                meta.len()
-            ),
-        ));
-    }
-    Ok(())
-}
-
-fn bad_obj(path: &Path, e: tobj::LoadError) -> InputError {
-    locate_obj_error(path).unwrap_or_else(|| InputError::file(path, format!("bad OBJ file: {e}")))
+fn bad_obj(path: &Path, text: &str, e: tobj::LoadError) -> InputError {
+    locate_obj_error(path, text)
+        .unwrap_or_else(|| InputError::file(path, format!("bad OBJ file: {e}")))
 }
 
 /// Loads an OBJ file as one mesh (materials ignored).
 pub fn load_obj(path: &Path) -> Result<MeshData, InputError> {
-    check_size(path)?;
-    let (models, _) = tobj::load_obj(path, &options()).map_err(|e| bad_obj(path, e))?;
-    merge(path, &models.iter().collect::<Vec<_>>())
+    let bytes = read_mesh_bytes(path)?;
+    let text = String::from_utf8_lossy(&bytes);
+    let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    // As `tobj::load_obj` does: the libraries are read (a `usemtl` splits the faces into models
+    // before they are merged again) and a library that cannot be read is ignored.
+    let (models, _) = tobj::load_obj_buf(&mut bytes.as_slice(), &options(), |lib| {
+        tobj::load_mtl(dir.join(lib))
+    })
+    .map_err(|e| bad_obj(path, &text, e))?;
+    merge(path, &text, &models.iter().collect::<Vec<_>>())
 }
 
 /// The `mtllib` and `usemtl` statements of an OBJ text: (keyword, argument, position).
@@ -89,9 +79,7 @@ fn statements(text: &str, path: &Path) -> Vec<(&'static str, String, Loc)> {
 /// names no material of the libraries, or a library that cannot be read, is an error at its
 /// statement.
 pub fn load_obj_with_materials(path: &Path) -> Result<ObjParts, InputError> {
-    check_size(path)?;
-    let bytes = std::fs::read(path)
-        .map_err(|e| InputError::file(path, format!("cannot read mesh: {e}")))?;
+    let bytes = read_mesh_bytes(path)?;
     let text = String::from_utf8_lossy(&bytes);
     let stmts = statements(&text, path);
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
@@ -154,7 +142,7 @@ pub fn load_obj_with_materials(path: &Path) -> Result<ObjParts, InputError> {
     if let Some(e) = failure.into_inner() {
         return Err(e);
     }
-    let (models, _) = result.map_err(|e| bad_obj(path, e))?;
+    let (models, _) = result.map_err(|e| bad_obj(path, &text, e))?;
     let materials = materials.into_inner();
     if let Some(s) = stmts
         .iter()
@@ -178,7 +166,7 @@ pub fn load_obj_with_materials(path: &Path) -> Result<ObjParts, InputError> {
         ..Default::default()
     };
     for (id, list) in groups {
-        let data = merge(path, &list)?;
+        let data = merge(path, &text, &list)?;
         if data.indices.is_empty() {
             continue;
         }
@@ -191,7 +179,7 @@ pub fn load_obj_with_materials(path: &Path) -> Result<ObjParts, InputError> {
 }
 
 /// One mesh from several `tobj` models.
-fn merge(path: &Path, models: &[&tobj::Model]) -> Result<MeshData, InputError> {
+fn merge(path: &Path, text: &str, models: &[&tobj::Model]) -> Result<MeshData, InputError> {
     let mut data = MeshData::default();
     let with_normals = models.iter().all(|m| !m.mesh.normals.is_empty()) && !models.is_empty();
     let with_uvs = models.iter().all(|m| !m.mesh.texcoords.is_empty()) && !models.is_empty();
@@ -225,7 +213,7 @@ fn merge(path: &Path, models: &[&tobj::Model]) -> Result<MeshData, InputError> {
         .chain(data.uvs.iter().flatten())
         .all(|v| v.is_finite());
     if !finite {
-        return Err(locate_obj_error(path)
+        return Err(locate_obj_error(path, text)
             .unwrap_or_else(|| InputError::file(path, "mesh has a non-finite number")));
     }
     data.validate(path)?;

@@ -1,14 +1,13 @@
 //! Finds the line and column of what made an OBJ file unreadable, for the error message.
 //!
 //! `tobj` reports what went wrong but not where; when it fails (or yields a non-finite number),
-//! this pass re-reads the file and names the first offending token.
+//! this pass re-reads the text and names the first offending token.
 use crate::error::{InputError, Loc};
 use std::path::Path;
 use std::sync::Arc;
 
 /// The first malformed number, non-finite coordinate or out-of-range face index, if any.
-pub fn locate_obj_error(path: &Path) -> Option<InputError> {
-    let text = std::fs::read_to_string(path).ok()?;
+pub fn locate_obj_error(path: &Path, text: &str) -> Option<InputError> {
     let file = Arc::new(path.to_path_buf());
     let counts = |kw: &str| {
         text.lines()

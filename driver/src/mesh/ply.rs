@@ -29,8 +29,8 @@ fn list(p: &Property) -> Option<Vec<i64>> {
 /// Loads a PLY file.
 pub fn load_ply(path: &Path) -> Result<MeshData, InputError> {
     let err = |m: String| InputError::file(path, m);
-    let f = std::fs::File::open(path).map_err(|e| err(format!("cannot read mesh: {e}")))?;
-    let mut r = std::io::BufReader::new(f);
+    let bytes = super::read_mesh_bytes(path)?;
+    let mut r = bytes.as_slice();
     let ply = Parser::<DefaultElement>::new()
         .read_ply(&mut r)
         .map_err(|e| err(format!("bad PLY file: {e}")))?;

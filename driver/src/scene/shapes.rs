@@ -12,7 +12,7 @@
 //! `usemtl` material, each with the BSDF and `Ke` area light that `mesh/mtl_material.rs` maps
 //! the material to; faces before any `usemtl` form one more shape with the shape's `<bsdf>` and
 //! `<emitter>` (which are then an error if there are no such faces).
-use super::util::{float_checked, transform, vec3, Result};
+use super::util::{at_prop, float_checked, transform, vec3, Result};
 use crate::error::InputError;
 use crate::mesh::{self, MeshData, MtlBsdf};
 use crate::xml::{Kind, Object};
@@ -39,6 +39,18 @@ pub struct ShapeParts<'a> {
     pub flip_normals: bool,
     pub bsdf: Option<&'a crate::xml::Child>,
     pub emitter: Option<&'a crate::xml::Child>,
+}
+
+/// A mesh error with no line in the mesh file (unreadable, too large, bad header...) is
+/// reported at the scene's `filename` property, still naming the mesh file.
+fn at_filename(obj: &Object, e: InputError) -> InputError {
+    if e.loc.is_some() {
+        return e;
+    }
+    match &e.file {
+        Some(f) => at_prop(obj, "filename", format!("{}: {}", f.display(), e.msg)),
+        None => at_prop(obj, "filename", e.msg),
+    }
 }
 
 fn to_world_mesh(obj: &Object, data: MeshData, tf: &Transform, face_normals: bool) -> Result<Mesh> {
@@ -110,7 +122,8 @@ pub fn build_shape(obj: &Object) -> Result<ShapeParts<'_>> {
             let face_normals = obj.boolean("face_normals", false)?;
             let tf = transform(obj, "to_world")?;
             if use_mtl {
-                let parts = mesh::load_obj_with_materials(&path)?;
+                let parts =
+                    mesh::load_obj_with_materials(&path).map_err(|e| at_filename(obj, e))?;
                 for (i, data) in parts.by_material {
                     mtl_parts.push(MtlPart {
                         mesh: to_world_mesh(obj, data, &tf, face_normals)?,
@@ -128,10 +141,11 @@ pub fn build_shape(obj: &Object) -> Result<ShapeParts<'_>> {
                 }
             } else {
                 let data = if obj.plugin == "obj" {
-                    mesh::load_obj(&path)?
+                    mesh::load_obj(&path)
                 } else {
-                    mesh::load_ply(&path)?
-                };
+                    mesh::load_ply(&path)
+                }
+                .map_err(|e| at_filename(obj, e))?;
                 Some(ShapeKind::Mesh(to_world_mesh(
                     obj,
                     data,

@@ -15,20 +15,30 @@ pub const MAX_FILE_BYTES: u64 = 64 * 1024 * 1024;
 /// Bytes between two entries of the character-count table.
 const CHUNK: usize = 4096;
 
-/// Reads a whole text file, refusing files over [`MAX_FILE_BYTES`].
+/// Reads a whole text file, refusing files over [`MAX_FILE_BYTES`]: checked before reading and
+/// while reading, so a stream of unknown size (a pipe, `/dev/zero`) stops at the limit too.
 ///
 /// Errors are `Err(message)` without location; the caller decides where to attach them.
 pub fn read_text(path: &Path) -> Result<String, String> {
-    let meta = std::fs::metadata(path).map_err(|e| format!("cannot read file: {e}"))?;
+    use std::io::Read;
+    let f = std::fs::File::open(path).map_err(|e| format!("cannot read file: {e}"))?;
+    let meta = f.metadata().map_err(|e| format!("cannot read file: {e}"))?;
     if meta.is_dir() {
         return Err("cannot read file: it is a directory".to_string());
     }
     if meta.len() > MAX_FILE_BYTES {
         return Err(too_large(meta.len()));
     }
-    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read file: {e}"))?;
-    check_size(&text)?;
-    Ok(text)
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    f.take(MAX_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| format!("cannot read file: {e}"))?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(format!(
+            "file is too large (over {MAX_FILE_BYTES} bytes; the limit is 64 MiB)"
+        ));
+    }
+    String::from_utf8(bytes).map_err(|_| "cannot read file: it is not UTF-8 text".to_string())
 }
 
 /// Refuses a text over [`MAX_FILE_BYTES`].
@@ -60,7 +70,18 @@ fn convert_error(e: &roxmltree::Error, file: &Arc<PathBuf>, text: &str) -> Input
     use roxmltree::Error as E;
     let full = match e {
         E::DtdDetected => {
-            return InputError::file(file, "XML DTDs (<!DOCTYPE ...>) are not supported")
+            // roxmltree gives no position: point at the `<!DOCTYPE` when it can be found.
+            let msg = "XML DTDs (<!DOCTYPE ...>) are not supported";
+            return match text.find("<!DOCTYPE") {
+                Some(at) => {
+                    let before = &text[..at];
+                    let line = before.matches('\n').count() as u32 + 1;
+                    let start = before.rfind('\n').map_or(0, |i| i + 1);
+                    let col = text[start..at].chars().count() as u32 + 1;
+                    InputError::at(&Loc::new(file.clone(), line, col), msg)
+                }
+                None => InputError::file(file, msg),
+            };
         }
         E::NoRootNode => return InputError::file(file, "the file contains no XML element"),
         E::UnclosedRootNode => {

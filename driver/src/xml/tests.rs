@@ -706,7 +706,9 @@ fn xml_syntax_errors_are_located() {
     let e = load_err("<scene>\n  <float name=\"a\" value=\"1\" value=\"2\"/>\n</scene>");
     assert!(e.starts_with("dir/scene.xml:2:"), "{e}");
     let e = load_err("<!DOCTYPE x [<!ENTITY a \"b\">]><scene/>");
-    assert!(e.starts_with("dir/scene.xml: "), "{e}");
+    assert!(e.starts_with("dir/scene.xml:1:1: "), "{e}");
+    let e = load_err("<?xml version=\"1.0\"?>\n  <!DOCTYPE x><scene/>");
+    assert!(e.starts_with("dir/scene.xml:2:3: "), "{e}");
 }
 
 #[test]
