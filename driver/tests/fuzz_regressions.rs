@@ -113,3 +113,21 @@ fn ply_inputs() {
         check(&file, outcome.map_err(|e| e.to_string()));
     }
 }
+
+#[test]
+fn checkpoint_inputs() {
+    for file in inputs("checkpoint") {
+        let bytes = std::fs::read(&file).unwrap();
+        let outcome = tessera::checkpoint::read_checkpoint(&bytes).map(|c| {
+            let n = c.meta.width as usize * c.meta.height as usize;
+            assert_eq!(c.pixels.len(), n, "{}", file.display());
+        });
+        check(&file, outcome);
+        // Every seed is a valid checkpoint; a truncated copy must be refused on one line.
+        let cut = tessera::checkpoint::read_checkpoint(&bytes[..bytes.len() / 2]);
+        check(
+            &file,
+            cut.map(|_| panic!("{}: half a checkpoint was read", file.display())),
+        );
+    }
+}
