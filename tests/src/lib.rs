@@ -161,6 +161,7 @@ pub fn worst_against_reference(
     })
 }
 
+pub mod analytic_scenes;
 pub mod bsdf;
 pub mod cap;
 pub mod stress;

@@ -7,6 +7,7 @@
 //! off.
 use tessera::stats::{sidak_alpha, t_test_from_sums};
 use tessera_core::glam::{DMat4, DVec3};
+use tessera_tests::analytic_scenes::{FURNACE_BOX, SPHERE_LIGHT};
 use tessera_tests::{load_xml, render_loaded};
 
 /// Path tracers (take max_depth) and direct-lighting integrators (one bounce).
@@ -120,23 +121,6 @@ fn inside_closed_emitting_sphere() {
         );
     }
 }
-
-const SPHERE_LIGHT: &str = r#"<scene version="3.0.0">
-  <sensor type="perspective">
-    <float name="fov" value="0.001"/>
-    <transform name="to_world"><lookat origin="5, 0, 2" target="0, 0, 0" up="0, 0, 1"/></transform>
-    <film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>
-  </sensor>
-  <shape type="rectangle">
-    <transform name="to_world"><scale value="1000"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.5, 0.3"/></bsdf>
-  </shape>
-  <shape type="sphere">
-    <point name="center" value="0, 0, 3"/>
-    <float name="radius" value="0.5"/>
-    <emitter type="area"><rgb name="radiance" value="10"/></emitter>
-  </shape>
-</scene>"#;
 
 /// Directly below a sphere light of radius r at height h over a diffuse plane:
 /// a L r^2 / h^2 (direct lighting only, max_depth 2).
@@ -296,19 +280,6 @@ fn polygonal_emitters_match_lamberts_formula() {
         }
     }
 }
-
-const FURNACE_BOX: &str = r#"<scene version="3.0.0">
-  <sensor type="perspective">
-    <float name="fov" value="1"/>
-    <transform name="to_world"><lookat origin="0.1, 0.2, 0" target="1, 0.3, 0.4" up="0, 1, 0"/></transform>
-    <film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>
-  </sensor>
-  <shape type="cube">
-    <boolean name="flip_normals" value="true"/>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.3, 0.5, 0.7"/></bsdf>
-    <emitter type="area"><rgb name="radiance" value="1"/></emitter>
-  </shape>
-</scene>"#;
 
 /// A closed emitting diffuse box (a triangle mesh lit from inside): 1 / (1 - a) for path
 /// tracers, 1 + a for direct lighting.

@@ -11,6 +11,7 @@ use tessera::render::{render, render_into, Framebuffer, RenderOptions};
 use tessera::scene::LoadedScene;
 use tessera::stats::sidak_alpha;
 use tessera_core::sampling::SamplerKind;
+use tessera_tests::analytic_scenes::{FURNACE_BOX, SPHERE_LIGHT};
 use tessera_tests::load_xml;
 
 const CLOSED_SPHERE: &str = r#"<scene version="3.0.0">
@@ -21,36 +22,6 @@ const CLOSED_SPHERE: &str = r#"<scene version="3.0.0">
   </sensor>
   <shape type="sphere">
     <float name="radius" value="2"/>
-    <boolean name="flip_normals" value="true"/>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.3, 0.5, 0.7"/></bsdf>
-    <emitter type="area"><rgb name="radiance" value="1"/></emitter>
-  </shape>
-</scene>"#;
-
-const SPHERE_LIGHT: &str = r#"<scene version="3.0.0">
-  <sensor type="perspective">
-    <float name="fov" value="0.001"/>
-    <transform name="to_world"><lookat origin="5, 0, 2" target="0, 0, 0" up="0, 0, 1"/></transform>
-    <film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>
-  </sensor>
-  <shape type="rectangle">
-    <transform name="to_world"><scale value="1000"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.5, 0.3"/></bsdf>
-  </shape>
-  <shape type="sphere">
-    <point name="center" value="0, 0, 3"/>
-    <float name="radius" value="0.5"/>
-    <emitter type="area"><rgb name="radiance" value="10"/></emitter>
-  </shape>
-</scene>"#;
-
-const FURNACE_BOX: &str = r#"<scene version="3.0.0">
-  <sensor type="perspective">
-    <float name="fov" value="1"/>
-    <transform name="to_world"><lookat origin="0.1, 0.2, 0" target="1, 0.3, 0.4" up="0, 1, 0"/></transform>
-    <film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>
-  </sensor>
-  <shape type="cube">
     <boolean name="flip_normals" value="true"/>
     <bsdf type="diffuse"><rgb name="reflectance" value="0.3, 0.5, 0.7"/></bsdf>
     <emitter type="area"><rgb name="radiance" value="1"/></emitter>
