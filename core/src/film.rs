@@ -39,6 +39,30 @@ impl PixelAccum {
         self.count += other.count;
         self.dropped += other.dropped;
     }
+    /// Every bit of the accumulator as eight 64-bit words (sums and squares as `f64` bits, then
+    /// `count`, `dropped`), for files that must restore it exactly.
+    pub fn to_words(&self) -> [u64; 8] {
+        [
+            self.sum[0].to_bits(),
+            self.sum[1].to_bits(),
+            self.sum[2].to_bits(),
+            self.sum_sq[0].to_bits(),
+            self.sum_sq[1].to_bits(),
+            self.sum_sq[2].to_bits(),
+            self.count,
+            self.dropped,
+        ]
+    }
+    /// The accumulator [`PixelAccum::to_words`] wrote.
+    pub fn from_words(w: [u64; 8]) -> PixelAccum {
+        let f = f64::from_bits;
+        PixelAccum {
+            sum: [f(w[0]), f(w[1]), f(w[2])],
+            sum_sq: [f(w[3]), f(w[4]), f(w[5])],
+            count: w[6],
+            dropped: w[7],
+        }
+    }
     /// The pixel's estimate (mean of accepted samples; 0 if none).
     pub fn mean(&self) -> [f32; 3] {
         if self.count == 0 {

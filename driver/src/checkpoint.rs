@@ -27,7 +27,7 @@
 //!
 //! FNV-1a 64 (offset basis 0xcbf29ce484222325, prime 0x100000001b3) is written down here so the
 //! hashes stay the same across Rust versions (std's `DefaultHasher` promises no such thing).
-use crate::image_io::temp_path;
+use crate::image_io::write_atomic;
 use std::io::{BufWriter, Write};
 use std::path::Path;
 use tessera_core::film::PixelAccum;
@@ -151,14 +151,10 @@ pub fn write_checkpoint(
     meta: &CheckpointMeta,
     pixels: &[PixelAccum],
 ) -> Result<(), String> {
-    let tmp = temp_path(path);
-    let result = write_to(&tmp, meta, pixels)
-        .and_then(|_| std::fs::rename(&tmp, path))
-        .map_err(|e| format!("{}: cannot write checkpoint: {e}", path.display()));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
+    write_atomic(path, |tmp| {
+        write_to(tmp, meta, pixels).map_err(|e| e.to_string())
+    })
+    .map_err(|e| format!("{}: cannot write checkpoint: {e}", path.display()))
 }
 
 /// A writer that hashes what passes through it.
@@ -203,17 +199,7 @@ fn write_to(path: &Path, meta: &CheckpointMeta, pixels: &[PixelAccum]) -> std::i
     w.write_all(meta.integrator.as_bytes())?;
     let mut rec = [0u8; PIXEL];
     for p in pixels {
-        let words = [
-            p.sum[0].to_bits(),
-            p.sum[1].to_bits(),
-            p.sum[2].to_bits(),
-            p.sum_sq[0].to_bits(),
-            p.sum_sq[1].to_bits(),
-            p.sum_sq[2].to_bits(),
-            p.count,
-            p.dropped,
-        ];
-        for (i, v) in words.iter().enumerate() {
+        for (i, v) in p.to_words().iter().enumerate() {
             rec[i * 8..i * 8 + 8].copy_from_slice(&v.to_le_bytes());
         }
         w.write_all(&rec)?;
@@ -311,13 +297,7 @@ pub fn read_checkpoint(bytes: &[u8]) -> Result<Checkpoint, String> {
     let count = width as usize * height as usize;
     let mut pixels = Vec::with_capacity(count);
     for i in 0..count {
-        let f = |c: &mut Cursor| f64::from_bits(c.u64());
-        let p = PixelAccum {
-            sum: [f(&mut c), f(&mut c), f(&mut c)],
-            sum_sq: [f(&mut c), f(&mut c), f(&mut c)],
-            count: c.u64(),
-            dropped: c.u64(),
-        };
+        let p = PixelAccum::from_words(std::array::from_fn(|_| c.u64()));
         let finite = p.sum.iter().chain(&p.sum_sq).all(|v| v.is_finite());
         if !finite || p.sum_sq.iter().any(|v| *v < 0.0) || p.count.checked_add(p.dropped).is_none()
         {

@@ -68,6 +68,20 @@ pub(crate) fn temp_path(path: &Path) -> PathBuf {
     path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
 }
 
+/// Writes a file atomically: `write` fills a temporary file beside `path`, which is then renamed
+/// over `path`; on any failure the temporary file is removed and `path` is left as it was.
+pub(crate) fn write_atomic(
+    path: &Path,
+    write: impl FnOnce(&Path) -> Result<(), String>,
+) -> Result<(), String> {
+    let tmp = temp_path(path);
+    let result = write(&tmp).and_then(|_| std::fs::rename(&tmp, path).map_err(|e| e.to_string()));
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
 /// Writes `img` to `path` in the format its extension names, atomically.
 pub fn write_image(path: &Path, img: &RgbImage) -> Result<(), String> {
     let fmt = Format::from_path(path).ok_or_else(|| {
@@ -76,30 +90,20 @@ pub fn write_image(path: &Path, img: &RgbImage) -> Result<(), String> {
             path.display()
         )
     })?;
-    let tmp = temp_path(path);
-    let result = write_format(&tmp, fmt, img)
-        .and_then(|_| std::fs::rename(&tmp, path).map_err(|e| e.to_string()));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result.map_err(|e| format!("{}: cannot write image: {e}", path.display()))
+    write_atomic(path, |tmp| write_format(tmp, fmt, img))
+        .map_err(|e| format!("{}: cannot write image: {e}", path.display()))
 }
 
 /// Writes 8-bit sRGB pixels (`width * height * 3` bytes) to a PNG at `path`, atomically (for
 /// previews drawn on after conversion, e.g. overlays).
 pub fn write_png8(path: &Path, width: u32, height: u32, rgb: Vec<u8>) -> Result<(), String> {
-    let tmp = temp_path(path);
-    let result = image::RgbImage::from_raw(width, height, rgb)
-        .ok_or_else(|| "image size mismatch".to_string())
-        .and_then(|b| {
-            b.save_with_format(&tmp, image::ImageFormat::Png)
-                .map_err(|e| e.to_string())
-        })
-        .and_then(|_| std::fs::rename(&tmp, path).map_err(|e| e.to_string()));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result.map_err(|e| format!("{}: cannot write image: {e}", path.display()))
+    let buf = image::RgbImage::from_raw(width, height, rgb)
+        .ok_or_else(|| format!("{}: image size mismatch", path.display()))?;
+    write_atomic(path, |tmp| {
+        buf.save_with_format(tmp, image::ImageFormat::Png)
+            .map_err(|e| e.to_string())
+    })
+    .map_err(|e| format!("{}: cannot write image: {e}", path.display()))
 }
 
 fn write_format(path: &Path, fmt: Format, img: &RgbImage) -> Result<(), String> {

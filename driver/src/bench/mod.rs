@@ -14,7 +14,7 @@
 pub mod plot;
 pub(crate) mod text;
 
-use crate::image_io::{temp_path, RgbImage};
+use crate::image_io::{write_atomic, RgbImage};
 use crate::render::{render_into, Framebuffer, RenderOptions};
 use std::path::Path;
 use std::time::Instant;
@@ -184,12 +184,10 @@ pub fn write_csv(path: &Path, rows: &[Row]) -> Result<(), String> {
         text.push_str(&r.to_csv());
         text.push('\n');
     }
-    let tmp = temp_path(path);
-    let result = std::fs::write(&tmp, text).and_then(|_| std::fs::rename(&tmp, path));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result.map_err(|e| format!("{}: cannot write report: {e}", path.display()))
+    write_atomic(path, |tmp| {
+        std::fs::write(tmp, text).map_err(|e| e.to_string())
+    })
+    .map_err(|e| format!("{}: cannot write report: {e}", path.display()))
 }
 
 /// Reads a report; errors name the file and line.

@@ -2,7 +2,7 @@
 //! ticks with labels, labelled axes, a legend, and the target relMSE as a dashed line.
 use super::text::{Anchor, TextPainter};
 use super::{curves, Row};
-use crate::image_io::temp_path;
+use crate::image_io::write_atomic;
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{ExtendedColorType, ImageEncoder};
 use std::path::Path;
@@ -267,21 +267,15 @@ pub fn write_plot(
         .chunks_exact(4)
         .flat_map(|p| [p[0], p[1], p[2]])
         .collect();
-    let tmp = temp_path(path);
-    let result = std::fs::File::create(&tmp)
-        .map_err(|e| e.to_string())
-        .and_then(|f| {
-            let enc = PngEncoder::new_with_quality(
-                std::io::BufWriter::new(f),
-                CompressionType::Best,
-                FilterType::Adaptive,
-            );
-            enc.write_image(&rgb, pm.width(), pm.height(), ExtendedColorType::Rgb8)
-                .map_err(|e| e.to_string())
-        })
-        .and_then(|_| std::fs::rename(&tmp, path).map_err(|e| e.to_string()));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result.map_err(err)
+    write_atomic(path, |tmp| {
+        let f = std::fs::File::create(tmp).map_err(|e| e.to_string())?;
+        let enc = PngEncoder::new_with_quality(
+            std::io::BufWriter::new(f),
+            CompressionType::Best,
+            FilterType::Adaptive,
+        );
+        enc.write_image(&rgb, pm.width(), pm.height(), ExtendedColorType::Rgb8)
+            .map_err(|e| e.to_string())
+    })
+    .map_err(err)
 }

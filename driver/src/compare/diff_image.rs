@@ -4,9 +4,7 @@
 //! decade above the largest error (at least 1e-3); smaller errors, including zero, take the
 //! darkest colour. Pixels non-finite in either image are magenta.
 use crate::bench::text::{Anchor, TextPainter};
-use crate::image_io::{temp_path, RgbImage};
-use image::codecs::png::PngEncoder;
-use image::{ExtendedColorType, ImageEncoder};
+use crate::image_io::{write_png8, RgbImage};
 use std::path::Path;
 use tiny_skia::{Color, Pixmap, PremultipliedColorU8};
 
@@ -154,19 +152,7 @@ pub fn write_diff(path: &Path, a: &RgbImage, b: &RgbImage) -> Result<(), String>
         .chunks_exact(4)
         .flat_map(|p| [p[0], p[1], p[2]])
         .collect();
-    let tmp = temp_path(path);
-    let result = std::fs::File::create(&tmp)
-        .map_err(|e| e.to_string())
-        .and_then(|f| {
-            PngEncoder::new(std::io::BufWriter::new(f))
-                .write_image(&rgb, pm.width(), pm.height(), ExtendedColorType::Rgb8)
-                .map_err(|e| e.to_string())
-        })
-        .and_then(|_| std::fs::rename(&tmp, path).map_err(|e| e.to_string()));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result.map_err(err)
+    write_png8(path, pm.width(), pm.height(), rgb)
 }
 
 #[cfg(test)]

@@ -13,7 +13,7 @@
 //! `tessera.samples` (`a..b`), `tessera.seed`, `tessera.integrator`, `tessera.sceneHash` (16 hex
 //! digits, [`super::scene_hash`]). A file without `tessera.part` is not a part.
 use super::selection::PixelSelection;
-use crate::image_io::temp_path;
+use crate::image_io::write_atomic;
 use crate::render::{Framebuffer, Tile};
 use exr::prelude::{
     AnyChannel, AnyChannels, AttributeValue, Encoding, FlatSamples, Layer, LayerAttributes,
@@ -83,30 +83,6 @@ fn word_channels() -> Vec<String> {
     v
 }
 
-/// Every bit of an accumulator as eight 64-bit words.
-fn words(p: &PixelAccum) -> [u64; 8] {
-    [
-        p.sum[0].to_bits(),
-        p.sum[1].to_bits(),
-        p.sum[2].to_bits(),
-        p.sum_sq[0].to_bits(),
-        p.sum_sq[1].to_bits(),
-        p.sum_sq[2].to_bits(),
-        p.count,
-        p.dropped,
-    ]
-}
-
-fn from_words(w: [u64; 8]) -> PixelAccum {
-    let f = f64::from_bits;
-    PixelAccum {
-        sum: [f(w[0]), f(w[1]), f(w[2])],
-        sum_sq: [f(w[3]), f(w[4]), f(w[5])],
-        count: w[6],
-        dropped: w[7],
-    }
-}
-
 fn text(s: &str) -> Result<Text, String> {
     Text::new_or_none(s).ok_or_else(|| format!("cannot store \"{s}\" in an EXR attribute"))
 }
@@ -133,7 +109,7 @@ pub fn write_part(path: &Path, info: &PartInfo, fb: &Framebuffer) -> Result<(), 
             for (c, m) in rgb.iter_mut().zip(p.mean()) {
                 c.push(m);
             }
-            for (i, w) in words(p).into_iter().enumerate() {
+            for (i, w) in p.to_words().into_iter().enumerate() {
                 halves[2 * i].push((w >> 32) as u32);
                 halves[2 * i + 1].push(w as u32);
             }
@@ -179,16 +155,10 @@ pub fn write_part(path: &Path, info: &PartInfo, fb: &Framebuffer) -> Result<(), 
         Vec2(0, 0),
         Vec2(info.width as usize, info.height as usize),
     );
-    let tmp = temp_path(path);
-    let result = image
-        .write()
-        .to_file(&tmp)
-        .map_err(|e| e.to_string())
-        .and_then(|_| std::fs::rename(&tmp, path).map_err(|e| e.to_string()));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result.map_err(err)
+    write_atomic(path, |tmp| {
+        image.write().to_file(tmp).map_err(|e| e.to_string())
+    })
+    .map_err(err)
 }
 
 /// The text attribute `name` of a header.
@@ -274,7 +244,7 @@ pub fn read_part(path: &Path) -> Result<Part, String> {
     }
     let pixels: Vec<PixelAccum> = (0..n)
         .map(|i| {
-            from_words(std::array::from_fn(|k| {
+            PixelAccum::from_words(std::array::from_fn(|k| {
                 (cols[2 * k][i] as u64) << 32 | cols[2 * k + 1][i] as u64
             }))
         })
