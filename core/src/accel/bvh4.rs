@@ -162,7 +162,10 @@ impl Bvh4 {
             return;
         }
         let need = 3 * self.depth + 1;
-        if need <= STACK / 2 {
+        if need <= STACK / 4 {
+            // Small scenes (the Cornell box): zeroing 16 entries is a few stores, not a memset.
+            self.walk_with::<ANY>(ray, &mut [Entry::default(); STACK / 4], leaf);
+        } else if need <= STACK / 2 {
             self.walk_with::<ANY>(ray, &mut [Entry::default(); STACK / 2], leaf);
         } else if need <= STACK {
             self.walk_with::<ANY>(ray, &mut [Entry::default(); STACK], leaf);
