@@ -10,22 +10,16 @@ use std::hint::black_box;
 use std::time::Duration;
 use tessera_benches::{
     bumpy_sphere, bytes_per_triangle, camera_rays, frequency_for, geodesic_triangles, mesh_parts,
-    random_rays, BinaryScene,
+    random_rays, BinaryScene, MESH_SIZES,
 };
 use tessera_core::scene::Scene;
 
-const SIZES: [(&str, usize); 4] = [
-    ("1k", 1_000),
-    ("10k", 10_000),
-    ("100k", 100_000),
-    ("1M", 1_000_000),
-];
 const RAYS: usize = 1 << 16;
 
 fn accel(c: &mut Criterion) {
     let camera = camera_rays(256);
     let random = random_rays(RAYS, 7);
-    for (label, target) in SIZES {
+    for (label, target) in MESH_SIZES {
         let n = frequency_for(target);
         let (positions, indices) = bumpy_sphere(n);
         let parts = mesh_parts(positions, indices);

@@ -7,33 +7,19 @@
 use std::time::Instant;
 use tessera_benches::{
     bumpy_sphere, bytes_per_triangle, camera_rays, frequency_for, mesh_parts, random_rays,
-    rays_per_second, thread_cpu_seconds, BinaryScene,
+    rays_per_second, thread_cpu_seconds, wanted_sizes, BinaryScene,
 };
 use tessera_core::scene::Scene;
 
 const ROUNDS: usize = 5;
-const SIZES: [(&str, usize); 4] = [
-    ("1k", 1_000),
-    ("10k", 10_000),
-    ("100k", 100_000),
-    ("1M", 1_000_000),
-];
-
 fn main() {
-    let wanted: Vec<String> = std::env::args()
-        .skip(1)
-        .filter(|a| !a.starts_with('-'))
-        .collect();
     let camera = camera_rays(256);
     let random = random_rays(1 << 16, 7);
     println!(
         "{:>5} {:>8} {:>10} {:>7} {:>12} {:>12} {:>6}",
         "mesh", "tris", "build ms", "ns/tri", "binary Mr/s", "bvh4 Mr/s", "ratio"
     );
-    for (label, target) in SIZES {
-        if !wanted.is_empty() && !wanted.iter().any(|w| w == label) {
-            continue;
-        }
+    for (label, target) in wanted_sizes() {
         let (p, i) = bumpy_sphere(frequency_for(target));
         let parts = mesh_parts(p, i);
         // Build time per build in this thread's CPU time where available (the build is

@@ -13,6 +13,7 @@ use std::ffi::{c_char, c_void};
 use std::time::Instant;
 use tessera_benches::{
     bumpy_sphere, camera_rays, frequency_for, mesh_parts, random_rays, rays_per_second,
+    wanted_sizes,
 };
 use tessera_core::math::Ray;
 use tessera_core::scene::Scene;
@@ -208,18 +209,7 @@ impl Drop for Embree {
     }
 }
 
-const SIZES: [(&str, usize); 4] = [
-    ("1k", 1_000),
-    ("10k", 10_000),
-    ("100k", 100_000),
-    ("1M", 1_000_000),
-];
-
 fn main() {
-    let wanted: Vec<String> = std::env::args()
-        .skip(1)
-        .filter(|a| !a.starts_with('-'))
-        .collect();
     let camera = camera_rays(256);
     let random = random_rays(1 << 16, 7);
     println!(
@@ -233,10 +223,7 @@ fn main() {
         "ratio",
         "agree"
     );
-    for (label, target) in SIZES {
-        if !wanted.is_empty() && !wanted.iter().any(|w| w == label) {
-            continue;
-        }
+    for (label, target) in wanted_sizes() {
         let (positions, indices) = bumpy_sphere(frequency_for(target));
         let pos: Vec<[f32; 3]> = positions.iter().map(|p| p.to_array()).collect();
         let start = Instant::now();

@@ -305,3 +305,23 @@ pub fn rays_per_second(rays: &[Ray], rounds: usize, mut cast: impl FnMut(&Ray) -
     }
     best
 }
+
+/// The mesh sizes every ray-casting bench measures: (label, about how many triangles).
+pub const MESH_SIZES: [(&str, usize); 4] = [
+    ("1k", 1_000),
+    ("10k", 10_000),
+    ("100k", 100_000),
+    ("1M", 1_000_000),
+];
+
+/// The mesh sizes named on the command line (`cargo bench ... -- 1k 100k`), or all of them.
+pub fn wanted_sizes() -> Vec<(&'static str, usize)> {
+    let wanted: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|a| !a.starts_with('-'))
+        .collect();
+    MESH_SIZES
+        .into_iter()
+        .filter(|(label, _)| wanted.is_empty() || wanted.iter().any(|w| w == label))
+        .collect()
+}
