@@ -366,12 +366,81 @@ fn obj_nan_vertex() {
 #[test]
 fn ply_index_out_of_range() {
     let tmp = Tmp::new("ply-index");
-    let (ply, _) = tmp.fixture("bad_index.ply");
+    let (ply, ply_text) = tmp.fixture("bad_index.ply");
     let path = tmp.write("scene.xml", &mesh_scene("ply", "bad_index.ply"));
     let output = tmp.out.join("image.png");
     let o = render(&path, &output, &[]);
-    let want = format!("{}:", ply.display());
+    // `3 0 1 7` with three vertices: at the `7`.
+    let want = loc(&ply, &ply_text, "7\n");
     assert_bad_input("ply index out of range", &o, &want, &output, &tmp);
+}
+
+/// An ASCII PLY triangle whose second vertex line is `second`, with a comment line in the header.
+fn ascii_ply(second: &str) -> String {
+    format!(
+        "ply\nformat ascii 1.0\ncomment test\nelement vertex 3\nproperty float x\n\
+         property float y\nproperty float z\nelement face 1\n\
+         property list uchar int vertex_indices\nend_header\n0 0 0\n{second}\n0 1 0\n3 0 1 2\n"
+    )
+}
+
+#[test]
+fn ply_errors_are_located() {
+    // A token the parser cannot read, a number that overflows f32, and a misspelt header
+    // keyword: each at its line and column in the PLY file.
+    let cases = [
+        ("unreadable", ascii_ply("1 0 abc"), "abc"),
+        ("overflow", ascii_ply("1  0 1e39"), "1e39"),
+        (
+            "header",
+            ascii_ply("1 0 0").replace("property float y", "property floaty y"),
+            "y y\n",
+        ),
+    ];
+    let mut problems = Vec::new();
+    for (name, text, needle) in cases {
+        let tmp = Tmp::new(&format!("ply-{name}"));
+        let ply = tmp.write("m.ply", &text);
+        let path = tmp.write("scene.xml", &mesh_scene("ply", "m.ply"));
+        let output = tmp.out.join("image.png");
+        let o = render(&path, &output, &[]);
+        problems.extend(bad_input_problem(
+            name,
+            &o,
+            &loc(&ply, &text, needle),
+            &output,
+            &tmp,
+        ));
+    }
+    assert_no_problems(problems);
+}
+
+#[test]
+fn binary_ply_errors_name_the_record() {
+    // Binary files have no lines: the error names the file and the record.
+    let tmp = Tmp::new("ply-binary");
+    let mut bytes = b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n\
+property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\n\
+end_header\n"
+        .to_vec();
+    for v in [
+        [0.0f32, 0.0, 0.0],
+        [1.0, f32::INFINITY, 0.0],
+        [0.0, 1.0, 0.0],
+    ] {
+        v.iter().for_each(|c| bytes.extend(c.to_le_bytes()));
+    }
+    bytes.push(3);
+    [0i32, 1, 2]
+        .iter()
+        .for_each(|i| bytes.extend(i.to_le_bytes()));
+    let ply = tmp.input.join("m.ply");
+    std::fs::write(&ply, &bytes).unwrap();
+    let path = tmp.write("scene.xml", &mesh_scene("ply", "m.ply"));
+    let output = tmp.out.join("image.png");
+    let o = render(&path, &output, &[]);
+    let want = format!("{}: vertex 1: non-finite vertex y", ply.display());
+    assert_bad_input("binary ply", &o, &want, &output, &tmp);
 }
 
 #[test]

@@ -459,12 +459,13 @@ fn huge_meshes_referenced_by_mistake() {
         let path = tmp.write("scene.xml", &text);
         let out = tmp.0.join("image.png");
         let o = render(&path, &out, &[]);
-        // Located in the mesh file when the mesh knows the line (OBJ), else at the filename
-        // property.
-        let want = if kind == "obj" {
-            loc(&mesh, &String::from_utf8_lossy(&bytes), "4000000000")
-        } else {
-            loc(&path, &text, "<string name=\"filename\"")
+        // Located in the mesh file when the mesh has lines (OBJ, ASCII PLY: the line where the
+        // data ran out or the count is), else at the filename property.
+        let want = match case {
+            "obj index 4e9" => loc(&mesh, &String::from_utf8_lossy(&bytes), "4000000000"),
+            "ascii 4e9 vertices" | "ascii 4e9 faces" => format!("{}:14:1", mesh.display()),
+            "count beyond u64" => format!("{}:3:1", mesh.display()),
+            _ => loc(&path, &text, "<string name=\"filename\""),
         };
         assert_refused(case, &o, &want, message, &out);
     }

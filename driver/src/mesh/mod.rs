@@ -6,6 +6,7 @@ mod mtl_material;
 mod obj;
 mod obj_locate;
 mod ply;
+mod ply_locate;
 
 pub use builtin::{cube, rectangle};
 pub use mtl_material::{mtl_bsdf, MtlBsdf};

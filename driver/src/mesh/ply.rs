@@ -4,10 +4,11 @@
 //! `face_normals` (boolean, default false), `flip_normals` (boolean, default false). Reads the
 //! `vertex` element's `x y z`, optional `nx ny nz` and `u v` (or `s t`), and the `face` element's
 //! `vertex_indices` (or `vertex_index`) lists, fan-triangulated.
+use super::ply_locate::{parse_error, record_error};
 use super::MeshData;
 use crate::error::InputError;
 use ply_rs_bw::parser::Parser;
-use ply_rs_bw::ply::{DefaultElement, Property};
+use ply_rs_bw::ply::{DefaultElement, Header, Property, PropertyType};
 use std::path::Path;
 
 fn scalar(e: &DefaultElement, key: &str) -> Option<f32> {
@@ -26,6 +27,27 @@ fn list(p: &Property) -> Option<Vec<i64>> {
     })
 }
 
+/// Which whitespace-separated value of an ASCII record holds scalar property `prop` (`None`
+/// when a list comes before it, so its position varies from record to record).
+fn scalar_token(header: &Header, element: &str, prop: &str) -> Option<usize> {
+    let def = header.elements.get(element)?;
+    for (k, (name, p)) in def.properties.iter().enumerate() {
+        if name == prop {
+            return Some(k);
+        }
+        if matches!(p.data_type, PropertyType::List(..)) {
+            return None;
+        }
+    }
+    None
+}
+
+/// Where list property `prop` of the face element starts (only when it is the first property).
+fn scalar_token_list(header: &Header, prop: &str) -> Option<usize> {
+    let def = header.elements.get("face")?;
+    (def.properties.get_index(0)?.0 == prop).then_some(0)
+}
+
 /// Loads a PLY file.
 pub fn load_ply(path: &Path) -> Result<MeshData, InputError> {
     let err = |m: String| InputError::file(path, m);
@@ -33,7 +55,10 @@ pub fn load_ply(path: &Path) -> Result<MeshData, InputError> {
     let mut r = bytes.as_slice();
     let ply = Parser::<DefaultElement>::new()
         .read_ply(&mut r)
-        .map_err(|e| err(format!("bad PLY file: {e}")))?;
+        .map_err(|e| parse_error(path, &bytes, &e))?;
+    let at = |element: &str, index: usize, token: Option<usize>, msg: String| {
+        record_error(path, &bytes, &ply.header, element, index, token, msg)
+    };
     let verts = ply
         .payload
         .get("vertex")
@@ -56,10 +81,12 @@ pub fn load_ply(path: &Path) -> Result<MeshData, InputError> {
     for (i, v) in verts.iter().enumerate() {
         let p = [scalar(v, "x"), scalar(v, "y"), scalar(v, "z")];
         let [Some(x), Some(y), Some(z)] = p else {
-            return Err(err(format!("vertex {i} lacks x, y or z")));
+            return Err(at("vertex", i, None, "vertex lacks x, y or z".into()));
         };
-        if !(x.is_finite() && y.is_finite() && z.is_finite()) {
-            return Err(err(format!("vertex {i} has a non-finite coordinate")));
+        if let Some(k) = [x, y, z].iter().position(|c| !c.is_finite()) {
+            let name = ["x", "y", "z"][k];
+            let token = scalar_token(&ply.header, "vertex", name);
+            return Err(at("vertex", i, token, format!("non-finite vertex {name}")));
         }
         data.positions.push([x, y, z]);
         if has_n {
@@ -68,8 +95,10 @@ pub fn load_ply(path: &Path) -> Result<MeshData, InputError> {
                 scalar(v, "ny").unwrap_or(0.0),
                 scalar(v, "nz").unwrap_or(0.0),
             ];
-            if !n.iter().all(|c| c.is_finite()) {
-                return Err(err(format!("vertex {i} has a non-finite normal")));
+            if let Some(k) = n.iter().position(|c| !c.is_finite()) {
+                let name = ["nx", "ny", "nz"][k];
+                let token = scalar_token(&ply.header, "vertex", name);
+                return Err(at("vertex", i, token, format!("non-finite normal {name}")));
             }
             data.normals.push(n);
         }
@@ -80,15 +109,25 @@ pub fn load_ply(path: &Path) -> Result<MeshData, InputError> {
     }
     let n = data.positions.len() as i64;
     for (fi, f) in faces.iter().enumerate() {
-        let idx = f
-            .get("vertex_indices")
-            .or_else(|| f.get("vertex_index"))
-            .and_then(list);
-        let idx = idx.ok_or_else(|| err(format!("face {fi} has no vertex_indices list")))?;
-        if let Some(bad) = idx.iter().find(|&&i| i < 0 || i >= n) {
-            return Err(err(format!(
-                "face {fi} refers to vertex {bad}, but the file has {n}"
-            )));
+        let key = if f.get("vertex_indices").is_some() {
+            "vertex_indices"
+        } else {
+            "vertex_index"
+        };
+        let idx = f.get(key).and_then(list);
+        let idx =
+            idx.ok_or_else(|| at("face", fi, None, "face has no vertex_indices list".into()))?;
+        if let Some(j) = idx.iter().position(|&i| i < 0 || i >= n) {
+            // The list's values follow its length, so value j is token 1 + j when the list
+            // comes first.
+            let token = scalar_token_list(&ply.header, key).map(|k| k + 1 + j);
+            let bad = idx[j];
+            return Err(at(
+                "face",
+                fi,
+                token,
+                format!("face refers to vertex {bad}, but the file has {n}"),
+            ));
         }
         for k in 1..idx.len().saturating_sub(1) {
             data.indices
