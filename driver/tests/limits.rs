@@ -508,6 +508,31 @@ fn special_files_as_mesh_or_scene() {
         let want = loc(&path, &text, "<string name=\"filename\"");
         assert_refused(file, &o, &want, message, &out);
     }
+    // A material library that is /dev/zero: ignored (plain OBJ: materials are not used) or
+    // refused at its `mtllib` statement (use_mtl), after reading at most 64 MiB either way.
+    let obj = tmp.write(
+        "m.obj",
+        "mtllib /dev/zero\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    );
+    let text = mesh_scene("obj", "m.obj");
+    let path = tmp.write("scene.xml", &text);
+    let out = tmp.0.join("image.exr");
+    let o = render(&path, &out, &["--spp", "1"]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "mtllib /dev/zero, plain: {}",
+        stderr_of(&o)
+    );
+    std::fs::remove_file(&out).unwrap();
+    let text = text.replace(
+        "</shape>",
+        "<boolean name=\"use_mtl\" value=\"true\"/></shape>",
+    );
+    let path = tmp.write("scene.xml", &text);
+    let o = render(&path, &out, &[]);
+    let want = loc(&obj, "mtllib /dev/zero\n", "mtllib");
+    assert_refused("mtllib /dev/zero", &o, &want, "too large", &out);
     // The scene itself: /dev/zero stops at the 64 MiB limit; a directory is refused.
     let out = tmp.0.join("image.png");
     let o = render(Path::new("/dev/zero"), &out, &[]);

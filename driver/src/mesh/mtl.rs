@@ -60,8 +60,10 @@ fn check(ok: bool, loc: &Loc, what: String) -> Result<(), InputError> {
 
 /// Reads an MTL file.
 pub fn load_mtl(path: &Path) -> Result<Vec<MtlMaterial>, InputError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| InputError::file(path, format!("cannot read material library: {e}")))?;
+    // Capped like scene files (64 MiB), so `/dev/zero` or a pipe named by `mtllib` cannot
+    // exhaust memory.
+    let text = crate::xml::source::read_text(path)
+        .map_err(|e| InputError::file(path, format!("material library: {e}")))?;
     parse_mtl(&text, path)
 }
 

@@ -49,8 +49,12 @@ pub fn load_obj(path: &Path) -> Result<MeshData, InputError> {
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
     // As `tobj::load_obj` does: the libraries are read (a `usemtl` splits the faces into models
     // before they are merged again) and a library that cannot be read is ignored.
+    // Read through the capped reader: `mtllib /dev/zero` must not exhaust memory even though
+    // the materials are then ignored.
     let (models, _) = tobj::load_obj_buf(&mut bytes.as_slice(), &options(), |lib| {
-        tobj::load_mtl(dir.join(lib))
+        let text = crate::xml::source::read_text(&dir.join(lib))
+            .map_err(|_| tobj::LoadError::OpenFileFailed)?;
+        tobj::load_mtl_buf(&mut text.as_bytes())
     })
     .map_err(|e| bad_obj(path, &text, e))?;
     merge(path, &text, &models.iter().collect::<Vec<_>>())

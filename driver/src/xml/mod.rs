@@ -16,7 +16,7 @@ mod params;
 mod parse;
 mod property;
 mod refs;
-mod source;
+pub(crate) mod source;
 mod subst;
 mod transform;
 mod values;
