@@ -62,8 +62,12 @@ fn check(ok: bool, loc: &Loc, what: String) -> Result<(), InputError> {
 pub fn load_mtl(path: &Path) -> Result<Vec<MtlMaterial>, InputError> {
     // Capped like scene files (64 MiB), so `/dev/zero` or a pipe named by `mtllib` cannot
     // exhaust memory.
-    let text = crate::xml::source::read_text(path)
-        .map_err(|e| InputError::file(path, format!("material library: {e}")))?;
+    let text = crate::xml::source::read_text(path).map_err(|e| {
+        match e.strip_prefix("cannot read file") {
+            Some(rest) => InputError::file(path, format!("cannot read material library{rest}")),
+            None => InputError::file(path, format!("material library: {e}")),
+        }
+    })?;
     parse_mtl(&text, path)
 }
 
