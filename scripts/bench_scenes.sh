@@ -5,7 +5,7 @@
 #
 #   scripts/bench_scenes.sh [THREADS [MAX_SECONDS [OUTDIR]]]      (defaults: 2, 60, docs/bench)
 #
-# Needs a release build (cargo build --release), Mitsuba 3 (scripts/install_mitsuba.sh) and, for
+# Needs the dist build (cargo build --profile dist -p tessera; release plus fat LTO), Mitsuba 3 (scripts/install_mitsuba.sh) and, for
 # llvm_ad_rgb, scripts/install_llvm.sh. Set VARIANTS=scalar_rgb to skip the LLVM variant.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -15,7 +15,7 @@ MAX="${2:-60}"
 OUT="${3:-docs/bench}"
 PYTHON="${PYTHON:-python3}"
 VARIANTS="${VARIANTS:-scalar_rgb,llvm_ad_rgb}"
-TESSERA="${TESSERA:-target/release/tessera}"
+TESSERA="${TESSERA:-target/dist/tessera}"
 mkdir -p "$OUT"
 for NAME in cbox veach_mis; do
     REF="scenes/refs/${NAME}_128x128_mitsuba.exr"
