@@ -38,20 +38,30 @@ fn render(dir: &Path, tag: &str, extra: &[&str]) -> (PathBuf, PathBuf) {
 
 #[test]
 fn overlay_touches_only_its_pixels_and_never_exr() {
-    let dir = std::env::temp_dir().join(format!("tessera-overlay-{}", std::process::id()));
+    check_overlay("progressive", &[]);
+}
+
+#[test]
+fn one_pass_renders_draw_overlays_too() {
+    // `--stats` renders in one pass (cli/render_once.rs), through another writer.
+    check_overlay("stats", &["--stats"]);
+}
+
+/// Renders with and without the three overlays (both with `extra`) and checks which pixels
+/// changed.
+fn check_overlay(tag: &str, extra: &[&str]) {
+    let dir = std::env::temp_dir().join(format!("tessera-overlay-{tag}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let (plain_png, plain_exr) = render(&dir, "plain", &[]);
+    let (plain_png, plain_exr) = render(&dir, "plain", extra);
     let crop = [10u32, 12, 40, 50];
-    let (ov_png, ov_exr) = render(
-        &dir,
-        "overlay",
-        &[
-            "--overlay",
-            "--overlay-grid",
-            "--overlay-crop",
-            "10,12,40,50",
-        ],
-    );
+    let mut args = vec![
+        "--overlay",
+        "--overlay-grid",
+        "--overlay-crop",
+        "10,12,40,50",
+    ];
+    args.extend(extra);
+    let (ov_png, ov_exr) = render(&dir, "overlay", &args);
     assert_eq!(
         std::fs::read(&plain_exr).unwrap(),
         std::fs::read(&ov_exr).unwrap(),

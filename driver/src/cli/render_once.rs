@@ -2,7 +2,7 @@
 //! outputs are part files for `tessera merge`), `--stats` and `--debug-pixel`. These render a
 //! fixed sample range once, so they do not combine with the progressive flags (`--time`,
 //! `--forever`, `--write-every`, `--checkpoint`, `--resume`).
-use super::render::RenderArgs;
+use super::render::{Decor, RenderArgs};
 use super::split_args::write_render_output;
 use crate::error::InputError;
 use crate::render::RenderOptions;
@@ -82,8 +82,15 @@ pub fn run(args: &RenderArgs, loaded: &LoadedScene, threads: usize, seed: u64) -
     bar.finish_and_clear();
     let secs = start.elapsed().as_secs_f64();
     let mut code = 0;
+    // Whole-image outputs take the overlays (PNG only); a split render's outputs are parts or
+    // crops of the image, which a label or grid drawn for the whole image would not fit.
+    let decor = Decor::new(args, loaded);
     for o in &args.outputs {
-        if let Err(e) = write_render_output(o, &fb, part.as_ref()) {
+        let written = match part {
+            None => decor.write(o, &fb, secs),
+            Some(_) => write_render_output(o, &fb, part.as_ref()),
+        };
+        if let Err(e) = written {
             eprintln!("error: {e}");
             code = 1;
         }
