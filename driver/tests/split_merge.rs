@@ -226,6 +226,39 @@ fn sample_ranges_merge_to_one_render_within_rounding() {
 }
 
 #[test]
+fn merged_parts_merge_again() {
+    // Tile sets 1/2 and 2/2 (samples 0..4) merged `--as-part`, then merged with samples 4..8 of
+    // the whole image: the same bits as merging the three parts at once.
+    let d = dir("remerge");
+    let (a, b, c) = (d.join("a.exr"), d.join("b.exr"), d.join("c.exr"));
+    render(&a, &["--tiles", "1/2"]);
+    render(&b, &["--tiles", "2/2"]);
+    render(&c, &["--sample-range", "4..8"]);
+    let ab = d.join("ab.exr");
+    let (code, err) = merge(&[a.clone(), b.clone()], &ab, &["-q", "--as-part"]);
+    assert_eq!(code, 0, "{err}");
+    let (twice, once) = (d.join("twice.exr"), d.join("once.exr"));
+    let (code, err) = merge(&[ab.clone(), c.clone()], &twice, &["-q"]);
+    assert_eq!(code, 0, "{err}");
+    let (code, err) = merge(&[a.clone(), b.clone(), c.clone()], &once, &["-q"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(
+        bits(&twice),
+        bits(&once),
+        "merging in two steps changed the image"
+    );
+    // Control: the merged part is not just its first half (c alone differs from once).
+    assert_ne!(bits(&c).2, bits(&once).2);
+    // Control: the merged part holds samples 0..4, so merging it with tile set 1/2 overlaps.
+    let (code, err) = merge(&[ab, a.clone()], &d.join("x.exr"), &[]);
+    assert_refused(code, &err, "overlap");
+    // Control: a part must cover the whole image.
+    let (code, err) = merge(&[a], &d.join("x.exr"), &["--as-part", "--allow-missing"]);
+    assert_refused(code, &err, "--as-part needs every pixel");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
 fn bad_parts_and_flags_are_one_line_errors() {
     let d = dir("bad");
     let part = d.join("p.exr");

@@ -3,7 +3,7 @@
 use crate::error::InputError;
 use crate::image_io::{write_image, Format, RgbImage};
 use crate::split::merge::merge_parts;
-use crate::split::read_part;
+use crate::split::{read_part, write_part, PartInfo, PixelSelection};
 use clap::Args;
 use std::path::PathBuf;
 
@@ -19,6 +19,10 @@ pub struct MergeArgs {
     /// Write pixels that no part holds as black instead of failing.
     #[arg(long)]
     pub allow_missing: bool,
+    /// Write the EXR outputs as a part of the whole image (exact sums and settings kept), so the
+    /// result can be merged again, e.g. with later sample ranges. Needs every pixel covered.
+    #[arg(long)]
+    pub as_part: bool,
     /// No summary line.
     #[arg(short, long)]
     pub quiet: bool,
@@ -55,9 +59,31 @@ pub fn run(args: &MergeArgs) -> i32 {
         height: merged.fb.height,
         data: merged.fb.rgb(),
     };
+    let part_info = if args.as_part {
+        if merged.missing > 0 {
+            return usage(format!(
+                "--as-part needs every pixel: {} pixels are in no part",
+                merged.missing
+            ));
+        }
+        let first = &parts[0].1.info;
+        Some(PartInfo {
+            selection: PixelSelection::All,
+            samples: merged.samples.clone(),
+            ..first.clone()
+        })
+    } else {
+        None
+    };
     let mut code = 0;
     for o in &args.outputs {
-        if let Err(e) = write_image(o, &img) {
+        let written = match &part_info {
+            Some(info) if Format::from_path(o) == Some(Format::Exr) => {
+                write_part(o, info, &merged.fb)
+            }
+            _ => write_image(o, &img),
+        };
+        if let Err(e) = written {
             eprintln!("error: {e}");
             code = 1;
         }
