@@ -20,6 +20,11 @@
 //! 3. Owen-scrambles each coordinate with a seed hashed from (seed, dimension, epoch, the
 //!    permuted index's high 32 bits) ([`owen_scramble_u32`]), and keeps its top 24 bits.
 //!
+//! Dimensions. `next_1d` reads the next dimension and `next_2d` the next two; the integrators
+//! jump to each stage's first dimension by the fixed per-bounce layout
+//! ([`dimension_of`](super::dimension_of)), so bounce `d` of every path reads the same
+//! dimensions whatever an earlier bounce skipped.
+//!
 //! Properties. A value is a pure function of (seed, `K`, pixel, sample index, dimension): no
 //! state is shared between samples or pixels, nothing is allocated. For every dimension and
 //! every `k <= K`, the first `2^k` samples of a pixel are an aligned block of indices, so their
@@ -187,6 +192,11 @@ impl Sampler for ZSobolSampler {
         let (a, b) = self.value_2d(self.dimension);
         self.dimension = self.dimension.wrapping_add(2);
         Vec2::new(to_unit(a), to_unit(b))
+    }
+
+    #[inline]
+    fn start_dimension(&mut self, dim: u32) {
+        self.dimension = dim;
     }
 }
 
