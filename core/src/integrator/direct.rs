@@ -12,7 +12,7 @@ use super::light::{emission_along, sample_light};
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
 use super::Heuristic;
 use crate::math::Ray;
-use crate::sampling::Sampler;
+use crate::sampling::{Sampler, Stage};
 use crate::scene::Scene;
 use crate::Color;
 use glam::Vec3;
@@ -75,7 +75,9 @@ impl DirectIntegrator {
         let (ne, nb) = (self.emitter_samples as f32, self.bsdf_samples as f32);
         if scene.features.has_emitters && bsdf.has_smooth() {
             let want_pdf = self.bsdf_samples > 0;
-            for _ in 0..self.emitter_samples {
+            for i in 0..self.emitter_samples {
+                // Emitter sample i reads the emitter dimensions of bounce i of the layout.
+                sampler.start_stage(i, Stage::Light);
                 if let Some(ls) = sample_light(scene, &si, bsdf, wi, sampler, want_pdf, probe) {
                     let w = if ls.delta || self.bsdf_samples == 0 {
                         1.0
@@ -93,7 +95,8 @@ impl DirectIntegrator {
             probe.end(PathEnd::NothingAhead);
             return result;
         }
-        for _ in 0..self.bsdf_samples {
+        for j in 0..self.bsdf_samples {
+            sampler.start_stage(j, Stage::Bsdf);
             let u1 = sampler.next_1d();
             let u2 = sampler.next_2d();
             let Some(bs) = bsdf.sample(wi, u1, u2, si.uv) else {

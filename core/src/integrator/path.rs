@@ -21,7 +21,7 @@ use super::light::{emission_along, sample_light};
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
 use super::Heuristic;
 use crate::math::Ray;
-use crate::sampling::Sampler;
+use crate::sampling::{Sampler, Stage};
 use crate::scene::Scene;
 use crate::Color;
 use glam::Vec3;
@@ -189,6 +189,7 @@ impl PathIntegrator {
             let nee = self.strategy != Strategy::Bsdf && features.has_emitters && bsdf.has_smooth();
             if nee {
                 let want_pdf = self.strategy == Strategy::Mis;
+                sampler.start_stage(depth, Stage::Light);
                 if let Some(ls) = sample_light(scene, &si, bsdf, wi, sampler, want_pdf, probe) {
                     let w = match (ls.delta, self.strategy) {
                         (true, _) | (_, Strategy::Emitter) => 1.0,
@@ -209,6 +210,7 @@ impl PathIntegrator {
                 probe.end(PathEnd::NothingAhead);
                 break;
             }
+            sampler.start_stage(depth, Stage::Bsdf);
             let u1 = sampler.next_1d();
             let u2 = sampler.next_2d();
             let Some(bs) = bsdf.sample(wi, u1, u2, si.uv) else {
@@ -235,6 +237,8 @@ impl PathIntegrator {
             depth += 1;
             if depth >= self.rr_depth {
                 let q = (throughput.max_element() * eta * eta).min(0.95);
+                // The roulette belongs to the bounce just taken.
+                sampler.start_stage(depth - 1, Stage::Roulette);
                 let survived = sampler.next_1d() < q;
                 if survived {
                     throughput /= q;

@@ -3,6 +3,7 @@ mod discrete;
 mod distribution2d;
 mod independent;
 mod kind;
+mod layout;
 pub mod owen;
 pub mod sobol;
 pub mod warp;
@@ -12,6 +13,7 @@ pub use discrete::Discrete1D;
 pub use distribution2d::Distribution2D;
 pub use independent::{pixel_key, IndependentSampler};
 pub use kind::{SamplerKind, SAMPLER_NAMES};
+pub use layout::{dimension_of, Stage, BOUNCE_DIMENSIONS, CAMERA_DIMENSIONS};
 pub use zsobol::ZSobolSampler;
 
 use glam::Vec2;
@@ -26,5 +28,18 @@ pub trait Sampler {
         let x = self.next_1d();
         let y = self.next_1d();
         Vec2::new(x, y)
+    }
+    /// Makes the next draw read dimension `dim`, for samplers whose dimensions are stratified
+    /// across a pixel's samples (see [`layout`](self::dimension_of)). Samplers whose draws are
+    /// independent of each other ignore it (the default), so their streams do not move.
+    #[inline]
+    fn start_dimension(&mut self, dim: u32) {
+        let _ = dim;
+    }
+    /// Makes the next draw read the first dimension of `stage` of bounce `depth`:
+    /// `start_dimension(dimension_of(depth, stage))`.
+    #[inline]
+    fn start_stage(&mut self, depth: u32, stage: Stage) {
+        self.start_dimension(dimension_of(depth, stage));
     }
 }

@@ -39,10 +39,13 @@ pub fn mix64(mut z: u64) -> u64 {
     z ^ (z >> 31)
 }
 
+/// The pixel multiplier of [`sample_seed`].
+pub const SAMPLE_SEED_MUL: u64 = 0x2545_f491_4f6c_dd1d;
+
 /// The seed of the sample part's scramble in [`scramble_index`].
 #[inline]
 pub fn sample_seed(seed: u64, pixel: u64) -> u32 {
-    mix64(seed ^ pixel.wrapping_mul(0x2545_f491_4f6c_dd1d)) as u32
+    mix64(seed ^ pixel.wrapping_mul(SAMPLE_SEED_MUL)) as u32
 }
 
 /// A nested random permutation of indices `i < 2^(32 + k)` split as `(pixel << k) | sample`

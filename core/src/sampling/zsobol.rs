@@ -20,6 +20,11 @@
 //! 3. Owen-scrambles each coordinate with a seed hashed from (seed, dimension, epoch, the
 //!    permuted index's high 32 bits) ([`owen_scramble_u32`]), and keeps its top 24 bits.
 //!
+//! Dimensions. `next_1d` reads the next dimension and `next_2d` the next two; the integrators
+//! jump to each stage's first dimension by the fixed per-bounce layout
+//! ([`dimension_of`](super::dimension_of)), so bounce `d` of every path reads the same
+//! dimensions whatever an earlier bounce skipped.
+//!
 //! Properties. A value is a pure function of (seed, `K`, pixel, sample index, dimension): no
 //! state is shared between samples or pixels, nothing is allocated. For every dimension and
 //! every `k <= K`, the first `2^k` samples of a pixel are an aligned block of indices, so their
@@ -30,7 +35,7 @@
 //! (unbiased, less evenly spread). The values of sample `s` depend on `K`, so an image rendered
 //! with `K` from 64 spp differs from the first 64 samples of one rendered with `K` from 1024 spp;
 //! for a fixed `K`, rendering samples `0..a` then `a..b` equals rendering `0..b`.
-use super::owen::{mix64, reversed_lk, sample_seed};
+use super::owen::{mix64, reversed_lk, SAMPLE_SEED_MUL};
 use super::sobol::sobol_dim1_reversed;
 use super::Sampler;
 use glam::Vec2;
@@ -80,6 +85,8 @@ pub struct ZSobolSampler {
     pixel_reversed: u32,
     /// The sample part `s mod 2^K` as the top `K` bits of a word, bit-reversed.
     sample_reversed: u32,
+    /// `morton(x, y)` times the sample-seed multiplier (see [`sample_seed`](super::owen::sample_seed)), once per sample.
+    pixel_mul: u64,
     /// Hash of the seed and the epoch.
     key: u64,
     /// The next dimension.
@@ -111,6 +118,7 @@ impl ZSobolSampler {
             log2_spp: k,
             pixel_reversed: (pixel as u32).reverse_bits(),
             sample_reversed: ((within as u32).checked_shl(32 - k).unwrap_or(0)).reverse_bits(),
+            pixel_mul: pixel.wrapping_mul(SAMPLE_SEED_MUL),
             key: mix64(seed ^ mix64(epoch ^ 0x6a09_e667_f3bc_c909)),
             dimension: 0,
         }
@@ -139,8 +147,8 @@ impl ZSobolSampler {
         let index_r = if k == 0 {
             pixel_r
         } else {
-            let sample_r =
-                reversed_lk(self.sample_reversed, sample_seed(h, self.morton_index >> k));
+            // `sample_seed(h, morton_index >> K)` with the pixel's product hoisted out.
+            let sample_r = reversed_lk(self.sample_reversed, mix64(h ^ self.pixel_mul) as u32);
             pixel_r.checked_shr(k).unwrap_or(0) | (sample_r << (32 - k))
         };
         // The permuted index's bits above 32 (the top K bits of the pixel word), reversed: only
@@ -166,15 +174,16 @@ impl ZSobolSampler {
     #[inline]
     pub fn value_2d(&self, dim: u32) -> (u32, u32) {
         let d = self.draw(dim);
-        (
-            reversed_lk(d.index, d.seed_x).reverse_bits(),
-            reversed_lk(sobol_dim1_reversed(d.index), d.seed_y).reverse_bits(),
-        )
+        let x_r = reversed_lk(d.index, d.seed_x);
+        let y_r = reversed_lk(sobol_dim1_reversed(d.index), d.seed_y);
+        // Both coordinates un-reversed by one 64-bit reversal (the high word lands low).
+        let both = (((x_r as u64) << 32) | y_r as u64).reverse_bits();
+        (both as u32, (both >> 32) as u32)
     }
 }
 
 impl Sampler for ZSobolSampler {
-    #[inline]
+    #[inline(always)]
     fn next_1d(&mut self) -> f32 {
         let v = self.value_1d(self.dimension);
         self.dimension = self.dimension.wrapping_add(1);
@@ -182,11 +191,16 @@ impl Sampler for ZSobolSampler {
     }
 
     /// One 2D point of the pixel's (0, m, 2)-net; uses two dimension numbers, as in pbrt-v4.
-    #[inline]
+    #[inline(always)]
     fn next_2d(&mut self) -> Vec2 {
         let (a, b) = self.value_2d(self.dimension);
         self.dimension = self.dimension.wrapping_add(2);
         Vec2::new(to_unit(a), to_unit(b))
+    }
+
+    #[inline]
+    fn start_dimension(&mut self, dim: u32) {
+        self.dimension = dim;
     }
 }
 

@@ -1,0 +1,67 @@
+//! Which sample dimensions each draw of a path reads: a fixed budget per bounce, so that bounce
+//! `d` of every path of a pixel reads the same dimensions whatever was skipped before it (no
+//! emitter sampling at a delta vertex, an emitter selection that found nothing, a path that
+//! ended early). With a stratified sampler (`zsobol`) the pixel's samples then stay one
+//! stratified set per quantity; without it, a path that skipped its emitter draws at a mirror
+//! would read its later bounces from dimensions its siblings used for something else. Same
+//! layout as pbrt-v4: camera dimensions first, then per bounce emitter selection (1), emitter
+//! position (2), BSDF component (1), BSDF direction (2) and Russian roulette (1).
+//!
+//! The integrators call [`Sampler::start_stage`](super::Sampler::start_stage) before each stage;
+//! a stage that draws fewer values than its budget leaves the rest unused, one that would draw
+//! more runs into the next stage's dimensions (still unbiased, only less stratified).
+
+/// Dimensions the camera reads before the first bounce: the filter's 2D offset.
+pub const CAMERA_DIMENSIONS: u32 = 2;
+
+/// Dimensions reserved for one bounce.
+pub const BOUNCE_DIMENSIONS: u32 = 7;
+
+/// The parts of a bounce that draw sample values, in path order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    /// Emitter selection (1D) and a point on the emitter (2D).
+    Light,
+    /// BSDF component (1D) and direction (2D).
+    Bsdf,
+    /// Russian roulette after the bounce (1D).
+    Roulette,
+}
+
+impl Stage {
+    /// First dimension of the stage within its bounce.
+    #[inline]
+    const fn offset(self) -> u32 {
+        match self {
+            Stage::Light => 0,
+            Stage::Bsdf => 3,
+            Stage::Roulette => 6,
+        }
+    }
+}
+
+/// First dimension of `stage` at bounce `depth` (0 = the vertex the camera ray found). Wraps
+/// for absurd depths (dimensions are only hashed, never indexed).
+#[inline]
+pub const fn dimension_of(depth: u32, stage: Stage) -> u32 {
+    CAMERA_DIMENSIONS
+        .wrapping_add(depth.wrapping_mul(BOUNCE_DIMENSIONS))
+        .wrapping_add(stage.offset())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Stages of consecutive bounces tile the dimensions after the camera's without overlap.
+    #[test]
+    fn stages_tile_the_dimensions() {
+        let mut next = CAMERA_DIMENSIONS;
+        for depth in 0..10 {
+            for (stage, width) in [(Stage::Light, 3), (Stage::Bsdf, 3), (Stage::Roulette, 1)] {
+                assert_eq!(dimension_of(depth, stage), next);
+                next += width;
+            }
+        }
+    }
+}
