@@ -341,38 +341,26 @@ fn mesh_scene(kind: &str, file: &str) -> String {
 }
 
 #[test]
-fn obj_index_out_of_range() {
-    let tmp = Tmp::new("obj-index");
-    let (obj, obj_text) = tmp.fixture("bad_index.obj");
-    let path = tmp.write("scene.xml", &mesh_scene("obj", "bad_index.obj"));
-    let output = tmp.out.join("image.png");
-    let o = render(&path, &output, &[]);
-    // `f 1 2 9` with three vertices: at the `9`.
-    let want = loc(&obj, &obj_text, "9\n");
-    assert_bad_input("obj index out of range", &o, &want, &output, &tmp);
-}
-
-#[test]
-fn obj_nan_vertex() {
-    let tmp = Tmp::new("obj-nan");
-    let (obj, obj_text) = tmp.fixture("nan_vertex.obj");
-    let path = tmp.write("scene.xml", &mesh_scene("obj", "nan_vertex.obj"));
-    let output = tmp.out.join("image.png");
-    let o = render(&path, &output, &[]);
-    let want = loc(&obj, &obj_text, "nan");
-    assert_bad_input("obj nan vertex", &o, &want, &output, &tmp);
-}
-
-#[test]
-fn ply_index_out_of_range() {
-    let tmp = Tmp::new("ply-index");
-    let (ply, ply_text) = tmp.fixture("bad_index.ply");
-    let path = tmp.write("scene.xml", &mesh_scene("ply", "bad_index.ply"));
-    let output = tmp.out.join("image.png");
-    let o = render(&path, &output, &[]);
-    // `3 0 1 7` with three vertices: at the `7`.
-    let want = loc(&ply, &ply_text, "7\n");
-    assert_bad_input("ply index out of range", &o, &want, &output, &tmp);
+fn mesh_fixture_errors_are_located() {
+    // (fixture, the text the error must point at): `f 1 2 9` and `3 0 1 7` with three vertices
+    // at the bad index, a `nan` coordinate at itself.
+    let cases = [
+        ("bad_index.obj", "9\n"),
+        ("nan_vertex.obj", "nan"),
+        ("bad_index.ply", "7\n"),
+    ];
+    let mut problems = Vec::new();
+    for (fixture, needle) in cases {
+        let tmp = Tmp::new(fixture);
+        let (mesh, text) = tmp.fixture(fixture);
+        let kind = fixture.rsplit('.').next().unwrap();
+        let path = tmp.write("scene.xml", &mesh_scene(kind, fixture));
+        let output = tmp.out.join("image.png");
+        let o = render(&path, &output, &[]);
+        let want = loc(&mesh, &text, needle);
+        problems.extend(bad_input_problem(fixture, &o, &want, &output, &tmp));
+    }
+    assert_no_problems(problems);
 }
 
 /// An ASCII PLY triangle whose second vertex line is `second`, with a comment line in the header.
