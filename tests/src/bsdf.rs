@@ -1,7 +1,8 @@
 //! Helpers shared by the material tests: build one `<bsdf>` from XML text, directions by angle,
-//! and the located-error check for bad parameters.
-use glam::Vec3;
+//! the chi-square configuration and check, and the located-error check for bad parameters.
+use glam::{Vec2, Vec3};
 use tessera::error::InputError;
+use tessera::stats::{sidak_alpha, BsdfChi2, Chi2Result};
 use tessera::xml::Kind;
 use tessera_core::bsdf::Bsdf;
 
@@ -33,6 +34,41 @@ pub fn load_bsdf_xml(xml: &str) -> Bsdf {
 pub fn dir_at(deg: f32, phi: f32) -> Vec3 {
     let t = deg.to_radians();
     Vec3::new(t.sin() * phi.cos(), t.sin() * phi.sin(), t.cos())
+}
+
+/// The direction of `u` uniform on the upper hemisphere, or with `both_sides` on the sphere.
+pub fn uniform_direction(u: Vec2, both_sides: bool) -> Vec3 {
+    let z = if both_sides { 2.0 * u.x - 1.0 } else { u.x };
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let p = std::f32::consts::TAU * u.y;
+    Vec3::new(r * p.cos(), r * p.sin(), z)
+}
+
+/// BsdfChi2's grid (20 x 40 cells) with half its default sample count, to keep files fast.
+pub const CHI2_HALF: BsdfChi2 = BsdfChi2 {
+    theta_bins: 20,
+    phi_bins: 40,
+    samples: 500_000,
+};
+
+/// Asserts that chi-square result `r` (printed with `name`) passes at the Šidák level of 0.01
+/// over the `n_tests` chi-square tests of the file.
+pub fn assert_chi2_passes(name: &str, r: &Chi2Result, n_tests: usize) {
+    let a = sidak_alpha(0.01, n_tests);
+    println!("{name}: {r}");
+    assert!(r.passes(a), "{name}: {r} (alpha = {a:.3e})");
+}
+
+/// A microfacet `plugin` (`roughconductor`, `roughdielectric`) with distribution `dist`,
+/// roughness `(au, av)`, `sample_visible` = `visible` and the `extra` property lines.
+pub fn rough_xml(plugin: &str, dist: &str, au: f32, av: f32, visible: bool, extra: &str) -> String {
+    format!(
+        r#"<bsdf type="{plugin}">
+            <string name="distribution" value="{dist}"/>
+            <float name="alpha_u" value="{au}"/> <float name="alpha_v" value="{av}"/>
+            <boolean name="sample_visible" value="{visible}"/> {extra}
+        </bsdf>"#
+    )
 }
 
 /// `props` inside `<bsdf type="plugin">` (Mitsuba 3 syntax) must be rejected with one line that

@@ -68,33 +68,35 @@ pub fn z_p_value(z: f64) -> f64 {
     2.0 * n.sf(z.abs())
 }
 
-/// Asserts that each channel of pixel `p` matches `expected` by a two-sided Student t-test at
-/// `alpha`. The renderer computes in f32, so its answer carries a few ulps of rounding that no
-/// number of samples removes: `(4 f32 ulps of the reference)^2` joins the squared standard
-/// error, holding near-zero-variance estimators (BSDF sampling in a furnace, delta lights) to f32
-/// precision rather than beyond it.
+/// Two-sided Student t-test of a sample mean (`n` samples, sample variance `var`) against
+/// `expected`: `(t, p-value)`. The renderer computes in f32, so its answer carries a few ulps of
+/// rounding that no number of samples removes: `(4 f32 ulps of the reference)^2` joins the
+/// squared standard error, holding near-zero-variance estimators (BSDF sampling in a furnace,
+/// delta lights) to f32 precision rather than beyond it.
+pub fn t_test_f32(n: f64, mean: f64, var: f64, expected: f64) -> (f64, f64) {
+    use statrs::distribution::{ContinuousCDF, StudentsT};
+    let ulp = (expected as f32).abs() as f64 * f32::EPSILON as f64;
+    let se = (var / n + (4.0 * ulp).powi(2)).sqrt();
+    let t = (mean - expected) / se;
+    let dist = StudentsT::new(0.0, 1.0, n - 1.0).expect("dof > 0");
+    (t, 2.0 * dist.sf(t.abs()))
+}
+
+/// Asserts that each channel of pixel `p` matches `expected` by [`t_test_f32`] at `alpha`.
 pub fn assert_pixel_matches(
     label: &str,
     p: &tessera_core::film::PixelAccum,
     expected: [f64; 3],
     alpha: f64,
 ) {
-    use statrs::distribution::{ContinuousCDF, StudentsT};
     assert_eq!(p.dropped, 0, "{label}: non-finite samples");
-    for k in 0..3 {
+    for (k, expected) in expected.into_iter().enumerate() {
         let (n, mean) = (p.count as f64, p.sum[k] / p.count as f64);
         let var = ((p.sum_sq[k] - n * mean * mean) / (n - 1.0)).max(0.0);
-        let ulp = (expected[k] as f32).abs() as f64 * f32::EPSILON as f64;
-        let se = (var / n + (4.0 * ulp).powi(2)).sqrt();
-        let t = (mean - expected[k]) / se;
-        let p_value = 2.0
-            * StudentsT::new(0.0, 1.0, n - 1.0)
-                .expect("dof > 0")
-                .sf(t.abs());
+        let (t, p_value) = t_test_f32(n, mean, var, expected);
         assert!(
             p_value >= alpha,
-            "{label} channel {k}: mean {mean} vs expected {} (t = {t:.3}, p = {p_value:.3e})",
-            expected[k]
+            "{label} channel {k}: mean {mean} vs expected {expected} (t = {t:.3}, p = {p_value:.3e})"
         );
     }
 }

@@ -7,7 +7,9 @@
 //! off.
 use tessera::stats::{sidak_alpha, t_test_from_sums};
 use tessera_core::glam::{DMat4, DVec3};
-use tessera_tests::analytic_scenes::{FURNACE_BOX, SPHERE_LIGHT};
+use tessera_tests::analytic_scenes::{
+    self as scenes, closed_sphere, over_diffuse_plane, sphere_light,
+};
 use tessera_tests::{load_xml, render_loaded};
 
 /// Path tracers (take max_depth) and direct-lighting integrators (one bounce).
@@ -47,15 +49,17 @@ fn check(
     tessera_tests::assert_pixel_matches(label, p, expected, alpha());
 }
 
-const ENV_SPHERE: &str = r#"<scene version="3.0.0">
-  <sensor type="perspective">
-    <float name="fov" value="1"/>
-    <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
-    <film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>
-  </sensor>
-  <shape type="sphere"><bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.5, 0.8"/></bsdf></shape>
-  <emitter type="constant"><rgb name="radiance" value="1.5"/></emitter>
-</scene>"#;
+/// A diffuse sphere (albedo 0.2, 0.5, 0.8) under a constant environment of radiance 1.5.
+fn env_sphere() -> String {
+    let body = r#"  <shape type="sphere"><bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.5, 0.8"/></bsdf></shape>
+  <emitter type="constant"><rgb name="radiance" value="1.5"/></emitter>"#;
+    scenes::scene(
+        1.0,
+        r#"origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0""#,
+        1,
+        body,
+    )
+}
 
 /// A convex diffuse object under a constant environment reflects albedo x radiance.
 #[test]
@@ -63,7 +67,7 @@ fn diffuse_sphere_in_constant_environment() {
     for integ in PATHS.iter().chain(&DIRECTS) {
         check(
             &format!("env sphere {integ}"),
-            ENV_SPHERE,
+            &env_sphere(),
             integ,
             None,
             100_000,
@@ -71,20 +75,6 @@ fn diffuse_sphere_in_constant_environment() {
         );
     }
 }
-
-const CLOSED_SPHERE: &str = r#"<scene version="3.0.0">
-  <sensor type="perspective">
-    <float name="fov" value="1"/>
-    <transform name="to_world"><lookat origin="0, 0, 0" target="0, 0, 1" up="0, 1, 0"/></transform>
-    <film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>
-  </sensor>
-  <shape type="sphere">
-    <float name="radius" value="2"/>
-    <boolean name="flip_normals" value="true"/>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.3, 0.5, 0.7"/></bsdf>
-    <emitter type="area"><rgb name="radiance" value="1"/></emitter>
-  </shape>
-</scene>"#;
 
 /// Inside a closed emitting diffuse sphere: Le (1 - a^d) / (1 - a) at max_depth d, Le / (1 - a)
 /// unbounded; direct lighting gives Le (1 + a).
@@ -102,7 +92,7 @@ fn inside_closed_emitting_sphere() {
         for integ in PATHS {
             check(
                 &format!("closed sphere {integ} depth {depth}"),
-                CLOSED_SPHERE,
+                &closed_sphere(1.0, 1),
                 integ,
                 Some(depth as i64),
                 100_000,
@@ -113,7 +103,7 @@ fn inside_closed_emitting_sphere() {
     for integ in DIRECTS {
         check(
             &format!("closed sphere {integ}"),
-            CLOSED_SPHERE,
+            &closed_sphere(1.0, 1),
             integ,
             None,
             100_000,
@@ -137,7 +127,7 @@ fn sphere_light_over_diffuse_plane() {
         let depth = integ.starts_with("path").then_some(2);
         check(
             &format!("sphere light {integ}"),
-            SPHERE_LIGHT,
+            &sphere_light(),
             integ,
             depth,
             spp,
@@ -146,21 +136,15 @@ fn sphere_light_over_diffuse_plane() {
     }
 }
 
-const POINT_LIGHT: &str = r#"<scene version="3.0.0">
-  <sensor type="perspective">
-    <float name="fov" value="0.001"/>
-    <transform name="to_world"><lookat origin="5, 0, 2" target="0, 0, 0" up="0, 0, 1"/></transform>
-    <film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>
-  </sensor>
-  <shape type="rectangle">
-    <transform name="to_world"><scale value="1000"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.5, 0.3"/></bsdf>
-  </shape>
-  <emitter type="point">
+/// The diffuse plane lit by a point light (intensity 20) 2 above the point the camera sees.
+fn point_light() -> String {
+    over_diffuse_plane(
+        r#"  <emitter type="point">
     <point name="position" value="0, 0, 2"/>
     <rgb name="intensity" value="20"/>
-  </emitter>
-</scene>"#;
+  </emitter>"#,
+    )
+}
 
 /// Directly below a point light of intensity I at height h over a diffuse plane:
 /// a I / (pi h^2). BSDF sampling alone can never find a point light: exactly zero.
@@ -179,7 +163,7 @@ fn point_light_over_diffuse_plane() {
         let depth = integ.starts_with("path").then_some(2);
         check(
             &format!("point light {integ}"),
-            POINT_LIGHT,
+            &point_light(),
             integ,
             depth,
             100_000,
@@ -187,7 +171,7 @@ fn point_light_over_diffuse_plane() {
         );
     }
     for integ in ["path_mats", "direct_mats"] {
-        let fb = render_loaded(&load_with(POINT_LIGHT, integ, Some(2)), 10_000, 7);
+        let fb = render_loaded(&load_with(&point_light(), integ, Some(2)), 10_000, 7);
         assert_eq!(fb.at(0, 0).sum, [0.0; 3], "{integ} found a point light");
     }
 }
@@ -195,7 +179,7 @@ fn point_light_over_diffuse_plane() {
 /// The test has power: the same render is rejected against a reference 1% off.
 #[test]
 fn control_rejects_a_wrong_reference() {
-    let loaded = load_with(SPHERE_LIGHT, "path_mis", Some(2));
+    let loaded = load_with(&sphere_light(), "path_mis", Some(2));
     let fb = render_loaded(&loaded, 100_000, 7);
     let p = fb.at(0, 0);
     let expected = 0.7 * 10.0 * 0.25 / 9.0 * 1.01;
@@ -223,26 +207,15 @@ fn polygon_scene(sx: f64, sy: f64, angle: f64, t: DVec3) -> (String, Vec<DVec3>)
         * DMat4::from_scale(DVec3::new(sx, sy, 1.0));
     let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
         .map(|(x, y)| m.transform_point3(DVec3::new(x, y, 0.0)));
-    let xml = format!(
-        r#"<scene version="3.0.0">
-  <sensor type="perspective">
-    <float name="fov" value="0.001"/>
-    <transform name="to_world"><lookat origin="5, 0, 2" target="0, 0, 0" up="0, 0, 1"/></transform>
-    <film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>
-  </sensor>
-  <shape type="rectangle">
-    <transform name="to_world"><scale value="1000"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.5, 0.3"/></bsdf>
-  </shape>
-  <shape type="rectangle">
+    let xml = over_diffuse_plane(&format!(
+        r#"  <shape type="rectangle">
     <transform name="to_world">
       <scale x="{sx}" y="{sy}" z="1"/><rotate x="1" angle="{angle}"/><translate x="{}" y="{}" z="{}"/>
     </transform>
     <emitter type="area"><rgb name="radiance" value="5"/></emitter>
-  </shape>
-</scene>"#,
+  </shape>"#,
         t.x, t.y, t.z
-    );
+    ));
     (xml, corners.to_vec())
 }
 
@@ -289,7 +262,7 @@ fn furnace_box() {
     for integ in PATHS {
         check(
             &format!("furnace box {integ}"),
-            FURNACE_BOX,
+            &scenes::furnace_box(),
             integ,
             Some(-1),
             100_000,
@@ -299,7 +272,7 @@ fn furnace_box() {
     for integ in DIRECTS {
         check(
             &format!("furnace box {integ}"),
-            FURNACE_BOX,
+            &scenes::furnace_box(),
             integ,
             None,
             100_000,

@@ -10,9 +10,12 @@
 //! Mitsuba sample table, a refraction for the reciprocity check.
 
 use glam::{Vec2, Vec3};
-use tessera::stats::{sampled_albedo, sidak_alpha, BsdfChi2, Chi2Result, Pcg32, SphereChi2};
+use tessera::stats::{sampled_albedo, Chi2Result, Pcg32, SphereChi2};
 use tessera_core::bsdf::Bsdf;
-use tessera_tests::bsdf::{assert_bad_bsdf, dir_at, load_bsdf_xml};
+use tessera_tests::bsdf::{
+    assert_bad_bsdf as bad, assert_chi2_passes, dir_at as dir, load_bsdf_xml as load, rough_xml,
+    uniform_direction, CHI2_HALF as CHI2,
+};
 
 const UV: Vec2 = Vec2::new(0.25, 0.75);
 
@@ -20,35 +23,12 @@ const UV: Vec2 = Vec2::new(0.25, 0.75);
 /// delta direction, which a chi-square cannot test: it is checked sample by sample).
 const N_CHI2: usize = 10;
 
-/// BsdfChi2's grid (20 x 40 cells) with half its default sample count, to keep the file fast.
-const CHI2: BsdfChi2 = BsdfChi2 {
-    theta_bins: 20,
-    phi_bins: 40,
-    samples: 500_000,
-};
-
-fn load(xml: &str) -> Bsdf {
-    load_bsdf_xml(xml)
-}
-
-fn dir(deg: f32, phi: f32) -> Vec3 {
-    dir_at(deg, phi)
-}
-
 fn check_chi2(name: &str, r: &Chi2Result) {
-    let a = sidak_alpha(0.01, N_CHI2);
-    println!("{name}: {r}");
-    assert!(r.passes(a), "{name}: {r} (alpha = {a:.3e})");
+    assert_chi2_passes(name, r, N_CHI2)
 }
 
 fn rough(dist: &str, au: f32, av: f32, visible: bool, extra: &str) -> String {
-    format!(
-        r#"<bsdf type="roughconductor">
-            <string name="distribution" value="{dist}"/>
-            <float name="alpha_u" value="{au}"/> <float name="alpha_v" value="{av}"/>
-            <boolean name="sample_visible" value="{visible}"/> {extra}
-        </bsdf>"#
-    )
+    rough_xml("roughconductor", dist, au, av, visible, extra)
 }
 
 #[test]
@@ -211,13 +191,7 @@ fn reciprocity_error(b: &Bsdf, seed: u64, both_sides: bool) -> f32 {
     let mut worst = 0.0f32;
     let mut nonzero = 0;
     for _ in 0..20_000 {
-        let mut pick = || {
-            let u = rng.next_vec2();
-            let z = if both_sides { 2.0 * u.x - 1.0 } else { u.x };
-            let r = (1.0 - z * z).max(0.0).sqrt();
-            let p = std::f32::consts::TAU * u.y;
-            Vec3::new(r * p.cos(), r * p.sin(), z)
-        };
+        let mut pick = || uniform_direction(rng.next_vec2(), both_sides);
         let (wi, wo) = (pick(), pick());
         if wi.z.abs() < 1e-3 || wo.z.abs() < 1e-3 {
             continue;
@@ -324,64 +298,32 @@ fn defaults_and_spellings_match_mitsuba() {
     }
 }
 
-fn bad(plugin: &str, props: &str, prop: &str, words: &str) {
-    assert_bad_bsdf(plugin, props, prop, words)
-}
-
 #[test]
 fn bad_parameters_are_located_errors() {
     let (c, rc) = ("conductor", "roughconductor");
-    bad(
-        rc,
-        r#"<float name="alpha" value="-0.1"/>"#,
-        "alpha",
-        "positive",
-    );
-    let aniso = r#"<float name="alpha_u" value="0.1"/> <float name="alpha_v" value="0"/>"#;
-    bad(rc, aniso, "alpha_v", "positive");
-    bad(
-        rc,
-        r#"<float name="alpha_u" value="0.1"/>"#,
-        "alpha_u",
-        "alpha_v",
-    );
-    let both = r#"<float name="alpha" value="0.1"/>
-        <float name="alpha_u" value="0.1"/> <float name="alpha_v" value="0.2"/>"#;
-    bad(rc, both, "alpha", "not both");
-    bad(
-        rc,
-        r#"<string name="distribution" value="phong"/>"#,
-        "distribution",
-        "phong",
-    );
-    let unknown = r#"<string name="material" value="Unobtainium"/>"#;
-    bad(c, unknown, "material", "unknown conductor \"Unobtainium\"");
-    // Names are case-sensitive, as Mitsuba's file lookup is.
-    bad(
-        rc,
-        r#"<string name="material" value="au"/>"#,
-        "material",
-        "unknown conductor",
-    );
     let au = r#"<string name="material" value="Au"/>"#;
-    bad(
-        c,
-        &format!(r#"{au} <float name="eta" value="2"/>"#),
-        "material",
-        "not both",
+    let (au_eta, au_k) = (
+        format!(r#"{au} <float name="eta" value="2"/>"#),
+        format!(r#"{au} <float name="k" value="2"/>"#),
     );
-    bad(
-        c,
-        &format!(r#"{au} <float name="k" value="2"/>"#),
-        "k",
-        "unused",
-    );
-    bad(
-        c,
-        r#"<float name="eta" value="-1"/>"#,
-        "eta",
-        "non-negative",
-    );
-    let maybe = r#"<boolean name="sample_visible" value="maybe"/>"#;
-    bad(rc, maybe, r#"value="maybe""#, "maybe");
+    // (plugin, properties, where the error points, words it contains)
+    #[rustfmt::skip]
+    let cases = [
+        (rc, r#"<float name="alpha" value="-0.1"/>"#, "alpha", "positive"),
+        (rc, r#"<float name="alpha_u" value="0.1"/> <float name="alpha_v" value="0"/>"#, "alpha_v", "positive"),
+        (rc, r#"<float name="alpha_u" value="0.1"/>"#, "alpha_u", "alpha_v"),
+        (rc, r#"<float name="alpha" value="0.1"/>
+        <float name="alpha_u" value="0.1"/> <float name="alpha_v" value="0.2"/>"#, "alpha", "not both"),
+        (rc, r#"<string name="distribution" value="phong"/>"#, "distribution", "phong"),
+        (c, r#"<string name="material" value="Unobtainium"/>"#, "material", "unknown conductor \"Unobtainium\""),
+        // Names are case-sensitive, as Mitsuba's file lookup is.
+        (rc, r#"<string name="material" value="au"/>"#, "material", "unknown conductor"),
+        (c, &au_eta, "material", "not both"),
+        (c, &au_k, "k", "unused"),
+        (c, r#"<float name="eta" value="-1"/>"#, "eta", "non-negative"),
+        (rc, r#"<boolean name="sample_visible" value="maybe"/>"#, r#"value="maybe""#, "maybe"),
+    ];
+    for (plugin, props, prop, words) in cases {
+        bad(plugin, props, prop, words);
+    }
 }

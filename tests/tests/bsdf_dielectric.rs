@@ -14,9 +14,12 @@
 //! a wrong index for the Mitsuba sample table, a plain (non-generalized) reciprocity check.
 
 use glam::{Vec2, Vec3};
-use tessera::stats::{sidak_alpha, BsdfChi2, Chi2Result, Pcg32, SphereChi2};
+use tessera::stats::{BsdfChi2, Chi2Result, Pcg32, SphereChi2};
 use tessera_core::bsdf::Bsdf;
-use tessera_tests::bsdf::{assert_bad_bsdf, dir_at, load_bsdf_xml};
+use tessera_tests::bsdf::{
+    assert_bad_bsdf as bad, assert_chi2_passes, dir_at as dir, load_bsdf_xml as load, rough_xml,
+    uniform_direction, CHI2_HALF as CHI2,
+};
 
 const UV: Vec2 = Vec2::new(0.25, 0.75);
 
@@ -31,38 +34,15 @@ const CHI2_DELTA: BsdfChi2 = BsdfChi2 {
     samples: 100_000,
 };
 
-/// BsdfChi2's grid with half its default sample count, to keep the file fast.
-const CHI2: BsdfChi2 = BsdfChi2 {
-    theta_bins: 20,
-    phi_bins: 40,
-    samples: 500_000,
-};
-
 const TINTS: &str = r#"<rgb name="specular_reflectance" value="0.9, 0.8, 0.7"/>
     <rgb name="specular_transmittance" value="0.3, 0.6, 0.9"/>"#;
 
-fn load(xml: &str) -> Bsdf {
-    load_bsdf_xml(xml)
-}
-
-fn dir(deg: f32, phi: f32) -> Vec3 {
-    dir_at(deg, phi)
-}
-
 fn check_chi2(name: &str, r: &Chi2Result) {
-    let a = sidak_alpha(0.01, N_CHI2);
-    println!("{name}: {r}");
-    assert!(r.passes(a), "{name}: {r} (alpha = {a:.3e})");
+    assert_chi2_passes(name, r, N_CHI2)
 }
 
 fn rough(dist: &str, au: f32, av: f32, visible: bool, extra: &str) -> String {
-    format!(
-        r#"<bsdf type="roughdielectric">
-            <string name="distribution" value="{dist}"/>
-            <float name="alpha_u" value="{au}"/> <float name="alpha_v" value="{av}"/>
-            <boolean name="sample_visible" value="{visible}"/> {extra}
-        </bsdf>"#
-    )
+    rough_xml("roughdielectric", dist, au, av, visible, extra)
 }
 
 fn smooth(plugin: &str, extra: &str) -> String {
@@ -328,13 +308,7 @@ fn reciprocity_error(b: &Bsdf, eta: f32, plain: bool, seed: u64) -> f32 {
     let mut rng = Pcg32::new(seed);
     let (mut worst, mut nonzero) = (0.0f32, [0usize; 2]);
     for _ in 0..40_000 {
-        let mut pick = || {
-            let u = rng.next_vec2();
-            let z = 2.0 * u.x - 1.0;
-            let r = (1.0 - z * z).max(0.0).sqrt();
-            let p = std::f32::consts::TAU * u.y;
-            Vec3::new(r * p.cos(), r * p.sin(), z)
-        };
+        let mut pick = || uniform_direction(rng.next_vec2(), true);
         let (wi, wo) = (pick(), pick());
         if wi.z.abs() < 1e-2 || wo.z.abs() < 1e-2 {
             continue;
@@ -424,59 +398,24 @@ fn defaults_match_mitsuba() {
     );
 }
 
-fn bad(plugin: &str, props: &str, prop: &str, words: &str) {
-    assert_bad_bsdf(plugin, props, prop, words)
-}
-
 #[test]
 fn bad_parameters_are_located_errors() {
     let (d, rd, td) = ("dielectric", "roughdielectric", "thindielectric");
-    bad(
-        d,
-        r#"<float name="int_ior" value="-1.5"/>"#,
-        "int_ior",
-        "positive",
-    );
-    bad(
-        td,
-        r#"<float name="ext_ior" value="0"/>"#,
-        "ext_ior",
-        "positive",
-    );
-    bad(
-        rd,
-        r#"<float name="int_ior" value="0"/>"#,
-        "int_ior",
-        "positive",
-    );
-    let glass = r#"<string name="int_ior" value="glass"/>"#;
-    bad(d, glass, "int_ior", "unknown material \"glass\"");
-    let same = r#"<float name="int_ior" value="1.33"/> <float name="ext_ior" value="1.33"/>"#;
-    bad(rd, same, "int_ior", "must differ");
-    bad(
-        rd,
-        r#"<float name="alpha" value="-0.2"/>"#,
-        "alpha",
-        "positive",
-    );
-    bad(
-        rd,
-        r#"<string name="distribution" value="blinn"/>"#,
-        "distribution",
-        "blinn",
-    );
-    bad(
-        rd,
-        r#"<float name="alpha_v" value="0.2"/>"#,
-        "alpha_v",
-        "alpha_u",
-    );
-    let bright = r#"<rgb name="specular_transmittance" value="1.5"/>"#;
-    bad(d, bright, "specular_transmittance", "[0, 1]");
-    bad(
-        td,
-        r#"<float name="alpha" value="0.2"/>"#,
-        "alpha",
-        "unused",
-    );
+    // (plugin, properties, where the error points, words it contains)
+    #[rustfmt::skip]
+    let cases = [
+        (d, r#"<float name="int_ior" value="-1.5"/>"#, "int_ior", "positive"),
+        (td, r#"<float name="ext_ior" value="0"/>"#, "ext_ior", "positive"),
+        (rd, r#"<float name="int_ior" value="0"/>"#, "int_ior", "positive"),
+        (d, r#"<string name="int_ior" value="glass"/>"#, "int_ior", "unknown material \"glass\""),
+        (rd, r#"<float name="int_ior" value="1.33"/> <float name="ext_ior" value="1.33"/>"#, "int_ior", "must differ"),
+        (rd, r#"<float name="alpha" value="-0.2"/>"#, "alpha", "positive"),
+        (rd, r#"<string name="distribution" value="blinn"/>"#, "distribution", "blinn"),
+        (rd, r#"<float name="alpha_v" value="0.2"/>"#, "alpha_v", "alpha_u"),
+        (d, r#"<rgb name="specular_transmittance" value="1.5"/>"#, "specular_transmittance", "[0, 1]"),
+        (td, r#"<float name="alpha" value="0.2"/>"#, "alpha", "unused"),
+    ];
+    for (plugin, props, prop, words) in cases {
+        bad(plugin, props, prop, words);
+    }
 }

@@ -94,61 +94,22 @@ fn roughplastic_samples_its_pdf() {
         <boolean name="nonlinear" value="true"/>"#;
     let dark = r#"<rgb name="diffuse_reflectance" value="0.05, 0.05, 0.05"/>"#;
     let inverted = r#"<float name="int_ior" value="1.1"/><float name="ext_ior" value="1.4"/>"#;
-    let cases = [
-        (
-            "beckmann 0.1 visible",
-            rough("beckmann", 0.1, true, ""),
-            0.0,
-        ),
-        (
-            "beckmann 0.1 visible",
-            rough("beckmann", 0.1, true, ""),
-            45.0,
-        ),
-        (
-            "beckmann 0.1 visible",
-            rough("beckmann", 0.1, true, ""),
-            85.0,
-        ),
-        (
-            "beckmann 0.5 all normals",
-            rough("beckmann", 0.5, false, colour),
-            30.0,
-        ),
-        (
-            "beckmann 0.05 all normals, dark",
-            rough("beckmann", 0.05, false, dark),
-            80.0,
-        ),
-        (
-            "ggx 0.3 visible, colour",
-            rough("ggx", 0.3, true, colour),
-            20.0,
-        ),
-        (
-            "ggx 0.3 visible, colour",
-            rough("ggx", 0.3, true, colour),
-            80.0,
-        ),
-        (
-            "ggx 0.05 all normals, dark",
-            rough("ggx", 0.05, false, dark),
-            60.0,
-        ),
-        ("ggx 0.8 all normals", rough("ggx", 0.8, false, ""), 87.0),
-        (
-            "ggx 0.2 visible, eta 0.79",
-            rough("ggx", 0.2, true, inverted),
-            40.0,
-        ),
-        (
-            "beckmann 0.3 visible, eta 0.79",
-            rough("beckmann", 0.3, true, inverted),
-            75.0,
-        ),
+    // (label, material, incidences in degrees): test k (in this order) uses seed 6 + k.
+    #[rustfmt::skip]
+    let groups = [
+        ("beckmann 0.1 visible", rough("beckmann", 0.1, true, ""), &[0.0, 45.0, 85.0][..]),
+        ("beckmann 0.5 all normals", rough("beckmann", 0.5, false, colour), &[30.0]),
+        ("beckmann 0.05 all normals, dark", rough("beckmann", 0.05, false, dark), &[80.0]),
+        ("ggx 0.3 visible, colour", rough("ggx", 0.3, true, colour), &[20.0, 80.0]),
+        ("ggx 0.05 all normals, dark", rough("ggx", 0.05, false, dark), &[60.0]),
+        ("ggx 0.8 all normals", rough("ggx", 0.8, false, ""), &[87.0]),
+        ("ggx 0.2 visible, eta 0.79", rough("ggx", 0.2, true, inverted), &[40.0]),
+        ("beckmann 0.3 visible, eta 0.79", rough("beckmann", 0.3, true, inverted), &[75.0]),
     ];
-    let cases: Vec<(&str, &str, f32)> =
-        cases.iter().map(|(n, x, d)| (*n, x.as_str(), *d)).collect();
+    let cases: Vec<(&str, &str, f32)> = groups
+        .iter()
+        .flat_map(|(n, x, degs)| degs.iter().map(move |&d| (*n, x.as_str(), d)))
+        .collect();
     chi2_cases(&cases, 6);
 }
 
@@ -161,37 +122,28 @@ fn a_wrong_component_probability_is_rejected() {
     let claimed =
         bsdf(r#"<bsdf type="plastic"><float name="diffuse_reflectance" value="0.2"/></bsdf>"#);
     let wi = dir(10.0);
-    let mut rng = Pcg32::new(99);
-    let r = SphereChi2 {
-        theta_bins: 20,
-        phi_bins: 40,
-        samples: 500_000,
-    }
-    .run(
-        |u| {
-            let s = drawn.sample(wi, rng.next_f32(), u, UV)?;
-            (!s.delta).then_some(s.wo)
-        },
-        |w| f64::from(claimed.pdf(wi, w, UV)),
-        7,
-    );
+    // The non-delta samples of `drawn` judged against `pdf_of`'s pdf.
+    let run = |pdf_of: &Bsdf| {
+        let mut rng = Pcg32::new(99);
+        SphereChi2 {
+            theta_bins: 20,
+            phi_bins: 40,
+            samples: 500_000,
+        }
+        .run(
+            |u| {
+                let s = drawn.sample(wi, rng.next_f32(), u, UV)?;
+                (!s.delta).then_some(s.wo)
+            },
+            |w| f64::from(pdf_of.pdf(wi, w, UV)),
+            7,
+        )
+    };
+    let r = run(&claimed);
     println!("control: {r}");
     assert!(!r.passes(alpha()), "{r}");
     // The same harness with the right pdf passes.
-    let mut rng = Pcg32::new(99);
-    let r = SphereChi2 {
-        theta_bins: 20,
-        phi_bins: 40,
-        samples: 500_000,
-    }
-    .run(
-        |u| {
-            let s = drawn.sample(wi, rng.next_f32(), u, UV)?;
-            (!s.delta).then_some(s.wo)
-        },
-        |w| f64::from(drawn.pdf(wi, w, UV)),
-        7,
-    );
+    let r = run(&drawn);
     assert!(r.passes(alpha()), "{r}");
 }
 
@@ -365,59 +317,21 @@ fn coating_tables_approach_the_smooth_limit() {
 /// Every bad parameter is an error located at the property (line 3 of the inline file).
 #[test]
 fn bad_parameters_are_located_errors() {
+    // (plugin, property line, words the error contains)
+    #[rustfmt::skip]
     let cases = [
-        (
-            "plastic",
-            r#"<float name="int_ior" value="-1.5"/>"#,
-            "int_ior",
-        ),
+        ("plastic", r#"<float name="int_ior" value="-1.5"/>"#, "int_ior"),
         ("plastic", r#"<float name="ext_ior" value="0"/>"#, "ext_ior"),
-        (
-            "plastic",
-            r#"<string name="int_ior" value="unobtainium"/>"#,
-            "unknown material",
-        ),
-        (
-            "plastic",
-            r#"<float name="diffuse_reflectance" value="1.2"/>"#,
-            "diffuse_reflectance",
-        ),
-        (
-            "plastic",
-            r#"<float name="specular_reflectance" value="-0.1"/>"#,
-            "specular_reflectance",
-        ),
+        ("plastic", r#"<string name="int_ior" value="unobtainium"/>"#, "unknown material"),
+        ("plastic", r#"<float name="diffuse_reflectance" value="1.2"/>"#, "diffuse_reflectance"),
+        ("plastic", r#"<float name="specular_reflectance" value="-0.1"/>"#, "specular_reflectance"),
         ("plastic", r#"<float name="alpha" value="0.1"/>"#, "alpha"),
-        (
-            "roughplastic",
-            r#"<float name="alpha" value="-0.1"/>"#,
-            "alpha",
-        ),
-        (
-            "roughplastic",
-            r#"<float name="alpha" value="0"/>"#,
-            "alpha",
-        ),
-        (
-            "roughplastic",
-            r#"<string name="distribution" value="phong"/>"#,
-            "distribution",
-        ),
-        (
-            "roughplastic",
-            r#"<float name="int_ior" value="1.000277"/>"#,
-            "differ",
-        ),
-        (
-            "roughplastic",
-            r#"<float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.2"/>"#,
-            "isotropic",
-        ),
-        (
-            "roughplastic",
-            r#"<float name="int_ior" value="0"/>"#,
-            "int_ior",
-        ),
+        ("roughplastic", r#"<float name="alpha" value="-0.1"/>"#, "alpha"),
+        ("roughplastic", r#"<float name="alpha" value="0"/>"#, "alpha"),
+        ("roughplastic", r#"<string name="distribution" value="phong"/>"#, "distribution"),
+        ("roughplastic", r#"<float name="int_ior" value="1.000277"/>"#, "differ"),
+        ("roughplastic", r#"<float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.2"/>"#, "isotropic"),
+        ("roughplastic", r#"<float name="int_ior" value="0"/>"#, "int_ior"),
     ];
     assert_cases_rejected_on_their_line(&cases, false);
     // Equal alpha_u / alpha_v are the isotropic model.

@@ -1,8 +1,34 @@
 //! The Nori / Wakame dialect and Mitsuba 3's vocabulary describe the same scene: one file of
-//! each, written for the same scene, render the same bits.
+//! each, written for the same scene, render the same bits. (The camera blocks are written out
+//! in each dialect; the objects come from one template filled with each dialect's words.)
 use tessera_tests::{load_xml, render_loaded};
 
-const NORI: &str = r#"<scene>
+/// The objects of the test scene in a dialect's words: the shape tag, the transform's name, the
+/// colour tag and the diffuse colour's name.
+fn objects(shape: &str, to_world: &str, color: &str, albedo: &str) -> String {
+    format!(
+        r#"  <{shape} type="obj">
+    <string name="filename" value="meshes/cbox_floor.obj"/>
+    <transform name="{to_world}"><scale value="0.002"/><translate x="-0.5" y="0" z="-0.5"/></transform>
+    <bsdf type="diffuse"><{color} name="{albedo}" value="0.6, 0.5, 0.4"/></bsdf>
+  </{shape}>
+  <{shape} type="sphere">
+    <point name="center" value="0, 0.6, 0"/>
+    <float name="radius" value="0.5"/>
+    <bsdf type="diffuse"><{color} name="{albedo}" value="0.2, 0.7, 0.3"/></bsdf>
+  </{shape}>
+  <{shape} type="sphere">
+    <point name="center" value="1, 2, 1"/>
+    <float name="radius" value="0.3"/>
+    <emitter type="area"><{color} name="radiance" value="8, 8, 6"/></emitter>
+  </{shape}>
+"#
+    )
+}
+
+/// The test scene in Nori's dialect.
+fn nori() -> String {
+    let camera = r#"<scene>
   <integrator type="path_mis"/>
   <sampler type="independent"><integer name="sampleCount" value="8"/></sampler>
   <camera type="perspective">
@@ -13,24 +39,16 @@ const NORI: &str = r#"<scene>
     <integer name="height" value="16"/>
     <rfilter type="gaussian"/>
   </camera>
-  <mesh type="obj">
-    <string name="filename" value="meshes/cbox_floor.obj"/>
-    <transform name="toWorld"><scale value="0.002"/><translate x="-0.5" y="0" z="-0.5"/></transform>
-    <bsdf type="diffuse"><color name="albedo" value="0.6, 0.5, 0.4"/></bsdf>
-  </mesh>
-  <mesh type="sphere">
-    <point name="center" value="0, 0.6, 0"/>
-    <float name="radius" value="0.5"/>
-    <bsdf type="diffuse"><color name="albedo" value="0.2, 0.7, 0.3"/></bsdf>
-  </mesh>
-  <mesh type="sphere">
-    <point name="center" value="1, 2, 1"/>
-    <float name="radius" value="0.3"/>
-    <emitter type="area"><color name="radiance" value="8, 8, 6"/></emitter>
-  </mesh>
-</scene>"#;
+"#;
+    format!(
+        "{camera}{}</scene>",
+        objects("mesh", "toWorld", "color", "albedo")
+    )
+}
 
-const MITSUBA: &str = r#"<scene version="3.0.0">
+/// The test scene in Mitsuba 3's vocabulary.
+fn mitsuba() -> String {
+    let sensor = r#"<scene version="3.0.0">
   <integrator type="path"/>
   <sensor type="perspective">
     <transform name="to_world"><lookat origin="0, 1, 6" target="0, 0.5, 0" up="0, 1, 0"/></transform>
@@ -42,27 +60,17 @@ const MITSUBA: &str = r#"<scene version="3.0.0">
       <rfilter type="gaussian"/>
     </film>
   </sensor>
-  <shape type="obj">
-    <string name="filename" value="meshes/cbox_floor.obj"/>
-    <transform name="to_world"><scale value="0.002"/><translate x="-0.5" y="0" z="-0.5"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.6, 0.5, 0.4"/></bsdf>
-  </shape>
-  <shape type="sphere">
-    <point name="center" value="0, 0.6, 0"/>
-    <float name="radius" value="0.5"/>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.7, 0.3"/></bsdf>
-  </shape>
-  <shape type="sphere">
-    <point name="center" value="1, 2, 1"/>
-    <float name="radius" value="0.3"/>
-    <emitter type="area"><rgb name="radiance" value="8, 8, 6"/></emitter>
-  </shape>
-</scene>"#;
+"#;
+    format!(
+        "{sensor}{}</scene>",
+        objects("shape", "to_world", "rgb", "reflectance")
+    )
+}
 
 #[test]
 fn nori_and_mitsuba_dialects_render_the_same_bits() {
-    let nori = load_xml(NORI, &[]);
-    let mitsuba = load_xml(MITSUBA, &[]);
+    let nori = load_xml(&nori(), &[]);
+    let mitsuba = load_xml(&mitsuba(), &[]);
     assert_eq!(nori.spp, 8);
     assert_eq!(
         (nori.scene.camera.width, nori.scene.camera.height),

@@ -1,32 +1,17 @@
-//! Renders with the zsobol sampler are unbiased: closed-form scenes (from `analytic.rs`)
-//! rendered with `R` different seeds, each seed's image mean one independent estimate (the
+//! Renders with the zsobol sampler are unbiased: closed-form scenes (from
+//! `tessera_tests::analytic_scenes`) rendered with `R` different seeds, each seed's image mean one independent estimate (the
 //! seed enters every hash, so the randomizations are independent), t-tested across seeds
 //! against the analytic value at significance 0.01, Sidak-corrected over every test here.
 //! The samples within one pixel are not independent (that is the point of the sampler), so
 //! their sample variance is not the estimate's variance; the spread across seeds is. A control
 //! shows the test rejects a reference 2% off, and the image is also bit for bit the same for
 //! any thread count and tile size and when its samples are rendered in two ranges.
-use statrs::distribution::{ContinuousCDF, StudentsT};
 use tessera::render::{render, render_into, Framebuffer, RenderOptions};
 use tessera::scene::LoadedScene;
 use tessera::stats::sidak_alpha;
 use tessera_core::sampling::SamplerKind;
-use tessera_tests::analytic_scenes::{FURNACE_BOX, SPHERE_LIGHT};
-use tessera_tests::load_xml;
-
-const CLOSED_SPHERE: &str = r#"<scene version="3.0.0">
-  <sensor type="perspective">
-    <float name="fov" value="30"/>
-    <transform name="to_world"><lookat origin="0, 0, 0" target="0, 0, 1" up="0, 1, 0"/></transform>
-    <film type="hdrfilm"><integer name="width" value="4"/><integer name="height" value="4"/><rfilter type="box"/></film>
-  </sensor>
-  <shape type="sphere">
-    <float name="radius" value="2"/>
-    <boolean name="flip_normals" value="true"/>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.3, 0.5, 0.7"/></bsdf>
-    <emitter type="area"><rgb name="radiance" value="1"/></emitter>
-  </shape>
-</scene>"#;
+use tessera_tests::analytic_scenes::{closed_sphere, furnace_box, sphere_light};
+use tessera_tests::{load_xml, t_test_f32};
 
 /// Seeds per case.
 const SEEDS: u64 = 40;
@@ -34,36 +19,43 @@ const SEEDS: u64 = 40;
 const SPP: u64 = 64;
 
 /// (label, scene, integrator, max_depth, expected RGB).
-fn cases() -> Vec<(&'static str, &'static str, &'static str, i64, [f64; 3])> {
+fn cases() -> Vec<(&'static str, String, &'static str, i64, [f64; 3])> {
     let a = [0.3f64, 0.5, 0.7];
     let (l, r, h) = (10.0f64, 0.5f64, 3.0f64);
     let light = [0.7f64, 0.5, 0.3].map(|a| a * l * r * r / (h * h));
+    let closed_sphere = || closed_sphere(30.0, 4);
     vec![
         (
             "closed sphere path_mis",
-            CLOSED_SPHERE,
+            closed_sphere(),
             "path_mis",
             -1,
             a.map(|a| 1.0 / (1.0 - a)),
         ),
         (
             "closed sphere path_mats depth 3",
-            CLOSED_SPHERE,
+            closed_sphere(),
             "path_mats",
             3,
             a.map(|a| 1.0 + a + a * a),
         ),
-        ("sphere light path_mis", SPHERE_LIGHT, "path_mis", 2, light),
+        (
+            "sphere light path_mis",
+            sphere_light(),
+            "path_mis",
+            2,
+            light,
+        ),
         (
             "sphere light path_mats",
-            SPHERE_LIGHT,
+            sphere_light(),
             "path_mats",
             2,
             light,
         ),
         (
             "furnace box path_ems",
-            FURNACE_BOX,
+            furnace_box(),
             "path_ems",
             -1,
             a.map(|a| 1.0 / (1.0 - a)),
@@ -107,16 +99,13 @@ fn image_mean(fb: &Framebuffer) -> [f64; 3] {
     m
 }
 
-/// Two-sided p-value of the mean of `xs` against `expected`; the squared standard error gets
-/// `(4 f32 ulps of the reference)^2` added, as in `assert_pixel_matches` (f32 rendering).
+/// Two-sided p-value of the mean of `xs` against `expected`, by
+/// [`t_test_f32`](tessera_tests::t_test_f32) (f32 rendering).
 fn p_value(xs: &[f64], expected: f64) -> f64 {
     let n = xs.len() as f64;
     let mean = xs.iter().sum::<f64>() / n;
     let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0);
-    let ulp = expected.abs() * f32::EPSILON as f64;
-    let se = (var / n + (4.0 * ulp).powi(2)).sqrt();
-    let t = (mean - expected) / se;
-    2.0 * StudentsT::new(0.0, 1.0, n - 1.0).unwrap().sf(t.abs())
+    t_test_f32(n, mean, var, expected).1
 }
 
 #[test]
@@ -125,7 +114,7 @@ fn zsobol_renders_are_unbiased() {
     let alpha = sidak_alpha(0.01, cases.len() * 3);
     let mut control_rejected = false;
     for (label, xml, integ, depth, expected) in cases {
-        let l = load_zsobol(xml, integ, depth, SPP);
+        let l = load_zsobol(&xml, integ, depth, SPP);
         let means: Vec<[f64; 3]> = (0..SEEDS)
             .map(|seed| {
                 let o = render_opts(0..SPP, 2, 16, 1000 + seed);
@@ -149,7 +138,7 @@ fn zsobol_renders_are_unbiased() {
 
 #[test]
 fn zsobol_images_do_not_depend_on_threads_tiles_or_splits() {
-    let l = load_zsobol(CLOSED_SPHERE, "path_mis", -1, 64);
+    let l = load_zsobol(&closed_sphere(30.0, 4), "path_mis", -1, 64);
     let whole = render(
         &l.scene,
         &l.integrator,

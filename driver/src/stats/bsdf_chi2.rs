@@ -33,9 +33,9 @@ use glam::{Vec2, Vec3};
 use tessera_core::bsdf::{Bsdf, BsdfSample};
 
 use super::chi2::{chi2_test, Chi2Result, DEFAULT_MIN_EXPECTED};
+use super::histogram::cell_index;
 use super::quadrature::grid_probabilities;
 use super::rng::Pcg32;
-use super::sphere_chi2::cell_index;
 
 /// Chi-square test configuration for BSDF sampling.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -28,6 +28,7 @@
 pub mod albedo_ttest;
 pub mod bsdf_chi2;
 pub mod chi2;
+mod histogram;
 pub mod plane_chi2;
 mod quadrature;
 pub mod rng;

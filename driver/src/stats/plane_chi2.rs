@@ -6,7 +6,7 @@
 //! sphere: for position samplers whose output can be mapped to the square (triangle
 //! barycentrics, a parametrized surface's `(u, v)`, a 2-D warp).
 //!
-//! 1. `samples` points `u` uniform in `[0,1)^2` are drawn from a [`Pcg32`] seeded with `seed`
+//! 1. `samples` points `u` uniform in `[0,1)^2` are drawn from a [`Pcg32`](super::Pcg32) seeded with `seed`
 //!    and passed to the sampler; the returned points are counted in `bins_x × bins_y` equal
 //!    cells. A failed sample (`None`) lands nowhere; the pdf must then integrate to the
 //!    probability of success.
@@ -14,7 +14,7 @@
 //!    8×8-point Gauss–Legendre cubature (essentially exact for pdfs smooth inside cells; about
 //!    1e-4 of a cell's probability at worst for a jump inside a cell, such as a triangle's
 //!    diagonal; see `quadrature.rs`).
-//! 3. [`chi2_test`] compares observed and expected counts with pooling of sparse cells.
+//! 3. [`chi2_test`](super::chi2_test) compares observed and expected counts with pooling of sparse cells.
 //! 4. The pdf's integral over the square is reported as `pdf_integral` and must be 1 (within
 //!    [`PDF_INTEGRAL_TOLERANCE`](super::PDF_INTEGRAL_TOLERANCE)) if the sampler never failed,
 //!    at most 1 otherwise.
@@ -25,10 +25,8 @@
 
 use glam::Vec2;
 
-use super::chi2::{chi2_test, Chi2Result, DEFAULT_MIN_EXPECTED};
-use super::quadrature::grid_probabilities;
-use super::rng::Pcg32;
-use super::sphere_chi2::cell_index;
+use super::chi2::Chi2Result;
+use super::histogram::{cell_index, grid_chi2};
 
 /// How far outside `[0,1]^2` a sampled point may be (f32 round-off) before the test fails.
 const DOMAIN_TOLERANCE: f64 = 1e-6;
@@ -69,49 +67,31 @@ impl PlaneChi2 {
         seed: u64,
     ) -> Chi2Result {
         let (nx, ny) = (self.bins_x, self.bins_y);
-        assert!(
-            nx > 0 && ny > 0 && self.samples > 0,
-            "PlaneChi2: bins and samples must be > 0"
-        );
-
-        let mut rng = Pcg32::new(seed);
-        let mut observed = vec![0.0f64; nx * ny];
-        let mut failures = 0usize;
         let inside = |t: f64| (-DOMAIN_TOLERANCE..=1.0 + DOMAIN_TOLERANCE).contains(&t);
-        for k in 0..self.samples {
-            let u = rng.next_vec2();
+        let cell = |k: usize, u: Vec2| {
             let Some(p) = sample(u) else {
-                failures += 1;
-                continue;
+                return Ok(None);
             };
             let (x, y) = (f64::from(p.x), f64::from(p.y));
             if !(inside(x) && inside(y)) {
-                return Chi2Result::failure(format!(
+                return Err(format!(
                     "sample {k} (u = {u}): the sampler returned {p}, outside [0,1]^2"
                 ));
             }
-            observed[cell_index(x, nx) * ny + cell_index(y, ny)] += 1.0;
-        }
-
-        let mut bad_pdf: Option<(Vec2, f64)> = None;
-        let mut density = |x: f64, y: f64| {
-            let p = Vec2::new(x as f32, y as f32);
-            let v = pdf(p);
-            if !(v.is_finite() && v >= 0.0) && bad_pdf.is_none() {
-                bad_pdf = Some((p, v));
-            }
-            v
+            Ok(Some(cell_index(x, nx) * ny + cell_index(y, ny)))
         };
-        let probs = grid_probabilities(&mut density, (0.0, 1.0, nx), (0.0, 1.0, ny), self.samples);
-        if let Some((p, v)) = bad_pdf {
-            return Chi2Result::failure(format!("pdf({p}) = {v} is negative or not finite"));
-        }
-
-        let n = self.samples as f64;
-        let expected: Vec<f64> = probs.iter().map(|p| p * n).collect();
-        let mut result = chi2_test(&observed, &expected, DEFAULT_MIN_EXPECTED);
-        result.check_pdf_integral(probs.iter().sum(), failures);
-        result
+        grid_chi2(
+            "PlaneChi2",
+            self.samples,
+            seed,
+            (0.0, 1.0, nx),
+            (0.0, 1.0, ny),
+            cell,
+            |x, y| {
+                let p = Vec2::new(x as f32, y as f32);
+                (p, pdf(p))
+            },
+        )
     }
 }
 

@@ -6,7 +6,7 @@
 //! (θ measured from +z) and in `φ ∈ [0, 2π)` (from +x towards +y). Since the solid angle is
 //! `dω = d(cos θ) dφ`, every cell has the same solid angle, `4π / (theta_bins · phi_bins)`.
 //!
-//! 1. `samples` points `u` uniform in `[0,1)^2` are drawn from a [`Pcg32`] seeded with
+//! 1. `samples` points `u` uniform in `[0,1)^2` are drawn from a [`Pcg32`](super::Pcg32) seeded with
 //!    `rng_seed`, passed to the sampler and the returned directions are counted per cell.
 //!    A sampler may fail (`None`): such a sample lands nowhere, so the observed counts sum to
 //!    fewer than `samples`, and the pdf must integrate to the probability of success.
@@ -15,7 +15,7 @@
 //!    smooth inside the cells (jumps on cell boundaries, like a hemisphere's edge, are fine),
 //!    and to about 1e-4 of the cell's probability for a jump through a cell (a cone's edge);
 //!    see `quadrature.rs`.
-//! 3. [`chi2_test`] compares the two with pooling of sparse cells.
+//! 3. [`chi2_test`](super::chi2_test) compares the two with pooling of sparse cells.
 //! 4. The integral of the pdf over the sphere is reported as `pdf_integral`. If the sampler
 //!    never failed it must be 1 within
 //!    [`PDF_INTEGRAL_TOLERANCE`](super::PDF_INTEGRAL_TOLERANCE); if it did fail, it must not
@@ -33,9 +33,8 @@ use std::f64::consts::TAU;
 
 use glam::{Vec2, Vec3};
 
-use super::chi2::{chi2_test, Chi2Result, DEFAULT_MIN_EXPECTED};
-use super::quadrature::grid_probabilities;
-use super::rng::Pcg32;
+use super::chi2::Chi2Result;
+use super::histogram::{cell_index, grid_chi2};
 
 /// Largest accepted `| |ω| - 1 |` for a sampled direction.
 const UNIT_LENGTH_TOLERANCE: f64 = 1e-3;
@@ -62,11 +61,6 @@ impl Default for SphereChi2 {
     }
 }
 
-/// Index of the cell containing `t ∈ [0, 1]` among `n` equal cells (clamped at the ends).
-pub(crate) fn cell_index(t: f64, n: usize) -> usize {
-    ((t * n as f64).floor().max(0.0) as usize).min(n - 1)
-}
-
 impl SphereChi2 {
     /// Runs the test: `sample` maps a uniform point of `[0,1)^2` to a unit direction (or `None`
     /// if sampling failed), `pdf` is the claimed density of the directions w.r.t. solid angle.
@@ -81,24 +75,14 @@ impl SphereChi2 {
         rng_seed: u64,
     ) -> Chi2Result {
         let (nt, np) = (self.theta_bins, self.phi_bins);
-        assert!(
-            nt > 0 && np > 0 && self.samples > 0,
-            "SphereChi2: bins and samples must be > 0"
-        );
-
-        let mut rng = Pcg32::new(rng_seed);
-        let mut observed = vec![0.0f64; nt * np];
-        let mut failures = 0usize;
-        for k in 0..self.samples {
-            let u = rng.next_vec2();
+        let cell = |k: usize, u: Vec2| {
             let Some(w) = sample(u) else {
-                failures += 1;
-                continue;
+                return Ok(None);
             };
             let (x, y, z) = (f64::from(w.x), f64::from(w.y), f64::from(w.z));
             let len = (x * x + y * y + z * z).sqrt();
             if len.is_nan() || (len - 1.0).abs() > UNIT_LENGTH_TOLERANCE {
-                return Chi2Result::failure(format!(
+                return Err(format!(
                     "sample {k} (u = {u}): the sampler returned {w}, which is not a unit vector"
                 ));
             }
@@ -108,29 +92,21 @@ impl SphereChi2 {
             }
             let it = cell_index(0.5 * (z + 1.0), nt);
             let ip = cell_index(phi / TAU, np);
-            observed[it * np + ip] += 1.0;
-        }
-
-        let mut bad_pdf: Option<(Vec3, f64)> = None;
-        let mut density = |z: f64, phi: f64| {
-            let s = (1.0 - z * z).max(0.0).sqrt();
-            let w = Vec3::new((s * phi.cos()) as f32, (s * phi.sin()) as f32, z as f32);
-            let v = pdf(w);
-            if !(v.is_finite() && v >= 0.0) && bad_pdf.is_none() {
-                bad_pdf = Some((w, v));
-            }
-            v
+            Ok(Some(it * np + ip))
         };
-        let probs = grid_probabilities(&mut density, (-1.0, 1.0, nt), (0.0, TAU, np), self.samples);
-        if let Some((w, v)) = bad_pdf {
-            return Chi2Result::failure(format!("pdf({w}) = {v} is negative or not finite"));
-        }
-
-        let n = self.samples as f64;
-        let expected: Vec<f64> = probs.iter().map(|p| p * n).collect();
-        let mut result = chi2_test(&observed, &expected, DEFAULT_MIN_EXPECTED);
-        result.check_pdf_integral(probs.iter().sum(), failures);
-        result
+        grid_chi2(
+            "SphereChi2",
+            self.samples,
+            rng_seed,
+            (-1.0, 1.0, nt),
+            (0.0, TAU, np),
+            cell,
+            |z, phi| {
+                let s = (1.0 - z * z).max(0.0).sqrt();
+                let w = Vec3::new((s * phi.cos()) as f32, (s * phi.sin()) as f32, z as f32);
+                (w, pdf(w))
+            },
+        )
     }
 }
 
