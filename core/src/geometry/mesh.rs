@@ -20,6 +20,26 @@ pub struct Mesh {
     pub indices: Vec<[u32; 3]>,
     /// Triangles chosen by area (None when the mesh has no area).
     area_dist: Option<Discrete1D>,
+    /// Unit geometric normal of each triangle (zero when degenerate), computed once: every hit
+    /// and every light sample on the mesh needs it.
+    face_normals: Vec<Vec3>,
+}
+
+/// What shading needs of a point on a triangle (see [`Mesh::hit`]).
+#[derive(Clone, Copy, Debug)]
+pub struct TriangleHit {
+    /// The point.
+    pub p: Vec3,
+    /// Its absolute error bound, per component.
+    pub p_err: Vec3,
+    /// Unit geometric normal (zero for a degenerate triangle).
+    pub ng: Vec3,
+    /// Unit shading normal (interpolated vertex normals, else `ng`).
+    pub ns: Vec3,
+    /// Texture coordinates.
+    pub uv: Vec2,
+    /// Derivative of position along u (see [`Mesh::dpdu`]).
+    pub dpdu: Vec3,
 }
 
 impl Mesh {
@@ -36,8 +56,15 @@ impl Mesh {
             uvs,
             indices,
             area_dist: None,
+            face_normals: Vec::new(),
         };
         m.area_dist = Discrete1D::new((0..m.indices.len()).map(|i| m.triangle_area(i)));
+        m.face_normals = (0..m.indices.len())
+            .map(|i| {
+                let [a, b, c] = m.vertices(i);
+                (b - a).cross(c - a).normalize_or_zero()
+            })
+            .collect();
         m
     }
     /// The three corners of triangle `i`.
@@ -63,41 +90,84 @@ impl Mesh {
     /// winding faces the viewer), or zero for a degenerate triangle.
     #[inline]
     pub fn face_normal(&self, i: usize) -> Vec3 {
-        let [a, b, c] = self.vertices(i);
-        (b - a).cross(c - a).normalize_or_zero()
+        self.face_normals[i]
     }
     /// Surface point, its error bound, geometric normal, shading normal and uv at barycentrics.
     pub fn surface(&self, i: usize, b1: f32, b2: f32) -> (Vec3, Vec3, Vec3, Vec3, Vec2) {
-        let b0 = 1.0 - b1 - b2;
-        let [i0, i1, i2] = self.indices[i].map(|k| k as usize);
-        let [p0, p1, p2] = [self.positions[i0], self.positions[i1], self.positions[i2]];
-        let p = p0 * b0 + p1 * b1 + p2 * b2;
-        let err = ((p0 * b0).abs() + (p1 * b1).abs() + (p2 * b2).abs()) * gamma(7);
-        let ng = self.face_normal(i);
-        let ns = if self.normals.is_empty() {
-            ng
-        } else {
-            let n = self.normals[i0] * b0 + self.normals[i1] * b1 + self.normals[i2] * b2;
-            let n = n.normalize_or_zero();
-            if n == Vec3::ZERO {
-                ng
-            } else {
-                n
-            }
-        };
-        let uv = if self.uvs.is_empty() {
-            Vec2::new(b1, b2)
-        } else {
-            self.uvs[i0] * b0 + self.uvs[i1] * b1 + self.uvs[i2] * b2
-        };
-        (p, err, ng, ns, uv)
+        let (idx, [p0, p1, p2]) = self.corners(i);
+        let (p, err) = interpolate_point(p0, p1, p2, b1, b2);
+        let ng = self.face_normals[i];
+        (
+            p,
+            err,
+            ng,
+            self.shading_normal(idx, ng, b1, b2),
+            self.uv(idx, b1, b2),
+        )
+    }
+    /// Everything [`Shape::interaction`](super::Shape::interaction) needs of a hit on triangle
+    /// `i` at barycentrics `(b1, b2)`, reading the triangle once: [`Mesh::surface`] and
+    /// [`Mesh::dpdu`] together.
+    #[inline]
+    pub fn hit(&self, i: usize, b1: f32, b2: f32) -> TriangleHit {
+        let (idx, [p0, p1, p2]) = self.corners(i);
+        let (p, p_err) = interpolate_point(p0, p1, p2, b1, b2);
+        let ng = self.face_normals[i];
+        TriangleHit {
+            p,
+            p_err,
+            ng,
+            ns: self.shading_normal(idx, ng, b1, b2),
+            uv: self.uv(idx, b1, b2),
+            dpdu: self.dpdu_of(idx, [p0, p1, p2]),
+        }
+    }
+    /// Point on triangle `i` at barycentrics `(b1, b2)`, its error bound and the unit geometric
+    /// and shading normals (what light sampling needs: no uv).
+    #[inline]
+    pub fn point(&self, i: usize, b1: f32, b2: f32) -> (Vec3, Vec3, Vec3, Vec3) {
+        let (idx, [p0, p1, p2]) = self.corners(i);
+        let (p, err) = interpolate_point(p0, p1, p2, b1, b2);
+        let ng = self.face_normals[i];
+        (p, err, ng, self.shading_normal(idx, ng, b1, b2))
     }
     /// Derivative of position along u on triangle `i`: from the texture coordinates, or, for a
     /// mesh without them, from the implicit (0,0), (1,0), (0,1) of Mitsuba 3 (`p1 - p0`). Zero
     /// where the uv map is degenerate.
     pub fn dpdu(&self, i: usize) -> Vec3 {
-        let [i0, i1, i2] = self.indices[i].map(|k| k as usize);
-        let [p0, p1, p2] = [self.positions[i0], self.positions[i1], self.positions[i2]];
+        let (idx, p) = self.corners(i);
+        self.dpdu_of(idx, p)
+    }
+    /// Vertex indices and positions of triangle `i`.
+    #[inline]
+    fn corners(&self, i: usize) -> ([usize; 3], [Vec3; 3]) {
+        let idx = self.indices[i].map(|k| k as usize);
+        (idx, idx.map(|k| self.positions[k]))
+    }
+    #[inline]
+    fn shading_normal(&self, [i0, i1, i2]: [usize; 3], ng: Vec3, b1: f32, b2: f32) -> Vec3 {
+        if self.normals.is_empty() {
+            return ng;
+        }
+        let b0 = 1.0 - b1 - b2;
+        let n = self.normals[i0] * b0 + self.normals[i1] * b1 + self.normals[i2] * b2;
+        let n = n.normalize_or_zero();
+        if n == Vec3::ZERO {
+            ng
+        } else {
+            n
+        }
+    }
+    #[inline]
+    fn uv(&self, [i0, i1, i2]: [usize; 3], b1: f32, b2: f32) -> Vec2 {
+        if self.uvs.is_empty() {
+            return Vec2::new(b1, b2);
+        }
+        let b0 = 1.0 - b1 - b2;
+        self.uvs[i0] * b0 + self.uvs[i1] * b1 + self.uvs[i2] * b2
+    }
+    #[inline]
+    fn dpdu_of(&self, [i0, i1, i2]: [usize; 3], [p0, p1, p2]: [Vec3; 3]) -> Vec3 {
         if self.uvs.is_empty() {
             return p1 - p0;
         }
@@ -116,4 +186,14 @@ impl Mesh {
         let b = square_to_uniform_triangle(Vec2::new(ux, u.y));
         Some((i, b.x, b.y))
     }
+}
+
+/// The point at barycentrics `(b1, b2)` and its error bound (pbrt-v4's bound for the
+/// interpolation).
+#[inline]
+fn interpolate_point(p0: Vec3, p1: Vec3, p2: Vec3, b1: f32, b2: f32) -> (Vec3, Vec3) {
+    let b0 = 1.0 - b1 - b2;
+    let p = p0 * b0 + p1 * b1 + p2 * b2;
+    let err = ((p0 * b0).abs() + (p1 * b1).abs() + (p2 * b2).abs()) * gamma(7);
+    (p, err)
 }

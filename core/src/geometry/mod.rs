@@ -9,7 +9,7 @@ mod triangle;
 
 pub use disk::Disk;
 pub use interaction::Interaction;
-pub use mesh::Mesh;
+pub use mesh::{Mesh, TriangleHit};
 pub use prim::{Hit, Prim};
 pub use shape::{area_to_solid_angle, PositionSample, Shape, ShapeKind};
 pub use sphere::{ConeSample, Sphere};

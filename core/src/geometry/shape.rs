@@ -67,8 +67,8 @@ impl Shape {
     pub fn interaction(&self, hit: &Hit, prim: &Prim, ray: &Ray, disks: &[Disk]) -> Interaction {
         let (p, p_err, ng, ns, uv, dpdu) = match (&self.kind, prim) {
             (ShapeKind::Mesh(m), Prim::Triangle { face, .. }) => {
-                let (p, err, ng, ns, uv) = m.surface(*face as usize, hit.uv.x, hit.uv.y);
-                (p, err, ng, ns, uv, m.dpdu(*face as usize))
+                let h = m.hit(*face as usize, hit.uv.x, hit.uv.y);
+                (h.p, h.p_err, h.ng, h.ns, h.uv, h.dpdu)
             }
             (ShapeKind::Sphere(s), _) => {
                 let (p, err) = s.project(ray.at(hit.t));
@@ -119,8 +119,7 @@ impl Shape {
         let (p, p_err, ng, ns) = match &self.kind {
             ShapeKind::Mesh(m) => {
                 let (i, b1, b2) = m.sample(u)?;
-                let (p, err, ng, ns, _) = m.surface(i, b1, b2);
-                (p, err, ng, ns)
+                m.point(i, b1, b2)
             }
             ShapeKind::Sphere(s) => {
                 let d = crate::sampling::warp::square_to_uniform_sphere(u);
