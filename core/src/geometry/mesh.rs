@@ -23,6 +23,8 @@ pub struct Mesh {
     /// Unit geometric normal of each triangle (zero when degenerate), computed once: every hit
     /// and every light sample on the mesh needs it.
     face_normals: Vec<Vec3>,
+    /// `1 / area()`, the density of [`Mesh::sample`] by area.
+    inv_area: f32,
 }
 
 /// What shading needs of a point on a triangle (see [`Mesh::hit`]).
@@ -57,6 +59,7 @@ impl Mesh {
             indices,
             area_dist: None,
             face_normals: Vec::new(),
+            inv_area: 0.0,
         };
         m.area_dist = Discrete1D::new((0..m.indices.len()).map(|i| m.triangle_area(i)));
         m.face_normals = (0..m.indices.len())
@@ -65,6 +68,7 @@ impl Mesh {
                 (b - a).cross(c - a).normalize_or_zero()
             })
             .collect();
+        m.inv_area = 1.0 / m.area();
         m
     }
     /// The three corners of triangle `i`.
@@ -85,6 +89,11 @@ impl Mesh {
     /// Total area.
     pub fn area(&self) -> f32 {
         self.area_dist.as_ref().map_or(0.0, |d| d.total() as f32)
+    }
+    /// `1 / area()` (infinite for a mesh without area).
+    #[inline]
+    pub fn inv_area(&self) -> f32 {
+        self.inv_area
     }
     /// Unit geometric normal of triangle `i` (`cross(p1 - p0, p2 - p0)`, so counter-clockwise
     /// winding faces the viewer), or zero for a degenerate triangle.

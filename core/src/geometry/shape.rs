@@ -44,6 +44,19 @@ pub struct PositionSample {
     pub ns: Vec3,
 }
 
+/// A point sampled on a shape for a reference point `r` ([`Shape::sample_toward`]).
+#[derive(Clone, Copy, Debug)]
+pub struct SampleToward {
+    /// The point.
+    pub ps: PositionSample,
+    /// Its solid-angle density at `r`.
+    pub pdf: f32,
+    /// `ps.p - r`.
+    pub d: Vec3,
+    /// `|d|`.
+    pub dist: f32,
+}
+
 impl Shape {
     /// Surface area.
     pub fn area(&self, disks: &[Disk]) -> f32 {
@@ -143,24 +156,52 @@ impl Shape {
     /// A point on the shape sampled for the reference point `r`, with its solid-angle density
     /// at `r`: cone sampling for spheres seen from outside, area sampling otherwise.
     pub fn sample_from(&self, r: Vec3, u: Vec2, disks: &[Disk]) -> Option<(PositionSample, f32)> {
+        self.sample_toward(r, u, disks).map(|s| (s.ps, s.pdf))
+    }
+
+    /// [`Shape::sample_from`] with the offset from `r` to the point and its length, which the
+    /// density needs anyway and light sampling needs next.
+    #[inline]
+    pub fn sample_toward(&self, r: Vec3, u: Vec2, disks: &[Disk]) -> Option<SampleToward> {
         if let ShapeKind::Sphere(s) = &self.kind {
             if let Some(cs) = s.sample_cone(r, u) {
                 let (p, p_err) = s.project(cs.p);
                 let n = self.orient(cs.n);
-                return Some((
-                    PositionSample {
+                let d = p - r;
+                return Some(SampleToward {
+                    ps: PositionSample {
                         p,
                         p_err,
                         ng: n,
                         ns: n,
                     },
-                    cs.pdf,
-                ));
+                    pdf: cs.pdf,
+                    d,
+                    dist: d.length(),
+                });
             }
         }
         let ps = self.sample_position(u, disks)?;
-        let pdf = area_to_solid_angle(r, ps.p, ps.ng, 1.0 / self.area(disks));
-        (pdf > 0.0 && pdf.is_finite()).then_some((ps, pdf))
+        // area_to_solid_angle, keeping the distance.
+        let d = ps.p - r;
+        let dist2 = d.length_squared();
+        let dist = libm::sqrtf(dist2);
+        let cos = ps.ng.dot(d).abs() / dist;
+        let pdf = if cos > 0.0 && dist2 > 0.0 {
+            self.inv_area(disks) * dist2 / cos
+        } else {
+            0.0
+        };
+        (pdf > 0.0 && pdf.is_finite()).then_some(SampleToward { ps, pdf, d, dist })
+    }
+
+    /// `1 / area` (stored for meshes).
+    #[inline]
+    fn inv_area(&self, disks: &[Disk]) -> f32 {
+        match &self.kind {
+            ShapeKind::Mesh(m) => m.inv_area(),
+            _ => 1.0 / self.area(disks),
+        }
     }
 
     /// The solid-angle density with which [`Shape::sample_from`] picks point `p` (geometric
@@ -171,7 +212,7 @@ impl Shape {
                 return pdf;
             }
         }
-        area_to_solid_angle(r, p, ng, 1.0 / self.area(disks))
+        area_to_solid_angle(r, p, ng, self.inv_area(disks))
     }
 }
 
