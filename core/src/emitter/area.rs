@@ -29,6 +29,7 @@ impl AreaLight {
         }
     }
     /// Samples a point on the shape for `it`.
+    #[inline]
     pub fn sample(&self, ctx: &EmitterCtx, it: &Interaction, u: Vec2) -> Option<EmitterSample> {
         let shape = &ctx.shapes[self.shape as usize];
         let SampleToward { ps, pdf, d, dist } = shape.sample_toward(it.p, u, ctx.disks)?;

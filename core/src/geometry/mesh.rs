@@ -189,6 +189,7 @@ impl Mesh {
     }
     /// Uniform point by area: triangle chosen by area, then uniform barycentrics.
     /// Returns `(triangle, b1, b2)`; `None` for a mesh without area.
+    #[inline]
     pub fn sample(&self, u: Vec2) -> Option<(usize, f32, f32)> {
         let dist = self.area_dist.as_ref()?;
         let (i, ux) = dist.sample_reuse(u.x);

@@ -77,6 +77,7 @@ impl Shape {
     }
 
     /// The full interaction for a hit on primitive `prim` of this shape.
+    #[inline]
     pub fn interaction(&self, hit: &Hit, prim: &Prim, ray: &Ray, disks: &[Disk]) -> Interaction {
         let (p, p_err, ng, ns, uv, dpdu) = match (&self.kind, prim) {
             (ShapeKind::Mesh(m), Prim::Triangle { face, .. }) => {
@@ -128,6 +129,7 @@ impl Shape {
     }
 
     /// A point uniformly distributed by area (density `1 / area`).
+    #[inline]
     pub fn sample_position(&self, u: Vec2, disks: &[Disk]) -> Option<PositionSample> {
         let (p, p_err, ng, ns) = match &self.kind {
             ShapeKind::Mesh(m) => {
