@@ -24,6 +24,7 @@ fn flip(v: Vec3) -> Vec3 {
 
 impl TwoSided {
     /// Evaluates the side `wi` is on.
+    #[inline]
     pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
         if wi.z >= 0.0 {
             self.front.eval(wi, wo, uv)
@@ -32,6 +33,7 @@ impl TwoSided {
         }
     }
     /// Density of the side `wi` is on.
+    #[inline]
     pub fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
         if wi.z >= 0.0 {
             self.front.pdf(wi, wo, uv)
@@ -40,6 +42,7 @@ impl TwoSided {
         }
     }
     /// Samples the side `wi` is on.
+    #[inline]
     pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
         if wi.z >= 0.0 {
             self.front.sample(wi, u1, u2, uv)

@@ -25,6 +25,7 @@ impl Frame {
     /// A frame around a unit normal whose first tangent follows `dpdu` (the surface's
     /// derivative along u, projected onto the tangent plane), as Mitsuba 3 orients anisotropic
     /// materials; falls back to [`Frame::from_normal`] where `dpdu` is degenerate.
+    #[inline]
     pub fn from_normal_tangent(n: Vec3, dpdu: Vec3) -> Self {
         let s = dpdu - n * n.dot(dpdu);
         let len2 = s.length_squared();
