@@ -150,8 +150,14 @@ impl Mesh {
     /// Vertex indices and positions of triangle `i`.
     #[inline]
     fn corners(&self, i: usize) -> ([usize; 3], [Vec3; 3]) {
-        let idx = self.indices[i].map(|k| k as usize);
-        (idx, idx.map(|k| self.positions[k]))
+        let [i0, i1, i2] = self.indices[i];
+        let idx = [i0 as usize, i1 as usize, i2 as usize];
+        let p = [
+            self.positions[idx[0]],
+            self.positions[idx[1]],
+            self.positions[idx[2]],
+        ];
+        (idx, p)
     }
     #[inline]
     fn shading_normal(&self, [i0, i1, i2]: [usize; 3], ng: Vec3, b1: f32, b2: f32) -> Vec3 {
