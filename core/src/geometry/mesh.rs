@@ -2,7 +2,7 @@
 //!
 //! Built by the driver from `obj`, `ply`, `rectangle` and `cube` shapes (see the driver's loaders
 //! for their scene parameters). Positions and normals are already transformed to world space.
-use crate::math::gamma;
+use crate::math::{gamma, Frame};
 use crate::sampling::{warp::square_to_uniform_triangle, Discrete1D};
 use alloc::vec::Vec;
 use glam::{Vec2, Vec3};
@@ -25,6 +25,10 @@ pub struct Mesh {
     face_normals: Vec<Vec3>,
     /// `1 / area()`, the density of [`Mesh::sample`] by area.
     inv_area: f32,
+    /// For a mesh without vertex normals, whose shading frame is constant over each triangle:
+    /// the frame's first tangent per triangle (`Frame::tangent(face normal, dpdu)`, zero where
+    /// that is degenerate), computed once. Empty otherwise.
+    flat_tangents: Vec<Vec3>,
 }
 
 /// What shading needs of a point on a triangle (see [`Mesh::hit`]).
@@ -42,6 +46,9 @@ pub struct TriangleHit {
     pub uv: Vec2,
     /// Derivative of position along u (see [`Mesh::dpdu`]).
     pub dpdu: Vec3,
+    /// `Frame::tangent(ns, dpdu)`, when the mesh has it stored (no vertex normals, so `ns` is
+    /// `ng`, and a non-degenerate `dpdu`); `None` means: compute the frame from `ns` and `dpdu`.
+    pub tangent: Option<Vec3>,
 }
 
 impl Mesh {
@@ -60,6 +67,7 @@ impl Mesh {
             area_dist: None,
             face_normals: Vec::new(),
             inv_area: 0.0,
+            flat_tangents: Vec::new(),
         };
         m.area_dist = Discrete1D::new((0..m.indices.len()).map(|i| m.triangle_area(i)));
         m.face_normals = (0..m.indices.len())
@@ -69,6 +77,14 @@ impl Mesh {
             })
             .collect();
         m.inv_area = 1.0 / m.area();
+        if m.normals.is_empty() {
+            m.flat_tangents = (0..m.indices.len())
+                .map(|i| {
+                    let (idx, p) = m.corners(i);
+                    Frame::tangent(m.face_normals[i], m.dpdu_of(idx, p)).unwrap_or(Vec3::ZERO)
+                })
+                .collect();
+        }
         m
     }
     /// The three corners of triangle `i`.
@@ -129,6 +145,11 @@ impl Mesh {
             ns: self.shading_normal(idx, ng, b1, b2),
             uv: self.uv(idx, b1, b2),
             dpdu: self.dpdu_of(idx, [p0, p1, p2]),
+            tangent: self
+                .flat_tangents
+                .get(i)
+                .copied()
+                .filter(|s| *s != Vec3::ZERO),
         }
     }
     /// Point on triangle `i` at barycentrics `(b1, b2)`, its error bound and the unit geometric
@@ -212,4 +233,48 @@ fn interpolate_point(p0: Vec3, p1: Vec3, p2: Vec3, b1: f32, b2: f32) -> (Vec3, V
     let p = p0 * b0 + p1 * b1 + p2 * b2;
     let err = ((p0 * b0).abs() + (p1 * b1).abs() + (p2 * b2).abs()) * gamma(7);
     (p, err)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use alloc::vec;
+
+    fn bits(v: Option<Vec3>) -> Option<[u32; 3]> {
+        v.map(|v| v.to_array().map(f32::to_bits))
+    }
+
+    #[test]
+    fn stored_tangents_are_the_computed_ones() {
+        // A flat mesh, with uvs (one triangle with a degenerate uv map, where the frame falls
+        // back to from_normal) and without.
+        let positions = vec![
+            Vec3::new(0.3, -1.0, 2.0),
+            Vec3::new(1.7, 0.2, -0.5),
+            Vec3::new(-0.4, 1.1, 0.9),
+            Vec3::new(2.0, 2.0, 2.5),
+        ];
+        let indices = vec![[0, 1, 2], [1, 3, 2], [0, 3, 1]];
+        let uvs = vec![
+            Vec2::new(0.0, 0.0),
+            Vec2::new(1.0, 0.0),
+            Vec2::new(0.0, 1.0),
+            Vec2::new(2.0, 0.0),
+        ];
+        for (uvs, want_fallbacks) in [(uvs, 1), (Vec::new(), 0)] {
+            let m = Mesh::new(positions.clone(), Vec::new(), uvs, indices.clone());
+            let mut fallbacks = 0;
+            for i in 0..indices.len() {
+                let h = m.hit(i, 0.2, 0.3);
+                let want = Frame::tangent(h.ns, h.dpdu);
+                fallbacks += usize::from(want.is_none());
+                assert_eq!(bits(h.tangent), bits(want), "triangle {i}");
+            }
+            assert_eq!(fallbacks, want_fallbacks);
+        }
+        // With vertex normals nothing is stored: the frame varies over the triangle.
+        let normals = vec![Vec3::Z; 4];
+        let m = Mesh::new(positions, normals, Vec::new(), indices);
+        assert!(m.hit(0, 0.2, 0.3).tangent.is_none());
+    }
 }

@@ -79,10 +79,10 @@ impl Shape {
     /// The full interaction for a hit on primitive `prim` of this shape.
     #[inline]
     pub fn interaction(&self, hit: &Hit, prim: &Prim, ray: &Ray, disks: &[Disk]) -> Interaction {
-        let (p, p_err, ng, ns, uv, dpdu) = match (&self.kind, prim) {
+        let (p, p_err, ng, ns, uv, dpdu, tangent) = match (&self.kind, prim) {
             (ShapeKind::Mesh(m), Prim::Triangle { face, .. }) => {
                 let h = m.hit(*face as usize, hit.uv.x, hit.uv.y);
-                (h.p, h.p_err, h.ng, h.ns, h.uv, h.dpdu)
+                (h.p, h.p_err, h.ng, h.ns, h.uv, h.dpdu, h.tangent)
             }
             (ShapeKind::Sphere(s), _) => {
                 let (p, err) = s.project(ray.at(hit.t));
@@ -93,7 +93,7 @@ impl Shape {
                     libm::acosf(n.z.clamp(-1.0, 1.0)) * crate::math::INV_PI,
                 );
                 // Along increasing longitude, as Mitsuba 3's sphere.
-                (p, err, n, n, uv, Vec3::new(-n.y, n.x, 0.0))
+                (p, err, n, n, uv, Vec3::new(-n.y, n.x, 0.0), None)
             }
             (ShapeKind::Disk(d), _) => {
                 let disk = &disks[*d as usize];
@@ -110,18 +110,28 @@ impl Shape {
                     disk.normal,
                     uv,
                     p - disk.to_world.point(Vec3::ZERO),
+                    None,
                 )
             }
             _ => unreachable_shape(),
         };
         let ng = self.orient(ng);
         let ns = self.orient(ns);
+        // A stored tangent is the one from_normal_tangent finds for the unflipped normal.
+        let frame = match tangent {
+            Some(s) if !self.flip_normals => Frame {
+                s,
+                t: ns.cross(s),
+                n: ns,
+            },
+            _ => Frame::from_normal_tangent(ns, dpdu),
+        };
         Interaction {
             p,
             p_err,
             t: hit.t,
             ng,
-            frame: Frame::from_normal_tangent(ns, dpdu),
+            frame,
             uv,
             shape: hit_shape(prim),
             wi: (-ray.d).normalize(),
