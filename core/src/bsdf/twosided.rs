@@ -64,11 +64,13 @@ impl TwoSided {
         }
     }
     /// Whether either side has a smooth component.
+    #[inline]
     pub fn has_smooth(&self) -> bool {
-        self.front.has_smooth() || self.back.has_smooth()
+        leaf!(&*self.front, b => b.has_smooth()) || leaf!(&*self.back, b => b.has_smooth())
     }
     /// Whether either side has a delta component.
+    #[inline]
     pub fn has_delta(&self) -> bool {
-        self.front.has_delta() || self.back.has_delta()
+        leaf!(&*self.front, b => b.has_delta()) || leaf!(&*self.back, b => b.has_delta())
     }
 }
