@@ -19,6 +19,7 @@ pub struct Diffuse {
 
 impl Diffuse {
     /// `reflectance / pi * cos theta_o` on the front side, else 0.
+    #[inline]
     pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
         if wi.z <= 0.0 || wo.z <= 0.0 {
             return Color::ZERO;
@@ -26,6 +27,7 @@ impl Diffuse {
         self.reflectance.eval(uv) * (INV_PI * wo.z)
     }
     /// Cosine-hemisphere density.
+    #[inline]
     pub fn pdf(&self, wi: Vec3, wo: Vec3, _uv: Vec2) -> f32 {
         if wi.z <= 0.0 {
             return 0.0;
@@ -33,6 +35,7 @@ impl Diffuse {
         cosine_hemisphere_pdf(wo)
     }
     /// Cosine-weighted sample; the weight is the reflectance.
+    #[inline]
     pub fn sample(&self, wi: Vec3, _u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
         if wi.z <= 0.0 {
             return None;
@@ -54,10 +57,12 @@ impl Diffuse {
 
 impl Diffuse {
     /// Always smooth.
+    #[inline]
     pub fn has_smooth(&self) -> bool {
         true
     }
     /// Never delta.
+    #[inline]
     pub fn has_delta(&self) -> bool {
         false
     }

@@ -152,6 +152,7 @@ impl Bsdf {
         dispatch!(self, b => b.sample(wi, u1, u2, uv))
     }
     /// Whether any component is smooth (non-delta): emitter sampling is useful.
+    #[inline]
     pub fn has_smooth(&self) -> bool {
         dispatch!(self, b => b.has_smooth())
     }

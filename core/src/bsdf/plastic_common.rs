@@ -117,8 +117,8 @@ pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
 /// internal diffuse reflectance.
 pub fn rough_tables(kind: MicrofacetKind, alpha: f32, eta: f32) -> (Box<[f32; TABLE_RES]>, f32) {
     let distr = Microfacet::new(kind, alpha);
-    let rule_ext = unit_rule(if eta > 1.0 { 32 } else { 128 });
-    let rule_int = unit_rule(if 1.0 / eta > 1.0 { 32 } else { 128 });
+    let rule_ext = UnitRule::new(if eta > 1.0 { 32 } else { 128 }, kind);
+    let rule_int = UnitRule::new(if 1.0 / eta > 1.0 { 32 } else { 128 }, kind);
     let mut table = Box::new([0.0f32; TABLE_RES]);
     let mut internal = 0.0f64;
     for (i, t) in table.iter_mut().enumerate() {
@@ -146,12 +146,34 @@ pub fn rough_tables(kind: MicrofacetKind, alpha: f32, eta: f32) -> (Box<[f32; TA
     (table, (2.0 * internal / TABLE_RES as f64) as f32)
 }
 
-/// Gauss-Legendre rule on `[0, 1]`: points (f32, as the samplers take them) and weights.
-fn unit_rule(n: usize) -> Vec<(f32, f64)> {
-    gauss_legendre(n)
-        .into_iter()
-        .map(|(x, w)| ((0.5 * x + 0.5) as f32, 0.5 * w))
-        .collect()
+/// Gauss-Legendre rule on `[0, 1]`: points (f32, as the samplers take them) and weights, with
+/// what the visible-normal map computes of the nodes alone, once for all incident cosines.
+struct UnitRule {
+    nodes: Vec<(f32, f64)>,
+    /// GGX: the concentric-disk point of each node pair `(x, y)` (row-major in x) and
+    /// `sqrt(1 - p.x^2)`. Empty for Beckmann.
+    disk: Vec<(Vec2, f32)>,
+}
+
+impl UnitRule {
+    fn new(n: usize, kind: MicrofacetKind) -> Self {
+        let nodes: Vec<(f32, f64)> = gauss_legendre(n)
+            .into_iter()
+            .map(|(x, w)| ((0.5 * x + 0.5) as f32, 0.5 * w))
+            .collect();
+        let disk = match kind {
+            MicrofacetKind::Beckmann => Vec::new(),
+            MicrofacetKind::Ggx => nodes
+                .iter()
+                .flat_map(|&(ux, _)| nodes.iter().map(move |&(uy, _)| Vec2::new(ux, uy)))
+                .map(|u| {
+                    let p = square_to_uniform_disk_concentric(u);
+                    (p, safe_sqrt(1.0 - p.x * p.x))
+                })
+                .collect(),
+        };
+        UnitRule { nodes, disk }
+    }
 }
 
 /// Integral of `f(m)` over the normals visible from `wi` (in the x-z plane, `wi.x >= 0`), by
@@ -162,12 +184,8 @@ fn unit_rule(n: usize) -> Vec<(f32, f64)> {
 /// grazing incidence), whose x and y slopes depend on one coordinate each, and Heitz's (2017)
 /// concentric-disk construction for GGX. (The core's sampler parameterises GGX differently:
 /// with these node counts its tables differ from Mitsuba's by up to 4e-4.)
-fn visible_integral(
-    distr: &Microfacet,
-    wi: Vec3,
-    rule: &[(f32, f64)],
-    f: impl Fn(Vec3) -> f32,
-) -> f64 {
+fn visible_integral(distr: &Microfacet, wi: Vec3, rule: &UnitRule, f: impl Fn(Vec3) -> f32) -> f64 {
+    let (disk, rule) = (&rule.disk, &rule.nodes[..]);
     let a = distr.alpha_u;
     let cos_t = wi.z / Vec3::new(a * wi.x, 0.0, wi.z).length();
     let normal = |sx: f32, sy: f32| Vec3::new(-sx * a, -sy * a, 1.0).normalize();
@@ -184,9 +202,10 @@ fn visible_integral(
             }
         }
         MicrofacetKind::Ggx => {
-            for &(ux, wx) in rule {
-                for &(uy, wy) in rule {
-                    let (sx, sy) = ggx_visible_slope(cos_t, Vec2::new(ux, uy));
+            let n = rule.len();
+            for (i, &(_, wx)) in rule.iter().enumerate() {
+                for (&(_, wy), &(p, sx)) in rule.iter().zip(&disk[i * n..(i + 1) * n]) {
+                    let (sx, sy) = ggx_visible_slope(cos_t, p, sx);
                     sum += wx * wy * f64::from(f(normal(sx, sy)));
                 }
             }
@@ -231,13 +250,14 @@ fn erfinv(x: f32) -> f32 {
     super::microfacet::erfinv(f64::from(x)) as f32
 }
 
-/// Heitz's (2017) GGX visible slope for unit roughness at incident cosine `cos_t`: a point of
-/// the concentric disk, squeezed onto the visible half, projected onto the hemisphere.
-fn ggx_visible_slope(cos_t: f32, u: Vec2) -> (f32, f32) {
-    let p = square_to_uniform_disk_concentric(u);
+/// Heitz's (2017) GGX visible slope for unit roughness at incident cosine `cos_t`: a point `p`
+/// of the concentric disk (with `sqrt_1mx2 = sqrt(1 - p.x^2)`), squeezed onto the visible half,
+/// projected onto the hemisphere.
+#[inline]
+fn ggx_visible_slope(cos_t: f32, p: Vec2, sqrt_1mx2: f32) -> (f32, f32) {
     let s = 0.5 * (1.0 + cos_t);
     let x = p.x;
-    let y = (1.0 - s) * safe_sqrt(1.0 - x * x) + s * p.y;
+    let y = (1.0 - s) * sqrt_1mx2 + s * p.y;
     let z = safe_sqrt(1.0 - x * x - y * y);
     let sin_t = safe_sqrt(1.0 - cos_t * cos_t);
     let inv = 1.0 / (sin_t * y + cos_t * z);

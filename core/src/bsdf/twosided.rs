@@ -17,6 +17,17 @@ pub struct TwoSided {
     pub back: Box<Bsdf>,
 }
 
+/// Calls a side's method directly when it is `diffuse` (the common two-sided material, which
+/// then inlines), through the recursive `Bsdf` dispatch otherwise; the same values either way.
+macro_rules! leaf {
+    ($side:expr, $b:ident => $call:expr) => {
+        match $side {
+            Bsdf::Diffuse($b) => $call,
+            $b => $call,
+        }
+    };
+}
+
 #[inline]
 fn flip(v: Vec3) -> Vec3 {
     Vec3::new(v.x, v.y, -v.z)
@@ -24,37 +35,42 @@ fn flip(v: Vec3) -> Vec3 {
 
 impl TwoSided {
     /// Evaluates the side `wi` is on.
+    #[inline]
     pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
         if wi.z >= 0.0 {
-            self.front.eval(wi, wo, uv)
+            leaf!(&*self.front, b => b.eval(wi, wo, uv))
         } else {
-            self.back.eval(flip(wi), flip(wo), uv)
+            leaf!(&*self.back, b => b.eval(flip(wi), flip(wo), uv))
         }
     }
     /// Density of the side `wi` is on.
+    #[inline]
     pub fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
         if wi.z >= 0.0 {
-            self.front.pdf(wi, wo, uv)
+            leaf!(&*self.front, b => b.pdf(wi, wo, uv))
         } else {
-            self.back.pdf(flip(wi), flip(wo), uv)
+            leaf!(&*self.back, b => b.pdf(flip(wi), flip(wo), uv))
         }
     }
     /// Samples the side `wi` is on.
+    #[inline]
     pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
         if wi.z >= 0.0 {
-            self.front.sample(wi, u1, u2, uv)
+            leaf!(&*self.front, b => b.sample(wi, u1, u2, uv))
         } else {
-            let mut s = self.back.sample(flip(wi), u1, u2, uv)?;
+            let mut s = leaf!(&*self.back, b => b.sample(flip(wi), u1, u2, uv))?;
             s.wo = flip(s.wo);
             Some(s)
         }
     }
     /// Whether either side has a smooth component.
+    #[inline]
     pub fn has_smooth(&self) -> bool {
-        self.front.has_smooth() || self.back.has_smooth()
+        leaf!(&*self.front, b => b.has_smooth()) || leaf!(&*self.back, b => b.has_smooth())
     }
     /// Whether either side has a delta component.
+    #[inline]
     pub fn has_delta(&self) -> bool {
-        self.front.has_delta() || self.back.has_delta()
+        leaf!(&*self.front, b => b.has_delta()) || leaf!(&*self.back, b => b.has_delta())
     }
 }

@@ -4,7 +4,7 @@
 //! Sampling: spheres seen from outside by solid angle (the cone toward them), every other shape
 //! uniformly by area (meshes choose a triangle by area).
 use super::{EmitterCtx, EmitterSample};
-use crate::geometry::{Interaction, PositionSample};
+use crate::geometry::{Interaction, SampleToward};
 use crate::math::offset_ray_origin;
 use crate::Color;
 use glam::{Vec2, Vec3};
@@ -29,11 +29,10 @@ impl AreaLight {
         }
     }
     /// Samples a point on the shape for `it`.
+    #[inline]
     pub fn sample(&self, ctx: &EmitterCtx, it: &Interaction, u: Vec2) -> Option<EmitterSample> {
         let shape = &ctx.shapes[self.shape as usize];
-        let (ps, pdf): (PositionSample, f32) = shape.sample_from(it.p, u, ctx.disks)?;
-        let d = ps.p - it.p;
-        let dist = d.length();
+        let SampleToward { ps, pdf, d, dist } = shape.sample_toward(it.p, u, ctx.disks)?;
         if !(dist > 0.0) {
             return None;
         }

@@ -75,6 +75,7 @@ pub enum Emitter {
 
 impl Emitter {
     /// Samples light arriving at `it` (direct illumination).
+    #[inline]
     pub fn sample(&self, ctx: &EmitterCtx, it: &Interaction, u: Vec2) -> Option<EmitterSample> {
         match self {
             Emitter::Area(e) => e.sample(ctx, it, u),

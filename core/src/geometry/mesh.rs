@@ -2,7 +2,7 @@
 //!
 //! Built by the driver from `obj`, `ply`, `rectangle` and `cube` shapes (see the driver's loaders
 //! for their scene parameters). Positions and normals are already transformed to world space.
-use crate::math::gamma;
+use crate::math::{gamma, Frame};
 use crate::sampling::{warp::square_to_uniform_triangle, Discrete1D};
 use alloc::vec::Vec;
 use glam::{Vec2, Vec3};
@@ -20,6 +20,35 @@ pub struct Mesh {
     pub indices: Vec<[u32; 3]>,
     /// Triangles chosen by area (None when the mesh has no area).
     area_dist: Option<Discrete1D>,
+    /// Unit geometric normal of each triangle (zero when degenerate), computed once: every hit
+    /// and every light sample on the mesh needs it.
+    face_normals: Vec<Vec3>,
+    /// `1 / area()`, the density of [`Mesh::sample`] by area.
+    inv_area: f32,
+    /// For a mesh without vertex normals, whose shading frame is constant over each triangle:
+    /// the frame's first tangent per triangle (`Frame::tangent(face normal, dpdu)`, zero where
+    /// that is degenerate), computed once. Empty otherwise.
+    flat_tangents: Vec<Vec3>,
+}
+
+/// What shading needs of a point on a triangle (see [`Mesh::hit`]).
+#[derive(Clone, Copy, Debug)]
+pub struct TriangleHit {
+    /// The point.
+    pub p: Vec3,
+    /// Its absolute error bound, per component.
+    pub p_err: Vec3,
+    /// Unit geometric normal (zero for a degenerate triangle).
+    pub ng: Vec3,
+    /// Unit shading normal (interpolated vertex normals, else `ng`).
+    pub ns: Vec3,
+    /// Texture coordinates.
+    pub uv: Vec2,
+    /// Derivative of position along u (see [`Mesh::dpdu`]).
+    pub dpdu: Vec3,
+    /// `Frame::tangent(ns, dpdu)`, when the mesh has it stored (no vertex normals, so `ns` is
+    /// `ng`, and a non-degenerate `dpdu`); `None` means: compute the frame from `ns` and `dpdu`.
+    pub tangent: Option<Vec3>,
 }
 
 impl Mesh {
@@ -36,8 +65,26 @@ impl Mesh {
             uvs,
             indices,
             area_dist: None,
+            face_normals: Vec::new(),
+            inv_area: 0.0,
+            flat_tangents: Vec::new(),
         };
         m.area_dist = Discrete1D::new((0..m.indices.len()).map(|i| m.triangle_area(i)));
+        m.face_normals = (0..m.indices.len())
+            .map(|i| {
+                let [a, b, c] = m.vertices(i);
+                (b - a).cross(c - a).normalize_or_zero()
+            })
+            .collect();
+        m.inv_area = 1.0 / m.area();
+        if m.normals.is_empty() {
+            m.flat_tangents = (0..m.indices.len())
+                .map(|i| {
+                    let (idx, p) = m.corners(i);
+                    Frame::tangent(m.face_normals[i], m.dpdu_of(idx, p)).unwrap_or(Vec3::ZERO)
+                })
+                .collect();
+        }
         m
     }
     /// The three corners of triangle `i`.
@@ -59,45 +106,104 @@ impl Mesh {
     pub fn area(&self) -> f32 {
         self.area_dist.as_ref().map_or(0.0, |d| d.total() as f32)
     }
+    /// `1 / area()` (infinite for a mesh without area).
+    #[inline]
+    pub fn inv_area(&self) -> f32 {
+        self.inv_area
+    }
     /// Unit geometric normal of triangle `i` (`cross(p1 - p0, p2 - p0)`, so counter-clockwise
     /// winding faces the viewer), or zero for a degenerate triangle.
     #[inline]
     pub fn face_normal(&self, i: usize) -> Vec3 {
-        let [a, b, c] = self.vertices(i);
-        (b - a).cross(c - a).normalize_or_zero()
+        self.face_normals[i]
     }
     /// Surface point, its error bound, geometric normal, shading normal and uv at barycentrics.
     pub fn surface(&self, i: usize, b1: f32, b2: f32) -> (Vec3, Vec3, Vec3, Vec3, Vec2) {
-        let b0 = 1.0 - b1 - b2;
-        let [i0, i1, i2] = self.indices[i].map(|k| k as usize);
-        let [p0, p1, p2] = [self.positions[i0], self.positions[i1], self.positions[i2]];
-        let p = p0 * b0 + p1 * b1 + p2 * b2;
-        let err = ((p0 * b0).abs() + (p1 * b1).abs() + (p2 * b2).abs()) * gamma(7);
-        let ng = self.face_normal(i);
-        let ns = if self.normals.is_empty() {
-            ng
-        } else {
-            let n = self.normals[i0] * b0 + self.normals[i1] * b1 + self.normals[i2] * b2;
-            let n = n.normalize_or_zero();
-            if n == Vec3::ZERO {
-                ng
-            } else {
-                n
-            }
-        };
-        let uv = if self.uvs.is_empty() {
-            Vec2::new(b1, b2)
-        } else {
-            self.uvs[i0] * b0 + self.uvs[i1] * b1 + self.uvs[i2] * b2
-        };
-        (p, err, ng, ns, uv)
+        let (idx, [p0, p1, p2]) = self.corners(i);
+        let (p, err) = interpolate_point(p0, p1, p2, b1, b2);
+        let ng = self.face_normals[i];
+        (
+            p,
+            err,
+            ng,
+            self.shading_normal(idx, ng, b1, b2),
+            self.uv(idx, b1, b2),
+        )
+    }
+    /// Everything [`Shape::interaction`](super::Shape::interaction) needs of a hit on triangle
+    /// `i` at barycentrics `(b1, b2)`, reading the triangle once: [`Mesh::surface`] and
+    /// [`Mesh::dpdu`] together.
+    #[inline]
+    pub fn hit(&self, i: usize, b1: f32, b2: f32) -> TriangleHit {
+        let (idx, [p0, p1, p2]) = self.corners(i);
+        let (p, p_err) = interpolate_point(p0, p1, p2, b1, b2);
+        let ng = self.face_normals[i];
+        TriangleHit {
+            p,
+            p_err,
+            ng,
+            ns: self.shading_normal(idx, ng, b1, b2),
+            uv: self.uv(idx, b1, b2),
+            dpdu: self.dpdu_of(idx, [p0, p1, p2]),
+            tangent: self
+                .flat_tangents
+                .get(i)
+                .copied()
+                .filter(|s| *s != Vec3::ZERO),
+        }
+    }
+    /// Point on triangle `i` at barycentrics `(b1, b2)`, its error bound and the unit geometric
+    /// and shading normals (what light sampling needs: no uv).
+    #[inline]
+    pub fn point(&self, i: usize, b1: f32, b2: f32) -> (Vec3, Vec3, Vec3, Vec3) {
+        let (idx, [p0, p1, p2]) = self.corners(i);
+        let (p, err) = interpolate_point(p0, p1, p2, b1, b2);
+        let ng = self.face_normals[i];
+        (p, err, ng, self.shading_normal(idx, ng, b1, b2))
     }
     /// Derivative of position along u on triangle `i`: from the texture coordinates, or, for a
     /// mesh without them, from the implicit (0,0), (1,0), (0,1) of Mitsuba 3 (`p1 - p0`). Zero
     /// where the uv map is degenerate.
     pub fn dpdu(&self, i: usize) -> Vec3 {
-        let [i0, i1, i2] = self.indices[i].map(|k| k as usize);
-        let [p0, p1, p2] = [self.positions[i0], self.positions[i1], self.positions[i2]];
+        let (idx, p) = self.corners(i);
+        self.dpdu_of(idx, p)
+    }
+    /// Vertex indices and positions of triangle `i`.
+    #[inline]
+    fn corners(&self, i: usize) -> ([usize; 3], [Vec3; 3]) {
+        let [i0, i1, i2] = self.indices[i];
+        let idx = [i0 as usize, i1 as usize, i2 as usize];
+        let p = [
+            self.positions[idx[0]],
+            self.positions[idx[1]],
+            self.positions[idx[2]],
+        ];
+        (idx, p)
+    }
+    #[inline]
+    fn shading_normal(&self, [i0, i1, i2]: [usize; 3], ng: Vec3, b1: f32, b2: f32) -> Vec3 {
+        if self.normals.is_empty() {
+            return ng;
+        }
+        let b0 = 1.0 - b1 - b2;
+        let n = self.normals[i0] * b0 + self.normals[i1] * b1 + self.normals[i2] * b2;
+        let n = n.normalize_or_zero();
+        if n == Vec3::ZERO {
+            ng
+        } else {
+            n
+        }
+    }
+    #[inline]
+    fn uv(&self, [i0, i1, i2]: [usize; 3], b1: f32, b2: f32) -> Vec2 {
+        if self.uvs.is_empty() {
+            return Vec2::new(b1, b2);
+        }
+        let b0 = 1.0 - b1 - b2;
+        self.uvs[i0] * b0 + self.uvs[i1] * b1 + self.uvs[i2] * b2
+    }
+    #[inline]
+    fn dpdu_of(&self, [i0, i1, i2]: [usize; 3], [p0, p1, p2]: [Vec3; 3]) -> Vec3 {
         if self.uvs.is_empty() {
             return p1 - p0;
         }
@@ -110,10 +216,65 @@ impl Mesh {
     }
     /// Uniform point by area: triangle chosen by area, then uniform barycentrics.
     /// Returns `(triangle, b1, b2)`; `None` for a mesh without area.
+    #[inline]
     pub fn sample(&self, u: Vec2) -> Option<(usize, f32, f32)> {
         let dist = self.area_dist.as_ref()?;
         let (i, ux) = dist.sample_reuse(u.x);
         let b = square_to_uniform_triangle(Vec2::new(ux, u.y));
         Some((i, b.x, b.y))
+    }
+}
+
+/// The point at barycentrics `(b1, b2)` and its error bound (pbrt-v4's bound for the
+/// interpolation).
+#[inline]
+fn interpolate_point(p0: Vec3, p1: Vec3, p2: Vec3, b1: f32, b2: f32) -> (Vec3, Vec3) {
+    let b0 = 1.0 - b1 - b2;
+    let p = p0 * b0 + p1 * b1 + p2 * b2;
+    let err = ((p0 * b0).abs() + (p1 * b1).abs() + (p2 * b2).abs()) * gamma(7);
+    (p, err)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use alloc::vec;
+
+    fn bits(v: Option<Vec3>) -> Option<[u32; 3]> {
+        v.map(|v| v.to_array().map(f32::to_bits))
+    }
+
+    #[test]
+    fn stored_tangents_are_the_computed_ones() {
+        // A flat mesh, with uvs (one triangle with a degenerate uv map, where the frame falls
+        // back to from_normal) and without.
+        let positions = vec![
+            Vec3::new(0.3, -1.0, 2.0),
+            Vec3::new(1.7, 0.2, -0.5),
+            Vec3::new(-0.4, 1.1, 0.9),
+            Vec3::new(2.0, 2.0, 2.5),
+        ];
+        let indices = vec![[0, 1, 2], [1, 3, 2], [0, 3, 1]];
+        let uvs = vec![
+            Vec2::new(0.0, 0.0),
+            Vec2::new(1.0, 0.0),
+            Vec2::new(0.0, 1.0),
+            Vec2::new(2.0, 0.0),
+        ];
+        for (uvs, want_fallbacks) in [(uvs, 1), (Vec::new(), 0)] {
+            let m = Mesh::new(positions.clone(), Vec::new(), uvs, indices.clone());
+            let mut fallbacks = 0;
+            for i in 0..indices.len() {
+                let h = m.hit(i, 0.2, 0.3);
+                let want = Frame::tangent(h.ns, h.dpdu);
+                fallbacks += usize::from(want.is_none());
+                assert_eq!(bits(h.tangent), bits(want), "triangle {i}");
+            }
+            assert_eq!(fallbacks, want_fallbacks);
+        }
+        // With vertex normals nothing is stored: the frame varies over the triangle.
+        let normals = vec![Vec3::Z; 4];
+        let m = Mesh::new(positions, normals, Vec::new(), indices);
+        assert!(m.hit(0, 0.2, 0.3).tangent.is_none());
     }
 }

@@ -9,8 +9,8 @@ mod triangle;
 
 pub use disk::Disk;
 pub use interaction::Interaction;
-pub use mesh::Mesh;
+pub use mesh::{Mesh, TriangleHit};
 pub use prim::{Hit, Prim};
-pub use shape::{area_to_solid_angle, PositionSample, Shape, ShapeKind};
+pub use shape::{area_to_solid_angle, PositionSample, SampleToward, Shape, ShapeKind};
 pub use sphere::{ConeSample, Sphere};
 pub use triangle::{intersect_triangle, TriRay};

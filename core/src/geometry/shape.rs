@@ -44,6 +44,19 @@ pub struct PositionSample {
     pub ns: Vec3,
 }
 
+/// A point sampled on a shape for a reference point `r` ([`Shape::sample_toward`]).
+#[derive(Clone, Copy, Debug)]
+pub struct SampleToward {
+    /// The point.
+    pub ps: PositionSample,
+    /// Its solid-angle density at `r`.
+    pub pdf: f32,
+    /// `ps.p - r`.
+    pub d: Vec3,
+    /// `|d|`.
+    pub dist: f32,
+}
+
 impl Shape {
     /// Surface area.
     pub fn area(&self, disks: &[Disk]) -> f32 {
@@ -64,11 +77,12 @@ impl Shape {
     }
 
     /// The full interaction for a hit on primitive `prim` of this shape.
+    #[inline]
     pub fn interaction(&self, hit: &Hit, prim: &Prim, ray: &Ray, disks: &[Disk]) -> Interaction {
-        let (p, p_err, ng, ns, uv, dpdu) = match (&self.kind, prim) {
+        let (p, p_err, ng, ns, uv, dpdu, tangent) = match (&self.kind, prim) {
             (ShapeKind::Mesh(m), Prim::Triangle { face, .. }) => {
-                let (p, err, ng, ns, uv) = m.surface(*face as usize, hit.uv.x, hit.uv.y);
-                (p, err, ng, ns, uv, m.dpdu(*face as usize))
+                let h = m.hit(*face as usize, hit.uv.x, hit.uv.y);
+                (h.p, h.p_err, h.ng, h.ns, h.uv, h.dpdu, h.tangent)
             }
             (ShapeKind::Sphere(s), _) => {
                 let (p, err) = s.project(ray.at(hit.t));
@@ -79,7 +93,7 @@ impl Shape {
                     libm::acosf(n.z.clamp(-1.0, 1.0)) * crate::math::INV_PI,
                 );
                 // Along increasing longitude, as Mitsuba 3's sphere.
-                (p, err, n, n, uv, Vec3::new(-n.y, n.x, 0.0))
+                (p, err, n, n, uv, Vec3::new(-n.y, n.x, 0.0), None)
             }
             (ShapeKind::Disk(d), _) => {
                 let disk = &disks[*d as usize];
@@ -96,18 +110,28 @@ impl Shape {
                     disk.normal,
                     uv,
                     p - disk.to_world.point(Vec3::ZERO),
+                    None,
                 )
             }
             _ => unreachable_shape(),
         };
         let ng = self.orient(ng);
         let ns = self.orient(ns);
+        // A stored tangent is the one from_normal_tangent finds for the unflipped normal.
+        let frame = match tangent {
+            Some(s) if !self.flip_normals => Frame {
+                s,
+                t: ns.cross(s),
+                n: ns,
+            },
+            _ => Frame::from_normal_tangent(ns, dpdu),
+        };
         Interaction {
             p,
             p_err,
             t: hit.t,
             ng,
-            frame: Frame::from_normal_tangent(ns, dpdu),
+            frame,
             uv,
             shape: hit_shape(prim),
             wi: (-ray.d).normalize(),
@@ -115,12 +139,12 @@ impl Shape {
     }
 
     /// A point uniformly distributed by area (density `1 / area`).
+    #[inline]
     pub fn sample_position(&self, u: Vec2, disks: &[Disk]) -> Option<PositionSample> {
         let (p, p_err, ng, ns) = match &self.kind {
             ShapeKind::Mesh(m) => {
                 let (i, b1, b2) = m.sample(u)?;
-                let (p, err, ng, ns, _) = m.surface(i, b1, b2);
-                (p, err, ng, ns)
+                m.point(i, b1, b2)
             }
             ShapeKind::Sphere(s) => {
                 let d = crate::sampling::warp::square_to_uniform_sphere(u);
@@ -144,24 +168,52 @@ impl Shape {
     /// A point on the shape sampled for the reference point `r`, with its solid-angle density
     /// at `r`: cone sampling for spheres seen from outside, area sampling otherwise.
     pub fn sample_from(&self, r: Vec3, u: Vec2, disks: &[Disk]) -> Option<(PositionSample, f32)> {
+        self.sample_toward(r, u, disks).map(|s| (s.ps, s.pdf))
+    }
+
+    /// [`Shape::sample_from`] with the offset from `r` to the point and its length, which the
+    /// density needs anyway and light sampling needs next.
+    #[inline]
+    pub fn sample_toward(&self, r: Vec3, u: Vec2, disks: &[Disk]) -> Option<SampleToward> {
         if let ShapeKind::Sphere(s) = &self.kind {
             if let Some(cs) = s.sample_cone(r, u) {
                 let (p, p_err) = s.project(cs.p);
                 let n = self.orient(cs.n);
-                return Some((
-                    PositionSample {
+                let d = p - r;
+                return Some(SampleToward {
+                    ps: PositionSample {
                         p,
                         p_err,
                         ng: n,
                         ns: n,
                     },
-                    cs.pdf,
-                ));
+                    pdf: cs.pdf,
+                    d,
+                    dist: d.length(),
+                });
             }
         }
         let ps = self.sample_position(u, disks)?;
-        let pdf = area_to_solid_angle(r, ps.p, ps.ng, 1.0 / self.area(disks));
-        (pdf > 0.0 && pdf.is_finite()).then_some((ps, pdf))
+        // area_to_solid_angle, keeping the distance.
+        let d = ps.p - r;
+        let dist2 = d.length_squared();
+        let dist = libm::sqrtf(dist2);
+        let cos = ps.ng.dot(d).abs() / dist;
+        let pdf = if cos > 0.0 && dist2 > 0.0 {
+            self.inv_area(disks) * dist2 / cos
+        } else {
+            0.0
+        };
+        (pdf > 0.0 && pdf.is_finite()).then_some(SampleToward { ps, pdf, d, dist })
+    }
+
+    /// `1 / area` (stored for meshes).
+    #[inline]
+    fn inv_area(&self, disks: &[Disk]) -> f32 {
+        match &self.kind {
+            ShapeKind::Mesh(m) => m.inv_area(),
+            _ => 1.0 / self.area(disks),
+        }
     }
 
     /// The solid-angle density with which [`Shape::sample_from`] picks point `p` (geometric
@@ -172,7 +224,7 @@ impl Shape {
                 return pdf;
             }
         }
-        area_to_solid_angle(r, p, ng, 1.0 / self.area(disks))
+        area_to_solid_angle(r, p, ng, self.inv_area(disks))
     }
 }
 

@@ -25,18 +25,27 @@ impl Frame {
     /// A frame around a unit normal whose first tangent follows `dpdu` (the surface's
     /// derivative along u, projected onto the tangent plane), as Mitsuba 3 orients anisotropic
     /// materials; falls back to [`Frame::from_normal`] where `dpdu` is degenerate.
+    #[inline]
     pub fn from_normal_tangent(n: Vec3, dpdu: Vec3) -> Self {
+        match Frame::tangent(n, dpdu) {
+            Some(s) => Frame {
+                s,
+                t: n.cross(s),
+                n,
+            },
+            None => Frame::from_normal(n),
+        }
+    }
+    /// The first tangent [`Frame::from_normal_tangent`] uses for the unit normal `n`, or `None`
+    /// where `dpdu` is degenerate and it falls back to [`Frame::from_normal`].
+    #[inline]
+    pub fn tangent(n: Vec3, dpdu: Vec3) -> Option<Vec3> {
         let s = dpdu - n * n.dot(dpdu);
         let len2 = s.length_squared();
         if !(len2 > 1e-20 * dpdu.length_squared().max(1e-30)) || !len2.is_finite() {
-            return Frame::from_normal(n);
+            return None;
         }
-        let s = s / libm::sqrtf(len2);
-        Frame {
-            s,
-            t: n.cross(s),
-            n,
-        }
+        Some(s / libm::sqrtf(len2))
     }
     /// World direction to local coordinates.
     #[inline]
