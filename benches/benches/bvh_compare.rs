@@ -6,8 +6,8 @@
 //! e.g. `cargo bench -p tessera-benches --bench bvh_compare -- 1k 100k`.
 use std::time::Instant;
 use tessera_benches::{
-    bumpy_sphere, bytes_per_triangle, camera_rays, frequency_for, mesh_parts, random_rays,
-    rays_per_second, thread_cpu_seconds, wanted_sizes, BinaryScene,
+    build_params, bumpy_sphere, bytes_per_triangle, camera_rays, frequency_for, mesh_parts,
+    random_rays, rays_per_second, thread_cpu_seconds, wanted_sizes, BinaryScene,
 };
 use tessera_core::scene::Scene;
 
@@ -22,12 +22,13 @@ fn main() {
     for (label, target) in wanted_sizes() {
         let (p, i) = bumpy_sphere(frequency_for(target));
         let parts = mesh_parts(p, i);
+        let params = build_params();
         // Build time per build in this thread's CPU time where available (the build is
         // single-threaded), repeated to at least 0.3 s as that clock ticks coarsely.
         let (wall, cpu) = (Instant::now(), thread_cpu_seconds());
         let mut builds = 0;
-        let scene = loop {
-            let scene = Scene::new(parts.clone()).expect("valid scene");
+        let (scene, build) = loop {
+            let scene = Scene::with_build_params(parts.clone(), params).expect("valid scene");
             builds += 1;
             let spent = match (cpu, thread_cpu_seconds()) {
                 (Some(a), Some(b)) => b - a,
@@ -37,28 +38,12 @@ fn main() {
                 break (scene, spent / builds as f64);
             }
         };
-        let (scene, build) = scene;
-        let mut scene = scene;
-        if let Ok(v) = std::env::var("BVH4_PARAMS") {
-            let (l, c) = v.split_once(',').expect("max_leaf,cost");
-            let params = tessera_core::accel::BuildParams {
-                max_leaf: l.parse().unwrap(),
-                traversal_cost: c.parse().unwrap(),
-            };
-            let b: Vec<_> = (scene.prims.iter().zip(&scene.tris))
-                .map(|(p, v)| p.bounds(v, &[]))
-                .collect();
-            let (bin, order) = tessera_core::accel::Bvh::build_with(&b, params);
-            scene.bvh = tessera_core::accel::Bvh4::from_binary(&bin);
-            scene.prims = order.iter().map(|&i| scene.prims[i as usize]).collect();
-            scene.tris = order.iter().map(|&i| scene.tris[i as usize]).collect();
-        }
         let tris = scene.prims.len();
         let bin = BinaryScene::new(&scene);
         let n = tris as f64;
         let (nodes, corners, ids) = bytes_per_triangle(&scene);
         println!(
-            "{label:>5}: bytes/triangle: bvh4 nodes {nodes:.1} ({} nodes, depth {}) + corners \
+            "{label:>5}: bytes/triangle: bvh4 nodes {nodes:.1} ({} nodes, depth {}) + triangle blocks \
              {corners:.1} = {:.1} (+ primitive ids {ids:.1}); binary: nodes {:.1} + triangles \
              {:.1}",
             scene.bvh.nodes.len(),

@@ -102,12 +102,18 @@ impl Bvh4 {
     pub const PARAMS: BuildParams = BuildParams {
         max_leaf: 4,
         traversal_cost: 1.0,
+        block: 1,
     };
 
     /// Builds the binary SAH hierarchy and collapses it; returns the hierarchy and the order in
     /// which the caller must store its primitives (leaves refer to ranges of that order).
     pub fn build(bounds: &[Aabb]) -> (Bvh4, Vec<u32>) {
-        let (bin, order) = Bvh::build_with(bounds, Bvh4::PARAMS);
+        Bvh4::build_with(bounds, Bvh4::PARAMS)
+    }
+
+    /// [`Bvh4::build`] with a chosen leaf-size trade-off.
+    pub fn build_with(bounds: &[Aabb], params: BuildParams) -> (Bvh4, Vec<u32>) {
+        let (bin, order) = Bvh::build_with(bounds, params);
         (Bvh4::from_binary(&bin), order)
     }
 
@@ -124,6 +130,18 @@ impl Bvh4 {
             nodes,
             bounds: bin.bounds(),
             depth,
+        }
+    }
+
+    /// Replaces each leaf's first primitive by `f(first, count)` (e.g. the index of its first
+    /// block of primitives), visiting leaves in node order.
+    pub fn map_leaves(&mut self, mut f: impl FnMut(usize, usize) -> u32) {
+        for node in &mut self.nodes {
+            for lane in 0..4 {
+                if node.used & (1 << lane) != 0 && node.count[lane] > 0 {
+                    node.child[lane] = f(node.child[lane] as usize, usize::from(node.count[lane]));
+                }
+            }
         }
     }
 
