@@ -354,8 +354,8 @@ fn controls_one_ulp_changes_are_detected() {
         let tri = TriRay::new(&ray);
         let lanes = test4(&block(&t), &Ray4::new(&tri), ray.t_max);
         let got = lane_answers(&t, &tri, ray.t_max, &lanes);
-        for l in 0..4 {
-            let Some((h, b0, b1, b2)) = got[l] else {
+        for (l, found) in got.iter().enumerate() {
+            let Some((h, b0, b1, b2)) = *found else {
                 continue;
             };
             // One ulp on t, then on each barycentric: every change is caught.
@@ -366,7 +366,7 @@ fn controls_one_ulp_changes_are_detected() {
                 (h, b0, b1, b2.next_up()),
             ];
             for n in nudged {
-                assert!(!same(Some(n), got[l]), "a 1-ulp change passed");
+                assert!(!same(Some(n), *found), "a 1-ulp change passed");
                 moved += 1;
             }
             let mut wrong = lanes;
