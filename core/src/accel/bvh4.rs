@@ -91,18 +91,20 @@ struct Entry {
 const STACK: usize = 64;
 
 impl Bvh4 {
-    /// The leaf-size trade-off of the binary build collapsed into a 4-wide one: a step tests
-    /// four boxes, so leaves are larger than for binary traversal (measured with
-    /// `BVH4_PARAMS=leaf,cost cargo bench -p tessera-benches --bench bvh_compare`: leaves up to 4,
-    /// 8 or 16 primitives cast rays at the same speed within noise; larger leaves need fewer
-    /// nodes, 23 instead of 63 bytes per triangle). Scenes of a few large, overlapping
-    /// triangles differ: on the Cornell box (32 triangles) leaves of 16 made each ray test
-    /// most triangles; leaves of at most 4 with traversal cost 1 cut the render's instruction
-    /// count by 23% and its time by about 17% (callgrind and `--threads 1`; same image bits).
+    /// The leaf-size trade-off for leaves of four-triangle blocks ([`super::tri4`]): a leaf of
+    /// `n` primitives costs `ceil(n / 4)` block tests, one traversal step a quarter of one.
+    /// Measured (`BVH4_PARAMS=leaf,cost,block cargo bench -p tessera-benches --bench
+    /// bvh_compare`, and callgrind / `--threads 1` renders of the Cornell box): with block costs
+    /// the SAH fills blocks, and memory falls from 71-75 bytes per triangle (nodes and corners)
+    /// to 49-51 (cost 1) or 55-57 (costs 0.25 and 0.5) for leaf limits 8 to 16; costs 0.5 and 1
+    /// made the Cornell
+    /// box (32 large, overlapping triangles) test more blocks per ray and render 5-10% slower
+    /// than leaves of at most 4 scalar tests; cost 0.25 renders it about 3% faster and casts
+    /// bench rays as fast as 0.5.
     pub const PARAMS: BuildParams = BuildParams {
-        max_leaf: 4,
-        traversal_cost: 1.0,
-        block: 1,
+        max_leaf: 16,
+        traversal_cost: 0.25,
+        block: 4,
     };
 
     /// Builds the binary SAH hierarchy and collapses it; returns the hierarchy and the order in

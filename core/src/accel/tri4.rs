@@ -88,7 +88,8 @@ impl Ray4 {
 }
 
 /// What the four-lane test found. Lane `i` is bit `i` of the masks; the arrays hold meaningful
-/// values in `hit` lanes only.
+/// values in `hit` lanes only (the SSE version skips the rest of the work, and its stores, once
+/// no lane can hit).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Lanes {
     /// Lanes the ray hits within `(0, t_max)` (never a `fallback` lane).
@@ -197,7 +198,7 @@ pub fn test4_scalar(blk: &Tri4, r: &Ray4, t_max: f32) -> Lanes {
 
 /// The SSE four-lane test; same contract and bits as [`test4_scalar`].
 #[cfg(target_arch = "x86_64")]
-#[inline]
+#[inline(always)]
 pub fn test4_sse(blk: &Tri4, r: &Ray4, t_max: f32) -> Lanes {
     use core::arch::x86_64::*;
     let [kx, ky, kz] = r.k;
@@ -251,13 +252,18 @@ pub fn test4_sse(blk: &Tri4, r: &Ray4, t_max: f32) -> Lanes {
             _mm_cmpgt_ps(e2, zero),
         );
         let mixed = _mm_and_ps(any_neg, any_pos);
+        out.fallback = _mm_movemask_ps(fallback) as u32;
+        // Most blocks stop here: every lane is missed by the edge test or left to the scalar one.
+        let undecided = _mm_or_ps(mixed, fallback);
+        if _mm_movemask_ps(undecided) == 0b1111 {
+            return out;
+        }
         let det = _mm_add_ps(_mm_add_ps(e0, e1), e2);
         let det_ok = _mm_and_ps(_mm_cmpneq_ps(det, zero), _mm_cmplt_ps(abs(det), inf));
-        let max_z_len = mx(abs(az), mx(abs(bz), abs(cz)));
-        let (az, bz, cz) = (_mm_mul_ps(az, sz), _mm_mul_ps(bz, sz), _mm_mul_ps(cz, sz));
+        let (szx, szy, szz) = (_mm_mul_ps(az, sz), _mm_mul_ps(bz, sz), _mm_mul_ps(cz, sz));
         let t_scaled = _mm_add_ps(
-            _mm_add_ps(_mm_mul_ps(e0, az), _mm_mul_ps(e1, bz)),
-            _mm_mul_ps(e2, cz),
+            _mm_add_ps(_mm_mul_ps(e0, szx), _mm_mul_ps(e1, szy)),
+            _mm_mul_ps(e2, szz),
         );
         let tmax = _mm_set1_ps(t_max);
         let tmd = _mm_mul_ps(tmax, det);
@@ -271,7 +277,17 @@ pub fn test4_sse(blk: &Tri4, r: &Ray4, t_max: f32) -> Lanes {
         );
         let inv_det = _mm_div_ps(_mm_set1_ps(1.0), det);
         let t = _mm_mul_ps(t_scaled, inv_det);
-        let max_zt = mx(abs(az), mx(abs(bz), abs(cz)));
+        let pass = _mm_andnot_ps(
+            _mm_or_ps(undecided, _mm_or_ps(neg_bad, pos_bad)),
+            _mm_and_ps(det_ok, _mm_cmplt_ps(t, tmax)),
+        );
+        // Blocks whose lanes all lie outside (0, t_max) stop here.
+        if _mm_movemask_ps(pass) == 0 {
+            return out;
+        }
+        // The conservative lower bound on t, as the scalar test computes it.
+        let max_z_len = mx(abs(az), mx(abs(bz), abs(cz)));
+        let max_zt = mx(abs(szx), mx(abs(szy), abs(szz)));
         let delta_z = _mm_mul_ps(_mm_set1_ps(gamma(3)), max_zt);
         let max_xt = mx(abs(ax), mx(abs(bx), abs(cx)));
         let max_yt = mx(abs(ay), mx(abs(by), abs(cy)));
@@ -297,13 +313,7 @@ pub fn test4_sse(blk: &Tri4, r: &Ray4, t_max: f32) -> Lanes {
             _mm_mul_ps(delta_z, max_e),
         );
         let delta_t = _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(3.0), sum), abs(inv_det));
-        let bad = _mm_or_ps(
-            _mm_or_ps(mixed, _mm_or_ps(neg_bad, pos_bad)),
-            _mm_or_ps(fallback, _mm_cmple_ps(t, delta_t)),
-        );
-        let good = _mm_and_ps(det_ok, _mm_cmplt_ps(t, tmax));
-        out.hit = _mm_movemask_ps(_mm_andnot_ps(bad, good)) as u32;
-        out.fallback = _mm_movemask_ps(fallback) as u32;
+        out.hit = _mm_movemask_ps(_mm_andnot_ps(_mm_cmple_ps(t, delta_t), pass)) as u32;
         _mm_storeu_ps(out.t.as_mut_ptr(), t);
         _mm_storeu_ps(out.b[0].as_mut_ptr(), _mm_mul_ps(e0, inv_det));
         _mm_storeu_ps(out.b[1].as_mut_ptr(), _mm_mul_ps(e1, inv_det));
