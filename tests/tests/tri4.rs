@@ -192,7 +192,7 @@ fn case(rng: &mut Rng, kind: usize) -> (Tris, Ray) {
     };
     let mut ray = Ray::new(o, d);
     // t_max: unbounded, or around a lane's exact hit distance: on it, one ulp either side, or
-    // a random fraction or multiple of it (zero and tiny values when the lane is missed).
+    // a random fraction of it (zero, tiny, huge or NaN when the lane is missed).
     let tri = TriRay::new(&ray);
     let [p0, p1, p2] = t[rng.below(4)];
     ray.t_max = match (rng.below(5), tri.intersect(f32::INFINITY, p0, p1, p2)) {
@@ -201,7 +201,7 @@ fn case(rng: &mut Rng, kind: usize) -> (Tris, Ray) {
         (2, Some((h, ..))) => h.next_up(),
         (3, Some((h, ..))) => h.next_down(),
         (_, Some((h, ..))) => h * 2.0 * rng.f(),
-        (_, None) => [0.0, -0.0, f32::MIN_POSITIVE, f32::MAX, 1.0][rng.below(5)],
+        (_, None) => [0.0, -0.0, f32::MIN_POSITIVE, f32::MAX, 1.0, f32::NAN][rng.below(6)],
     };
     (t, ray)
 }
