@@ -1,6 +1,7 @@
 //! The 4-wide BVH against the binary one in the same run: rays per second (best of 5 alternating rounds)
 //! for coherent camera rays and incoherent random rays, closest and any hit, on bumpy spheres
-//! of about 10^3 to 10^6 triangles, the ratio, and build time against triangle count.
+//! of about 10^3 to 10^6 triangles, the ratio, and build time against triangle count; and per
+//! ray the nodes visited, leaves reached and triangle blocks tested.
 //!
 //! `cargo bench -p tessera-benches --bench bvh_compare` (all sizes) or with sizes as arguments,
 //! e.g. `cargo bench -p tessera-benches --bench bvh_compare -- 1k 100k`.
@@ -9,6 +10,7 @@ use tessera_benches::{
     build_params, bumpy_sphere, bytes_per_triangle, camera_rays, frequency_for, mesh_parts,
     random_rays, rays_per_second, thread_cpu_seconds, wanted_sizes, BinaryScene,
 };
+use tessera_core::accel::TraversalCounts;
 use tessera_core::scene::Scene;
 
 const ROUNDS: usize = 5;
@@ -52,6 +54,26 @@ fn main() {
             bin.bvh.memory_bytes() as f64 / n,
             std::mem::size_of_val(bin.tris.as_slice()) as f64 / n,
         );
+        for (kind, rays) in [("camera", &camera), ("random", &random)] {
+            for any in [false, true] {
+                let mut c = TraversalCounts::default();
+                for r in rays.iter() {
+                    if any {
+                        scene.occluded_counted(r, &mut c);
+                    } else {
+                        scene.intersect_hit_counted(r, &mut c);
+                    }
+                }
+                let per = |x: u64| x as f64 / c.rays as f64;
+                println!(
+                    "{label:>5}: per {kind} {} ray: {:.1} nodes, {:.1} leaves, {:.1} blocks",
+                    if any { "any" } else { "closest" },
+                    per(c.nodes),
+                    per(c.leaves),
+                    per(c.blocks)
+                );
+            }
+        }
         for (kind, rays) in [("camera", &camera), ("random", &random)] {
             for any in [false, true] {
                 // Alternate the two so both see the same machine load; keep the best round.

@@ -167,39 +167,75 @@ impl Bvh4 {
     /// `leaf(first, count, t_max)` tests the primitives and returns the new `t_max`.
     #[inline]
     pub fn traverse_closest(&self, ray: &Ray, mut leaf: impl FnMut(usize, usize, f32) -> f32) {
-        self.walk::<false>(ray, |f, c, t| Some(leaf(f, c, t)));
+        self.walk::<false, false>(ray, |f, c, t| Some(leaf(f, c, t)), &mut 0);
     }
 
     /// Any-hit traversal: `leaf(first, count, t_max)` returns true to stop (a hit was found).
     #[inline]
     pub fn traverse_any(&self, ray: &Ray, mut leaf: impl FnMut(usize, usize, f32) -> bool) {
-        self.walk::<true>(ray, |f, c, t| if leaf(f, c, t) { None } else { Some(t) });
+        let leaf = |f, c, t| if leaf(f, c, t) { None } else { Some(t) };
+        self.walk::<true, false>(ray, leaf, &mut 0);
+    }
+
+    /// [`Bvh4::traverse_closest`] that also adds the number of nodes it visits to `nodes` (for
+    /// statistics; the uncounted walk compiles without the counter).
+    #[inline]
+    pub fn traverse_closest_counted(
+        &self,
+        ray: &Ray,
+        mut leaf: impl FnMut(usize, usize, f32) -> f32,
+        nodes: &mut u64,
+    ) {
+        self.walk::<false, true>(ray, |f, c, t| Some(leaf(f, c, t)), nodes);
+    }
+
+    /// [`Bvh4::traverse_any`] that also adds the number of nodes it visits to `nodes`.
+    #[inline]
+    pub fn traverse_any_counted(
+        &self,
+        ray: &Ray,
+        mut leaf: impl FnMut(usize, usize, f32) -> bool,
+        nodes: &mut u64,
+    ) {
+        let leaf = |f, c, t| if leaf(f, c, t) { None } else { Some(t) };
+        self.walk::<true, true>(ray, leaf, nodes);
     }
 
     #[inline]
-    fn walk<const ANY: bool>(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> Option<f32>) {
+    fn walk<const ANY: bool, const COUNT: bool>(
+        &self,
+        ray: &Ray,
+        leaf: impl FnMut(usize, usize, f32) -> Option<f32>,
+        nodes: &mut u64,
+    ) {
         if self.nodes.is_empty() {
             return;
         }
         let need = 3 * self.depth + 1;
         if need <= STACK / 4 {
             // Small scenes (the Cornell box): zeroing 16 entries is a few stores, not a memset.
-            self.walk_with::<ANY>(ray, &mut [Entry::default(); STACK / 4], leaf);
+            self.walk_with::<ANY, COUNT>(ray, &mut [Entry::default(); STACK / 4], leaf, nodes);
         } else if need <= STACK / 2 {
-            self.walk_with::<ANY>(ray, &mut [Entry::default(); STACK / 2], leaf);
+            self.walk_with::<ANY, COUNT>(ray, &mut [Entry::default(); STACK / 2], leaf, nodes);
         } else if need <= STACK {
-            self.walk_with::<ANY>(ray, &mut [Entry::default(); STACK], leaf);
+            self.walk_with::<ANY, COUNT>(ray, &mut [Entry::default(); STACK], leaf, nodes);
         } else {
-            self.walk_with::<ANY>(ray, &mut alloc::vec![Entry::default(); need], leaf);
+            self.walk_with::<ANY, COUNT>(
+                ray,
+                &mut alloc::vec![Entry::default(); need],
+                leaf,
+                nodes,
+            );
         }
     }
 
     #[inline(always)]
-    fn walk_with<const ANY: bool>(
+    fn walk_with<const ANY: bool, const COUNT: bool>(
         &self,
         ray: &Ray,
         stack: &mut [Entry],
         mut leaf: impl FnMut(usize, usize, f32) -> Option<f32>,
+        nodes: &mut u64,
     ) {
         let pre = RayPre::new(ray);
         let mut t_max = ray.t_max;
@@ -207,6 +243,9 @@ impl Bvh4 {
         let mut cur = Entry::default(); // the root node
         loop {
             if cur.count == 0 {
+                if COUNT {
+                    *nodes += 1;
+                }
                 let node = &self.nodes[cur.child as usize];
                 let (mask, t_near) = hit4(&node.boxes, &pre, t_max);
                 let mut mask = mask & node.used;

@@ -4,8 +4,10 @@
 mod blocks;
 mod bvh;
 mod bvh4;
+mod counts;
 pub mod simd;
 pub mod tri4;
 pub use blocks::TriBlocks;
 pub use bvh::{BuildParams, Bvh, BvhNode};
 pub use bvh4::{Bvh4, Bvh4Node};
+pub use counts::TraversalCounts;
