@@ -41,6 +41,8 @@ impl TriBlocks {
             }
             at
         });
+        // The capacity guess above is generous; keep only what the leaves use.
+        blocks.shrink_to_fit();
         TriBlocks { blocks }
     }
 
