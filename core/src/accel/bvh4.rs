@@ -99,7 +99,7 @@ impl Bvh4 {
     /// to 49-51 (cost 1) or 55-57 (costs 0.25 and 0.5) for leaf limits 8 to 16; costs 0.5 and 1
     /// made the Cornell
     /// box (32 large, overlapping triangles) test more blocks per ray and render 5-10% slower
-    /// than leaves of at most 4 scalar tests; cost 0.25 renders it about 3% faster and casts
+    /// than leaves of at most 4 scalar tests; cost 0.25 renders it 3-5% faster and casts
     /// bench rays as fast as 0.5.
     pub const PARAMS: BuildParams = BuildParams {
         max_leaf: 16,
