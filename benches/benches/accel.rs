@@ -33,7 +33,7 @@ fn accel(c: &mut Criterion) {
             .count();
         println!(
             "mesh {label}: {tris} triangles, {} BVH4 nodes; bytes/triangle: {nodes:.1} nodes + \
-             {corners:.1} triangle corners = {:.1} (+ {prims:.1} primitive ids); camera rays \
+             {corners:.1} triangle blocks = {:.1} (+ {prims:.1} primitive ids); camera rays \
              hitting: {:.0}%",
             scene.bvh.nodes.len(),
             nodes + corners,

@@ -1,14 +1,16 @@
 //! The 4-wide BVH against the binary one in the same run: rays per second (best of 5 alternating rounds)
 //! for coherent camera rays and incoherent random rays, closest and any hit, on bumpy spheres
-//! of about 10^3 to 10^6 triangles, the ratio, and build time against triangle count.
+//! of about 10^3 to 10^6 triangles, the ratio, and build time against triangle count; and per
+//! ray the nodes visited, leaves reached and triangle blocks tested.
 //!
 //! `cargo bench -p tessera-benches --bench bvh_compare` (all sizes) or with sizes as arguments,
 //! e.g. `cargo bench -p tessera-benches --bench bvh_compare -- 1k 100k`.
 use std::time::Instant;
 use tessera_benches::{
-    bumpy_sphere, bytes_per_triangle, camera_rays, frequency_for, mesh_parts, random_rays,
-    rays_per_second, thread_cpu_seconds, wanted_sizes, BinaryScene,
+    build_params, bumpy_sphere, bytes_per_triangle, camera_rays, frequency_for, mesh_parts,
+    random_rays, rays_per_second, thread_cpu_seconds, wanted_sizes, BinaryScene,
 };
+use tessera_core::accel::TraversalCounts;
 use tessera_core::scene::Scene;
 
 const ROUNDS: usize = 5;
@@ -22,12 +24,13 @@ fn main() {
     for (label, target) in wanted_sizes() {
         let (p, i) = bumpy_sphere(frequency_for(target));
         let parts = mesh_parts(p, i);
+        let params = build_params();
         // Build time per build in this thread's CPU time where available (the build is
         // single-threaded), repeated to at least 0.3 s as that clock ticks coarsely.
         let (wall, cpu) = (Instant::now(), thread_cpu_seconds());
         let mut builds = 0;
-        let scene = loop {
-            let scene = Scene::new(parts.clone()).expect("valid scene");
+        let (scene, build) = loop {
+            let scene = Scene::with_build_params(parts.clone(), params).expect("valid scene");
             builds += 1;
             let spent = match (cpu, thread_cpu_seconds()) {
                 (Some(a), Some(b)) => b - a,
@@ -37,28 +40,12 @@ fn main() {
                 break (scene, spent / builds as f64);
             }
         };
-        let (scene, build) = scene;
-        let mut scene = scene;
-        if let Ok(v) = std::env::var("BVH4_PARAMS") {
-            let (l, c) = v.split_once(',').expect("max_leaf,cost");
-            let params = tessera_core::accel::BuildParams {
-                max_leaf: l.parse().unwrap(),
-                traversal_cost: c.parse().unwrap(),
-            };
-            let b: Vec<_> = (scene.prims.iter().zip(&scene.tris))
-                .map(|(p, v)| p.bounds(v, &[]))
-                .collect();
-            let (bin, order) = tessera_core::accel::Bvh::build_with(&b, params);
-            scene.bvh = tessera_core::accel::Bvh4::from_binary(&bin);
-            scene.prims = order.iter().map(|&i| scene.prims[i as usize]).collect();
-            scene.tris = order.iter().map(|&i| scene.tris[i as usize]).collect();
-        }
         let tris = scene.prims.len();
         let bin = BinaryScene::new(&scene);
         let n = tris as f64;
         let (nodes, corners, ids) = bytes_per_triangle(&scene);
         println!(
-            "{label:>5}: bytes/triangle: bvh4 nodes {nodes:.1} ({} nodes, depth {}) + corners \
+            "{label:>5}: bytes/triangle: bvh4 nodes {nodes:.1} ({} nodes, depth {}) + triangle blocks \
              {corners:.1} = {:.1} (+ primitive ids {ids:.1}); binary: nodes {:.1} + triangles \
              {:.1}",
             scene.bvh.nodes.len(),
@@ -67,6 +54,26 @@ fn main() {
             bin.bvh.memory_bytes() as f64 / n,
             std::mem::size_of_val(bin.tris.as_slice()) as f64 / n,
         );
+        for (kind, rays) in [("camera", &camera), ("random", &random)] {
+            for any in [false, true] {
+                let mut c = TraversalCounts::default();
+                for r in rays.iter() {
+                    if any {
+                        scene.occluded_counted(r, &mut c);
+                    } else {
+                        scene.intersect_hit_counted(r, &mut c);
+                    }
+                }
+                let per = |x: u64| x as f64 / c.rays as f64;
+                println!(
+                    "{label:>5}: per {kind} {} ray: {:.1} nodes, {:.1} leaves, {:.1} blocks",
+                    if any { "any" } else { "closest" },
+                    per(c.nodes),
+                    per(c.leaves),
+                    per(c.blocks)
+                );
+            }
+        }
         for (kind, rays) in [("camera", &camera), ("random", &random)] {
             for any in [false, true] {
                 // Alternate the two so both see the same machine load; keep the best round.

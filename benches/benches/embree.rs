@@ -12,8 +12,8 @@
 use std::ffi::{c_char, c_void};
 use std::time::Instant;
 use tessera_benches::{
-    bumpy_sphere, camera_rays, frequency_for, mesh_parts, random_rays, rays_per_second,
-    wanted_sizes,
+    build_params, bumpy_sphere, camera_rays, frequency_for, mesh_parts, random_rays,
+    rays_per_second, wanted_sizes,
 };
 use tessera_core::math::Ray;
 use tessera_core::scene::Scene;
@@ -231,7 +231,7 @@ fn main() {
         let eb = start.elapsed().as_secs_f64();
         let parts = mesh_parts(positions, indices);
         let start = Instant::now();
-        let scene = Scene::new(parts).expect("valid scene");
+        let scene = Scene::with_build_params(parts, build_params()).expect("valid scene");
         let tb = start.elapsed().as_secs_f64();
         let tris = scene.prims.len();
         for (kind, rays) in [("camera", &camera), ("random", &random)] {

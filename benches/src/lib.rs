@@ -182,7 +182,7 @@ pub fn random_rays(count: usize, seed: u64) -> Vec<Ray> {
         .collect()
 }
 
-/// Bytes per triangle of the ray-casting data: (BVH nodes, triangle corners in leaf order,
+/// Bytes per triangle of the ray-casting data: (BVH nodes, triangle blocks,
 /// primitive references: shape and face).
 pub fn bytes_per_triangle(scene: &Scene) -> (f64, f64, f64) {
     let n = scene.prims.len().max(1) as f64;
@@ -217,8 +217,10 @@ pub struct BinaryScene {
 impl BinaryScene {
     /// Builds the binary hierarchy over `scene`'s triangles.
     pub fn new(scene: &Scene) -> BinaryScene {
-        let bounds: Vec<_> = scene
-            .tris
+        let corners: Vec<[Vec3; 3]> = (0..scene.prims.len())
+            .map(|i| scene.triangle(i).expect("a triangle mesh"))
+            .collect();
+        let bounds: Vec<_> = corners
             .iter()
             .map(|v| Aabb::point(v[0]).grow(v[1]).grow(v[2]))
             .collect();
@@ -228,7 +230,7 @@ impl BinaryScene {
             tris: order
                 .iter()
                 .map(|&i| OldTriangle {
-                    v: scene.tris[i as usize],
+                    v: corners[i as usize],
                     ids: [0, i, 0],
                 })
                 .collect(),
@@ -324,4 +326,21 @@ pub fn wanted_sizes() -> Vec<(&'static str, usize)> {
         .into_iter()
         .filter(|(label, _)| wanted.is_empty() || wanted.iter().any(|w| w == label))
         .collect()
+}
+
+/// The 4-wide BVH's build parameters: `Bvh4::PARAMS`, or those of the environment variable
+/// `BVH4_PARAMS=max_leaf,traversal_cost,block` (for measuring other trade-offs).
+pub fn build_params() -> tessera_core::accel::BuildParams {
+    let Ok(v) = std::env::var("BVH4_PARAMS") else {
+        return tessera_core::accel::Bvh4::PARAMS;
+    };
+    let f: Vec<&str> = v.split(',').collect();
+    assert!(f.len() == 3, "BVH4_PARAMS=max_leaf,traversal_cost,block");
+    let p = tessera_core::accel::BuildParams {
+        max_leaf: f[0].parse().expect("max_leaf"),
+        traversal_cost: f[1].parse().expect("traversal_cost"),
+        block: f[2].parse().expect("block"),
+    };
+    eprintln!("BVH4_PARAMS: {p:?}");
+    p
 }

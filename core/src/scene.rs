@@ -1,5 +1,6 @@
 //! The flat, read-only scene: shapes, primitives under a BVH, BSDFs, emitters, camera.
-use crate::accel::Bvh4;
+use crate::accel::tri4::Ray4;
+use crate::accel::{BuildParams, Bvh4, TriBlocks};
 use crate::bsdf::Bsdf;
 use crate::camera::{Filter, Perspective};
 use crate::emitter::{Emitter, EmitterCtx};
@@ -68,10 +69,11 @@ pub struct Scene {
     pub disks: Vec<Disk>,
     /// Primitives in BVH order.
     pub prims: Vec<Prim>,
-    /// Triangle corners, parallel to `prims` (the leaf loop's data; NaN for a primitive that is
-    /// not a triangle, which sends the loop to `prims`).
-    pub tris: Vec<[Vec3; 3]>,
-    /// The 4-wide hierarchy over `prims`.
+    /// Triangle corners in blocks of four, each leaf's primitives in consecutive blocks (the
+    /// leaf loop's data; NaN corners for a primitive that is not a triangle, which sends the
+    /// loop to `prims`).
+    pub blocks: TriBlocks,
+    /// The 4-wide hierarchy over `prims`; its leaves refer to their first block in `blocks`.
     pub bvh: Bvh4,
     /// Materials.
     pub bsdfs: Vec<Bsdf>,
@@ -110,6 +112,11 @@ pub enum BuildError {
 impl Scene {
     /// Validates the parts, builds primitives and the BVH, and computes the features.
     pub fn new(p: SceneParts) -> Result<Scene, BuildError> {
+        Scene::with_build_params(p, Bvh4::PARAMS)
+    }
+
+    /// [`Scene::new`] with a chosen BVH leaf-size trade-off (for measuring it).
+    pub fn with_build_params(p: SceneParts, params: BuildParams) -> Result<Scene, BuildError> {
         let mut prims = Vec::new();
         let mut tris = Vec::new();
         for (si, s) in p.shapes.iter().enumerate() {
@@ -163,7 +170,7 @@ impl Scene {
             .zip(&tris)
             .map(|(pr, v)| pr.bounds(v, &p.disks))
             .collect();
-        let (bvh, order) = Bvh4::build(&bounds);
+        let (mut bvh, order) = Bvh4::build_with(&bounds, params);
         let world = bvh.bounds();
         let (center, radius) = if world.is_empty() {
             (glam::Vec3::ZERO, 1.0)
@@ -185,6 +192,7 @@ impl Scene {
         };
         let prims: Vec<Prim> = order.iter().map(|&i| prims[i as usize]).collect();
         let tris: Vec<[Vec3; 3]> = order.iter().map(|&i| tris[i as usize]).collect();
+        let blocks = TriBlocks::build(&mut bvh, &tris);
         let features = SceneFeatures {
             has_emitters: !p.emitters.is_empty(),
             has_environment: !environments.is_empty(),
@@ -198,7 +206,7 @@ impl Scene {
             shapes: p.shapes,
             disks: p.disks,
             prims,
-            tris,
+            blocks,
             bvh,
             bsdfs: p.bsdfs,
             emitters: p.emitters,
@@ -263,8 +271,19 @@ impl Scene {
         }
     }
 
-    /// Intersection of the ray (within `(0, t_max)`) with primitive `i` alone: `(t, uv)`.
-    #[inline(always)]
+    /// Corners of primitive `i` if it is a triangle.
+    pub fn triangle(&self, i: usize) -> Option<[Vec3; 3]> {
+        match self.prims[i] {
+            Prim::Triangle { shape, face } => match &self.shapes[shape as usize].kind {
+                ShapeKind::Mesh(m) => Some(m.vertices(face as usize)),
+                _ => None,
+            },
+            _ => None,
+        }
+    }
+
+    /// Intersection of the ray (within `(0, t_max)`) with primitive `i` alone: `(t, uv)`. The
+    /// scalar reference the block tests agree with (it reads the shape, not the blocks).
     pub fn intersect_prim(
         &self,
         i: usize,
@@ -272,31 +291,24 @@ impl Scene {
         tri: &TriRay,
         t_max: f32,
     ) -> Option<(f32, glam::Vec2)> {
-        let v = &self.tris[i];
-        if v[0].x.is_nan() {
-            self.prims[i].intersect(ray, tri, v, t_max, &self.disks)
-        } else {
-            tri.intersect(t_max, v[0], v[1], v[2])
-                .map(|(t, _, b1, b2)| (t, glam::Vec2::new(b1, b2)))
-        }
+        let v = self.triangle(i).unwrap_or(NOT_A_TRIANGLE);
+        self.prims[i].intersect(ray, tri, &v, t_max, &self.disks)
     }
 
     /// The closest hit along the ray, if any.
     pub fn intersect_hit(&self, ray: &Ray) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         let tri = TriRay::new(ray);
-        self.bvh.traverse_closest(ray, |first, count, mut t_max| {
-            for i in first..first + count {
-                if let Some((t, uv)) = self.intersect_prim(i, ray, &tri, t_max) {
-                    t_max = t;
-                    best = Some(Hit {
-                        t,
-                        prim: i as u32,
-                        uv,
-                    });
-                }
-            }
-            t_max
+        let r4 = Ray4::new(&tri);
+        self.bvh.traverse_closest(ray, |first, count, t_max| {
+            self.blocks.closest(
+                first,
+                count,
+                (&tri, &r4),
+                t_max,
+                &mut best,
+                |i, v, t_max| self.prims[i].intersect(ray, &tri, v, t_max, &self.disks),
+            )
         });
         best
     }
@@ -313,9 +325,13 @@ impl Scene {
     pub fn occluded(&self, ray: &Ray) -> bool {
         let mut hit = false;
         let tri = TriRay::new(ray);
+        let r4 = Ray4::new(&tri);
         self.bvh.traverse_any(ray, |first, count, t_max| {
-            hit =
-                (first..first + count).any(|i| self.intersect_prim(i, ray, &tri, t_max).is_some());
+            hit = self
+                .blocks
+                .any(first, count, (&tri, &r4), t_max, |i, v, t_max| {
+                    self.prims[i].intersect(ray, &tri, v, t_max, &self.disks)
+                });
             hit
         });
         hit
@@ -325,7 +341,7 @@ impl Scene {
     pub fn accel_memory(&self) -> AccelMemory {
         AccelMemory {
             nodes: self.bvh.memory_bytes(),
-            triangles: core::mem::size_of_val(self.tris.as_slice()),
+            triangles: self.blocks.memory_bytes(),
             prims: core::mem::size_of_val(self.prims.as_slice()),
         }
     }
@@ -336,7 +352,8 @@ impl Scene {
 pub struct AccelMemory {
     /// The 4-wide BVH's nodes.
     pub nodes: usize,
-    /// The triangle test's data: three corners per primitive, in leaf order.
+    /// The triangle test's data: blocks of four primitives' corners (37 bytes per primitive in
+    /// full blocks, more where a leaf's last block is partly empty).
     pub triangles: usize,
     /// Per primitive, which shape and face it is (for shading, and for spheres and disks).
     pub prims: usize,

@@ -379,3 +379,42 @@ fn structure_covers_every_primitive_once() {
         );
     }
 }
+
+/// Counted casts return exactly what the ordinary ones return, and count what they do: a ray
+/// that misses the scene's box visits the root only; rays that hit reach at least one leaf.
+#[test]
+fn counted_casts_agree_and_count() {
+    use tessera_core::accel::TraversalCounts;
+    let mut rng = Rng(17);
+    let s = scene(
+        random_soup(&mut rng, 2000),
+        vec![Sphere {
+            center: Vec3::ZERO,
+            radius: 2.0,
+        }],
+    );
+    let mut c = TraversalCounts::default();
+    let mut hits = 0;
+    for ray in random_rays(&mut rng, 3000) {
+        let h = s.intersect_hit(&ray);
+        let mut one = TraversalCounts::default();
+        let hc = s.intersect_hit_counted(&ray, &mut one);
+        assert_eq!(
+            h.map(|h| (h.t.to_bits(), h.prim)),
+            hc.map(|h| (h.t.to_bits(), h.prim))
+        );
+        assert_eq!(s.occluded(&ray), s.occluded_counted(&ray, &mut one));
+        if h.is_some() {
+            hits += 1;
+            assert!(one.leaves >= 1 && one.blocks >= one.leaves && one.nodes >= 1);
+        }
+        c.add(&one);
+    }
+    assert_eq!(c.rays, 6000);
+    assert!(hits > 500 && c.nodes > c.rays, "{hits} {c:?}");
+    // Control: a ray pointing away from everything tests the root's four boxes and nothing else.
+    let away = Ray::new(Vec3::splat(100.0), Vec3::ONE);
+    let mut one = TraversalCounts::default();
+    assert!(s.intersect_hit_counted(&away, &mut one).is_none());
+    assert_eq!((one.rays, one.nodes, one.leaves, one.blocks), (1, 1, 0, 0));
+}

@@ -15,8 +15,11 @@ const MAX_DEPTH: usize = 60;
 pub struct BuildParams {
     /// Ranges of at most this many primitives may become leaves when the SAH says so.
     pub max_leaf: usize,
-    /// Cost of one traversal step relative to one primitive test.
+    /// Cost of one traversal step relative to one leaf test (of `block` primitives).
     pub traversal_cost: f32,
+    /// Primitives tested at once: a leaf of `n` primitives costs `ceil(n / block)` tests, so the
+    /// heuristic prefers leaves that fill whole blocks (1 for one-at-a-time tests).
+    pub block: usize,
 }
 
 impl BuildParams {
@@ -24,7 +27,14 @@ impl BuildParams {
     pub const BINARY: BuildParams = BuildParams {
         max_leaf: 4,
         traversal_cost: 0.5,
+        block: 1,
     };
+
+    /// Leaf cost in units of one block test: `ceil(n / block)`.
+    #[inline]
+    fn leaf_cost(&self, n: usize) -> f32 {
+        n.div_ceil(self.block.max(1)) as f32
+    }
 }
 
 /// A node: its box, and either a primitive range (leaf, `count > 0`) or the second child.
@@ -188,7 +198,8 @@ fn build_node(
             if lc == 0 || right_count[i + 1] == 0 {
                 continue;
             }
-            let cost = lb.area() * lc as f32 + right_area[i + 1] * right_count[i + 1] as f32;
+            let cost = lb.area() * params.leaf_cost(lc)
+                + right_area[i + 1] * params.leaf_cost(right_count[i + 1]);
             if best.is_none_or(|(c, _, _)| cost < c) {
                 best = Some((cost, axis, i));
             }
@@ -198,7 +209,7 @@ fn build_node(
     let split = match best {
         Some((cost, axis, bin)) => {
             let split_cost = params.traversal_cost + if area > 0.0 { cost / area } else { 0.0 };
-            if count <= params.max_leaf && split_cost >= count as f32 {
+            if count <= params.max_leaf && split_cost >= params.leaf_cost(count) {
                 return make_leaf(items, start, end, bounds, nodes);
             }
             let scale = BINS as f32 / ext[axis];

@@ -91,23 +91,31 @@ struct Entry {
 const STACK: usize = 64;
 
 impl Bvh4 {
-    /// The leaf-size trade-off of the binary build collapsed into a 4-wide one: a step tests
-    /// four boxes, so leaves are larger than for binary traversal (measured with
-    /// `BVH4_PARAMS=leaf,cost cargo bench -p tessera-benches --bench bvh_compare`: leaves up to 4,
-    /// 8 or 16 primitives cast rays at the same speed within noise; larger leaves need fewer
-    /// nodes, 23 instead of 63 bytes per triangle). Scenes of a few large, overlapping
-    /// triangles differ: on the Cornell box (32 triangles) leaves of 16 made each ray test
-    /// most triangles; leaves of at most 4 with traversal cost 1 cut the render's instruction
-    /// count by 23% and its time by about 17% (callgrind and `--threads 1`; same image bits).
+    /// The leaf-size trade-off for leaves of four-triangle blocks ([`super::tri4`]): a leaf of
+    /// `n` primitives costs `ceil(n / 4)` block tests, one traversal step a quarter of one.
+    /// Measured (`BVH4_PARAMS=leaf,cost,block cargo bench -p tessera-benches --bench
+    /// bvh_compare`, and callgrind / `--threads 1` renders of the Cornell box): with block costs
+    /// the SAH fills blocks, and memory falls from 71-75 bytes per triangle (nodes and corners)
+    /// to 49-51 (cost 1) or 55-57 (costs 0.25 and 0.5) for leaf limits 8 to 16; costs 0.5 and 1
+    /// made the Cornell
+    /// box (32 large, overlapping triangles) test more blocks per ray and render 5-10% slower
+    /// than leaves of at most 4 scalar tests; cost 0.25 renders it 3-5% faster and casts
+    /// bench rays as fast as 0.5.
     pub const PARAMS: BuildParams = BuildParams {
-        max_leaf: 4,
-        traversal_cost: 1.0,
+        max_leaf: 16,
+        traversal_cost: 0.25,
+        block: 4,
     };
 
     /// Builds the binary SAH hierarchy and collapses it; returns the hierarchy and the order in
     /// which the caller must store its primitives (leaves refer to ranges of that order).
     pub fn build(bounds: &[Aabb]) -> (Bvh4, Vec<u32>) {
-        let (bin, order) = Bvh::build_with(bounds, Bvh4::PARAMS);
+        Bvh4::build_with(bounds, Bvh4::PARAMS)
+    }
+
+    /// [`Bvh4::build`] with a chosen leaf-size trade-off.
+    pub fn build_with(bounds: &[Aabb], params: BuildParams) -> (Bvh4, Vec<u32>) {
+        let (bin, order) = Bvh::build_with(bounds, params);
         (Bvh4::from_binary(&bin), order)
     }
 
@@ -124,6 +132,18 @@ impl Bvh4 {
             nodes,
             bounds: bin.bounds(),
             depth,
+        }
+    }
+
+    /// Replaces each leaf's first primitive by `f(first, count)` (e.g. the index of its first
+    /// block of primitives), visiting leaves in node order.
+    pub fn map_leaves(&mut self, mut f: impl FnMut(usize, usize) -> u32) {
+        for node in &mut self.nodes {
+            for lane in 0..4 {
+                if node.used & (1 << lane) != 0 && node.count[lane] > 0 {
+                    node.child[lane] = f(node.child[lane] as usize, usize::from(node.count[lane]));
+                }
+            }
         }
     }
 
@@ -147,39 +167,75 @@ impl Bvh4 {
     /// `leaf(first, count, t_max)` tests the primitives and returns the new `t_max`.
     #[inline]
     pub fn traverse_closest(&self, ray: &Ray, mut leaf: impl FnMut(usize, usize, f32) -> f32) {
-        self.walk::<false>(ray, |f, c, t| Some(leaf(f, c, t)));
+        self.walk::<false, false>(ray, |f, c, t| Some(leaf(f, c, t)), &mut 0);
     }
 
     /// Any-hit traversal: `leaf(first, count, t_max)` returns true to stop (a hit was found).
     #[inline]
     pub fn traverse_any(&self, ray: &Ray, mut leaf: impl FnMut(usize, usize, f32) -> bool) {
-        self.walk::<true>(ray, |f, c, t| if leaf(f, c, t) { None } else { Some(t) });
+        let leaf = |f, c, t| if leaf(f, c, t) { None } else { Some(t) };
+        self.walk::<true, false>(ray, leaf, &mut 0);
+    }
+
+    /// [`Bvh4::traverse_closest`] that also adds the number of nodes it visits to `nodes` (for
+    /// statistics; the uncounted walk compiles without the counter).
+    #[inline]
+    pub fn traverse_closest_counted(
+        &self,
+        ray: &Ray,
+        mut leaf: impl FnMut(usize, usize, f32) -> f32,
+        nodes: &mut u64,
+    ) {
+        self.walk::<false, true>(ray, |f, c, t| Some(leaf(f, c, t)), nodes);
+    }
+
+    /// [`Bvh4::traverse_any`] that also adds the number of nodes it visits to `nodes`.
+    #[inline]
+    pub fn traverse_any_counted(
+        &self,
+        ray: &Ray,
+        mut leaf: impl FnMut(usize, usize, f32) -> bool,
+        nodes: &mut u64,
+    ) {
+        let leaf = |f, c, t| if leaf(f, c, t) { None } else { Some(t) };
+        self.walk::<true, true>(ray, leaf, nodes);
     }
 
     #[inline]
-    fn walk<const ANY: bool>(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> Option<f32>) {
+    fn walk<const ANY: bool, const COUNT: bool>(
+        &self,
+        ray: &Ray,
+        leaf: impl FnMut(usize, usize, f32) -> Option<f32>,
+        nodes: &mut u64,
+    ) {
         if self.nodes.is_empty() {
             return;
         }
         let need = 3 * self.depth + 1;
         if need <= STACK / 4 {
             // Small scenes (the Cornell box): zeroing 16 entries is a few stores, not a memset.
-            self.walk_with::<ANY>(ray, &mut [Entry::default(); STACK / 4], leaf);
+            self.walk_with::<ANY, COUNT>(ray, &mut [Entry::default(); STACK / 4], leaf, nodes);
         } else if need <= STACK / 2 {
-            self.walk_with::<ANY>(ray, &mut [Entry::default(); STACK / 2], leaf);
+            self.walk_with::<ANY, COUNT>(ray, &mut [Entry::default(); STACK / 2], leaf, nodes);
         } else if need <= STACK {
-            self.walk_with::<ANY>(ray, &mut [Entry::default(); STACK], leaf);
+            self.walk_with::<ANY, COUNT>(ray, &mut [Entry::default(); STACK], leaf, nodes);
         } else {
-            self.walk_with::<ANY>(ray, &mut alloc::vec![Entry::default(); need], leaf);
+            self.walk_with::<ANY, COUNT>(
+                ray,
+                &mut alloc::vec![Entry::default(); need],
+                leaf,
+                nodes,
+            );
         }
     }
 
     #[inline(always)]
-    fn walk_with<const ANY: bool>(
+    fn walk_with<const ANY: bool, const COUNT: bool>(
         &self,
         ray: &Ray,
         stack: &mut [Entry],
         mut leaf: impl FnMut(usize, usize, f32) -> Option<f32>,
+        nodes: &mut u64,
     ) {
         let pre = RayPre::new(ray);
         let mut t_max = ray.t_max;
@@ -187,6 +243,9 @@ impl Bvh4 {
         let mut cur = Entry::default(); // the root node
         loop {
             if cur.count == 0 {
+                if COUNT {
+                    *nodes += 1;
+                }
                 let node = &self.nodes[cur.child as usize];
                 let (mask, t_near) = hit4(&node.boxes, &pre, t_max);
                 let mut mask = mask & node.used;

@@ -1,6 +1,6 @@
 //! Primitives as the BVH stores them: which shape (and face) each is. A triangle's corners are
-//! kept apart, in a parallel array in the same order ([`crate::scene::Scene::tris`]), so the
-//! leaf loop reads 36 bytes per triangle and nothing else.
+//! kept apart, in blocks of four in the same order ([`crate::scene::Scene::blocks`]), so the
+//! leaf loop reads 37 bytes per triangle and nothing else.
 use super::{Disk, Sphere, TriRay};
 use crate::math::{Aabb, Ray};
 use glam::Vec3;
@@ -8,7 +8,7 @@ use glam::Vec3;
 /// One intersectable primitive, referring back to the shape it belongs to.
 #[derive(Clone, Copy, Debug)]
 pub enum Prim {
-    /// Triangle `face` of mesh shape `shape` (its corners are in the scene's `tris`).
+    /// Triangle `face` of mesh shape `shape` (its corners are in the scene's `blocks`).
     Triangle { shape: u32, face: u32 },
     /// A sphere shape.
     Sphere { sphere: Sphere, shape: u32 },

@@ -46,6 +46,14 @@ impl TriRay {
         }
     }
 
+    /// The origin, the index of the axis the ray is sheared along (its largest direction
+    /// component) and the shear `(sx, sy, sz)`: what the four-lane test
+    /// ([`crate::accel::tri4`]) needs to repeat this test's operations exactly.
+    #[inline(always)]
+    pub fn parts(&self) -> (Vec3, usize, [f32; 3]) {
+        (self.o, self.kz, [self.sx, self.sy, self.sz])
+    }
+
     /// Intersects the ray (within `[0, t_max)`) with the triangle; returns `(t, b0, b1, b2)`.
     #[inline]
     pub fn intersect(

@@ -1,0 +1,81 @@
+//! Counted ray casts: the work one closest-hit or any-hit query does (nodes visited, leaves
+//! and triangle blocks tested), for statistics such as `--stats` and the benches. They return
+//! exactly what [`Scene::intersect_hit`] and [`Scene::occluded`] return; the ordinary casts are
+//! compiled without counters.
+use super::tri4::Ray4;
+use crate::geometry::{Hit, TriRay};
+use crate::math::Ray;
+use crate::scene::Scene;
+
+/// Work done by counted ray casts, summed over the rays counted.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TraversalCounts {
+    /// Rays cast.
+    pub rays: u64,
+    /// BVH nodes visited (each a four-box test).
+    pub nodes: u64,
+    /// Leaves reached.
+    pub leaves: u64,
+    /// Four-triangle blocks in the leaves reached (an any-hit query may stop before the last).
+    pub blocks: u64,
+}
+
+impl TraversalCounts {
+    /// Adds another tally to this one.
+    pub fn add(&mut self, o: &TraversalCounts) {
+        self.rays += o.rays;
+        self.nodes += o.nodes;
+        self.leaves += o.leaves;
+        self.blocks += o.blocks;
+    }
+}
+
+impl Scene {
+    /// [`Scene::intersect_hit`], counting its work into `c`.
+    pub fn intersect_hit_counted(&self, ray: &Ray, c: &mut TraversalCounts) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        let tri = TriRay::new(ray);
+        let r4 = Ray4::new(&tri);
+        let (mut leaves, mut blocks) = (0u64, 0u64);
+        let leaf = |first: usize, count: usize, t_max: f32| {
+            leaves += 1;
+            blocks += count.div_ceil(4) as u64;
+            self.blocks.closest(
+                first,
+                count,
+                (&tri, &r4),
+                t_max,
+                &mut best,
+                |i, v, t_max| self.prims[i].intersect(ray, &tri, v, t_max, &self.disks),
+            )
+        };
+        self.bvh.traverse_closest_counted(ray, leaf, &mut c.nodes);
+        c.rays += 1;
+        c.leaves += leaves;
+        c.blocks += blocks;
+        best
+    }
+
+    /// [`Scene::occluded`], counting its work into `c`.
+    pub fn occluded_counted(&self, ray: &Ray, c: &mut TraversalCounts) -> bool {
+        let mut hit = false;
+        let tri = TriRay::new(ray);
+        let r4 = Ray4::new(&tri);
+        let (mut leaves, mut blocks) = (0u64, 0u64);
+        let leaf = |first: usize, count: usize, t_max: f32| {
+            leaves += 1;
+            blocks += count.div_ceil(4) as u64;
+            hit = self
+                .blocks
+                .any(first, count, (&tri, &r4), t_max, |i, v, t_max| {
+                    self.prims[i].intersect(ray, &tri, v, t_max, &self.disks)
+                });
+            hit
+        };
+        self.bvh.traverse_any_counted(ray, leaf, &mut c.nodes);
+        c.rays += 1;
+        c.leaves += leaves;
+        c.blocks += blocks;
+        hit
+    }
+}
