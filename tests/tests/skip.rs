@@ -260,3 +260,30 @@ fn skipped_last_segment_changes_nothing() {
         tessera_tests::render_loaded(&direct, 4, 3)
     );
 }
+
+#[test]
+fn traversal_counts_follow_the_rays() {
+    // One sphere and a point light: the hierarchy is a root holding one leaf, so every ray
+    // (camera, continuation, shadow) visits exactly one node, a leaf reached is one block, and
+    // only rays whose path crosses the sphere's box reach it.
+    let c = stats(&load(&[DIFFUSE_SPHERE, POINT], None, None));
+    let rays = c.camera_rays + c.continuation_rays + c.shadow_rays;
+    assert!(c.shadow_rays > 0 && c.continuation_rays > 0, "{c:?}");
+    assert_eq!(c.bvh_nodes, rays, "{c:?}");
+    assert_eq!(c.prim_blocks, c.bvh_leaves, "{c:?}");
+    assert!(c.bvh_leaves > 0 && c.bvh_leaves < rays, "{c:?}");
+    // Control: 25 spheres need a deeper hierarchy, so rays visit more nodes than there are rays.
+    let grid: String = (0..25)
+        .map(|i| {
+            format!(
+                r#"<shape type="sphere"><point name="center" value="{}, {}, 0"/><float name="radius" value="0.3"/></shape>"#,
+                (i % 5) as f32 - 2.0,
+                (i / 5) as f32 - 2.0
+            )
+        })
+        .collect();
+    let c = stats(&load(&[&grid, POINT], None, None));
+    let rays = c.camera_rays + c.continuation_rays + c.shadow_rays;
+    assert!(c.bvh_nodes > rays, "{c:?}");
+    assert!(c.prim_blocks >= c.bvh_leaves && c.bvh_leaves > 0, "{c:?}");
+}

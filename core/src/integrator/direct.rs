@@ -49,7 +49,7 @@ impl DirectIntegrator {
         probe: &mut P,
     ) -> Color {
         let mut result = Color::ZERO;
-        let hit = scene.intersect(&ray);
+        let hit = probe.intersect(scene, &ray);
         probe.ray(RayKind::Camera);
         probe.hit(scene, hit.as_ref(), ray.d);
         if !self.hide_emitters {
@@ -105,7 +105,7 @@ impl DirectIntegrator {
             };
             let d = si.frame.to_world(bs.wo);
             probe.bsdf_sample(Some(&bs), d, bs.weight);
-            let next = scene.intersect(&si.spawn_ray(d));
+            let next = probe.intersect(scene, &si.spawn_ray(d));
             probe.ray(RayKind::Continuation);
             probe.hit(scene, next.as_ref(), d);
             // Emitter sampling only runs on smooth BSDFs and cannot produce a delta direction.

@@ -53,7 +53,7 @@ pub fn sample_light<S: Sampler, P: Probe>(
         Some(t) => si.spawn_ray_to(t),
         None => si.spawn_ray(es.wo),
     };
-    let blocked = scene.occluded(&shadow);
+    let blocked = probe.occluded(scene, &shadow);
     probe.ray(RayKind::Shadow);
     probe.shadow(blocked);
     if blocked {

@@ -138,7 +138,7 @@ impl PathIntegrator {
         let mut prev: Option<Prev> = None;
         loop {
             let visible = !(depth == 0 && self.hide_emitters);
-            let hit = scene.intersect(&ray);
+            let hit = probe.intersect(scene, &ray);
             probe.ray(if depth == 0 {
                 RayKind::Camera
             } else {
