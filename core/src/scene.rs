@@ -301,16 +301,46 @@ impl Scene {
         let tri = TriRay::new(ray);
         let r4 = Ray4::new(&tri);
         self.bvh.traverse_closest(ray, |first, count, t_max| {
-            self.blocks.closest(
-                first,
-                count,
-                (&tri, &r4),
-                t_max,
-                &mut best,
-                |i, v, t_max| self.prims[i].intersect(ray, &tri, v, t_max, &self.disks),
-            )
+            self.leaf_closest(ray, (&tri, &r4), first..first + count, t_max, &mut best)
         });
         best
+    }
+
+    /// Tests the primitives `prims` of a leaf for a hit closer than `t_max`, updating `best`;
+    /// returns the new `t_max`. Shared by the ordinary and the counted casts.
+    #[inline(always)]
+    pub(crate) fn leaf_closest(
+        &self,
+        ray: &Ray,
+        (tri, r4): (&TriRay, &Ray4),
+        prims: core::ops::Range<usize>,
+        t_max: f32,
+        best: &mut Option<Hit>,
+    ) -> f32 {
+        self.blocks.closest(
+            prims.start,
+            prims.len(),
+            (tri, r4),
+            t_max,
+            best,
+            |i, v, t_max| self.prims[i].intersect(ray, tri, v, t_max, &self.disks),
+        )
+    }
+
+    /// Whether any primitive of `prims` blocks the ray before `t_max` (ordinary and counted
+    /// casts).
+    #[inline(always)]
+    pub(crate) fn leaf_any(
+        &self,
+        ray: &Ray,
+        (tri, r4): (&TriRay, &Ray4),
+        prims: core::ops::Range<usize>,
+        t_max: f32,
+    ) -> bool {
+        self.blocks
+            .any(prims.start, prims.len(), (tri, r4), t_max, |i, v, t_max| {
+                self.prims[i].intersect(ray, tri, v, t_max, &self.disks)
+            })
     }
 
     /// The closest surface interaction along the ray, if any.
@@ -327,11 +357,7 @@ impl Scene {
         let tri = TriRay::new(ray);
         let r4 = Ray4::new(&tri);
         self.bvh.traverse_any(ray, |first, count, t_max| {
-            hit = self
-                .blocks
-                .any(first, count, (&tri, &r4), t_max, |i, v, t_max| {
-                    self.prims[i].intersect(ray, &tri, v, t_max, &self.disks)
-                });
+            hit = self.leaf_any(ray, (&tri, &r4), first..first + count, t_max);
             hit
         });
         hit

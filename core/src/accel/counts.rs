@@ -40,14 +40,7 @@ impl Scene {
         let leaf = |first: usize, count: usize, t_max: f32| {
             leaves += 1;
             blocks += count.div_ceil(4) as u64;
-            self.blocks.closest(
-                first,
-                count,
-                (&tri, &r4),
-                t_max,
-                &mut best,
-                |i, v, t_max| self.prims[i].intersect(ray, &tri, v, t_max, &self.disks),
-            )
+            self.leaf_closest(ray, (&tri, &r4), first..first + count, t_max, &mut best)
         };
         self.bvh.traverse_closest_counted(ray, leaf, &mut c.nodes);
         c.rays += 1;
@@ -65,11 +58,7 @@ impl Scene {
         let leaf = |first: usize, count: usize, t_max: f32| {
             leaves += 1;
             blocks += count.div_ceil(4) as u64;
-            hit = self
-                .blocks
-                .any(first, count, (&tri, &r4), t_max, |i, v, t_max| {
-                    self.prims[i].intersect(ray, &tri, v, t_max, &self.disks)
-                });
+            hit = self.leaf_any(ray, (&tri, &r4), first..first + count, t_max);
             hit
         };
         self.bvh.traverse_any_counted(ray, leaf, &mut c.nodes);
