@@ -166,4 +166,5 @@ pub fn worst_against_reference(
 pub mod analytic_scenes;
 pub mod bsdf;
 pub mod cap;
+pub mod rng;
 pub mod stress;

@@ -12,23 +12,7 @@ use tessera_core::math::{Aabb, Ray, Transform};
 use tessera_core::scene::{Scene, SceneParts};
 use tessera_core::texture::Texture;
 
-/// SplitMix64 for test data.
-struct Rng(u64);
-impl Rng {
-    fn f(&mut self) -> f32 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn v(&mut self, s: f32) -> Vec3 {
-        Vec3::new(self.f() - 0.5, self.f() - 0.5, self.f() - 0.5) * s
-    }
-    fn below(&mut self, n: usize) -> usize {
-        ((self.f() * n as f32) as usize).min(n - 1)
-    }
-}
+use tessera_tests::rng::SplitMix as Rng;
 
 fn scene(tris: Vec<[Vec3; 3]>, spheres: Vec<Sphere>) -> Scene {
     let positions: Vec<Vec3> = tris.iter().flatten().copied().collect();
@@ -227,13 +211,13 @@ fn axis_parallel_rays_on_box_planes() {
     let mut rays = Vec::new();
     for _ in 0..3000 {
         // Origins on grid planes (integers and halves) or anywhere.
-        let mut c = || match rng.below(3) {
-            0 => rng.below(8) as f32 - 1.0,
-            1 => rng.below(16) as f32 * 0.5 - 1.0,
+        let mut c = || match rng.below_scaled(3) {
+            0 => rng.below_scaled(8) as f32 - 1.0,
+            1 => rng.below_scaled(16) as f32 * 0.5 - 1.0,
             _ => rng.f() * 8.0 - 1.0,
         };
         let o = Vec3::new(c(), c(), c());
-        rays.push(Ray::new(o, dirs[rng.below(dirs.len())]));
+        rays.push(Ray::new(o, dirs[rng.below_scaled(dirs.len())]));
     }
     let hits = check_rays(&s, &rays);
     assert!(hits > 300, "too few hits ({hits})");
@@ -241,9 +225,9 @@ fn axis_parallel_rays_on_box_planes() {
 
 fn random_boxes(rng: &mut Rng) -> Boxes4 {
     let mut b = Boxes4::EMPTY;
-    for lane in 0..rng.below(5) {
+    for lane in 0..rng.below_scaled(5) {
         for a in 0..3 {
-            let (p, q) = match rng.below(4) {
+            let (p, q) = match rng.below_scaled(4) {
                 // Flat boxes and boxes with a plane through typical origins.
                 0 => (0.0, rng.f()),
                 1 => {
@@ -260,7 +244,7 @@ fn random_boxes(rng: &mut Rng) -> Boxes4 {
 }
 
 fn random_box_ray(rng: &mut Rng) -> Ray {
-    let mut c = |zero: bool| match rng.below(if zero { 5 } else { 3 }) {
+    let mut c = |zero: bool| match rng.below_scaled(if zero { 5 } else { 3 }) {
         0 => 0.0,
         1 => -0.0,
         2 => rng.f() - 0.5,
@@ -270,7 +254,7 @@ fn random_box_ray(rng: &mut Rng) -> Ray {
     let d = Vec3::new(c(true), c(true), c(true));
     let d = if d == Vec3::ZERO { Vec3::X } else { d };
     let mut ray = Ray::new(o, d);
-    if rng.below(3) == 0 {
+    if rng.below_scaled(3) == 0 {
         ray.t_max = rng.f() * 3.0;
     }
     ray

@@ -12,26 +12,7 @@ use tessera_core::geometry::TriRay;
 use tessera_core::glam::Vec3;
 use tessera_core::math::Ray;
 
-/// SplitMix64 for test data.
-struct Rng(u64);
-impl Rng {
-    fn u(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-    fn f(&mut self) -> f32 {
-        (self.u() >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn v(&mut self, s: f32) -> Vec3 {
-        Vec3::new(self.f() - 0.5, self.f() - 0.5, self.f() - 0.5) * s
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.u() % n as u64) as usize
-    }
-}
+use tessera_tests::rng::SplitMix as Rng;
 
 type Tris = [[Vec3; 3]; 4];
 type Found = Option<(f32, f32, f32, f32)>;
