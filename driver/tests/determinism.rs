@@ -3,26 +3,14 @@
 //! whole; one sample replayed alone equals what the full render accumulated for it.
 
 use std::ops::Range;
-use std::path::{Path, PathBuf};
 use tessera::render::{render, Framebuffer, RenderOptions};
-use tessera::scene::{load_scene, LoadedScene};
+use tessera::scene::LoadedScene;
 use tessera_core::camera::Filter;
 use tessera_core::film::PixelAccum;
 use tessera_core::render::render_sample;
 
-fn scene_path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../scenes")
-        .join(name)
-}
-
-fn load(name: &str, defines: &[(&str, &str)]) -> LoadedScene {
-    let defines: Vec<(String, String)> = defines
-        .iter()
-        .map(|(k, v)| (k.to_string(), v.to_string()))
-        .collect();
-    load_scene(&scene_path(name), &defines).unwrap_or_else(|e| panic!("{name}: {e}"))
-}
+mod scenes;
+use scenes::load;
 
 fn render_with(
     l: &LoadedScene,

@@ -1,29 +1,18 @@
 //! `--stats` and `--debug-pixel` observe the render without changing it: the counting render
 //! gives the same bits as the ordinary one and the same counts for any thread count and tile
 //! size; the debug trace prints exactly the values the render accumulates.
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 use tessera::render::{render, Framebuffer, RenderOptions};
 use tessera::render_stats::render_with_stats;
-use tessera::scene::{load_scene, LoadedScene};
+use tessera::scene::LoadedScene;
 use tessera_core::integrator::Counters;
 use tessera_core::render::render_sample;
 
 const BIN: &str = env!("CARGO_BIN_EXE_tessera");
 
-fn scene_path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../scenes")
-        .join(name)
-}
-
-fn load(name: &str, defines: &[(&str, &str)]) -> LoadedScene {
-    let defines: Vec<(String, String)> = defines
-        .iter()
-        .map(|(k, v)| (k.to_string(), v.to_string()))
-        .collect();
-    load_scene(&scene_path(name), &defines).unwrap_or_else(|e| panic!("{name}: {e}"))
-}
+mod scenes;
+use scenes::{load, scene_path};
 
 fn opts(l: &LoadedScene, threads: usize, tile_size: u32) -> RenderOptions {
     RenderOptions {

@@ -43,7 +43,7 @@ fn scalar_token(header: &Header, element: &str, prop: &str) -> Option<usize> {
 }
 
 /// Where list property `prop` of the face element starts (only when it is the first property).
-fn scalar_token_list(header: &Header, prop: &str) -> Option<usize> {
+fn list_token(header: &Header, prop: &str) -> Option<usize> {
     let def = header.elements.get("face")?;
     (def.properties.get_index(0)?.0 == prop).then_some(0)
 }
@@ -120,7 +120,7 @@ pub fn load_ply(path: &Path) -> Result<MeshData, InputError> {
         if let Some(j) = idx.iter().position(|&i| i < 0 || i >= n) {
             // The list's values follow its length, so value j is token 1 + j when the list
             // comes first.
-            let token = scalar_token_list(&ply.header, key).map(|k| k + 1 + j);
+            let token = list_token(&ply.header, key).map(|k| k + 1 + j);
             let bad = idx[j];
             return Err(at(
                 "face",
