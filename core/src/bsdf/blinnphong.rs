@@ -27,7 +27,7 @@
 //! component of the base keeps its discrete probability times 1/2.
 use super::fresnel::schlick;
 use super::{Bsdf, BsdfSample};
-use crate::math::{INV_TWO_PI, PI};
+use crate::math::{sincos_turns, INV_TWO_PI};
 use crate::Color;
 use alloc::boxed::Box;
 use glam::{Vec2, Vec3};
@@ -102,8 +102,8 @@ impl Lobe {
         }
         let cos_t = libm::powf(u.x, 1.0 / (self.shininess + 1.0));
         let sin_t = libm::sqrtf((1.0 - cos_t * cos_t).max(0.0));
-        let phi = 2.0 * PI * u.y;
-        let h = Vec3::new(sin_t * libm::cosf(phi), sin_t * libm::sinf(phi), cos_t);
+        let (sin_p, cos_p) = sincos_turns(u.y);
+        let h = Vec3::new(sin_t * cos_p, sin_t * sin_p, cos_t);
         let ih = wi.dot(h);
         if !(ih > 0.0) {
             return None;

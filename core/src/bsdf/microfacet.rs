@@ -6,7 +6,7 @@
 //! `distribution` = beckmann | ggx, `alpha` or `alpha_u` / `alpha_v`, `sample_visible`).
 //! Beckmann's Smith term uses the rational approximation of Walter et al. 2007, as Mitsuba 3 and
 //! the Wakame assignment do. All directions are in the local frame (+z = macro normal).
-use crate::math::{safe_sqrt, PI};
+use crate::math::{safe_sqrt, sincos_turns, PI};
 use glam::{Vec2, Vec3};
 
 /// Which normal distribution.
@@ -158,7 +158,7 @@ impl Microfacet {
             MicrofacetKind::Beckmann => safe_sqrt(-libm::log1pf(-u1)),
             MicrofacetKind::Ggx => safe_sqrt(u1 / (1.0 - u1)),
         };
-        let (s, c) = libm::sincosf(2.0 * PI * u.y);
+        let (s, c) = sincos_turns(u.y);
         Vec3::new(-r * c * self.alpha_u, -r * s * self.alpha_v, 1.0).normalize()
     }
 
@@ -174,7 +174,7 @@ impl Microfacet {
         };
         let t2 = vh.cross(t1);
         let r = libm::sqrtf(u.x);
-        let (sp, cp) = libm::sincosf(2.0 * PI * u.y);
+        let (sp, cp) = sincos_turns(u.y);
         let p1 = r * cp;
         let s = 0.5 * (1.0 + vh.z);
         let p2 = (1.0 - s) * safe_sqrt(1.0 - p1 * p1) + s * r * sp;

@@ -23,25 +23,26 @@ impl TriRay {
     #[inline]
     pub fn new(ray: &Ray) -> TriRay {
         let d_abs = ray.d.abs();
-        let kz = if d_abs.x > d_abs.y {
-            if d_abs.x > d_abs.z {
-                0
-            } else {
-                2
-            }
-        } else if d_abs.y > d_abs.z {
-            1
+        // The largest component by selects, not nested branches: a ray's dominant axis is as
+        // good as random, so branches here mispredicted often. Ties resolve as before (x over
+        // y only when strictly larger, then z unless strictly smaller).
+        let x_over_y = d_abs.x > d_abs.y;
+        let big = if x_over_y { d_abs.x } else { d_abs.y };
+        let kz = if big > d_abs.z {
+            (!x_over_y) as usize
         } else {
             2
         };
-        let kx = if kz == 2 { 0 } else { kz + 1 };
-        let ky = if kx == 2 { 0 } else { kx + 1 };
-        let sz = 1.0 / ray.d[kz];
+        const NEXT: [usize; 3] = [1, 2, 0];
+        let kx = NEXT[kz];
+        let ky = NEXT[kx];
+        let d = ray.d.to_array();
+        let sz = 1.0 / d[kz];
         TriRay {
             o: ray.o,
             kz,
-            sx: -ray.d[kx] * sz,
-            sy: -ray.d[ky] * sz,
+            sx: -d[kx] * sz,
+            sy: -d[ky] * sz,
             sz,
         }
     }

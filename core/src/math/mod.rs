@@ -4,12 +4,14 @@ mod float;
 mod frame;
 mod ray;
 mod transform;
+mod turns;
 
 pub use aabb::Aabb;
 pub use float::{gamma, next_down, next_up, offset_ray_origin};
 pub use frame::Frame;
 pub use ray::Ray;
 pub use transform::Transform;
+pub use turns::sincos_turns;
 
 /// Pi as f32.
 pub const PI: f32 = core::f32::consts::PI;
