@@ -1,7 +1,7 @@
 //! The per-sample entry point: one camera sample of one pixel, replayable alone.
 use crate::film::PixelAccum;
 use crate::integrator::{Integrator, NoProbe, Probe};
-use crate::sampling::{IndependentSampler, Sampler, SamplerKind, ZSobolSampler};
+use crate::sampling::{IndependentSampler, Sampler, SamplerKind, ZSobolPixel, ZSobolSampler};
 use crate::scene::Scene;
 use crate::Color;
 use core::ops::Range;
@@ -52,6 +52,37 @@ pub fn render_sample_probed<P: Probe>(
     }
 }
 
+/// Samples `samples` of pixel `(x, y)` in index order, each value passed to `add`: the values
+/// of [`render_sample_probed`] for those indices, bit for bit, with the zsobol sampler's
+/// per-pixel work done once for the pixel instead of once per sample ([`ZSobolPixel`]).
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub fn render_samples_probed<P: Probe>(
+    scene: &Scene,
+    integrator: &Integrator,
+    seed: u64,
+    x: u32,
+    y: u32,
+    samples: Range<u64>,
+    probe: &mut P,
+    mut add: impl FnMut(Color),
+) {
+    match scene.sampler {
+        SamplerKind::Independent => {
+            for index in samples {
+                let s = IndependentSampler::new(seed, x, y, index);
+                add(trace(scene, integrator, x, y, s, probe));
+            }
+        }
+        SamplerKind::ZSobol { log2_spp } => {
+            let mut pixel = ZSobolPixel::new(seed, x, y, log2_spp);
+            for index in samples {
+                add(trace(scene, integrator, x, y, pixel.sampler(index), probe));
+            }
+        }
+    }
+}
+
 /// One camera sample of pixel `(x, y)` drawn from `sampler`.
 #[inline]
 fn trace<S: Sampler, P: Probe>(
@@ -79,7 +110,7 @@ pub fn render_pixel(
     samples: Range<u64>,
     acc: &mut PixelAccum,
 ) {
-    for i in samples {
-        acc.add(render_sample(scene, integrator, seed, x, y, i));
-    }
+    render_samples_probed(scene, integrator, seed, x, y, samples, &mut NoProbe, |c| {
+        acc.add(c)
+    });
 }

@@ -14,7 +14,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use tessera_core::film::PixelAccum;
 use tessera_core::integrator::Integrator;
 use tessera_core::integrator::{Counters, NoProbe, Probe};
-use tessera_core::render::render_sample_probed;
+use tessera_core::render::render_samples_probed;
 use tessera_core::scene::Scene;
 
 /// How to render.
@@ -271,11 +271,16 @@ fn render_tiles<P: TileProbe>(
                                 Some(_) => a.count + a.dropped..opts.samples.end,
                                 None => opts.samples.clone(),
                             };
-                            for index in samples {
-                                a.add(render_sample_probed(
-                                    scene, integrator, opts.seed, x, y, index, &mut probe,
-                                ));
-                            }
+                            render_samples_probed(
+                                scene,
+                                integrator,
+                                opts.seed,
+                                x,
+                                y,
+                                samples,
+                                &mut probe,
+                                |c| a.add(c),
+                            );
                             k += 1;
                         }
                     }

@@ -8,6 +8,7 @@ pub mod owen;
 pub mod sobol;
 pub mod warp;
 pub mod zsobol;
+mod zsobol_pixel;
 
 pub use discrete::Discrete1D;
 pub use distribution2d::Distribution2D;
@@ -15,6 +16,7 @@ pub use independent::{pixel_key, IndependentSampler};
 pub use kind::{SamplerKind, SAMPLER_NAMES};
 pub use layout::{dimension_of, Stage, BOUNCE_DIMENSIONS, CAMERA_DIMENSIONS};
 pub use zsobol::ZSobolSampler;
+pub use zsobol_pixel::{CachedZSobol, ZSobolPixel, CACHED_DIMENSIONS};
 
 use glam::Vec2;
 

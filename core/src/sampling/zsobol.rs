@@ -93,6 +93,19 @@ pub struct ZSobolSampler {
     dimension: u32,
 }
 
+/// What a dimension's draw takes from the pixel alone (see [`ZSobolSampler::pixel_draw`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PixelDraw {
+    /// The permuted pixel bits, reversed and shifted below the sample's `K` bits.
+    pub pixel_part: u32,
+    /// Seed of the nested scramble of the sample bits.
+    pub sample_seed: u32,
+    /// Owen-scrambling seed of the first coordinate.
+    pub seed_x: u32,
+    /// Owen-scrambling seed of the second coordinate.
+    pub seed_y: u32,
+}
+
 /// The scrambled 32-bit index and the two coordinate seeds of one dimension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DimensionDraw {
@@ -141,45 +154,84 @@ impl ZSobolSampler {
     /// that only one bit reversal is left: `R(index) = (R(pixel') >> K) | (R(sample') << (32 - K))`.
     #[inline]
     pub fn draw(&self, dim: u32) -> DimensionDraw {
+        self.finish_draw(self.pixel_draw(dim))
+    }
+
+    /// The part of dimension `dim`'s draw that depends only on (seed, epoch, `K`, pixel): the
+    /// same for every sample of the pixel's block, so a pixel's samples can share it
+    /// ([`ZSobolPixel`](super::zsobol_pixel::ZSobolPixel)).
+    #[inline]
+    pub fn pixel_draw(&self, dim: u32) -> PixelDraw {
         let h = mix64(self.key ^ (dim as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15));
         let k = self.log2_spp;
         let pixel_r = reversed_lk(self.pixel_reversed, h as u32);
-        let index_r = if k == 0 {
-            pixel_r
-        } else {
-            // `sample_seed(h, morton_index >> K)` with the pixel's product hoisted out.
-            let sample_r = reversed_lk(self.sample_reversed, mix64(h ^ self.pixel_mul) as u32);
-            pixel_r.checked_shr(k).unwrap_or(0) | (sample_r << (32 - k))
-        };
         // The permuted index's bits above 32 (the top K bits of the pixel word), reversed: only
         // hashed, so any bijection of them will do.
         let top = if k == 0 { 0 } else { pixel_r << (32 - k) };
         let s = mix64(h ^ top as u64 ^ 0xbb67_ae85_84ca_a73b);
-        DimensionDraw {
-            index: index_r.reverse_bits(),
+        PixelDraw {
+            pixel_part: pixel_r.checked_shr(k).unwrap_or(0),
+            // `sample_seed(h, morton_index >> K)` with the pixel's product hoisted out.
+            sample_seed: mix64(h ^ self.pixel_mul) as u32,
             seed_x: s as u32,
             seed_y: (s >> 32) as u32,
         }
+    }
+
+    /// Completes a draw with this sample's own bits.
+    #[inline(always)]
+    pub fn finish_draw(&self, p: PixelDraw) -> DimensionDraw {
+        let k = self.log2_spp;
+        let index_r = if k == 0 {
+            p.pixel_part
+        } else {
+            p.pixel_part | (reversed_lk(self.sample_reversed, p.sample_seed) << (32 - k))
+        };
+        DimensionDraw {
+            index: index_r.reverse_bits(),
+            seed_x: p.seed_x,
+            seed_y: p.seed_y,
+        }
+    }
+
+    /// Whether `other` is a sample of the same pixel block and epoch (so its
+    /// [`pixel_draw`](Self::pixel_draw)s equal this one's).
+    #[inline]
+    pub fn same_block(&self, other: &ZSobolSampler) -> bool {
+        self.key == other.key
+            && self.log2_spp == other.log2_spp
+            && self.pixel_reversed == other.pixel_reversed
+            && self.pixel_mul == other.pixel_mul
     }
 
     /// The 1D value of dimension `dim`, as a 32-bit fraction: the Owen-scrambled van der Corput
     /// point, `R(LK(R(R(index))))`.
     #[inline]
     pub fn value_1d(&self, dim: u32) -> u32 {
-        let d = self.draw(dim);
-        reversed_lk(d.index, d.seed_x).reverse_bits()
+        value_1d_of(self.draw(dim))
     }
 
     /// The 2D value starting at dimension `dim`, as 32-bit fractions.
     #[inline]
     pub fn value_2d(&self, dim: u32) -> (u32, u32) {
-        let d = self.draw(dim);
-        let x_r = reversed_lk(d.index, d.seed_x);
-        let y_r = reversed_lk(sobol_dim1_reversed(d.index), d.seed_y);
-        // Both coordinates un-reversed by one 64-bit reversal (the high word lands low).
-        let both = (((x_r as u64) << 32) | y_r as u64).reverse_bits();
-        (both as u32, (both >> 32) as u32)
+        value_2d_of(self.draw(dim))
     }
+}
+
+/// The 1D value of a draw (see [`ZSobolSampler::value_1d`]).
+#[inline(always)]
+pub fn value_1d_of(d: DimensionDraw) -> u32 {
+    reversed_lk(d.index, d.seed_x).reverse_bits()
+}
+
+/// The 2D value of a draw (see [`ZSobolSampler::value_2d`]).
+#[inline(always)]
+pub fn value_2d_of(d: DimensionDraw) -> (u32, u32) {
+    let x_r = reversed_lk(d.index, d.seed_x);
+    let y_r = reversed_lk(sobol_dim1_reversed(d.index), d.seed_y);
+    // Both coordinates un-reversed by one 64-bit reversal (the high word lands low).
+    let both = (((x_r as u64) << 32) | y_r as u64).reverse_bits();
+    (both as u32, (both >> 32) as u32)
 }
 
 impl Sampler for ZSobolSampler {

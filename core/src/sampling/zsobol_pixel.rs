@@ -1,0 +1,169 @@
+//! The zsobol sampler with its per-pixel work shared by the pixel's samples.
+//!
+//! Most of a zsobol draw depends only on (seed, epoch, `K`, pixel, dimension): the dimension's
+//! hash, the scramble of the pixel's Morton bits and the coordinates' Owen seeds
+//! ([`ZSobolSampler::pixel_draw`]). A renderer that takes a pixel's samples one after another
+//! keeps a [`ZSobolPixel`] for the pixel; its samplers ([`ZSobolPixel::sampler`]) compute each
+//! dimension's pixel part once, on first use, and only the sample's own bits per draw. Values
+//! are exactly those of [`ZSobolSampler`] (tested below): caching changes no bit.
+use super::zsobol::{to_unit, value_1d_of, value_2d_of, PixelDraw, ZSobolSampler};
+use super::Sampler;
+use glam::Vec2;
+
+/// Dimensions whose pixel parts are kept (the camera's 2 and 8 bounces of 7 fit with room);
+/// later dimensions are computed per draw, as [`ZSobolSampler`] does.
+pub const CACHED_DIMENSIONS: usize = 64;
+
+/// One pixel's shared draws.
+#[derive(Clone, Debug)]
+pub struct ZSobolPixel {
+    seed: u64,
+    x: u32,
+    y: u32,
+    log2_spp: u32,
+    /// A sample of the block the table belongs to (`None` before the first sampler).
+    block: Option<ZSobolSampler>,
+    table: [PixelDraw; CACHED_DIMENSIONS],
+    /// Bit `d` set when `table[d]` holds dimension `d`'s pixel part.
+    filled: u64,
+}
+
+impl ZSobolPixel {
+    /// The cache for pixel `(x, y)` under `seed` with pixel blocks of `2^log2_spp` samples
+    /// (the arguments of [`ZSobolSampler::new`] but the sample index).
+    pub fn new(seed: u64, x: u32, y: u32, log2_spp: u32) -> Self {
+        ZSobolPixel {
+            seed,
+            x,
+            y,
+            log2_spp,
+            block: None,
+            table: [PixelDraw::default(); CACHED_DIMENSIONS],
+            filled: 0,
+        }
+    }
+
+    /// The sampler of sample `index` of the pixel: the values of
+    /// `ZSobolSampler::new(seed, x, y, index, log2_spp)`. A sample of another epoch (index
+    /// beyond the pixel's block) starts the table afresh.
+    #[inline]
+    pub fn sampler(&mut self, index: u64) -> CachedZSobol<'_> {
+        let s = ZSobolSampler::new(self.seed, self.x, self.y, index, self.log2_spp);
+        if !self.block.as_ref().is_some_and(|b| b.same_block(&s)) {
+            self.block = Some(s.clone());
+            self.filled = 0;
+        }
+        CachedZSobol {
+            sample: s,
+            pixel: self,
+        }
+    }
+}
+
+/// A zsobol sample drawing its pixel parts from a [`ZSobolPixel`].
+#[derive(Debug)]
+pub struct CachedZSobol<'a> {
+    sample: ZSobolSampler,
+    pixel: &'a mut ZSobolPixel,
+}
+
+impl CachedZSobol<'_> {
+    #[inline(always)]
+    fn pixel_draw(&mut self, dim: u32) -> PixelDraw {
+        let d = dim as usize;
+        if d >= CACHED_DIMENSIONS {
+            return self.sample.pixel_draw(dim);
+        }
+        let bit = 1u64 << d;
+        if self.pixel.filled & bit == 0 {
+            self.pixel.table[d] = self.sample.pixel_draw(dim);
+            self.pixel.filled |= bit;
+        }
+        self.pixel.table[d]
+    }
+}
+
+impl Sampler for CachedZSobol<'_> {
+    #[inline(always)]
+    fn next_1d(&mut self) -> f32 {
+        let dim = self.sample.dimension();
+        let p = self.pixel_draw(dim);
+        let d = self.sample.finish_draw(p);
+        self.sample.start_dimension(dim.wrapping_add(1));
+        to_unit(value_1d_of(d))
+    }
+
+    #[inline(always)]
+    fn next_2d(&mut self) -> Vec2 {
+        let dim = self.sample.dimension();
+        let p = self.pixel_draw(dim);
+        let d = self.sample.finish_draw(p);
+        self.sample.start_dimension(dim.wrapping_add(2));
+        let (a, b) = value_2d_of(d);
+        Vec2::new(to_unit(a), to_unit(b))
+    }
+
+    #[inline]
+    fn start_dimension(&mut self, dim: u32) {
+        self.sample.start_dimension(dim);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::owen::mix64;
+    use super::*;
+
+    /// Every draw equals the plain sampler's, across pixels' sample runs that cross epochs, skip
+    /// dimensions, and go past the cached range.
+    #[test]
+    fn same_values_as_the_plain_sampler() {
+        let mut draws = 0;
+        for t in 0..300u64 {
+            let r = mix64(t + 17);
+            let (seed, x, y) = (r & 3, (r >> 8) as u32 & 0x3ff, (r >> 24) as u32 & 0x3ff);
+            let k = (r >> 40) as u32 % 8;
+            let mut px = ZSobolPixel::new(seed, x, y, k);
+            // Indices run across the block's end into the next epoch and back.
+            let start = (r >> 48) % 4;
+            let mut indices: alloc::vec::Vec<u64> = (start..start + (3u64 << k) + 2).collect();
+            indices.push(start);
+            for &i in &indices {
+                let mut a = ZSobolSampler::new(seed, x, y, i, k);
+                let mut b = px.sampler(i);
+                for step in 0..40u32 {
+                    let h = mix64(r ^ i ^ u64::from(step)) as u32;
+                    if h % 5 == 0 {
+                        let dim = (h >> 8) % 90;
+                        a.start_dimension(dim);
+                        b.start_dimension(dim);
+                    }
+                    if h & 0x100 == 0 {
+                        assert_eq!(a.next_1d().to_bits(), b.next_1d().to_bits());
+                    } else {
+                        let (va, vb) = (a.next_2d(), b.next_2d());
+                        assert_eq!(
+                            (va.x.to_bits(), va.y.to_bits()),
+                            (vb.x.to_bits(), vb.y.to_bits())
+                        );
+                    }
+                    draws += 1;
+                }
+            }
+        }
+        assert!(draws > 100_000, "{draws}");
+    }
+
+    /// A cache moved to another pixel restarts its table instead of serving the old pixel's
+    /// parts, which would be wrong (control: they differ, so the test above can fail).
+    #[test]
+    fn another_pixel_restarts_the_table() {
+        let mut px = ZSobolPixel::new(1, 5, 9, 4);
+        let _ = px.sampler(0).next_2d();
+        let stale = px.table[0];
+        assert_ne!(stale, ZSobolSampler::new(1, 6, 9, 1, 4).pixel_draw(0));
+        px.x = 6;
+        let got = px.sampler(1).next_2d();
+        assert_eq!(got, ZSobolSampler::new(1, 6, 9, 1, 4).next_2d());
+    }
+}
