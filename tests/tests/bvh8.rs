@@ -6,7 +6,7 @@
 //! one child box shrunk must disagree with brute force, and the box tests must reject boxes
 //! behind the ray.
 use tessera_core::accel::simd::{hit4_scalar, Boxes4, RayPre, MAX_X, MIN_X};
-use tessera_core::accel::simd8::{hit8_scalar, Avx2, Boxes8, Hit8, Portable};
+use tessera_core::accel::simd8::{hit8_scalar, Avx2, Boxes8, Hit8, Portable, WithHit8};
 use tessera_core::accel::tri4::Ray4;
 use tessera_core::accel::{Bvh4, Bvh8, LeafRanges, TriBlocks};
 use tessera_core::bsdf::{Bsdf, Diffuse};
@@ -416,6 +416,17 @@ fn random_box_ray(rng: &mut Rng) -> Ray {
     ray
 }
 
+/// One box test, to run compiled with AVX2.
+struct Test8<'a>(&'a Boxes8, &'a RayPre, f32);
+
+impl WithHit8 for Test8<'_> {
+    type Output = (u32, [f32; 8]);
+    #[inline(always)]
+    fn call<H: Hit8>(self, test: H) -> Self::Output {
+        test.hit8(self.0, self.1, self.2)
+    }
+}
+
 /// The four-box test on one half of eight boxes.
 fn half(boxes: &Boxes8, h: usize) -> Boxes4 {
     let mut b = Boxes4::EMPTY;
@@ -441,7 +452,7 @@ fn avx2_portable_and_scalar_box_tests_give_the_same_bits() {
         let mut results = vec![Portable.hit8(&boxes, &pre, ray.t_max)];
         if let Some(a) = avx2 {
             results.push(a.hit8(&boxes, &pre, ray.t_max));
-            results.push(a.run(|| a.hit8(&boxes, &pre, ray.t_max)));
+            results.push(a.run(Test8(&boxes, &pre, ray.t_max)));
         }
         for (m, t) in results {
             assert_eq!(m, ms, "masks differ for {ray:?} {boxes:?}");

@@ -8,7 +8,7 @@
 //! first, the root at index 0; a child is either an interior node (its index) or a leaf (a range
 //! of the primitive order returned by the build).
 use super::simd::{RayPre, MAX_X, MIN_X};
-use super::simd8::{Avx2, Boxes8, Hit8, Portable};
+use super::simd8::{Avx2, Boxes8, Hit8, Portable, WithHit8};
 use super::{BuildParams, Bvh};
 use crate::math::{Aabb, Ray};
 use alloc::vec::Vec;
@@ -213,9 +213,15 @@ impl Bvh8 {
         if self.nodes.is_empty() {
             return;
         }
+        let walk = Walk::<_, ANY, COUNT> {
+            bvh: self,
+            ray,
+            leaf,
+            nodes,
+        };
         match self.avx2 {
-            Some(avx2) => avx2.run(|| self.walk_sized::<ANY, COUNT, _>(avx2, ray, leaf, nodes)),
-            None => self.walk_sized::<ANY, COUNT, _>(Portable, ray, leaf, nodes),
+            Some(avx2) => avx2.run(walk),
+            None => walk.call(Portable),
         }
     }
 
@@ -327,6 +333,27 @@ impl Bvh8 {
                 }
             }
         }
+    }
+}
+
+/// One traversal's arguments, to be run with either box test.
+struct Walk<'a, L, const ANY: bool, const COUNT: bool> {
+    bvh: &'a Bvh8,
+    ray: &'a Ray,
+    leaf: L,
+    nodes: &'a mut u64,
+}
+
+impl<L, const ANY: bool, const COUNT: bool> WithHit8 for Walk<'_, L, ANY, COUNT>
+where
+    L: FnMut(usize, usize, f32) -> Option<f32>,
+{
+    type Output = ();
+
+    #[inline(always)]
+    fn call<H: Hit8>(self, test: H) {
+        self.bvh
+            .walk_sized::<ANY, COUNT, H>(test, self.ray, self.leaf, self.nodes);
     }
 }
 

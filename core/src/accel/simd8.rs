@@ -229,30 +229,42 @@ impl Avx2 {
         }
     }
 
-    /// Runs `f` inside a function compiled with AVX2 enabled, so the [`Hit8`] test of this
-    /// token (and anything else `f` inlines) is compiled for AVX2. Floating-point results are
-    /// those of the portable build: AVX2 brings no fused multiply-add, and the compiler does not
-    /// contract or reorder IEEE operations.
+    /// Runs `work` inside a function compiled with AVX2 enabled, with this token as its box
+    /// test, so the test (and everything `work` inlines: its [`WithHit8::call`] must be
+    /// `#[inline(always)]`) is compiled for AVX2. Floating-point results are those of the
+    /// portable build: AVX2 brings no fused multiply-add, and the compiler does not contract or
+    /// reorder IEEE operations.
     #[inline(always)]
-    pub fn run<R>(self, f: impl FnOnce() -> R) -> R {
+    pub fn run<W: WithHit8>(self, work: W) -> W::Output {
         #[cfg(target_arch = "x86_64")]
         {
             // SAFETY: `self` exists only when `detect` found AVX2 usable on this CPU.
-            unsafe { run_avx2(f) }
+            unsafe { run_avx2(self, work) }
         }
         #[cfg(not(target_arch = "x86_64"))]
         {
-            f()
+            work.call(self)
         }
     }
 }
 
-/// `f()`, compiled with AVX2 (the closure inlines into this function, monomorphised per use).
+/// Work generic over the box test, such as a traversal loop, so it can be compiled once per test
+/// ([`Avx2::run`]). A trait rather than a closure: the compiler may decline to inline a large
+/// closure into the AVX2 function, which would leave the box test an out-of-line call.
+pub trait WithHit8 {
+    /// What the work returns.
+    type Output;
+    /// Does the work with box test `test` (implementations: `#[inline(always)]`).
+    fn call<H: Hit8>(self, test: H) -> Self::Output;
+}
+
+/// `work.call(token)`, compiled with AVX2 (`call` is inlined into this function, monomorphised
+/// per use).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[inline]
-fn run_avx2<R>(f: impl FnOnce() -> R) -> R {
-    f()
+fn run_avx2<W: WithHit8>(token: Avx2, work: W) -> W::Output {
+    work.call(token)
 }
 
 impl Hit8 for Avx2 {
