@@ -1,5 +1,5 @@
 //! BVH build (triangles per second) and ray casts (rays per second: coherent camera rays and
-//! incoherent random rays, closest hit and any hit; the scene's 4-wide BVH and, as `binary_*`,
+//! incoherent random rays, closest hit and any hit; the scene's 8-wide BVH and, as `binary_*`,
 //! the binary BVH it is collapsed from) on bumpy geodesic spheres of about 10^3 to 10^6
 //! triangles. Prints the acceleration structure's bytes per triangle first.
 //!

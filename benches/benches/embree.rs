@@ -1,7 +1,9 @@
-//! Tessera's ray casts against Embree 3's single-ray queries (`rtcIntersect1`, `rtcOccluded1`)
-//! on the same meshes and rays, in the same run: rays per CPU-second, best of 5 alternating
-//! rounds, one thread; also the build time of each (Embree with `threads=1`) and how often the
-//! two agree on hit or miss.
+//! Tessera's ray casts, with its 4-wide and its 8-wide BVH (the scene's leaf code, blocks of four
+//! triangles, under either), against Embree 3's single-ray queries (`rtcIntersect1`,
+//! `rtcOccluded1`) on the same meshes and rays, in the same run: rays per CPU-second, best of 5
+//! alternating rounds, one thread; also the build time of each (Tessera's: SAH build, collapse
+//! and block packing; Embree with `threads=1`), bytes per triangle, and how often all three agree
+//! on hit or miss.
 //!
 //! Optional: needs Embree 3 (`scripts/install_embree.sh`), so it is built only with the feature:
 //! `cargo bench -p tessera-benches --features embree --bench embree` (sizes as arguments, e.g.
@@ -13,8 +15,9 @@ use std::ffi::{c_char, c_void};
 use std::time::Instant;
 use tessera_benches::{
     build_params, bumpy_sphere, camera_rays, frequency_for, mesh_parts, random_rays,
-    rays_per_second, wanted_sizes,
+    rays_per_second, wanted_sizes, WideScene,
 };
+use tessera_core::accel::{Bvh4, Bvh8};
 use tessera_core::math::Ray;
 use tessera_core::scene::Scene;
 
@@ -213,14 +216,17 @@ fn main() {
     let camera = camera_rays(256);
     let random = random_rays(1 << 16, 7);
     println!(
-        "{:>5} {:>8} {:>14} {:>14} {:>13} {:>13} {:>6} {:>7}",
+        "{:>5} {:>8} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>6} {:>6} {:>7}",
         "mesh",
         "tris",
-        "tessera build",
-        "embree build",
-        "tessera Mr/s",
-        "embree Mr/s",
-        "ratio",
+        "b4 build",
+        "b8 build",
+        "eb build",
+        "bvh4 Mr/s",
+        "bvh8 Mr/s",
+        "emb Mr/s",
+        "4/emb",
+        "8/emb",
         "agree"
     );
     for (label, target) in wanted_sizes() {
@@ -230,37 +236,56 @@ fn main() {
         let embree = Embree::new(&pos, &indices);
         let eb = start.elapsed().as_secs_f64();
         let parts = mesh_parts(positions, indices);
-        let start = Instant::now();
         let scene = Scene::with_build_params(parts, build_params()).expect("valid scene");
-        let tb = start.elapsed().as_secs_f64();
+        let start = Instant::now();
+        let w4 = WideScene::<Bvh4>::new(&scene, build_params());
+        let b4 = start.elapsed().as_secs_f64();
+        let start = Instant::now();
+        let w8 = WideScene::<Bvh8>::new(&scene, build_params());
+        let b8 = start.elapsed().as_secs_f64();
         let tris = scene.prims.len();
+        let ((n4, t4), (n8, t8)) = (w4.bytes_per_triangle(), w8.bytes_per_triangle());
+        println!(
+            "{label:>5}: bytes/triangle: bvh4 {n4:.1} + {t4:.1} = {:.1}, bvh8 {n8:.1} + {t8:.1} = \
+             {:.1} (nodes + blocks); bvh8 depth {}, avx2 {}",
+            n4 + t4,
+            n8 + t8,
+            w8.bvh.depth(),
+            w8.bvh.uses_avx2()
+        );
         for (kind, rays) in [("camera", &camera), ("random", &random)] {
             for any in [false, true] {
-                let (mut t, mut e) = (0.0f64, 0.0f64);
+                let (mut r4, mut r8, mut e) = (0.0f64, 0.0f64, 0.0f64);
                 for _ in 0..5 {
                     if any {
-                        t = t.max(rays_per_second(rays, 1, |r| scene.occluded(r)));
+                        r4 = r4.max(rays_per_second(rays, 1, |r| w4.occluded(r)));
+                        r8 = r8.max(rays_per_second(rays, 1, |r| w8.occluded(r)));
                         e = e.max(rays_per_second(rays, 1, |r| embree.occluded(r)));
                     } else {
-                        t = t.max(rays_per_second(rays, 1, |r| {
-                            scene.intersect_hit(r).is_some()
-                        }));
+                        r4 = r4.max(rays_per_second(rays, 1, |r| w4.intersect_hit(r).is_some()));
+                        r8 = r8.max(rays_per_second(rays, 1, |r| w8.intersect_hit(r).is_some()));
                         e = e.max(rays_per_second(rays, 1, |r| embree.intersect(r).is_some()));
                     }
                 }
                 let agree = rays
                     .iter()
-                    .filter(|r| scene.occluded(r) == embree.occluded(r))
+                    .filter(|r| {
+                        let o = embree.occluded(r);
+                        w4.occluded(r) == o && w8.occluded(r) == o
+                    })
                     .count() as f64
                     / rays.len() as f64;
                 println!(
-                    "{label:>5} {tris:>8} {:>11.1} ms {:>11.1} ms {:>13.2} {:>13.2} {:>6.2} {:>6.2}%  \
-                     {kind} {}",
-                    tb * 1e3,
+                    "{label:>5} {tris:>8} {:>6.1} ms {:>6.1} ms {:>6.1} ms {:>9.2} {:>9.2} {:>9.2} \
+                     {:>6.2} {:>6.2} {:>6.2}%  {kind} {}",
+                    b4 * 1e3,
+                    b8 * 1e3,
                     eb * 1e3,
-                    t / 1e6,
+                    r4 / 1e6,
+                    r8 / 1e6,
                     e / 1e6,
-                    t / e,
+                    r4 / e,
+                    r8 / e,
                     agree * 100.0,
                     if any { "any" } else { "closest" }
                 );

@@ -3,10 +3,11 @@
 //! is read from disk, so the benchmarks need no big files in the repository.
 use glam::{Vec2, Vec3};
 use std::time::Instant;
-use tessera_core::accel::Bvh;
+use tessera_core::accel::tri4::Ray4;
+use tessera_core::accel::{BuildParams, Bvh, Bvh4, Bvh8, LeafRanges, TriBlocks};
 use tessera_core::bsdf::{Bsdf, Diffuse};
 use tessera_core::camera::{Filter, FovAxis, Perspective};
-use tessera_core::geometry::{intersect_triangle, Mesh, Shape, ShapeKind};
+use tessera_core::geometry::{intersect_triangle, Hit, Mesh, Shape, ShapeKind, TriRay};
 use tessera_core::math::{Aabb, Ray, Transform};
 use tessera_core::scene::{Scene, SceneParts};
 use tessera_core::texture::Texture;
@@ -274,6 +275,121 @@ impl BinaryScene {
     }
 }
 
+/// A wide BVH (4 or 8 children per node) as [`WideScene`] traverses it.
+pub trait WideBvh: LeafRanges + Sized {
+    /// Builds over primitive boxes: the hierarchy and the primitive order.
+    fn build_with(bounds: &[Aabb], params: BuildParams) -> (Self, Vec<u32>);
+    /// Closest-hit traversal.
+    fn closest(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> f32);
+    /// Any-hit traversal.
+    fn any(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> bool);
+    /// Bytes of the nodes.
+    fn node_bytes(&self) -> usize;
+}
+
+impl WideBvh for Bvh4 {
+    fn build_with(bounds: &[Aabb], params: BuildParams) -> (Self, Vec<u32>) {
+        Bvh4::build_with(bounds, params)
+    }
+    #[inline(always)]
+    fn closest(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> f32) {
+        self.traverse_closest(ray, leaf)
+    }
+    #[inline(always)]
+    fn any(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> bool) {
+        self.traverse_any(ray, leaf)
+    }
+    fn node_bytes(&self) -> usize {
+        self.memory_bytes()
+    }
+}
+
+impl WideBvh for Bvh8 {
+    fn build_with(bounds: &[Aabb], params: BuildParams) -> (Self, Vec<u32>) {
+        Bvh8::build_with(bounds, params)
+    }
+    #[inline(always)]
+    fn closest(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> f32) {
+        self.traverse_closest(ray, leaf)
+    }
+    #[inline(always)]
+    fn any(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> bool) {
+        self.traverse_any(ray, leaf)
+    }
+    fn node_bytes(&self) -> usize {
+        self.memory_bytes()
+    }
+}
+
+/// A scene's triangles under a wide BVH of either width, with the scene's leaf code (blocks of
+/// four triangles, [`TriBlocks`]): compares the widths whatever [`Scene`] itself uses.
+/// Triangle meshes only.
+pub struct WideScene<B> {
+    /// The hierarchy; leaves refer to blocks.
+    pub bvh: B,
+    /// The triangle blocks.
+    pub blocks: TriBlocks,
+    /// Scene primitive index of each position of this hierarchy's order.
+    pub order: Vec<u32>,
+}
+
+impl<B: WideBvh> WideScene<B> {
+    /// Builds over `scene`'s triangles with `params`.
+    pub fn new(scene: &Scene, params: BuildParams) -> WideScene<B> {
+        let corners: Vec<[Vec3; 3]> = (0..scene.prims.len())
+            .map(|i| scene.triangle(i).expect("a triangle mesh"))
+            .collect();
+        let bounds: Vec<_> = corners
+            .iter()
+            .map(|v| Aabb::point(v[0]).grow(v[1]).grow(v[2]))
+            .collect();
+        let (mut bvh, order) = B::build_with(&bounds, params);
+        let sorted: Vec<[Vec3; 3]> = order.iter().map(|&i| corners[i as usize]).collect();
+        let blocks = TriBlocks::build(&mut bvh, &sorted);
+        WideScene { bvh, blocks, order }
+    }
+
+    /// Closest hit (`prim` is the scene's primitive index).
+    #[inline]
+    pub fn intersect_hit(&self, ray: &Ray) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        let tri = TriRay::new(ray);
+        let r4 = Ray4::new(&tri);
+        self.bvh.closest(ray, |first, count, t_max| {
+            self.blocks
+                .closest(first, count, (&tri, &r4), t_max, &mut best, |_, _, _| None)
+        });
+        best.map(|h| Hit {
+            prim: self.order[h.prim as usize],
+            ..h
+        })
+    }
+
+    /// Any hit.
+    #[inline]
+    pub fn occluded(&self, ray: &Ray) -> bool {
+        let mut hit = false;
+        let tri = TriRay::new(ray);
+        let r4 = Ray4::new(&tri);
+        self.bvh.any(ray, |first, count, t_max| {
+            hit = self
+                .blocks
+                .any(first, count, (&tri, &r4), t_max, |_, _, _| None);
+            hit
+        });
+        hit
+    }
+
+    /// Bytes per triangle: nodes, blocks.
+    pub fn bytes_per_triangle(&self) -> (f64, f64) {
+        let n = self.order.len().max(1) as f64;
+        (
+            self.bvh.node_bytes() as f64 / n,
+            self.blocks.memory_bytes() as f64 / n,
+        )
+    }
+}
+
 /// CPU time this thread has run, in seconds (Linux `/proc/thread-self/schedstat`), or `None`
 /// where unavailable. On a loaded machine it measures the work, not the wait for a core.
 pub fn thread_cpu_seconds() -> Option<f64> {
@@ -328,7 +444,7 @@ pub fn wanted_sizes() -> Vec<(&'static str, usize)> {
         .collect()
 }
 
-/// The 4-wide BVH's build parameters: `Bvh4::PARAMS`, or those of the environment variable
+/// The wide BVHs' build parameters: `Bvh4::PARAMS` (also the 8-wide BVH's), or those of the environment variable
 /// `BVH4_PARAMS=max_leaf,traversal_cost,block` (for measuring other trade-offs).
 pub fn build_params() -> tessera_core::accel::BuildParams {
     let Ok(v) = std::env::var("BVH4_PARAMS") else {

@@ -1,6 +1,6 @@
 //! The flat, read-only scene: shapes, primitives under a BVH, BSDFs, emitters, camera.
 use crate::accel::tri4::Ray4;
-use crate::accel::{BuildParams, Bvh4, TriBlocks};
+use crate::accel::{BuildParams, Bvh4, Bvh8, TriBlocks};
 use crate::bsdf::Bsdf;
 use crate::camera::{Filter, Perspective};
 use crate::emitter::{Emitter, EmitterCtx};
@@ -73,8 +73,8 @@ pub struct Scene {
     /// leaf loop's data; NaN corners for a primitive that is not a triangle, which sends the
     /// loop to `prims`).
     pub blocks: TriBlocks,
-    /// The 4-wide hierarchy over `prims`; its leaves refer to their first block in `blocks`.
-    pub bvh: Bvh4,
+    /// The 8-wide hierarchy over `prims`; its leaves refer to their first block in `blocks`.
+    pub bvh: Bvh8,
     /// Materials.
     pub bsdfs: Vec<Bsdf>,
     /// Lights.
@@ -170,7 +170,7 @@ impl Scene {
             .zip(&tris)
             .map(|(pr, v)| pr.bounds(v, &p.disks))
             .collect();
-        let (mut bvh, order) = Bvh4::build_with(&bounds, params);
+        let (mut bvh, order) = Bvh8::build_with(&bounds, params);
         let world = bvh.bounds();
         let (center, radius) = if world.is_empty() {
             (glam::Vec3::ZERO, 1.0)
@@ -376,7 +376,7 @@ impl Scene {
 /// What [`Scene::accel_memory`] counts, in bytes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct AccelMemory {
-    /// The 4-wide BVH's nodes.
+    /// The 8-wide BVH's nodes.
     pub nodes: usize,
     /// The triangle test's data: blocks of four primitives' corners (37 bytes per primitive in
     /// full blocks, more where a leaf's last block is partly empty).

@@ -272,13 +272,14 @@ fn traversal_counts_follow_the_rays() {
     assert_eq!(c.bvh_nodes, rays, "{c:?}");
     assert_eq!(c.prim_blocks, c.bvh_leaves, "{c:?}");
     assert!(c.bvh_leaves > 0 && c.bvh_leaves < rays, "{c:?}");
-    // Control: 25 spheres need a deeper hierarchy, so rays visit more nodes than there are rays.
-    let grid: String = (0..25)
+    // Control: 100 spheres need a deeper hierarchy (more leaves than the root's eight lanes), so
+    // rays visit more nodes than there are rays.
+    let grid: String = (0..100)
         .map(|i| {
             format!(
-                r#"<shape type="sphere"><point name="center" value="{}, {}, 0"/><float name="radius" value="0.3"/></shape>"#,
-                (i % 5) as f32 - 2.0,
-                (i / 5) as f32 - 2.0
+                r#"<shape type="sphere"><point name="center" value="{}, {}, 0"/><float name="radius" value="0.15"/></shape>"#,
+                (i % 10) as f32 * 0.45 - 2.0,
+                (i / 10) as f32 * 0.45 - 2.0
             )
         })
         .collect();

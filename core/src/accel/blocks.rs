@@ -1,5 +1,5 @@
-//! Leaves as blocks of four triangles: packing a 4-wide BVH's leaves into [`Tri4`] blocks, and
-//! the closest-hit and any-hit loops over one leaf.
+//! Leaves as blocks of four triangles: packing a wide BVH's leaves ([`Bvh4`], [`Bvh8`]) into
+//! [`Tri4`] blocks, and the closest-hit and any-hit loops over one leaf.
 //!
 //! Each leaf's primitives (a range of the build order) fill `ceil(count / 4)` consecutive
 //! blocks; the leaf then refers to its first block instead of its first primitive. A primitive
@@ -8,10 +8,28 @@
 //! primitive order and lower `t_max` as they go, exactly as a loop of scalar tests over the
 //! leaf's primitives would, so they find the same primitive at the same distance.
 use super::tri4::{test4, Ray4, Tri4};
-use super::Bvh4;
+use super::{Bvh4, Bvh8};
 use crate::geometry::{Hit, TriRay};
 use alloc::vec::Vec;
 use glam::{Vec2, Vec3};
+
+/// A hierarchy whose leaves refer to ranges of primitives, which [`TriBlocks::build`] remaps.
+pub trait LeafRanges {
+    /// Replaces each leaf's first primitive by `f(first, count)`, visiting leaves in node order.
+    fn map_leaves(&mut self, f: impl FnMut(usize, usize) -> u32);
+}
+
+impl LeafRanges for Bvh4 {
+    fn map_leaves(&mut self, f: impl FnMut(usize, usize) -> u32) {
+        Bvh4::map_leaves(self, f);
+    }
+}
+
+impl LeafRanges for Bvh8 {
+    fn map_leaves(&mut self, f: impl FnMut(usize, usize) -> u32) {
+        Bvh8::map_leaves(self, f);
+    }
+}
 
 /// The triangle blocks of all leaves.
 #[derive(Clone, Debug, Default)]
@@ -24,7 +42,7 @@ impl TriBlocks {
     /// Packs every leaf of `bvh` (whose leaves refer to ranges of `corners`, NaN corners for a
     /// primitive that is not a triangle) into blocks and makes the leaves refer to their first
     /// block.
-    pub fn build(bvh: &mut Bvh4, corners: &[[Vec3; 3]]) -> TriBlocks {
+    pub fn build(bvh: &mut impl LeafRanges, corners: &[[Vec3; 3]]) -> TriBlocks {
         let mut blocks = Vec::with_capacity(corners.len() / 3 + 1);
         bvh.map_leaves(|first, count| {
             let at = blocks.len() as u32;

@@ -12,7 +12,7 @@ use crate::scene::Scene;
 pub struct TraversalCounts {
     /// Rays cast.
     pub rays: u64,
-    /// BVH nodes visited (each a four-box test).
+    /// BVH nodes visited (each an eight-box test).
     pub nodes: u64,
     /// Leaves reached.
     pub leaves: u64,

@@ -1,0 +1,406 @@
+//! An 8-wide BVH: the binary SAH hierarchy collapsed so each node holds up to eight children,
+//! whose boxes are stored in SoA layout and tested against a ray at once ([`super::simd8`]:
+//! AVX2 where the CPU has it, detected once per build, else a portable test with the same bits).
+//!
+//! Traversal mirrors [`super::Bvh4`]: closest hit visits the children a ray meets nearest entry
+//! first, postponing the others on a stack with their entry distance and skipping them when
+//! popped if a closer hit has been found; any hit stops at the first hit. Nodes are stored depth
+//! first, the root at index 0; a child is either an interior node (its index) or a leaf (a range
+//! of the primitive order returned by the build).
+use super::simd::{RayPre, MAX_X, MIN_X};
+use super::simd8::{Avx2, Boxes8, Hit8, Portable, WithHit8};
+use super::{BuildParams, Bvh};
+use crate::math::{Aabb, Ray};
+use alloc::vec::Vec;
+use glam::Vec3;
+
+/// A node: eight child boxes, and per child its node index (`count == 0`) or its leaf's first
+/// primitive and primitive count. 256 bytes, four cache lines.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+pub struct Bvh8Node {
+    /// The children's boxes; unused lanes hold the empty box.
+    pub boxes: Boxes8,
+    /// Interior child: its node index. Leaf: its first primitive. Unused: `u32::MAX`.
+    pub child: [u32; 8],
+    /// Leaf: number of primitives (at least 1). Interior or unused: 0.
+    pub count: [u16; 8],
+    /// Bit `i` set when lane `i` is used (used lanes come first).
+    pub used: u32,
+}
+
+// Four cache lines, as the memory figures assume.
+const _: () = assert!(core::mem::size_of::<Bvh8Node>() == 256);
+
+impl Bvh8Node {
+    const EMPTY: Bvh8Node = Bvh8Node {
+        boxes: Boxes8::EMPTY,
+        child: [u32::MAX; 8],
+        count: [0; 8],
+        used: 0,
+    };
+
+    fn set_box(&mut self, lane: usize, b: Aabb) {
+        for a in 0..3 {
+            self.boxes.b[MIN_X + a][lane] = b.min[a];
+            self.boxes.b[MAX_X + a][lane] = b.max[a];
+        }
+    }
+
+    /// Box of child `lane`.
+    pub fn child_bounds(&self, lane: usize) -> Aabb {
+        let b = &self.boxes.b;
+        Aabb {
+            min: Vec3::new(b[MIN_X][lane], b[MIN_X + 1][lane], b[MIN_X + 2][lane]),
+            max: Vec3::new(b[MAX_X][lane], b[MAX_X + 1][lane], b[MAX_X + 2][lane]),
+        }
+    }
+}
+
+/// The 8-wide hierarchy.
+#[derive(Clone, Debug)]
+pub struct Bvh8 {
+    /// Nodes, root first (empty for an empty scene).
+    pub nodes: Vec<Bvh8Node>,
+    bounds: Aabb,
+    /// Nodes on the longest root-to-leaf path.
+    depth: usize,
+    /// Whether to run the AVX2 box test (detected when built).
+    avx2: Option<Avx2>,
+}
+
+impl Default for Bvh8 {
+    fn default() -> Self {
+        Bvh8 {
+            nodes: Vec::new(),
+            bounds: Aabb::EMPTY,
+            depth: 0,
+            avx2: None,
+        }
+    }
+}
+
+/// A postponed child: node index or first primitive, leaf count (0 for a node), entry distance.
+#[derive(Clone, Copy, Default)]
+struct Entry {
+    child: u32,
+    count: u32,
+    t_near: f32,
+}
+
+/// Entries of the traversal stack kept in the function's frame. A node pushes at most 7 entries
+/// and a path has `depth` nodes, so `7 * depth + 1` entries always suffice: hierarchies up to
+/// depth 4 use a quarter of this array, up to depth 9 (millions of triangles) half, up to depth
+/// 18 all of it, deeper ones a heap stack. Kept small because it is initialised per ray.
+const STACK: usize = 128;
+
+impl Bvh8 {
+    /// Builds the binary SAH hierarchy (with [`super::Bvh4::PARAMS`], as the leaves are the
+    /// same blocks of four triangles) and collapses it; returns the hierarchy and the order in
+    /// which the caller must store its primitives (leaves refer to ranges of that order).
+    pub fn build(bounds: &[Aabb]) -> (Bvh8, Vec<u32>) {
+        Bvh8::build_with(bounds, super::Bvh4::PARAMS)
+    }
+
+    /// [`Bvh8::build`] with a chosen leaf-size trade-off.
+    pub fn build_with(bounds: &[Aabb], params: BuildParams) -> (Bvh8, Vec<u32>) {
+        let (bin, order) = Bvh::build_with(bounds, params);
+        (Bvh8::from_binary(&bin), order)
+    }
+
+    /// Collapses a binary hierarchy: each node takes its binary children and keeps replacing the
+    /// interior child of largest surface area by that child's two children while it has fewer
+    /// than eight. Leaves (primitive ranges) are unchanged. Detects AVX2 for the traversal.
+    pub fn from_binary(bin: &Bvh) -> Bvh8 {
+        let mut nodes = Vec::with_capacity(bin.nodes.len() / 7 + 1);
+        let mut depth = 0;
+        if !bin.nodes.is_empty() {
+            collapse(bin, 0, 1, &mut depth, &mut nodes);
+        }
+        Bvh8 {
+            nodes,
+            bounds: bin.bounds(),
+            depth,
+            avx2: Avx2::detect(),
+        }
+    }
+
+    /// Whether traversal uses the AVX2 box test (else the portable one, which gives the same
+    /// results).
+    pub fn uses_avx2(&self) -> bool {
+        self.avx2.is_some()
+    }
+
+    /// Makes traversal use the portable box test (for tests and measurements).
+    pub fn use_portable(&mut self) {
+        self.avx2 = None;
+    }
+
+    /// Replaces each leaf's first primitive by `f(first, count)` (e.g. the index of its first
+    /// block of primitives), visiting leaves in node order.
+    pub fn map_leaves(&mut self, mut f: impl FnMut(usize, usize) -> u32) {
+        for node in &mut self.nodes {
+            for lane in 0..8 {
+                if node.used & (1 << lane) != 0 && node.count[lane] > 0 {
+                    node.child[lane] = f(node.child[lane] as usize, usize::from(node.count[lane]));
+                }
+            }
+        }
+    }
+
+    /// Bytes the hierarchy's nodes occupy (not counting the primitives it indexes, nor spare
+    /// vector capacity).
+    pub fn memory_bytes(&self) -> usize {
+        core::mem::size_of_val(self.nodes.as_slice())
+    }
+
+    /// Nodes on the longest path from the root to a leaf.
+    pub fn depth(&self) -> usize {
+        self.depth
+    }
+
+    /// Bounds of the whole hierarchy.
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    /// Closest-hit traversal: visits the leaves the ray may reach, nearest entry first;
+    /// `leaf(first, count, t_max)` tests the primitives and returns the new `t_max`.
+    #[inline]
+    pub fn traverse_closest(&self, ray: &Ray, mut leaf: impl FnMut(usize, usize, f32) -> f32) {
+        self.walk::<false, false>(ray, |f, c, t| Some(leaf(f, c, t)), &mut 0);
+    }
+
+    /// Any-hit traversal: `leaf(first, count, t_max)` returns true to stop (a hit was found).
+    #[inline]
+    pub fn traverse_any(&self, ray: &Ray, mut leaf: impl FnMut(usize, usize, f32) -> bool) {
+        let leaf = |f, c, t| if leaf(f, c, t) { None } else { Some(t) };
+        self.walk::<true, false>(ray, leaf, &mut 0);
+    }
+
+    /// [`Bvh8::traverse_closest`] that also adds the number of nodes it visits to `nodes` (for
+    /// statistics; the uncounted walk compiles without the counter).
+    #[inline]
+    pub fn traverse_closest_counted(
+        &self,
+        ray: &Ray,
+        mut leaf: impl FnMut(usize, usize, f32) -> f32,
+        nodes: &mut u64,
+    ) {
+        self.walk::<false, true>(ray, |f, c, t| Some(leaf(f, c, t)), nodes);
+    }
+
+    /// [`Bvh8::traverse_any`] that also adds the number of nodes it visits to `nodes`.
+    #[inline]
+    pub fn traverse_any_counted(
+        &self,
+        ray: &Ray,
+        mut leaf: impl FnMut(usize, usize, f32) -> bool,
+        nodes: &mut u64,
+    ) {
+        let leaf = |f, c, t| if leaf(f, c, t) { None } else { Some(t) };
+        self.walk::<true, true>(ray, leaf, nodes);
+    }
+
+    /// Picks the box test (one traversal loop is compiled per test) and the stack size.
+    #[inline]
+    fn walk<const ANY: bool, const COUNT: bool>(
+        &self,
+        ray: &Ray,
+        leaf: impl FnMut(usize, usize, f32) -> Option<f32>,
+        nodes: &mut u64,
+    ) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let walk = Walk::<_, ANY, COUNT> {
+            bvh: self,
+            ray,
+            leaf,
+            nodes,
+        };
+        match self.avx2 {
+            Some(avx2) => avx2.run(walk),
+            None => walk.call(Portable),
+        }
+    }
+
+    #[inline(always)]
+    fn walk_sized<const ANY: bool, const COUNT: bool, H: Hit8>(
+        &self,
+        test: H,
+        ray: &Ray,
+        leaf: impl FnMut(usize, usize, f32) -> Option<f32>,
+        nodes: &mut u64,
+    ) {
+        let need = 7 * self.depth + 1;
+        if need <= STACK / 4 {
+            // Small scenes (the Cornell box): zeroing 32 entries is a few stores, not a memset.
+            let stack = &mut [Entry::default(); STACK / 4];
+            self.walk_with::<ANY, COUNT, H>(test, ray, stack, leaf, nodes);
+        } else if need <= STACK / 2 {
+            let stack = &mut [Entry::default(); STACK / 2];
+            self.walk_with::<ANY, COUNT, H>(test, ray, stack, leaf, nodes);
+        } else if need <= STACK {
+            let stack = &mut [Entry::default(); STACK];
+            self.walk_with::<ANY, COUNT, H>(test, ray, stack, leaf, nodes);
+        } else {
+            let stack = &mut alloc::vec![Entry::default(); need];
+            self.walk_with::<ANY, COUNT, H>(test, ray, stack, leaf, nodes);
+        }
+    }
+
+    #[inline(always)]
+    fn walk_with<const ANY: bool, const COUNT: bool, H: Hit8>(
+        &self,
+        test: H,
+        ray: &Ray,
+        stack: &mut [Entry],
+        mut leaf: impl FnMut(usize, usize, f32) -> Option<f32>,
+        nodes: &mut u64,
+    ) {
+        let pre = RayPre::new(ray);
+        let mut t_max = ray.t_max;
+        let mut sp = 0usize;
+        let mut cur = Entry::default(); // the root node
+        loop {
+            if cur.count == 0 {
+                if COUNT {
+                    *nodes += 1;
+                }
+                let node = &self.nodes[cur.child as usize];
+                let (mask, t_near) = test.hit8(&node.boxes, &pre, t_max);
+                let mut mask = mask & node.used;
+                if mask != 0 {
+                    let entry = |lane: usize| Entry {
+                        child: node.child[lane],
+                        count: u32::from(node.count[lane]),
+                        t_near: t_near[lane],
+                    };
+                    if ANY {
+                        cur = entry(mask.trailing_zeros() as usize);
+                        mask &= mask - 1;
+                        while mask != 0 {
+                            stack[sp] = entry(mask.trailing_zeros() as usize);
+                            sp += 1;
+                            mask &= mask - 1;
+                        }
+                        continue;
+                    }
+                    let first = entry(mask.trailing_zeros() as usize);
+                    mask &= mask - 1;
+                    if mask == 0 {
+                        // One child hit (the common case deep down): no sorting.
+                        cur = first;
+                        continue;
+                    }
+                    // Push the hit children sorted by entry distance, farthest deepest (equal
+                    // distances in lane order, as Bvh4): an insertion sort in place on the top
+                    // of the stack, then pop the nearest.
+                    let base = sp;
+                    stack[sp] = first;
+                    sp += 1;
+                    while mask != 0 {
+                        let e = entry(mask.trailing_zeros() as usize);
+                        mask &= mask - 1;
+                        let mut j = sp;
+                        while j > base && stack[j - 1].t_near <= e.t_near {
+                            stack[j] = stack[j - 1];
+                            j -= 1;
+                        }
+                        stack[j] = e;
+                        sp += 1;
+                    }
+                    sp -= 1;
+                    cur = stack[sp];
+                    continue;
+                }
+            } else {
+                match leaf(cur.child as usize, cur.count as usize, t_max) {
+                    Some(t) => t_max = t,
+                    None => return,
+                }
+            }
+            loop {
+                if sp == 0 {
+                    return;
+                }
+                sp -= 1;
+                cur = stack[sp];
+                // A child entered beyond the closest hit so far cannot hold a closer one.
+                if ANY || cur.t_near <= t_max {
+                    break;
+                }
+            }
+        }
+    }
+}
+
+/// One traversal's arguments, to be run with either box test.
+struct Walk<'a, L, const ANY: bool, const COUNT: bool> {
+    bvh: &'a Bvh8,
+    ray: &'a Ray,
+    leaf: L,
+    nodes: &'a mut u64,
+}
+
+impl<L, const ANY: bool, const COUNT: bool> WithHit8 for Walk<'_, L, ANY, COUNT>
+where
+    L: FnMut(usize, usize, f32) -> Option<f32>,
+{
+    type Output = ();
+
+    #[inline(always)]
+    fn call<H: Hit8>(self, test: H) {
+        self.bvh
+            .walk_sized::<ANY, COUNT, H>(test, self.ray, self.leaf, self.nodes);
+    }
+}
+
+fn collapse(
+    bin: &Bvh,
+    at: usize,
+    depth: usize,
+    max_depth: &mut usize,
+    nodes: &mut Vec<Bvh8Node>,
+) -> u32 {
+    *max_depth = (*max_depth).max(depth);
+    let n = &bin.nodes[at];
+    let mut kids = [at; 8];
+    let mut k = 1;
+    if n.count == 0 {
+        kids[0] = at + 1;
+        kids[1] = n.offset as usize;
+        k = 2;
+        while k < 8 {
+            let mut best: Option<(usize, f32)> = None;
+            for (j, &c) in kids[..k].iter().enumerate() {
+                let cn = &bin.nodes[c];
+                if cn.count == 0 && best.is_none_or(|(_, a)| cn.bounds.area() > a) {
+                    best = Some((j, cn.bounds.area()));
+                }
+            }
+            let Some((j, _)) = best else { break };
+            let c = kids[j];
+            kids[j] = c + 1;
+            kids[k] = bin.nodes[c].offset as usize;
+            k += 1;
+        }
+    }
+    let me = nodes.len();
+    nodes.push(Bvh8Node::EMPTY);
+    for (lane, &c) in kids[..k].iter().enumerate() {
+        let cn = &bin.nodes[c];
+        let (child, count) = if cn.count > 0 {
+            (cn.offset, cn.count)
+        } else {
+            (collapse(bin, c, depth + 1, max_depth, nodes), 0)
+        };
+        let node = &mut nodes[me];
+        node.set_box(lane, cn.bounds);
+        node.child[lane] = child;
+        node.count[lane] = count;
+        node.used |= 1 << lane;
+    }
+    me as u32
+}

@@ -1,0 +1,283 @@
+//! Eight ray-box slab tests at once, for the 8-wide BVH: one of the crate's few modules allowed
+//! `unsafe`.
+//!
+//! Three versions compute the same bits, with the operations, order and NaN rule of
+//! [`super::simd`] (IEEE subtraction and multiplication, no fused multiply-add; `min`/`max` as
+//! SSE's `minps`/`maxps`, which return the second operand when a comparison is unordered):
+//! - [`hit8_avx2`]: one 256-bit register per bound, on CPUs that have AVX2, detected at run time
+//!   ([`Avx2::detect`]) since the binary targets the x86-64 baseline;
+//! - [`hit8_sse`]: two 128-bit halves, the portable x86_64 version (SSE2 is in the baseline);
+//! - [`hit8_scalar`]: a loop, for other targets and as the tests' reference.
+//!
+//! Callers pick one through the [`Hit8`] trait. The AVX2 version is only reachable through an
+//! [`Avx2`] token, which exists only on a CPU that has AVX2; [`Avx2::run`] runs a whole
+//! traversal compiled with AVX2 enabled, so the box test inlines into its loop.
+//!
+//! Why `unsafe` here: calling a `#[target_feature]` function from code compiled without that
+//! feature is `unsafe` (the caller vouches for the CPU), and so are the CPUID/XGETBV intrinsics
+//! and SSE intrinsics outside a `#[target_feature]` function. Each block says why it is sound.
+#![allow(unsafe_code)]
+
+use super::simd::{RayPre, MAX_X, MIN_X};
+use crate::math::gamma;
+
+/// Eight boxes in SoA layout: `b[MIN_X + axis][lane]` and `b[MAX_X + axis][lane]` (the row
+/// indices of [`super::simd`], so a [`RayPre`] serves both widths). An unused lane holds the
+/// empty box (min `+inf`, max `-inf`), which no ray hits.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C, align(32))]
+pub struct Boxes8 {
+    /// `[min_x, min_y, min_z, max_x, max_y, max_z]`, eight lanes each.
+    pub b: [[f32; 8]; 6],
+}
+
+impl Boxes8 {
+    /// Eight empty boxes.
+    pub const EMPTY: Boxes8 = Boxes8 {
+        b: [
+            [f32::INFINITY; 8],
+            [f32::INFINITY; 8],
+            [f32::INFINITY; 8],
+            [f32::NEG_INFINITY; 8],
+            [f32::NEG_INFINITY; 8],
+            [f32::NEG_INFINITY; 8],
+        ],
+    };
+}
+
+// The rows start where the bounds' indices say.
+const _: () = assert!(MIN_X == 0 && MAX_X == 3);
+
+/// Widening of the exit distance that covers the rounding of the slab test (as [`super::simd`]).
+const FAR_SCALE: f32 = 1.0 + 2.0 * gamma(3);
+
+/// `minps` on one lane: `a` if `a < b`, else `b` (also when either is NaN).
+#[inline(always)]
+fn min_sse(a: f32, b: f32) -> f32 {
+    if a < b {
+        a
+    } else {
+        b
+    }
+}
+
+/// `maxps` on one lane: `a` if `a > b`, else `b` (also when either is NaN).
+#[inline(always)]
+fn max_sse(a: f32, b: f32) -> f32 {
+    if a > b {
+        a
+    } else {
+        b
+    }
+}
+
+/// The reference slab test: bit `i` of the mask is set when the ray meets box `i` within
+/// `[0, t_max]`; `t_near[i]` is where it enters (meaningful for set bits only).
+#[inline]
+pub fn hit8_scalar(boxes: &Boxes8, ray: &RayPre, t_max: f32) -> (u32, [f32; 8]) {
+    let mut mask = 0;
+    let mut t_near = [0.0f32; 8];
+    for (lane, tn_out) in t_near.iter_mut().enumerate() {
+        let mut tn = 0.0f32;
+        let mut tf = f32::INFINITY;
+        for a in 0..3 {
+            let t0 = (boxes.b[ray.near[a]][lane] - ray.o[a]) * ray.inv[a];
+            let t1 = (boxes.b[ray.far[a]][lane] - ray.o[a]) * ray.inv[a];
+            tn = max_sse(t0, tn);
+            tf = min_sse(t1, tf);
+        }
+        tf = min_sse(tf * FAR_SCALE, t_max);
+        *tn_out = tn;
+        if tn <= tf {
+            mask |= 1 << lane;
+        }
+    }
+    (mask, t_near)
+}
+
+/// The slab test on two SSE halves; same contract and bits as [`hit8_scalar`].
+#[cfg(target_arch = "x86_64")]
+#[inline]
+pub fn hit8_sse(boxes: &Boxes8, ray: &RayPre, t_max: f32) -> (u32, [f32; 8]) {
+    use core::arch::x86_64::*;
+    let mut t_near = [0.0f32; 8];
+    let mut mask = 0;
+    for half in 0..2 {
+        let at = 4 * half;
+        // SAFETY: SSE and SSE2 are in the x86_64 baseline (statically enabled on every x86_64
+        // target). The loads read four f32s at `at..at + 4` (at most 8) of a row of `boxes.b`,
+        // an `[f32; 8]` borrowed for the call (`loadu` needs no alignment); the store writes
+        // four f32s at `at..at + 4` of the local `[f32; 8]` `t_near`.
+        mask |= unsafe {
+            let mut tn = _mm_setzero_ps();
+            let mut tf = _mm_set1_ps(f32::INFINITY);
+            for a in 0..3 {
+                let o = _mm_set1_ps(ray.o[a]);
+                let inv = _mm_set1_ps(ray.inv[a]);
+                let near = _mm_loadu_ps(boxes.b[ray.near[a]].as_ptr().add(at));
+                let far = _mm_loadu_ps(boxes.b[ray.far[a]].as_ptr().add(at));
+                let t0 = _mm_mul_ps(_mm_sub_ps(near, o), inv);
+                let t1 = _mm_mul_ps(_mm_sub_ps(far, o), inv);
+                tn = _mm_max_ps(t0, tn);
+                tf = _mm_min_ps(t1, tf);
+            }
+            tf = _mm_min_ps(_mm_mul_ps(tf, _mm_set1_ps(FAR_SCALE)), _mm_set1_ps(t_max));
+            _mm_storeu_ps(t_near.as_mut_ptr().add(at), tn);
+            (_mm_movemask_ps(_mm_cmple_ps(tn, tf)) as u32) << at
+        };
+    }
+    (mask, t_near)
+}
+
+/// The AVX2 slab test; same contract and bits as [`hit8_scalar`].
+///
+/// # Safety
+/// Callable (safely) only from code compiled with AVX2; elsewhere the caller must know the CPU
+/// has AVX2, as an [`Avx2`] token does ([`Hit8`] for [`Avx2`], [`Avx2::run`]).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+pub fn hit8_avx2(boxes: &Boxes8, ray: &RayPre, t_max: f32) -> (u32, [f32; 8]) {
+    use core::arch::x86_64::*;
+    let mut t_near = [0.0f32; 8];
+    let mut tn = _mm256_setzero_ps();
+    let mut tf = _mm256_set1_ps(f32::INFINITY);
+    for a in 0..3 {
+        let o = _mm256_set1_ps(ray.o[a]);
+        let inv = _mm256_set1_ps(ray.inv[a]);
+        // SAFETY: each load reads the eight f32s of a row of `boxes.b`, an `[f32; 8]` borrowed
+        // for the call (`loadu` needs no alignment).
+        let (near, far) = unsafe {
+            (
+                _mm256_loadu_ps(boxes.b[ray.near[a]].as_ptr()),
+                _mm256_loadu_ps(boxes.b[ray.far[a]].as_ptr()),
+            )
+        };
+        let t0 = _mm256_mul_ps(_mm256_sub_ps(near, o), inv);
+        let t1 = _mm256_mul_ps(_mm256_sub_ps(far, o), inv);
+        tn = _mm256_max_ps(t0, tn);
+        tf = _mm256_min_ps(t1, tf);
+    }
+    tf = _mm256_min_ps(
+        _mm256_mul_ps(tf, _mm256_set1_ps(FAR_SCALE)),
+        _mm256_set1_ps(t_max),
+    );
+    // SAFETY: the store writes the eight f32s of the local `t_near`, exclusively borrowed here.
+    unsafe { _mm256_storeu_ps(t_near.as_mut_ptr(), tn) };
+    // `_CMP_LE_OQ` is `cmpleps`: false when either side is NaN, as `tn <= tf` in the scalar test.
+    let mask = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(tn, tf)) as u32;
+    (mask, t_near)
+}
+
+/// An eight-box slab test, chosen by type so a traversal loop compiles with one of them inlined.
+pub trait Hit8: Copy {
+    /// Mask of the boxes the ray meets within `[0, t_max]`, and their entry distances.
+    fn hit8(self, boxes: &Boxes8, ray: &RayPre, t_max: f32) -> (u32, [f32; 8]);
+}
+
+/// The portable test: two SSE halves on x86_64, the scalar loop elsewhere.
+#[derive(Clone, Copy, Debug)]
+pub struct Portable;
+
+impl Hit8 for Portable {
+    #[inline(always)]
+    fn hit8(self, boxes: &Boxes8, ray: &RayPre, t_max: f32) -> (u32, [f32; 8]) {
+        #[cfg(target_arch = "x86_64")]
+        {
+            hit8_sse(boxes, ray, t_max)
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            hit8_scalar(boxes, ray, t_max)
+        }
+    }
+}
+
+/// Proof that this CPU runs AVX2 code: only [`Avx2::detect`] makes one, and only when it does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Avx2 {
+    _private: (),
+}
+
+impl Avx2 {
+    /// Asks the CPU (CPUID, XGETBV): AVX2 present and its registers enabled by the OS.
+    pub fn detect() -> Option<Avx2> {
+        #[cfg(target_arch = "x86_64")]
+        {
+            use core::arch::x86_64::{__cpuid, __cpuid_count, _xgetbv};
+            // CPUID is available on every x86_64 CPU.
+            let max_leaf = __cpuid(0).eax;
+            let l1 = __cpuid(1);
+            let osxsave = l1.ecx & (1 << 27) != 0;
+            let avx = l1.ecx & (1 << 28) != 0;
+            if max_leaf < 7 || !osxsave || !avx {
+                return None;
+            }
+            // SAFETY: CPUID.1:ECX.OSXSAVE (checked above) says the OS has enabled XSAVE, which
+            // makes XGETBV executable; XCR0 (register 0) always exists then.
+            let xcr0 = unsafe { _xgetbv(0) };
+            // The OS saves the XMM (bit 1) and YMM (bit 2) state across context switches.
+            if xcr0 & 0b110 != 0b110 {
+                return None;
+            }
+            let avx2 = __cpuid_count(7, 0).ebx & (1 << 5) != 0;
+            avx2.then_some(Avx2 { _private: () })
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            None
+        }
+    }
+
+    /// Runs `work` inside a function compiled with AVX2 enabled, with this token as its box
+    /// test, so the test (and everything `work` inlines: its [`WithHit8::call`] must be
+    /// `#[inline(always)]`) is compiled for AVX2. Floating-point results are those of the
+    /// portable build: AVX2 brings no fused multiply-add, and the compiler does not contract or
+    /// reorder IEEE operations.
+    #[inline(always)]
+    pub fn run<W: WithHit8>(self, work: W) -> W::Output {
+        #[cfg(target_arch = "x86_64")]
+        {
+            // SAFETY: `self` exists only when `detect` found AVX2 usable on this CPU.
+            unsafe { run_avx2(self, work) }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            work.call(self)
+        }
+    }
+}
+
+/// Work generic over the box test, such as a traversal loop, so it can be compiled once per test
+/// ([`Avx2::run`]). A trait rather than a closure: the compiler may decline to inline a large
+/// closure into the AVX2 function, which would leave the box test an out-of-line call.
+pub trait WithHit8 {
+    /// What the work returns.
+    type Output;
+    /// Does the work with box test `test` (implementations: `#[inline(always)]`).
+    fn call<H: Hit8>(self, test: H) -> Self::Output;
+}
+
+/// `work.call(token)`, compiled with AVX2 (`call` is inlined into this function, monomorphised
+/// per use).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+fn run_avx2<W: WithHit8>(token: Avx2, work: W) -> W::Output {
+    work.call(token)
+}
+
+impl Hit8 for Avx2 {
+    #[inline(always)]
+    fn hit8(self, boxes: &Boxes8, ray: &RayPre, t_max: f32) -> (u32, [f32; 8]) {
+        #[cfg(target_arch = "x86_64")]
+        {
+            // SAFETY: `self` exists only when `detect` found AVX2 usable on this CPU.
+            unsafe { hit8_avx2(boxes, ray, t_max) }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            hit8_scalar(boxes, ray, t_max)
+        }
+    }
+}

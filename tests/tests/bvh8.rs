@@ -1,0 +1,560 @@
+//! The 8-wide BVH and its AVX2 box test: closest hits (distance bits and primitive) equal
+//! brute force's and the 4-wide BVH's on triangle soups with spheres, a bumpy sphere mesh and
+//! axis-parallel rays on box planes, with the AVX2 and the portable test; any hit agrees; the
+//! AVX2, two-SSE-halves and scalar eight-box tests give the same bits as each other and as the
+//! four-box test on each half; structure invariants; counted casts. Controls: a hierarchy with
+//! one child box shrunk must disagree with brute force, and the box tests must reject boxes
+//! behind the ray.
+use tessera_core::accel::simd::{hit4_scalar, Boxes4, RayPre, MAX_X, MIN_X};
+use tessera_core::accel::simd8::{hit8_scalar, Avx2, Boxes8, Hit8, Portable, WithHit8};
+use tessera_core::accel::tri4::Ray4;
+use tessera_core::accel::{Bvh4, Bvh8, LeafRanges, TriBlocks};
+use tessera_core::bsdf::{Bsdf, Diffuse};
+use tessera_core::camera::{Filter, FovAxis, Perspective};
+use tessera_core::geometry::{Hit, Mesh, Shape, ShapeKind, Sphere, TriRay};
+use tessera_core::glam::Vec3;
+use tessera_core::math::{Aabb, Ray, Transform};
+use tessera_core::scene::{Scene, SceneParts};
+use tessera_core::texture::Texture;
+
+use tessera_tests::rng::SplitMix as Rng;
+
+fn scene(tris: Vec<[Vec3; 3]>, spheres: Vec<Sphere>) -> Scene {
+    let positions: Vec<Vec3> = tris.iter().flatten().copied().collect();
+    let indices = (0..tris.len() as u32)
+        .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+        .collect();
+    mesh_scene(positions, indices, spheres)
+}
+
+fn mesh_scene(positions: Vec<Vec3>, indices: Vec<[u32; 3]>, spheres: Vec<Sphere>) -> Scene {
+    let shape = |kind| Shape {
+        kind,
+        bsdf: 0,
+        emitter: None,
+        flip_normals: false,
+    };
+    let mut shapes = Vec::new();
+    if !indices.is_empty() {
+        shapes.push(shape(ShapeKind::Mesh(Mesh::new(
+            positions,
+            vec![],
+            vec![],
+            indices,
+        ))));
+    }
+    shapes.extend(spheres.into_iter().map(|s| shape(ShapeKind::Sphere(s))));
+    Scene::new(SceneParts {
+        shapes,
+        disks: vec![],
+        bsdfs: vec![Bsdf::Diffuse(Diffuse {
+            reflectance: Texture::constant(0.5),
+        })],
+        emitters: vec![],
+        camera: Perspective::new(Transform::IDENTITY, 4, 4, 40.0, FovAxis::X, 0.01, 1e4),
+        filter: Filter::Box,
+        light_selection: Default::default(),
+    })
+    .expect("valid scene")
+}
+
+/// Traversal of either width, so one harness checks both: the counted walk when given a node
+/// counter, else the ordinary one (they are compiled separately).
+trait Wide: LeafRanges + Sized {
+    fn build(bounds: &[Aabb]) -> (Self, Vec<u32>);
+    fn closest(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> f32, n: Option<&mut u64>);
+    fn any(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> bool, n: Option<&mut u64>);
+}
+
+impl Wide for Bvh4 {
+    fn build(bounds: &[Aabb]) -> (Self, Vec<u32>) {
+        Bvh4::build(bounds)
+    }
+    fn closest(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> f32, n: Option<&mut u64>) {
+        match n {
+            Some(n) => self.traverse_closest_counted(ray, leaf, n),
+            None => self.traverse_closest(ray, leaf),
+        }
+    }
+    fn any(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> bool, n: Option<&mut u64>) {
+        match n {
+            Some(n) => self.traverse_any_counted(ray, leaf, n),
+            None => self.traverse_any(ray, leaf),
+        }
+    }
+}
+
+impl Wide for Bvh8 {
+    fn build(bounds: &[Aabb]) -> (Self, Vec<u32>) {
+        Bvh8::build(bounds)
+    }
+    fn closest(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> f32, n: Option<&mut u64>) {
+        match n {
+            Some(n) => self.traverse_closest_counted(ray, leaf, n),
+            None => self.traverse_closest(ray, leaf),
+        }
+    }
+    fn any(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> bool, n: Option<&mut u64>) {
+        match n {
+            Some(n) => self.traverse_any_counted(ray, leaf, n),
+            None => self.traverse_any(ray, leaf),
+        }
+    }
+}
+
+/// A hierarchy of either width over a scene's primitives, with the scene's leaf code.
+struct WideScene<'a, B> {
+    scene: &'a Scene,
+    bvh: B,
+    blocks: TriBlocks,
+    /// Scene primitive of each position of this hierarchy's order.
+    order: Vec<u32>,
+}
+
+impl<'a, B: Wide> WideScene<'a, B> {
+    fn new(scene: &'a Scene) -> Self {
+        let corners: Vec<[Vec3; 3]> = (0..scene.prims.len())
+            .map(|i| scene.triangle(i).unwrap_or([Vec3::NAN; 3]))
+            .collect();
+        let bounds: Vec<Aabb> = (0..scene.prims.len())
+            .map(|i| scene.prims[i].bounds(&corners[i], &scene.disks))
+            .collect();
+        let (mut bvh, order) = B::build(&bounds);
+        let sorted: Vec<[Vec3; 3]> = order.iter().map(|&i| corners[i as usize]).collect();
+        let blocks = TriBlocks::build(&mut bvh, &sorted);
+        WideScene {
+            scene,
+            bvh,
+            blocks,
+            order,
+        }
+    }
+
+    fn intersect_hit(&self, ray: &Ray, nodes: Option<&mut u64>) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        let tri = TriRay::new(ray);
+        let r4 = Ray4::new(&tri);
+        let other = |i: usize, _: &[Vec3; 3], t: f32| {
+            self.scene
+                .intersect_prim(self.order[i] as usize, ray, &tri, t)
+        };
+        let leaf = |first, count, t_max| {
+            self.blocks
+                .closest(first, count, (&tri, &r4), t_max, &mut best, other)
+        };
+        self.bvh.closest(ray, leaf, nodes);
+        best.map(|h| Hit {
+            prim: self.order[h.prim as usize],
+            ..h
+        })
+    }
+
+    fn occluded(&self, ray: &Ray, nodes: Option<&mut u64>) -> bool {
+        let mut hit = false;
+        let tri = TriRay::new(ray);
+        let r4 = Ray4::new(&tri);
+        let other = |i: usize, _: &[Vec3; 3], t: f32| {
+            self.scene
+                .intersect_prim(self.order[i] as usize, ray, &tri, t)
+        };
+        self.bvh.any(
+            ray,
+            |first, count, t_max| {
+                hit = self.blocks.any(first, count, (&tri, &r4), t_max, other);
+                hit
+            },
+            nodes,
+        );
+        hit
+    }
+}
+
+/// Compares the 8-wide hierarchy `w8` (with its box test, counted and not) with brute force,
+/// the 4-wide hierarchy and an 8-wide one with the portable box test; returns (hits, rays that
+/// disagree). Exact ties may resolve to another primitive at the same distance; there must be
+/// few of them.
+fn compare(scene: &Scene, w8: &WideScene<Bvh8>, rays: &[Ray]) -> (usize, usize) {
+    let w4 = WideScene::<Bvh4>::new(scene);
+    let mut p8 = WideScene::<Bvh8>::new(scene);
+    p8.bvh.use_portable();
+    let (mut hits, mut ties, mut bad) = (0, 0, 0);
+    let key = |h: Option<Hit>| h.map(|h| (h.t.to_bits(), h.prim));
+    for ray in rays {
+        let mut best: Option<(f32, usize)> = None;
+        let tri = TriRay::new(ray);
+        for i in 0..scene.prims.len() {
+            if let Some((t, _)) =
+                scene.intersect_prim(i, ray, &tri, best.map_or(ray.t_max, |b| b.0))
+            {
+                best = Some((t, i));
+            }
+        }
+        let h8 = w8.intersect_hit(ray, None);
+        let any8 = w8.occluded(ray, None);
+        let mut n = 0;
+        let counted = (
+            key(w8.intersect_hit(ray, Some(&mut n))),
+            w8.occluded(ray, Some(&mut n)),
+        );
+        let portable = (key(p8.intersect_hit(ray, None)), p8.occluded(ray, None));
+        let t4 = w4.intersect_hit(ray, None).map(|h| h.t.to_bits());
+        let any4 = w4.occluded(ray, None);
+        let same = match (best, h8) {
+            (None, None) => true,
+            (Some((t, i)), Some(h)) => {
+                hits += 1;
+                if i as u32 != h.prim && t == h.t {
+                    ties += 1;
+                }
+                t == h.t && h.t.is_finite() && h.t > 0.0
+            }
+            _ => false,
+        };
+        if !same
+            || t4 != key(h8).map(|k| k.0)
+            || any8 != best.is_some()
+            || any4 != any8
+            || portable != (key(h8), any8)
+            || counted != (key(h8), any8)
+            || n < 2
+        {
+            bad += 1;
+        }
+    }
+    assert!(ties * 20 <= hits.max(1), "{ties} ties in {hits} hits");
+    (hits, bad)
+}
+
+fn random_soup(rng: &mut Rng, n: usize) -> Vec<[Vec3; 3]> {
+    (0..n)
+        .map(|t| {
+            let c = rng.v(20.0);
+            let s = if t % 10 == 0 { 8.0 } else { 1.5 };
+            match t % 17 {
+                0 => [c, c, c],
+                1 => {
+                    let d = rng.v(s);
+                    [c, c + d, c + 2.0 * d]
+                }
+                _ => [c + rng.v(s), c + rng.v(s), c + rng.v(s)],
+            }
+        })
+        .collect()
+}
+
+fn random_rays(rng: &mut Rng, n: usize) -> Vec<Ray> {
+    (0..n)
+        .map(|_| {
+            let o = rng.v(50.0);
+            let mut ray = Ray::new(o, (rng.v(20.0) - o).normalize());
+            if rng.f() < 0.3 {
+                ray.t_max = rng.f() * 40.0;
+            }
+            ray
+        })
+        .collect()
+}
+
+#[test]
+fn agrees_with_brute_force_and_bvh4_on_soups() {
+    let mut rng = Rng(21);
+    let mut hits = 0;
+    for n in [1usize, 2, 7, 8, 9, 33, 64, 500, 5000] {
+        let spheres = (0..n % 4)
+            .map(|_| Sphere {
+                center: rng.v(20.0),
+                radius: 0.3 + rng.f(),
+            })
+            .collect();
+        let s = scene(random_soup(&mut rng, n), spheres);
+        let w8 = WideScene::<Bvh8>::new(&s);
+        let rays = random_rays(&mut rng, 2000);
+        let (h, bad) = compare(&s, &w8, &rays);
+        assert_eq!(bad, 0, "{n} triangles: {bad} rays disagree");
+        hits += h;
+    }
+    assert!(hits > 2000, "too few hits ({hits}) to mean anything");
+}
+
+/// A bumpy sphere (latitude-longitude grid, radially displaced), rays from inside and outside.
+#[test]
+fn agrees_on_a_bumpy_sphere() {
+    let (nu, nv) = (120usize, 60usize);
+    let mut positions = Vec::new();
+    for j in 0..=nv {
+        for i in 0..=nu {
+            let (u, v) = (i as f32 / nu as f32, j as f32 / nv as f32);
+            let (phi, theta) = (u * std::f32::consts::TAU, v * std::f32::consts::PI);
+            let d = Vec3::new(
+                theta.sin() * phi.cos(),
+                theta.cos(),
+                theta.sin() * phi.sin(),
+            );
+            let r = 1.0 + 0.08 * (9.0 * d.x).sin() * (7.0 * d.y).sin() * (5.0 * d.z).sin();
+            positions.push(d * r);
+        }
+    }
+    let id = |i: usize, j: usize| (j * (nu + 1) + i) as u32;
+    let mut indices = Vec::new();
+    for j in 0..nv {
+        for i in 0..nu {
+            indices.push([id(i, j), id(i + 1, j), id(i, j + 1)]);
+            indices.push([id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    let s = mesh_scene(positions, indices, vec![]);
+    let mut rng = Rng(23);
+    let rays: Vec<Ray> = (0..4000)
+        .map(|k| {
+            let o = if k % 2 == 0 { rng.v(1.6) } else { rng.v(8.0) };
+            let d = (rng.v(2.0) - o * 0.3).normalize();
+            Ray::new(o, d)
+        })
+        .collect();
+    let mut w8 = WideScene::<Bvh8>::new(&s);
+    let (hits, bad) = compare(&s, &w8, &rays);
+    assert_eq!(bad, 0, "{bad} rays disagree");
+    assert!(hits > 2000, "too few hits ({hits})");
+
+    // Control: shrink one child box of the root to nothing; rays into it must now be missed.
+    let root = &mut w8.bvh.nodes[0];
+    for a in 0..3 {
+        root.boxes.b[MIN_X + a][0] = f32::INFINITY;
+        root.boxes.b[MAX_X + a][0] = f32::NEG_INFINITY;
+    }
+    let (_, bad) = compare(&s, &w8, &rays);
+    assert!(
+        bad > 100,
+        "a broken hierarchy went unnoticed ({bad} rays disagree)"
+    );
+}
+
+/// Axis-aligned quads on an integer grid, rays along the axes (zero direction components, also
+/// negative zeros) starting on grid planes: slab distances `0 * inf` are NaN and must not cull.
+#[test]
+fn axis_parallel_rays_on_box_planes() {
+    let mut tris = Vec::new();
+    for i in 0..6 {
+        for j in 0..6 {
+            let (x, y, z) = (i as f32, j as f32, ((i * 7 + j * 3) % 5) as f32);
+            let quads = [
+                [Vec3::new(x, y, z), Vec3::X, Vec3::Y],
+                [Vec3::new(x, z, y), Vec3::X, Vec3::Z],
+                [Vec3::new(z, x, y), Vec3::Y, Vec3::Z],
+            ];
+            for [p, u, v] in quads {
+                tris.push([p, p + u, p + v]);
+                tris.push([p + u, p + u + v, p + v]);
+            }
+        }
+    }
+    let s = scene(tris, vec![]);
+    let mut rng = Rng(29);
+    let dirs = [
+        Vec3::X,
+        -Vec3::X,
+        Vec3::Y,
+        -Vec3::Y,
+        Vec3::Z,
+        -Vec3::Z,
+        Vec3::new(-0.0, -0.0, 1.0),
+        Vec3::new(1.0, -0.0, 0.0),
+        Vec3::new(0.0, -1.0, -0.0),
+    ];
+    let mut rays = Vec::new();
+    for _ in 0..3000 {
+        let mut c = || match rng.below_scaled(3) {
+            0 => rng.below_scaled(8) as f32 - 1.0,
+            1 => rng.below_scaled(16) as f32 * 0.5 - 1.0,
+            _ => rng.f() * 8.0 - 1.0,
+        };
+        let o = Vec3::new(c(), c(), c());
+        rays.push(Ray::new(o, dirs[rng.below_scaled(dirs.len())]));
+    }
+    let w8 = WideScene::<Bvh8>::new(&s);
+    let (hits, bad) = compare(&s, &w8, &rays);
+    assert_eq!(bad, 0, "{bad} rays disagree");
+    assert!(hits > 300, "too few hits ({hits})");
+}
+
+fn random_boxes(rng: &mut Rng) -> Boxes8 {
+    let mut b = Boxes8::EMPTY;
+    for lane in 0..rng.below_scaled(9) {
+        for a in 0..3 {
+            let (p, q) = match rng.below_scaled(5) {
+                0 => (0.0, rng.f()),
+                1 => {
+                    let p = rng.f() - 0.5;
+                    (p, p)
+                }
+                2 => (f32::NEG_INFINITY, rng.f()),
+                _ => (rng.f() * 4.0 - 2.0, rng.f() * 4.0 - 2.0),
+            };
+            b.b[MIN_X + a][lane] = p.min(q);
+            b.b[MAX_X + a][lane] = p.max(q);
+        }
+    }
+    b
+}
+
+fn random_box_ray(rng: &mut Rng) -> Ray {
+    let mut c = |zero: bool| match rng.below_scaled(if zero { 5 } else { 3 }) {
+        0 => 0.0,
+        1 => -0.0,
+        2 => rng.f() - 0.5,
+        _ => rng.f() * 6.0 - 3.0,
+    };
+    let o = Vec3::new(c(false), c(false), c(false));
+    let d = Vec3::new(c(true), c(true), c(true));
+    let d = if d == Vec3::ZERO { Vec3::X } else { d };
+    let mut ray = Ray::new(o, d);
+    match rng.below_scaled(4) {
+        0 => ray.t_max = rng.f() * 3.0,
+        1 => ray.t_max = f32::INFINITY,
+        _ => {}
+    }
+    ray
+}
+
+/// One box test, to run compiled with AVX2.
+struct Test8<'a>(&'a Boxes8, &'a RayPre, f32);
+
+impl WithHit8 for Test8<'_> {
+    type Output = (u32, [f32; 8]);
+    #[inline(always)]
+    fn call<H: Hit8>(self, test: H) -> Self::Output {
+        test.hit8(self.0, self.1, self.2)
+    }
+}
+
+/// The four-box test on one half of eight boxes.
+fn half(boxes: &Boxes8, h: usize) -> Boxes4 {
+    let mut b = Boxes4::EMPTY;
+    for (row, out) in boxes.b.iter().zip(&mut b.b) {
+        out.copy_from_slice(&row[4 * h..4 * h + 4]);
+    }
+    b
+}
+
+#[test]
+fn avx2_portable_and_scalar_box_tests_give_the_same_bits() {
+    let avx2 = Avx2::detect();
+    if avx2.is_none() {
+        eprintln!("no AVX2 on this CPU: comparing the portable and scalar tests only");
+    }
+    let mut rng = Rng(31);
+    let (mut hits, mut rejected) = (0, 0);
+    for _ in 0..200_000 {
+        let boxes = random_boxes(&mut rng);
+        let ray = random_box_ray(&mut rng);
+        let pre = RayPre::new(&ray);
+        let (ms, ts) = hit8_scalar(&boxes, &pre, ray.t_max);
+        let mut results = vec![Portable.hit8(&boxes, &pre, ray.t_max)];
+        if let Some(a) = avx2 {
+            results.push(a.hit8(&boxes, &pre, ray.t_max));
+            results.push(a.run(Test8(&boxes, &pre, ray.t_max)));
+        }
+        for (m, t) in results {
+            assert_eq!(m, ms, "masks differ for {ray:?} {boxes:?}");
+            for lane in 0..8 {
+                assert_eq!(t[lane].to_bits(), ts[lane].to_bits(), "t_near differs");
+            }
+        }
+        for h in 0..2 {
+            let (m4, t4) = hit4_scalar(&half(&boxes, h), &pre, ray.t_max);
+            assert_eq!(m4, (ms >> (4 * h)) & 0xf, "differs from the 4-wide test");
+            for lane in 0..4 {
+                assert_eq!(t4[lane].to_bits(), ts[4 * h + lane].to_bits());
+            }
+        }
+        for lane in 0..8 {
+            let hit = ms & (1 << lane) != 0;
+            assert!(!hit || !ts[lane].is_nan(), "NaN entry distance");
+            let b = &boxes.b;
+            // Control: a box entirely behind the origin along a nonzero axis is rejected.
+            if (0..3).any(|a| {
+                (ray.d[a] > 0.0 && b[MAX_X + a][lane] < ray.o[a] - 1e-3)
+                    || (ray.d[a] < 0.0 && b[MIN_X + a][lane] > ray.o[a] + 1e-3)
+            }) {
+                rejected += 1;
+                assert!(!hit, "hit a box behind the ray: {ray:?} {boxes:?}");
+            }
+        }
+        hits += ms.count_ones();
+    }
+    assert!(hits > 50_000 && rejected > 50_000, "{hits} {rejected}");
+}
+
+/// Every primitive is in exactly one leaf, every child box contains what is below it, nodes are
+/// fuller than the 4-wide ones.
+#[test]
+fn structure_covers_every_primitive_once() {
+    let mut rng = Rng(37);
+    for n in [1usize, 2, 5, 17, 1000, 20_000] {
+        let boxes: Vec<Aabb> = random_soup(&mut rng, n)
+            .iter()
+            .map(|t| Aabb::point(t[0]).grow(t[1]).grow(t[2]))
+            .collect();
+        let (bvh, order) = Bvh8::build(&boxes);
+        let (bvh4, order4) = Bvh4::build(&boxes);
+        assert_eq!(order, order4, "same binary build, same primitive order");
+        assert!(bvh.depth() <= bvh4.depth());
+        let mut seen = vec![0u32; n];
+        let mut stack = vec![(0usize, bvh.bounds())];
+        while let Some((i, outer)) = stack.pop() {
+            let node = &bvh.nodes[i];
+            assert!(node.used != 0 && (node.used & (node.used + 1)) == 0);
+            for lane in 0..node.used.count_ones() as usize {
+                let b = node.child_bounds(lane);
+                assert_eq!(outer.union(b), outer, "child box outside its parent");
+                if node.count[lane] == 0 {
+                    stack.push((node.child[lane] as usize, b));
+                } else {
+                    let first = node.child[lane] as usize;
+                    for k in first..first + node.count[lane] as usize {
+                        let pb = boxes[order[k] as usize];
+                        assert_eq!(b.union(pb), b, "primitive outside its leaf");
+                        seen[order[k] as usize] += 1;
+                    }
+                }
+            }
+        }
+        assert!(seen.iter().all(|&s| s == 1), "{n}: not in exactly one leaf");
+        if n >= 1000 {
+            let fill = |lanes: u32, nodes: usize| f64::from(lanes) / nodes as f64;
+            let f8 = fill(
+                bvh.nodes.iter().map(|n| n.used.count_ones()).sum(),
+                bvh.nodes.len(),
+            );
+            let f4 = fill(
+                bvh4.nodes.iter().map(|n| n.used.count_ones()).sum(),
+                bvh4.nodes.len(),
+            );
+            eprintln!("{n}: children per node {f8:.2} (8-wide) {f4:.2} (4-wide)");
+            assert!(f8 > 1.2 * f4, "nodes not fuller: {f8} vs {f4}");
+        }
+    }
+}
+
+/// Counted walks visit nodes; a ray pointing away from everything visits the root only.
+#[test]
+fn counted_walks_count_nodes() {
+    let mut rng = Rng(41);
+    let s = scene(random_soup(&mut rng, 3000), vec![]);
+    let w8 = WideScene::<Bvh8>::new(&s);
+    let mut hits = 0;
+    for ray in random_rays(&mut rng, 1000) {
+        let mut nodes = 0;
+        if w8.intersect_hit(&ray, Some(&mut nodes)).is_some() {
+            hits += 1;
+            assert!(nodes >= 2, "a hit below the root visits more than the root");
+        }
+    }
+    assert!(hits > 100);
+    let away = Ray::new(Vec3::splat(100.0), Vec3::ONE);
+    let mut nodes = 0;
+    assert!(w8.intersect_hit(&away, Some(&mut nodes)).is_none());
+    assert_eq!(nodes, 1);
+    assert!(!w8.occluded(&away, Some(&mut nodes)));
+    assert_eq!(nodes, 2);
+}
