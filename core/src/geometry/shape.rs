@@ -177,7 +177,8 @@ impl Shape {
     pub fn sample_toward(&self, r: Vec3, u: Vec2, disks: &[Disk]) -> Option<SampleToward> {
         if let ShapeKind::Sphere(s) = &self.kind {
             if let Some(cs) = s.sample_cone(r, u) {
-                let (p, p_err) = s.project(cs.p);
+                // `cs.p` is already projected onto the sphere, with its error bound.
+                let (p, p_err) = (cs.p, cs.p_err);
                 let n = self.orient(cs.n);
                 let d = p - r;
                 return Some(SampleToward {

@@ -22,6 +22,8 @@ pub struct Sphere {
 pub struct ConeSample {
     /// Point on the sphere.
     pub p: Vec3,
+    /// Error bound of `p` (from its projection onto the sphere, [`Sphere::project`]).
+    pub p_err: Vec3,
     /// Outward unit normal there.
     pub n: Vec3,
     /// Solid-angle density at the reference point.
@@ -119,10 +121,11 @@ impl Sphere {
         let b = dist * cos_t;
         let disc = r2 - dist2 * (1.0 - cos_t * cos_t).max(0.0);
         let t = b - safe_sqrt(disc);
-        let (p, _) = self.project(r + w * t.max(0.0));
+        let (p, p_err) = self.project(r + w * t.max(0.0));
         let n = (p - self.center) / self.radius;
         Some(ConeSample {
             p,
+            p_err,
             n,
             pdf: 1.0 / (2.0 * PI * omc),
         })
