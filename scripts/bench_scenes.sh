@@ -7,6 +7,9 @@
 #
 # Needs the dist build (cargo build --profile dist -p tessera; release plus fat LTO), Mitsuba 3 (scripts/install_mitsuba.sh) and, for
 # llvm_ad_rgb, scripts/install_llvm.sh. Set VARIANTS=scalar_rgb to skip the LLVM variant.
+# For a build tuned to this CPU, as Mitsuba's LLVM variant's kernels are (same image bits):
+#   RUSTFLAGS="-C target-cpu=native" cargo build --profile dist -p tessera --target-dir target/native
+#   TESSERA=target/native/dist/tessera scripts/bench_scenes.sh 2 30
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
