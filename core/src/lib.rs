@@ -8,6 +8,9 @@
 // `unsafe` only in `accel::simd`, `accel::simd8` and `accel::tri4` (SSE/AVX2 intrinsics, CPU
 // feature detection), which allow it and justify each block.
 #![deny(unsafe_code)]
+// `!(x > 0.0)` is this crate's way of rejecting NaN along with the values it names; clippy's
+// suggestion (`partial_cmp`) would hide that intent.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 extern crate alloc;
 

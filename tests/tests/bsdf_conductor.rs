@@ -9,6 +9,8 @@
 //! control that must fail: a 5% wrong roughness for the chi-square test, the wrong metal for the
 //! Mitsuba sample table, a refraction for the reciprocity check.
 
+// Reference values are kept as the reference renderer printed them.
+#![allow(clippy::excessive_precision)]
 use glam::{Vec2, Vec3};
 use tessera::stats::{sampled_albedo, Chi2Result, Pcg32, SphereChi2};
 use tessera_core::bsdf::Bsdf;

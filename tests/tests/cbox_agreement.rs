@@ -42,7 +42,7 @@ fn integrators_agree_on_the_cornell_box() {
             let (na, a) = (&renders[i].0, &renders[i].1);
             let (nb, b) = (&renders[j].0, &renders[j].1);
             assert_eq!(a.dropped() + b.dropped(), 0);
-            let (p, what) = worst_region(&a, RES, BLOCK, |bx, by, k| {
+            let (p, what) = worst_region(a, RES, BLOCK, |bx, by, k| {
                 region_stats(b, bx * BLOCK, by * BLOCK, BLOCK, BLOCK)[k]
             });
             eprintln!("{na} vs {nb}: worst p = {p:.3e} at {what}");

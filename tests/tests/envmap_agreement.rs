@@ -54,7 +54,7 @@ fn integrators_agree_on_the_envmap_scene() {
     println!("path_mis: image mean {:.5?}", image_mean(&reference));
     for (name, fb) in &others {
         assert_eq!(fb.dropped() + reference.dropped(), 0);
-        let (p, what) = worst_region(&fb, RES, BLOCK, |bx, by, k| {
+        let (p, what) = worst_region(fb, RES, BLOCK, |bx, by, k| {
             region_stats(&reference, bx * BLOCK, by * BLOCK, BLOCK, BLOCK)[k]
         });
         println!(

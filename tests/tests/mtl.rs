@@ -185,7 +185,9 @@ const QUAD: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
 #[test]
 fn bad_material_input_is_located() {
     let shape = r#"<shape type="obj"><string name="filename" value="m.obj"/><boolean name="use_mtl" value="true"/></shape>"#;
-    let cases: Vec<(&str, Vec<(&str, String)>, &str, &str)> = vec![
+    // (case name, files (name, text), expected location prefix, expected message part)
+    type Case<'a> = (&'a str, Vec<(&'a str, String)>, &'a str, &'a str);
+    let cases: Vec<Case> = vec![
         (
             "usemtl",
             vec![
@@ -263,7 +265,7 @@ fn shape_level_bsdf_needs_faces_without_material() {
     );
     let body = r#"<shape type="obj"><string name="filename" value="m.obj"/><boolean name="use_mtl" value="true"/>
         <bsdf type="diffuse"/></shape>"#;
-    let e = scene_in(&d, body).err().expect("an error");
+    let e = scene_in(&d, body).expect_err("an error");
     assert!(
         e.contains("scene.xml:7:9: ") && e.contains("would apply to nothing"),
         "{e}"
@@ -273,8 +275,7 @@ fn shape_level_bsdf_needs_faces_without_material() {
         &d,
         r#"<shape type="ply"><string name="filename" value="m.ply"/><boolean name="use_mtl" value="true"/></shape>"#,
     )
-    .err()
-    .expect("an error");
+    .expect_err("an error");
     assert!(e.contains("unused parameter \"use_mtl\""), "{e}");
     std::fs::remove_dir_all(&d).ok();
 }

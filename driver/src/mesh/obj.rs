@@ -27,6 +27,8 @@ pub struct ObjParts {
     pub materials: Vec<MtlMaterial>,
 }
 
+// tobj's optional features add fields to `LoadOptions`; the update keeps this building with them.
+#[allow(clippy::needless_update)]
 fn options() -> tobj::LoadOptions {
     tobj::LoadOptions {
         triangulate: true,
