@@ -229,8 +229,30 @@ fn main() {
         "8/emb",
         "agree"
     );
+    // `CAST_ONLY=bvh8|embree|none` (for callgrind and perf): `CAST_PASSES` (default 1) passes of
+    // the random rays, closest hit, with one of the two on the first size, then exit.
+    let only = std::env::var("CAST_ONLY").ok();
     for (label, target) in wanted_sizes() {
         let (positions, indices) = bumpy_sphere(frequency_for(target));
+        if let Some(which) = &only {
+            let pos: Vec<[f32; 3]> = positions.iter().map(|p| p.to_array()).collect();
+            let embree = Embree::new(&pos, &indices);
+            let scene = Scene::with_build_params(mesh_parts(positions, indices), build_params())
+                .expect("valid scene");
+            let w8 = WideScene::<Bvh8>::new(&scene, build_params());
+            let passes: usize =
+                std::env::var("CAST_PASSES").map_or(1, |p| p.parse().expect("passes"));
+            let found = std::iter::repeat_n(random.iter(), passes)
+                .flatten()
+                .filter(|r| match which.as_str() {
+                    "embree" => embree.intersect(r).is_some(),
+                    "none" => false,
+                    _ => w8.intersect_hit(r).is_some(),
+                })
+                .count();
+            println!("{which}: {found} of {} rays hit", random.len());
+            return;
+        }
         let pos: Vec<[f32; 3]> = positions.iter().map(|p| p.to_array()).collect();
         let start = Instant::now();
         let embree = Embree::new(&pos, &indices);

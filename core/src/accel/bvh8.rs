@@ -80,6 +80,30 @@ impl Default for Bvh8 {
     }
 }
 
+/// The leaves of a traversal ([`Bvh8::cast`]).
+pub trait Leaves {
+    /// Tests the leaf of `count` primitives at `first` within `(0, t_max)` with the SIMD tests
+    /// of `simd`: `Some(new t_max)` to go on, `None` to stop the traversal.
+    fn test<H: Hit8>(&mut self, simd: H, first: usize, count: usize, t_max: f32) -> Option<f32>;
+}
+
+impl<L: Leaves> Leaves for &mut L {
+    #[inline(always)]
+    fn test<H: Hit8>(&mut self, simd: H, first: usize, count: usize, t_max: f32) -> Option<f32> {
+        (**self).test(simd, first, count, t_max)
+    }
+}
+
+/// A closure as leaves (it does not use the SIMD token).
+struct FnLeaves<F>(F);
+
+impl<F: FnMut(usize, usize, f32) -> Option<f32>> Leaves for FnLeaves<F> {
+    #[inline(always)]
+    fn test<H: Hit8>(&mut self, _: H, first: usize, count: usize, t_max: f32) -> Option<f32> {
+        (self.0)(first, count, t_max)
+    }
+}
+
 /// A postponed child: node index or first primitive, leaf count (0 for a node), entry distance.
 #[derive(Clone, Copy, Default)]
 struct Entry {
@@ -168,14 +192,14 @@ impl Bvh8 {
     /// `leaf(first, count, t_max)` tests the primitives and returns the new `t_max`.
     #[inline]
     pub fn traverse_closest(&self, ray: &Ray, mut leaf: impl FnMut(usize, usize, f32) -> f32) {
-        self.walk::<false, false>(ray, |f, c, t| Some(leaf(f, c, t)), &mut 0);
+        self.walk::<false, false>(ray, FnLeaves(|f, c, t| Some(leaf(f, c, t))), &mut 0);
     }
 
     /// Any-hit traversal: `leaf(first, count, t_max)` returns true to stop (a hit was found).
     #[inline]
     pub fn traverse_any(&self, ray: &Ray, mut leaf: impl FnMut(usize, usize, f32) -> bool) {
         let leaf = |f, c, t| if leaf(f, c, t) { None } else { Some(t) };
-        self.walk::<true, false>(ray, leaf, &mut 0);
+        self.walk::<true, false>(ray, FnLeaves(leaf), &mut 0);
     }
 
     /// [`Bvh8::traverse_closest`] that also adds the number of nodes it visits to `nodes` (for
@@ -187,7 +211,7 @@ impl Bvh8 {
         mut leaf: impl FnMut(usize, usize, f32) -> f32,
         nodes: &mut u64,
     ) {
-        self.walk::<false, true>(ray, |f, c, t| Some(leaf(f, c, t)), nodes);
+        self.walk::<false, true>(ray, FnLeaves(|f, c, t| Some(leaf(f, c, t))), nodes);
     }
 
     /// [`Bvh8::traverse_any`] that also adds the number of nodes it visits to `nodes`.
@@ -199,7 +223,16 @@ impl Bvh8 {
         nodes: &mut u64,
     ) {
         let leaf = |f, c, t| if leaf(f, c, t) { None } else { Some(t) };
-        self.walk::<true, true>(ray, leaf, nodes);
+        self.walk::<true, true>(ray, FnLeaves(leaf), nodes);
+    }
+
+    /// A traversal whose leaves are tested by `leaves` with the SIMD tests the traversal is
+    /// compiled for (AVX2 where detected), inlined into its loop: closest hit (`ANY == false`:
+    /// visits nearest entry first, `leaves` returns the new `t_max`) or any hit (`ANY`: stops
+    /// when `leaves` returns `None`).
+    #[inline]
+    pub fn cast<const ANY: bool>(&self, ray: &Ray, leaves: impl Leaves) {
+        self.walk::<ANY, false>(ray, leaves, &mut 0);
     }
 
     /// Picks the box test (one traversal loop is compiled per test) and the stack size.
@@ -207,7 +240,7 @@ impl Bvh8 {
     fn walk<const ANY: bool, const COUNT: bool>(
         &self,
         ray: &Ray,
-        leaf: impl FnMut(usize, usize, f32) -> Option<f32>,
+        leaf: impl Leaves,
         nodes: &mut u64,
     ) {
         if self.nodes.is_empty() {
@@ -230,7 +263,7 @@ impl Bvh8 {
         &self,
         test: H,
         ray: &Ray,
-        leaf: impl FnMut(usize, usize, f32) -> Option<f32>,
+        leaf: impl Leaves,
         nodes: &mut u64,
     ) {
         let need = 7 * self.depth + 1;
@@ -256,7 +289,7 @@ impl Bvh8 {
         test: H,
         ray: &Ray,
         stack: &mut [Entry],
-        mut leaf: impl FnMut(usize, usize, f32) -> Option<f32>,
+        mut leaf: impl Leaves,
         nodes: &mut u64,
     ) {
         let pre = RayPre::new(ray);
@@ -316,7 +349,7 @@ impl Bvh8 {
                     continue;
                 }
             } else {
-                match leaf(cur.child as usize, cur.count as usize, t_max) {
+                match leaf.test(test, cur.child as usize, cur.count as usize, t_max) {
                     Some(t) => t_max = t,
                     None => return,
                 }
@@ -344,10 +377,7 @@ struct Walk<'a, L, const ANY: bool, const COUNT: bool> {
     nodes: &'a mut u64,
 }
 
-impl<L, const ANY: bool, const COUNT: bool> WithHit8 for Walk<'_, L, ANY, COUNT>
-where
-    L: FnMut(usize, usize, f32) -> Option<f32>,
-{
+impl<L: Leaves, const ANY: bool, const COUNT: bool> WithHit8 for Walk<'_, L, ANY, COUNT> {
     type Output = ();
 
     #[inline(always)]

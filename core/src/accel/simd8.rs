@@ -19,6 +19,8 @@
 #![allow(unsafe_code)]
 
 use super::simd::{RayPre, MAX_X, MIN_X};
+use super::tri4::{test4, Lanes, Ray4, Tri4};
+use super::tri8::{test8_portable, Lanes8};
 use crate::math::gamma;
 
 /// Eight boxes in SoA layout: `b[MIN_X + axis][lane]` and `b[MAX_X + axis][lane]` (the row
@@ -169,10 +171,22 @@ pub fn hit8_avx2(boxes: &Boxes8, ray: &RayPre, t_max: f32) -> (u32, [f32; 8]) {
     (mask, t_near)
 }
 
-/// An eight-box slab test, chosen by type so a traversal loop compiles with one of them inlined.
+/// An eight-box slab test and the triangle tests of the leaves, chosen by type so a traversal
+/// loop compiles with one set of them inlined.
 pub trait Hit8: Copy {
     /// Mask of the boxes the ray meets within `[0, t_max]`, and their entry distances.
     fn hit8(self, boxes: &Boxes8, ray: &RayPre, t_max: f32) -> (u32, [f32; 8]);
+
+    /// The four-lane triangle test ([`test4`]; the same everywhere, compiled with the caller's
+    /// features).
+    #[inline(always)]
+    fn tri4(self, blk: &Tri4, ray: &Ray4, t_max: f32) -> Lanes {
+        test4(blk, ray, t_max)
+    }
+
+    /// Two blocks' triangle tests at once, `a` in lanes 0-3 and `b` in lanes 4-7
+    /// ([`super::tri8`]).
+    fn tri8(self, a: &Tri4, b: &Tri4, ray: &Ray4, t_max: f32) -> Lanes8;
 }
 
 /// The portable test: two SSE halves on x86_64, the scalar loop elsewhere.
@@ -190,6 +204,11 @@ impl Hit8 for Portable {
         {
             hit8_scalar(boxes, ray, t_max)
         }
+    }
+
+    #[inline(always)]
+    fn tri8(self, a: &Tri4, b: &Tri4, ray: &Ray4, t_max: f32) -> Lanes8 {
+        test8_portable(a, b, ray, t_max)
     }
 }
 
@@ -278,6 +297,19 @@ impl Hit8 for Avx2 {
         #[cfg(not(target_arch = "x86_64"))]
         {
             hit8_scalar(boxes, ray, t_max)
+        }
+    }
+
+    #[inline(always)]
+    fn tri8(self, a: &Tri4, b: &Tri4, ray: &Ray4, t_max: f32) -> Lanes8 {
+        #[cfg(target_arch = "x86_64")]
+        {
+            // SAFETY: `self` exists only when `detect` found AVX2 usable on this CPU.
+            unsafe { super::tri8::test8_avx2(a, b, ray, t_max) }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            test8_portable(a, b, ray, t_max)
         }
     }
 }
