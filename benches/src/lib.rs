@@ -5,7 +5,7 @@ use glam::{Vec2, Vec3};
 use std::time::Instant;
 use tessera_core::accel::tri4::Ray4;
 use tessera_core::accel::{
-    AnyLeaves, BuildParams, Bvh, Bvh4, Bvh8, ClosestLeaves, LeafRanges, TriBlocks,
+    AnyLeaves, BuildParams, Bvh, Bvh4, Bvh8, ClosestLeaves, Collapse, LeafRanges, TriBlocks,
 };
 use tessera_core::bsdf::{Bsdf, Diffuse};
 use tessera_core::camera::{Filter, FovAxis, Perspective};
@@ -323,7 +323,7 @@ impl WideBvh for Bvh4 {
 
 impl WideBvh for Bvh8 {
     fn build_with(bounds: &[Aabb], params: BuildParams) -> (Self, Vec<u32>) {
-        Bvh8::build_with(bounds, params)
+        Bvh8::build_collapsed(bounds, params, collapse())
     }
     #[inline(always)]
     fn closest(&self, ray: &Ray, leaves: ClosestLeaves<'_, NoOther>) {
@@ -336,6 +336,59 @@ impl WideBvh for Bvh8 {
     }
     fn node_bytes(&self) -> usize {
         self.memory_bytes()
+    }
+}
+
+/// The 8-wide BVH collapsed greedily (the first collapse: open the largest interior child), to
+/// compare with the default collapse in the same run.
+pub struct Bvh8Greedy(pub Bvh8);
+
+impl LeafRanges for Bvh8Greedy {
+    fn map_leaves(&mut self, f: impl FnMut(usize, usize) -> u32) {
+        self.0.map_leaves(f);
+    }
+}
+
+impl WideBvh for Bvh8Greedy {
+    fn build_with(bounds: &[Aabb], params: BuildParams) -> (Self, Vec<u32>) {
+        let (b, order) = Bvh8::build_collapsed(bounds, params, Collapse::Greedy);
+        (Bvh8Greedy(b), order)
+    }
+    #[inline(always)]
+    fn closest(&self, ray: &Ray, leaves: ClosestLeaves<'_, NoOther>) {
+        self.0.cast::<false>(ray, leaves)
+    }
+    #[inline(always)]
+    fn any(&self, ray: &Ray, mut leaves: AnyLeaves<'_, NoOther>) -> bool {
+        self.0.cast::<true>(ray, &mut leaves);
+        leaves.hit
+    }
+    fn node_bytes(&self) -> usize {
+        self.0.memory_bytes()
+    }
+}
+
+/// The 8-wide collapse: [`Collapse::DEFAULT`], or `BVH8_COLLAPSE=greedy` or
+/// `BVH8_COLLAPSE=node_cost,block_cost,max_leaf` (the surface-area collapse with these).
+pub fn collapse() -> Collapse {
+    let Ok(v) = std::env::var("BVH8_COLLAPSE").map(|v| v.trim().to_string()) else {
+        return Collapse::DEFAULT;
+    };
+    if v.is_empty() {
+        return Collapse::DEFAULT;
+    }
+    if v == "greedy" {
+        return Collapse::Greedy;
+    }
+    let f: Vec<&str> = v.split(',').collect();
+    assert!(
+        f.len() == 3,
+        "BVH8_COLLAPSE=greedy or node_cost,block_cost,max_leaf"
+    );
+    Collapse::Sah {
+        node_cost: f[0].parse().expect("node_cost"),
+        block_cost: f[1].parse().expect("block_cost"),
+        max_leaf: f[2].parse().expect("max_leaf"),
     }
 }
 

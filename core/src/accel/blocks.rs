@@ -245,6 +245,8 @@ impl<F> Leaves for ClosestLeaves<'_, F>
 where
     F: FnMut(usize, &[Vec3; 3], f32) -> Option<(f32, Vec2)>,
 {
+    const RESTARTABLE: bool = true;
+
     #[inline(always)]
     fn test<H: Hit8>(&mut self, simd: H, first: usize, count: usize, t_max: f32) -> Option<f32> {
         let other = &mut self.other;
@@ -271,6 +273,8 @@ impl<F> Leaves for AnyLeaves<'_, F>
 where
     F: FnMut(usize, &[Vec3; 3], f32) -> Option<(f32, Vec2)>,
 {
+    const RESTARTABLE: bool = true;
+
     #[inline(always)]
     fn test<H: Hit8>(&mut self, simd: H, first: usize, count: usize, t_max: f32) -> Option<f32> {
         let other = &mut self.other;
