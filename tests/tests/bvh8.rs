@@ -545,8 +545,10 @@ fn structure_covers_every_primitive_once() {
         while let Some((i, outer)) = stack.pop() {
             let node = &bvh.nodes[i];
             assert!(node.used != 0 && (node.used & (node.used + 1)) == 0);
+            assert_eq!(node.leaves & !node.used, 0, "leaf bit on an unused lane");
             for lane in 0..node.used.count_ones() as usize {
                 let b = node.child_bounds(lane);
+                assert_eq!((node.leaves >> lane) & 1 == 1, node.count[lane] > 0);
                 assert_eq!(outer.union(b), outer, "child box outside its parent");
                 if node.count[lane] == 0 {
                     stack.push((node.child[lane] as usize, b));

@@ -8,7 +8,7 @@
 //! primitive order and lower `t_max` as they go, exactly as a loop of scalar tests over the
 //! leaf's primitives would, so they find the same primitive at the same distance.
 use super::bvh8::Leaves;
-use super::simd8::{Hit8, Portable};
+use super::simd8::{prefetch, Hit8, Portable};
 use super::tri4::{Ray4, Tri4};
 use super::{Bvh4, Bvh8};
 use crate::geometry::{Hit, TriRay};
@@ -248,6 +248,13 @@ where
     const RESTARTABLE: bool = true;
 
     #[inline(always)]
+    fn prefetch(&self, first: usize, _count: usize) {
+        if let Some(b) = self.blocks.blocks.get(first) {
+            prefetch(b);
+        }
+    }
+
+    #[inline(always)]
     fn test<H: Hit8>(&mut self, simd: H, first: usize, count: usize, t_max: f32) -> Option<f32> {
         let other = &mut self.other;
         Some(
@@ -274,6 +281,13 @@ where
     F: FnMut(usize, &[Vec3; 3], f32) -> Option<(f32, Vec2)>,
 {
     const RESTARTABLE: bool = true;
+
+    #[inline(always)]
+    fn prefetch(&self, first: usize, _count: usize) {
+        if let Some(b) = self.blocks.blocks.get(first) {
+            prefetch(b);
+        }
+    }
 
     #[inline(always)]
     fn test<H: Hit8>(&mut self, simd: H, first: usize, count: usize, t_max: f32) -> Option<f32> {

@@ -27,6 +27,8 @@ pub struct Bvh8Node {
     pub count: [u16; 8],
     /// Bit `i` set when lane `i` is used (used lanes come first).
     pub used: u32,
+    /// Bit `i` set when lane `i` is a leaf.
+    pub leaves: u32,
 }
 
 // Four cache lines, as the memory figures assume.
@@ -38,6 +40,7 @@ impl Bvh8Node {
         child: [u32::MAX; 8],
         count: [0; 8],
         used: 0,
+        leaves: 0,
     };
 
     pub(super) fn set_box(&mut self, lane: usize, b: Aabb) {
@@ -92,6 +95,13 @@ pub trait Leaves {
     /// Tests the leaf of `count` primitives at `first` within `(0, t_max)` with the SIMD tests
     /// of `simd`: `Some(new t_max)` to go on, `None` to stop the traversal.
     fn test<H: Hit8>(&mut self, simd: H, first: usize, count: usize, t_max: f32) -> Option<f32>;
+
+    /// A hint that the leaf of `count` primitives at `first` will probably be tested soon (its
+    /// box is hit): implementations may prefetch its data. No effect on results.
+    #[inline(always)]
+    fn prefetch(&self, first: usize, count: usize) {
+        let _ = (first, count);
+    }
 }
 
 impl<L: Leaves> Leaves for &mut L {
@@ -100,6 +110,11 @@ impl<L: Leaves> Leaves for &mut L {
     #[inline(always)]
     fn test<H: Hit8>(&mut self, simd: H, first: usize, count: usize, t_max: f32) -> Option<f32> {
         (**self).test(simd, first, count, t_max)
+    }
+
+    #[inline(always)]
+    fn prefetch(&self, first: usize, count: usize) {
+        (**self).prefetch(first, count)
     }
 }
 
@@ -336,6 +351,13 @@ impl Bvh8 {
                 let node = &self.nodes[cur.child as usize];
                 let (mask, t_near) = test.hit8(&node.boxes, &pre, t_max);
                 let mut mask = mask & node.used;
+                // Start loading the leaves hit: most will be tested, some only after a subtree.
+                let mut hit_leaves = mask & node.leaves;
+                while hit_leaves != 0 {
+                    let lane = hit_leaves.trailing_zeros() as usize;
+                    hit_leaves &= hit_leaves - 1;
+                    leaf.prefetch(node.child[lane] as usize, usize::from(node.count[lane]));
+                }
                 if mask != 0 {
                     let entry = |lane: usize| Entry {
                         child: node.child[lane],

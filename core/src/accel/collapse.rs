@@ -107,6 +107,7 @@ fn greedy(
         let cn = &bin.nodes[c];
         let child = if cn.count > 0 {
             nodes[me].count[lane] = cn.count;
+            nodes[me].leaves |= 1 << lane;
             cn.offset
         } else {
             greedy(bin, c, depth + 1, max_depth, nodes)
@@ -225,6 +226,7 @@ impl<'a> Sah<'a> {
         for (lane, &c) in kids.iter().enumerate() {
             let child = if self.leaf[c] {
                 nodes[me].count[lane] = self.prims[c] as u16;
+                nodes[me].leaves |= 1 << lane;
                 self.first[c]
             } else {
                 self.emit(c, depth + 1, max_depth, nodes)
