@@ -358,6 +358,14 @@ impl Bvh8 {
                     hit_leaves &= hit_leaves - 1;
                     leaf.prefetch(node.child[lane] as usize, usize::from(node.count[lane]));
                 }
+                let mut hit_nodes = mask & !node.leaves;
+                while hit_nodes != 0 {
+                    let lane = hit_nodes.trailing_zeros() as usize;
+                    hit_nodes &= hit_nodes - 1;
+                    if let Some(n) = self.nodes.get(node.child[lane] as usize) {
+                        super::simd8::prefetch(&n.boxes);
+                    }
+                }
                 if mask != 0 {
                     let entry = |lane: usize| Entry {
                         child: node.child[lane],
