@@ -8,7 +8,7 @@
 //! primitive order and lower `t_max` as they go, exactly as a loop of scalar tests over the
 //! leaf's primitives would, so they find the same primitive at the same distance.
 use super::bvh8::Leaves;
-use super::simd8::{prefetch, Hit8, Portable};
+use super::simd8::{prefetch_in, Hit8, Portable};
 use super::tri4::{Ray4, Tri4};
 use super::{Bvh4, Bvh8};
 use crate::geometry::{Hit, TriRay};
@@ -249,9 +249,7 @@ where
 
     #[inline(always)]
     fn prefetch(&self, first: usize, _count: usize) {
-        if let Some(b) = self.blocks.blocks.get(first) {
-            prefetch(b);
-        }
+        prefetch_in(&self.blocks.blocks, first, core::mem::size_of::<Tri4>());
     }
 
     #[inline(always)]
@@ -284,9 +282,7 @@ where
 
     #[inline(always)]
     fn prefetch(&self, first: usize, _count: usize) {
-        if let Some(b) = self.blocks.blocks.get(first) {
-            prefetch(b);
-        }
+        prefetch_in(&self.blocks.blocks, first, core::mem::size_of::<Tri4>());
     }
 
     #[inline(always)]

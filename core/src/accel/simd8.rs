@@ -171,30 +171,33 @@ pub fn hit8_avx2(boxes: &Boxes8, ray: &RayPre, t_max: f32) -> (u32, [f32; 8]) {
     (mask, t_near)
 }
 
-/// Asks the CPU to bring the cache lines of `*r` into the cache (a hint: no effect on results,
-/// nothing on targets without a prefetch instruction here).
+/// Asks the CPU to bring the first `bytes` bytes of `slice[i]` into the cache: a hint, with no
+/// effect on results (nothing on targets without a prefetch instruction here). No bounds check:
+/// prefetching an address outside the slice is harmless.
 #[inline(always)]
-pub fn prefetch<T>(r: &T) {
+pub fn prefetch_in<T>(slice: &[T], i: usize, bytes: usize) {
     #[cfg(target_arch = "x86_64")]
     {
         use core::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-        let p = (r as *const T).cast::<i8>();
-        let size = core::mem::size_of::<T>();
+        // Address arithmetic only: the pointer is never dereferenced.
+        let p = slice.as_ptr().wrapping_add(i).cast::<i8>();
         let mut at = 0;
-        while at < size {
-            // SAFETY: `prefetcht0` (SSE, in the x86_64 baseline) never faults and has no
-            // architectural effect; the address lies within `*r`.
+        while at < bytes {
+            // SAFETY: `prefetcht0` (SSE, in the x86_64 baseline) never faults, whatever the
+            // address, and has no architectural effect.
             unsafe { _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(at)) };
             at += 64;
         }
-        if size > 0 {
-            // SAFETY: as above; the last byte of `*r` (its line may not be reached by the steps).
-            unsafe { _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(size - 1)) };
+        // A type aligned to lines whose size is a whole number of lines is covered by the steps.
+        let covered = core::mem::align_of::<T>() % 64 == 0 && bytes % 64 == 0;
+        if bytes > 0 && !covered {
+            // SAFETY: as above (the last byte's line, which the steps may not reach).
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(bytes - 1)) };
         }
     }
     #[cfg(not(target_arch = "x86_64"))]
     {
-        let _ = r;
+        let _ = (slice, i, bytes);
     }
 }
 
@@ -239,14 +242,16 @@ impl Hit8 for Portable {
     }
 }
 
-/// Proof that this CPU runs AVX2 code: only [`Avx2::detect`] makes one, and only when it does.
+/// Proof that this CPU runs AVX2 (and POPCNT) code: only [`Avx2::detect`] makes one, and only
+/// when it does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Avx2 {
     _private: (),
 }
 
 impl Avx2 {
-    /// Asks the CPU (CPUID, XGETBV): AVX2 present and its registers enabled by the OS.
+    /// Asks the CPU (CPUID, XGETBV): AVX2 and POPCNT present, the AVX registers enabled by the
+    /// OS.
     pub fn detect() -> Option<Avx2> {
         #[cfg(target_arch = "x86_64")]
         {
@@ -256,7 +261,9 @@ impl Avx2 {
             let l1 = __cpuid(1);
             let osxsave = l1.ecx & (1 << 27) != 0;
             let avx = l1.ecx & (1 << 28) != 0;
-            if max_leaf < 7 || !osxsave || !avx {
+            // POPCNT (every AVX2 CPU has it): the traversal counts hit children with it.
+            let popcnt = l1.ecx & (1 << 23) != 0;
+            if max_leaf < 7 || !osxsave || !avx || !popcnt {
                 return None;
             }
             // SAFETY: CPUID.1:ECX.OSXSAVE (checked above) says the OS has enabled XSAVE, which
@@ -284,7 +291,7 @@ impl Avx2 {
     pub fn run<W: WithHit8>(self, work: W) -> W::Output {
         #[cfg(target_arch = "x86_64")]
         {
-            // SAFETY: `self` exists only when `detect` found AVX2 usable on this CPU.
+            // SAFETY: `self` exists only when `detect` found AVX2 and POPCNT usable on this CPU.
             unsafe { run_avx2(self, work) }
         }
         #[cfg(not(target_arch = "x86_64"))]
@@ -304,10 +311,10 @@ pub trait WithHit8 {
     fn call<H: Hit8>(self, test: H) -> Self::Output;
 }
 
-/// `work.call(token)`, compiled with AVX2 (`call` is inlined into this function, monomorphised
-/// per use).
+/// `work.call(token)`, compiled with AVX2 and POPCNT (`call` is inlined into this function,
+/// monomorphised per use).
 #[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
+#[target_feature(enable = "avx2,popcnt")]
 #[inline]
 fn run_avx2<W: WithHit8>(token: Avx2, work: W) -> W::Output {
     work.call(token)
