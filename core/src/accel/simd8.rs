@@ -189,7 +189,7 @@ pub fn prefetch_in<T>(slice: &[T], i: usize, bytes: usize) {
             at += 64;
         }
         // A type aligned to lines whose size is a whole number of lines is covered by the steps.
-        let covered = core::mem::align_of::<T>() % 64 == 0 && bytes % 64 == 0;
+        let covered = core::mem::align_of::<T>().is_multiple_of(64) && bytes.is_multiple_of(64);
         if bytes > 0 && !covered {
             // SAFETY: as above (the last byte's line, which the steps may not reach).
             unsafe { _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(bytes - 1)) };
