@@ -1,9 +1,10 @@
-//! Tessera's ray casts, with its 4-wide and its 8-wide BVH (the scene's leaf code, blocks of four
-//! triangles, under either), against Embree 3's single-ray queries (`rtcIntersect1`,
-//! `rtcOccluded1`) on the same meshes and rays, in the same run: rays per CPU-second, best of 5
-//! alternating rounds, one thread; also the build time of each (Tessera's: SAH build, collapse
-//! and block packing; Embree with `threads=1`), bytes per triangle, and how often all three agree
-//! on hit or miss.
+//! Tessera's ray casts with its 8-wide BVH, collapsed from the binary SAH tree greedily (`g8`,
+//! the first collapse) and with the default surface-area collapse (`bvh8`; `BVH8_COLLAPSE`
+//! overrides it, see `tessera_benches::collapse`), both with the scene's leaf code (blocks of
+//! four triangles), against Embree 3's single-ray queries (`rtcIntersect1`, `rtcOccluded1`) on
+//! the same meshes and rays, in the same run: rays per CPU-second, best of 5 alternating rounds,
+//! one thread; also the build time of each (Tessera's: SAH build, collapse and block packing;
+//! Embree with `threads=1`), bytes per triangle, and how often all three agree on hit or miss.
 //!
 //! Optional: needs Embree 3 (`scripts/install_embree.sh`), so it is built only with the feature:
 //! `cargo bench -p tessera-benches --features embree --bench embree` (sizes as arguments, e.g.
@@ -15,9 +16,9 @@ use std::ffi::{c_char, c_void};
 use std::time::Instant;
 use tessera_benches::{
     build_params, bumpy_sphere, camera_rays, frequency_for, mesh_parts, random_rays,
-    rays_per_second, wanted_sizes, WideScene,
+    rays_per_second, wanted_sizes, Bvh8Greedy, WideScene,
 };
-use tessera_core::accel::{Bvh4, Bvh8};
+use tessera_core::accel::Bvh8;
 use tessera_core::math::Ray;
 use tessera_core::scene::Scene;
 
@@ -212,6 +213,12 @@ impl Drop for Embree {
     }
 }
 
+/// Children per node.
+fn fill(b: &Bvh8) -> f64 {
+    let used: u32 = b.nodes.iter().map(|n| n.used.count_ones()).sum();
+    f64::from(used) / b.nodes.len().max(1) as f64
+}
+
 fn main() {
     let camera = camera_rays(256);
     let random = random_rays(1 << 16, 7);
@@ -219,18 +226,42 @@ fn main() {
         "{:>5} {:>8} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>6} {:>6} {:>7}",
         "mesh",
         "tris",
-        "b4 build",
+        "g8 build",
         "b8 build",
         "eb build",
-        "bvh4 Mr/s",
+        "g8 Mr/s",
         "bvh8 Mr/s",
         "emb Mr/s",
-        "4/emb",
+        "g8/emb",
         "8/emb",
         "agree"
     );
+    // `CAST_ONLY=bvh8|g8|embree|none` (for callgrind and perf): `CAST_PASSES` (default 1) passes of
+    // the random rays, closest hit, with one of the two on the first size, then exit.
+    let only = std::env::var("CAST_ONLY").ok();
     for (label, target) in wanted_sizes() {
         let (positions, indices) = bumpy_sphere(frequency_for(target));
+        if let Some(which) = &only {
+            let pos: Vec<[f32; 3]> = positions.iter().map(|p| p.to_array()).collect();
+            let embree = Embree::new(&pos, &indices);
+            let scene = Scene::with_build_params(mesh_parts(positions, indices), build_params())
+                .expect("valid scene");
+            let w8 = WideScene::<Bvh8>::new(&scene, build_params());
+            let g8 = WideScene::<Bvh8Greedy>::new(&scene, build_params());
+            let passes: usize =
+                std::env::var("CAST_PASSES").map_or(1, |p| p.parse().expect("passes"));
+            let found = std::iter::repeat_n(random.iter(), passes)
+                .flatten()
+                .filter(|r| match which.as_str() {
+                    "embree" => embree.intersect(r).is_some(),
+                    "none" => false,
+                    "g8" => g8.intersect_hit(r).is_some(),
+                    _ => w8.intersect_hit(r).is_some(),
+                })
+                .count();
+            println!("{which}: {found} of {} rays hit", random.len());
+            return;
+        }
         let pos: Vec<[f32; 3]> = positions.iter().map(|p| p.to_array()).collect();
         let start = Instant::now();
         let embree = Embree::new(&pos, &indices);
@@ -238,7 +269,7 @@ fn main() {
         let parts = mesh_parts(positions, indices);
         let scene = Scene::with_build_params(parts, build_params()).expect("valid scene");
         let start = Instant::now();
-        let w4 = WideScene::<Bvh4>::new(&scene, build_params());
+        let w4 = WideScene::<Bvh8Greedy>::new(&scene, build_params());
         let b4 = start.elapsed().as_secs_f64();
         let start = Instant::now();
         let w8 = WideScene::<Bvh8>::new(&scene, build_params());
@@ -246,11 +277,15 @@ fn main() {
         let tris = scene.prims.len();
         let ((n4, t4), (n8, t8)) = (w4.bytes_per_triangle(), w8.bytes_per_triangle());
         println!(
-            "{label:>5}: bytes/triangle: bvh4 {n4:.1} + {t4:.1} = {:.1}, bvh8 {n8:.1} + {t8:.1} = \
-             {:.1} (nodes + blocks); bvh8 depth {}, avx2 {}",
+            "{label:>5}: bytes/triangle: greedy {n4:.1} + {t4:.1} = {:.1}, bvh8 {n8:.1} + {t8:.1} = \
+             {:.1} (nodes + blocks); depth greedy {} bvh8 {}; children per node greedy {:.2} \
+             bvh8 {:.2}; avx2 {}",
             n4 + t4,
             n8 + t8,
+            w4.bvh.0.depth(),
             w8.bvh.depth(),
+            fill(&w4.bvh.0),
+            fill(&w8.bvh),
             w8.bvh.uses_avx2()
         );
         for (kind, rays) in [("camera", &camera), ("random", &random)] {

@@ -4,7 +4,9 @@
 use glam::{Vec2, Vec3};
 use std::time::Instant;
 use tessera_core::accel::tri4::Ray4;
-use tessera_core::accel::{BuildParams, Bvh, Bvh4, Bvh8, LeafRanges, TriBlocks};
+use tessera_core::accel::{
+    AnyLeaves, BuildParams, Bvh, Bvh4, Bvh8, ClosestLeaves, Collapse, LeafRanges, TriBlocks,
+};
 use tessera_core::bsdf::{Bsdf, Diffuse};
 use tessera_core::camera::{Filter, FovAxis, Perspective};
 use tessera_core::geometry::{intersect_triangle, Hit, Mesh, Shape, ShapeKind, TriRay};
@@ -275,14 +277,21 @@ impl BinaryScene {
     }
 }
 
+/// The test of primitives that are not triangles, for meshes (there are none).
+pub type NoOther = fn(usize, &[Vec3; 3], f32) -> Option<(f32, Vec2)>;
+
+fn no_other(_: usize, _: &[Vec3; 3], _: f32) -> Option<(f32, Vec2)> {
+    None
+}
+
 /// A wide BVH (4 or 8 children per node) as [`WideScene`] traverses it.
 pub trait WideBvh: LeafRanges + Sized {
     /// Builds over primitive boxes: the hierarchy and the primitive order.
     fn build_with(bounds: &[Aabb], params: BuildParams) -> (Self, Vec<u32>);
-    /// Closest-hit traversal.
-    fn closest(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> f32);
-    /// Any-hit traversal.
-    fn any(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> bool);
+    /// Closest-hit cast over triangle blocks (as the scene's).
+    fn closest(&self, ray: &Ray, leaves: ClosestLeaves<'_, NoOther>);
+    /// Any-hit cast over triangle blocks; returns whether a hit was found.
+    fn any(&self, ray: &Ray, leaves: AnyLeaves<'_, NoOther>) -> bool;
     /// Bytes of the nodes.
     fn node_bytes(&self) -> usize;
 }
@@ -292,12 +301,20 @@ impl WideBvh for Bvh4 {
         Bvh4::build_with(bounds, params)
     }
     #[inline(always)]
-    fn closest(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> f32) {
-        self.traverse_closest(ray, leaf)
+    fn closest(&self, ray: &Ray, l: ClosestLeaves<'_, NoOther>) {
+        self.traverse_closest(ray, |first, count, t_max| {
+            l.blocks
+                .closest(first, count, l.ray, t_max, l.best, |_, _, _| None)
+        })
     }
     #[inline(always)]
-    fn any(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> bool) {
-        self.traverse_any(ray, leaf)
+    fn any(&self, ray: &Ray, l: AnyLeaves<'_, NoOther>) -> bool {
+        let mut hit = false;
+        self.traverse_any(ray, |first, count, t_max| {
+            hit = l.blocks.any(first, count, l.ray, t_max, |_, _, _| None);
+            hit
+        });
+        hit
     }
     fn node_bytes(&self) -> usize {
         self.memory_bytes()
@@ -306,18 +323,72 @@ impl WideBvh for Bvh4 {
 
 impl WideBvh for Bvh8 {
     fn build_with(bounds: &[Aabb], params: BuildParams) -> (Self, Vec<u32>) {
-        Bvh8::build_with(bounds, params)
+        Bvh8::build_collapsed(bounds, params, collapse())
     }
     #[inline(always)]
-    fn closest(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> f32) {
-        self.traverse_closest(ray, leaf)
+    fn closest(&self, ray: &Ray, leaves: ClosestLeaves<'_, NoOther>) {
+        self.cast::<false>(ray, leaves)
     }
     #[inline(always)]
-    fn any(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> bool) {
-        self.traverse_any(ray, leaf)
+    fn any(&self, ray: &Ray, mut leaves: AnyLeaves<'_, NoOther>) -> bool {
+        self.cast::<true>(ray, &mut leaves);
+        leaves.hit
     }
     fn node_bytes(&self) -> usize {
         self.memory_bytes()
+    }
+}
+
+/// The 8-wide BVH collapsed greedily (the first collapse: open the largest interior child), to
+/// compare with the default collapse in the same run.
+pub struct Bvh8Greedy(pub Bvh8);
+
+impl LeafRanges for Bvh8Greedy {
+    fn map_leaves(&mut self, f: impl FnMut(usize, usize) -> u32) {
+        self.0.map_leaves(f);
+    }
+}
+
+impl WideBvh for Bvh8Greedy {
+    fn build_with(bounds: &[Aabb], params: BuildParams) -> (Self, Vec<u32>) {
+        let (b, order) = Bvh8::build_collapsed(bounds, params, Collapse::Greedy);
+        (Bvh8Greedy(b), order)
+    }
+    #[inline(always)]
+    fn closest(&self, ray: &Ray, leaves: ClosestLeaves<'_, NoOther>) {
+        self.0.cast::<false>(ray, leaves)
+    }
+    #[inline(always)]
+    fn any(&self, ray: &Ray, mut leaves: AnyLeaves<'_, NoOther>) -> bool {
+        self.0.cast::<true>(ray, &mut leaves);
+        leaves.hit
+    }
+    fn node_bytes(&self) -> usize {
+        self.0.memory_bytes()
+    }
+}
+
+/// The 8-wide collapse: [`Collapse::DEFAULT`], or `BVH8_COLLAPSE=greedy` or
+/// `BVH8_COLLAPSE=node_cost,block_cost,max_leaf` (the surface-area collapse with these).
+pub fn collapse() -> Collapse {
+    let Ok(v) = std::env::var("BVH8_COLLAPSE").map(|v| v.trim().to_string()) else {
+        return Collapse::DEFAULT;
+    };
+    if v.is_empty() {
+        return Collapse::DEFAULT;
+    }
+    if v == "greedy" {
+        return Collapse::Greedy;
+    }
+    let f: Vec<&str> = v.split(',').collect();
+    assert!(
+        f.len() == 3,
+        "BVH8_COLLAPSE=greedy or node_cost,block_cost,max_leaf"
+    );
+    Collapse::Sah {
+        node_cost: f[0].parse().expect("node_cost"),
+        block_cost: f[1].parse().expect("block_cost"),
+        max_leaf: f[2].parse().expect("max_leaf"),
     }
 }
 
@@ -355,10 +426,15 @@ impl<B: WideBvh> WideScene<B> {
         let mut best: Option<Hit> = None;
         let tri = TriRay::new(ray);
         let r4 = Ray4::new(&tri);
-        self.bvh.closest(ray, |first, count, t_max| {
-            self.blocks
-                .closest(first, count, (&tri, &r4), t_max, &mut best, |_, _, _| None)
-        });
+        self.bvh.closest(
+            ray,
+            ClosestLeaves {
+                blocks: &self.blocks,
+                ray: (&tri, &r4),
+                best: &mut best,
+                other: no_other,
+            },
+        );
         best.map(|h| Hit {
             prim: self.order[h.prim as usize],
             ..h
@@ -368,16 +444,17 @@ impl<B: WideBvh> WideScene<B> {
     /// Any hit.
     #[inline]
     pub fn occluded(&self, ray: &Ray) -> bool {
-        let mut hit = false;
         let tri = TriRay::new(ray);
         let r4 = Ray4::new(&tri);
-        self.bvh.any(ray, |first, count, t_max| {
-            hit = self
-                .blocks
-                .any(first, count, (&tri, &r4), t_max, |_, _, _| None);
-            hit
-        });
-        hit
+        self.bvh.any(
+            ray,
+            AnyLeaves {
+                blocks: &self.blocks,
+                ray: (&tri, &r4),
+                hit: false,
+                other: no_other,
+            },
+        )
     }
 
     /// Bytes per triangle: nodes, blocks.

@@ -1,6 +1,6 @@
 //! The flat, read-only scene: shapes, primitives under a BVH, BSDFs, emitters, camera.
 use crate::accel::tri4::Ray4;
-use crate::accel::{BuildParams, Bvh4, Bvh8, TriBlocks};
+use crate::accel::{AnyLeaves, BuildParams, Bvh4, Bvh8, ClosestLeaves, TriBlocks};
 use crate::bsdf::Bsdf;
 use crate::camera::{Filter, Perspective};
 use crate::emitter::{Emitter, EmitterCtx};
@@ -300,9 +300,17 @@ impl Scene {
         let mut best: Option<Hit> = None;
         let tri = TriRay::new(ray);
         let r4 = Ray4::new(&tri);
-        self.bvh.traverse_closest(ray, |first, count, t_max| {
-            self.leaf_closest(ray, (&tri, &r4), first..first + count, t_max, &mut best)
-        });
+        self.bvh.cast::<false>(
+            ray,
+            ClosestLeaves {
+                blocks: &self.blocks,
+                ray: (&tri, &r4),
+                best: &mut best,
+                other: |i: usize, v: &[Vec3; 3], t_max: f32| {
+                    self.prims[i].intersect(ray, &tri, v, t_max, &self.disks)
+                },
+            },
+        );
         best
     }
 
@@ -353,14 +361,18 @@ impl Scene {
 
     /// Whether anything blocks the ray within its extent (any hit, early exit).
     pub fn occluded(&self, ray: &Ray) -> bool {
-        let mut hit = false;
         let tri = TriRay::new(ray);
         let r4 = Ray4::new(&tri);
-        self.bvh.traverse_any(ray, |first, count, t_max| {
-            hit = self.leaf_any(ray, (&tri, &r4), first..first + count, t_max);
-            hit
-        });
-        hit
+        let mut leaves = AnyLeaves {
+            blocks: &self.blocks,
+            ray: (&tri, &r4),
+            hit: false,
+            other: |i: usize, v: &[Vec3; 3], t_max: f32| {
+                self.prims[i].intersect(ray, &tri, v, t_max, &self.disks)
+            },
+        };
+        self.bvh.cast::<true>(ray, &mut leaves);
+        leaves.hit
     }
 
     /// Bytes of the ray-casting data (not counting spare vector capacity).

@@ -7,7 +7,9 @@
 //! degenerate triangles, coordinates from 1e-38 to 1e38, infinite and NaN corners, and `t_max`
 //! on, just above and just below the hit distance. Controls show that a 1-ulp change of one
 //! result, and a different but equivalent-looking formula (`t_scaled / det`), are caught.
+use tessera_core::accel::simd8::{Avx2, Hit8, Portable};
 use tessera_core::accel::tri4::{test4, test4_scalar, Lanes, Ray4, Tri4};
+use tessera_core::accel::tri8::{test8_portable, Lanes8};
 use tessera_core::geometry::TriRay;
 use tessera_core::glam::Vec3;
 use tessera_core::math::Ray;
@@ -362,5 +364,57 @@ fn controls_one_ulp_changes_are_detected() {
     assert!(
         formula > 1_000,
         "only {formula} hits tell t_scaled / det apart"
+    );
+}
+
+/// The eight-lane test (`accel::tri8`: two blocks in one AVX2 pass, where the CPU has AVX2)
+/// gives the same masks and hit-lane bits as the two four-lane tests, block `a` in lanes 0-3 and
+/// block `b` in lanes 4-7. Control: the blocks swapped are told apart.
+#[test]
+fn eight_lanes_equal_two_four_lane_tests_bit_for_bit() {
+    let mut rng = Rng(808);
+    let avx2 = Avx2::detect();
+    eprintln!("AVX2: {}", avx2.is_some());
+    let (mut hits, mut high_hits, mut fallbacks, mut swapped_differ) = (0, 0, 0, 0);
+    for i in 0..CASES / 2 {
+        let (ta, ray) = case(&mut rng, i % KINDS);
+        // Block b: a's triangles in another lane order (so both halves hit) or another case's.
+        let tb = if i % 2 == 0 {
+            [ta[2], ta[0], ta[3], ta[1]]
+        } else {
+            case(&mut rng, (i / 2) % KINDS).0
+        };
+        let (a, b) = (block(&ta), block(&tb));
+        let r4 = Ray4::new(&TriRay::new(&ray));
+        let want = Lanes8::join(
+            &test4_scalar(&a, &r4, ray.t_max),
+            &test4_scalar(&b, &r4, ray.t_max),
+        );
+        let mut got = vec![test8_portable(&a, &b, &r4, ray.t_max)];
+        got.push(Portable.tri8(&a, &b, &r4, ray.t_max));
+        if let Some(t) = avx2 {
+            got.push(t.tri8(&a, &b, &r4, ray.t_max));
+            // Control: the same blocks in the other order are a different answer when the two
+            // halves differ.
+            let swapped = t.tri8(&b, &a, &r4, ray.t_max);
+            if ta != tb && !swapped.same_bits(&want) {
+                swapped_differ += 1;
+            }
+        }
+        for g in &got {
+            assert!(
+                g.same_bits(&want),
+                "eight-lane {g:?} vs four-lane pair {want:?} for {ta:?} {tb:?} {ray:?}"
+            );
+        }
+        hits += want.hit.count_ones();
+        high_hits += (want.hit >> 4).count_ones();
+        fallbacks += want.fallback.count_ones();
+    }
+    eprintln!("hit lanes {hits} (block b: {high_hits}), fallback lanes {fallbacks}");
+    assert!(high_hits > 10_000 && hits > high_hits + 10_000 && fallbacks > 1000);
+    assert!(
+        avx2.is_none() || swapped_differ > 10_000,
+        "{swapped_differ}"
     );
 }

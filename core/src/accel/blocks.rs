@@ -7,7 +7,9 @@
 //! hands back as a fallback lane, and the caller's own test decides it. The loops visit lanes in
 //! primitive order and lower `t_max` as they go, exactly as a loop of scalar tests over the
 //! leaf's primitives would, so they find the same primitive at the same distance.
-use super::tri4::{test4, Ray4, Tri4};
+use super::bvh8::Leaves;
+use super::simd8::{prefetch_in, Hit8, Portable};
+use super::tri4::{Ray4, Tri4};
 use super::{Bvh4, Bvh8};
 use crate::geometry::{Hit, TriRay};
 use alloc::vec::Vec;
@@ -85,16 +87,63 @@ impl TriBlocks {
         first: usize,
         count: usize,
         ray: (&TriRay, &Ray4),
+        t_max: f32,
+        best: &mut Option<Hit>,
+        other: impl FnMut(usize, &[Vec3; 3], f32) -> Option<(f32, Vec2)>,
+    ) -> f32 {
+        self.closest_with(Portable, first, count, ray, t_max, best, other)
+    }
+
+    /// [`TriBlocks::closest`] with the SIMD tests of `simd`: a leaf's blocks are tested two at a
+    /// time with [`Hit8::tri8`] (eight lanes in one AVX2 pass), an odd last block with the
+    /// four-lane test. Lanes are visited in primitive order, so the result is the same.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub fn closest_with<H: Hit8>(
+        &self,
+        simd: H,
+        first: usize,
+        count: usize,
+        ray: (&TriRay, &Ray4),
         mut t_max: f32,
         best: &mut Option<Hit>,
         mut other: impl FnMut(usize, &[Vec3; 3], f32) -> Option<(f32, Vec2)>,
     ) -> f32 {
         let (tri, r4) = ray;
-        for k in 0..count.div_ceil(4) {
-            let blk = &self.blocks[first + k];
-            let lanes = test4(blk, r4, t_max);
-            let valid = Self::valid(k, count);
+        let n = count.div_ceil(4);
+        let mut k = 0;
+        while k + 1 < n {
+            let (a, b) = (&self.blocks[first + k], &self.blocks[first + k + 1]);
+            let lanes = simd.tri8(a, b, r4, t_max);
+            let valid = Self::valid(k, count) | (Self::valid(k + 1, count) << 4);
             let mut m = (lanes.hit | lanes.fallback) & valid;
+            while m != 0 {
+                let lane = m.trailing_zeros() as usize;
+                m &= m - 1;
+                let blk = if lane < 4 { a } else { b };
+                let prim = blk.first as usize + (lane & 3);
+                let found = if lanes.fallback & (1 << lane) != 0 {
+                    fallback(blk, lane & 3, prim, tri, t_max, &mut other)
+                } else if lanes.accepts(lane, t_max) {
+                    Some((lanes.t[lane], Vec2::new(lanes.b[1][lane], lanes.b[2][lane])))
+                } else {
+                    None
+                };
+                if let Some((t, uv)) = found {
+                    t_max = t;
+                    *best = Some(Hit {
+                        t,
+                        prim: prim as u32,
+                        uv,
+                    });
+                }
+            }
+            k += 2;
+        }
+        if k < n {
+            let blk = &self.blocks[first + k];
+            let lanes = simd.tri4(blk, r4, t_max);
+            let mut m = (lanes.hit | lanes.fallback) & Self::valid(k, count);
             while m != 0 {
                 let lane = m.trailing_zeros() as usize;
                 m &= m - 1;
@@ -128,27 +177,121 @@ impl TriBlocks {
         count: usize,
         ray: (&TriRay, &Ray4),
         t_max: f32,
+        other: impl FnMut(usize, &[Vec3; 3], f32) -> Option<(f32, Vec2)>,
+    ) -> bool {
+        self.any_with(Portable, first, count, ray, t_max, other)
+    }
+
+    /// [`TriBlocks::any`] with the SIMD tests of `simd` (blocks two at a time, as
+    /// [`TriBlocks::closest_with`]).
+    #[inline(always)]
+    pub fn any_with<H: Hit8>(
+        &self,
+        simd: H,
+        first: usize,
+        count: usize,
+        ray: (&TriRay, &Ray4),
+        t_max: f32,
         mut other: impl FnMut(usize, &[Vec3; 3], f32) -> Option<(f32, Vec2)>,
     ) -> bool {
         let (tri, r4) = ray;
-        for k in 0..count.div_ceil(4) {
-            let blk = &self.blocks[first + k];
-            let lanes = test4(blk, r4, t_max);
-            let valid = Self::valid(k, count);
-            if lanes.hit & valid != 0 {
+        let n = count.div_ceil(4);
+        let mut k = 0;
+        while k < n {
+            let a = &self.blocks[first + k];
+            // The next block of the leaf, if any (else `a` again; its lanes are then not valid).
+            let b = &self.blocks[first + k + usize::from(k + 1 < n)];
+            let (hit, fb, valid) = if k + 1 < n {
+                let lanes = simd.tri8(a, b, r4, t_max);
+                let valid = Self::valid(k, count) | (Self::valid(k + 1, count) << 4);
+                (lanes.hit, lanes.fallback, valid)
+            } else {
+                let lanes = simd.tri4(a, r4, t_max);
+                (lanes.hit, lanes.fallback, Self::valid(k, count))
+            };
+            if hit & valid != 0 {
                 return true;
             }
-            let mut m = lanes.fallback & valid;
+            let mut m = fb & valid;
             while m != 0 {
                 let lane = m.trailing_zeros() as usize;
                 m &= m - 1;
-                let prim = blk.first as usize + lane;
-                if fallback(blk, lane, prim, tri, t_max, &mut other).is_some() {
+                let blk = if lane < 4 { a } else { b };
+                let prim = blk.first as usize + (lane & 3);
+                if fallback(blk, lane & 3, prim, tri, t_max, &mut other).is_some() {
                     return true;
                 }
             }
+            k += 2;
         }
         false
+    }
+}
+
+/// A closest-hit cast's leaves for [`super::Bvh8::cast`]: the blocks, the ray's triangle-test
+/// setup, the best hit so far, and the test of primitives that are not triangles.
+pub struct ClosestLeaves<'a, F> {
+    /// The blocks the leaves refer to.
+    pub blocks: &'a TriBlocks,
+    /// The ray's triangle-test setup, computed once per ray.
+    pub ray: (&'a TriRay, &'a Ray4),
+    /// The closest hit so far.
+    pub best: &'a mut Option<Hit>,
+    /// The test of a primitive that is not a triangle (see [`TriBlocks::closest`]).
+    pub other: F,
+}
+
+impl<F> Leaves for ClosestLeaves<'_, F>
+where
+    F: FnMut(usize, &[Vec3; 3], f32) -> Option<(f32, Vec2)>,
+{
+    const RESTARTABLE: bool = true;
+
+    #[inline(always)]
+    fn prefetch(&self, first: usize, _count: usize) {
+        prefetch_in(&self.blocks.blocks, first, core::mem::size_of::<Tri4>());
+    }
+
+    #[inline(always)]
+    fn test<H: Hit8>(&mut self, simd: H, first: usize, count: usize, t_max: f32) -> Option<f32> {
+        let other = &mut self.other;
+        Some(
+            self.blocks
+                .closest_with(simd, first, count, self.ray, t_max, self.best, other),
+        )
+    }
+}
+
+/// An any-hit cast's leaves for [`super::Bvh8::cast`]; `hit` is set when one is found.
+pub struct AnyLeaves<'a, F> {
+    /// The blocks the leaves refer to.
+    pub blocks: &'a TriBlocks,
+    /// The ray's triangle-test setup, computed once per ray.
+    pub ray: (&'a TriRay, &'a Ray4),
+    /// Whether a hit was found.
+    pub hit: bool,
+    /// The test of a primitive that is not a triangle (see [`TriBlocks::closest`]).
+    pub other: F,
+}
+
+impl<F> Leaves for AnyLeaves<'_, F>
+where
+    F: FnMut(usize, &[Vec3; 3], f32) -> Option<(f32, Vec2)>,
+{
+    const RESTARTABLE: bool = true;
+
+    #[inline(always)]
+    fn prefetch(&self, first: usize, _count: usize) {
+        prefetch_in(&self.blocks.blocks, first, core::mem::size_of::<Tri4>());
+    }
+
+    #[inline(always)]
+    fn test<H: Hit8>(&mut self, simd: H, first: usize, count: usize, t_max: f32) -> Option<f32> {
+        let other = &mut self.other;
+        self.hit = self
+            .blocks
+            .any_with(simd, first, count, self.ray, t_max, other);
+        (!self.hit).then_some(t_max)
     }
 }
 

@@ -8,8 +8,8 @@
 //! first, the root at index 0; a child is either an interior node (its index) or a leaf (a range
 //! of the primitive order returned by the build).
 use super::simd::{RayPre, MAX_X, MIN_X};
-use super::simd8::{Avx2, Boxes8, Hit8, Portable, WithHit8};
-use super::{BuildParams, Bvh};
+use super::simd8::{prefetch_in, Avx2, Boxes8, Hit8, Portable, WithHit8};
+use super::{BuildParams, Bvh, Collapse};
 use crate::math::{Aabb, Ray};
 use alloc::vec::Vec;
 use glam::Vec3;
@@ -27,20 +27,26 @@ pub struct Bvh8Node {
     pub count: [u16; 8],
     /// Bit `i` set when lane `i` is used (used lanes come first).
     pub used: u32,
+    /// Bit `i` set when lane `i` is a leaf.
+    pub leaves: u32,
 }
 
 // Four cache lines, as the memory figures assume.
 const _: () = assert!(core::mem::size_of::<Bvh8Node>() == 256);
+// The boxes are the first three lines (what the traversal prefetches of a child node).
+const _: () =
+    assert!(core::mem::offset_of!(Bvh8Node, boxes) == 0 && core::mem::size_of::<Boxes8>() == 192);
 
 impl Bvh8Node {
-    const EMPTY: Bvh8Node = Bvh8Node {
+    pub(super) const EMPTY: Bvh8Node = Bvh8Node {
         boxes: Boxes8::EMPTY,
         child: [u32::MAX; 8],
         count: [0; 8],
         used: 0,
+        leaves: 0,
     };
 
-    fn set_box(&mut self, lane: usize, b: Aabb) {
+    pub(super) fn set_box(&mut self, lane: usize, b: Aabb) {
         for a in 0..3 {
             self.boxes.b[MIN_X + a][lane] = b.min[a];
             self.boxes.b[MAX_X + a][lane] = b.max[a];
@@ -80,6 +86,51 @@ impl Default for Bvh8 {
     }
 }
 
+/// The leaves of a traversal ([`Bvh8::cast`]).
+pub trait Leaves {
+    /// Whether a traversal may stop early and start again from the root with a larger stack
+    /// (when a small one overflows), calling [`Leaves::test`] again for the same leaves: true
+    /// when the effect of the last, complete traversal is all that counts (the closest hit, as
+    /// each improvement overwrites the last; whether any hit was found, since a hit stops the
+    /// traversal). Then most rays need only a small stack, which is cheaper to set up.
+    const RESTARTABLE: bool = false;
+
+    /// Tests the leaf of `count` primitives at `first` within `(0, t_max)` with the SIMD tests
+    /// of `simd`: `Some(new t_max)` to go on, `None` to stop the traversal.
+    fn test<H: Hit8>(&mut self, simd: H, first: usize, count: usize, t_max: f32) -> Option<f32>;
+
+    /// A hint that the leaf of `count` primitives at `first` will probably be tested soon (its
+    /// box is hit): implementations may prefetch its data. No effect on results.
+    #[inline(always)]
+    fn prefetch(&self, first: usize, count: usize) {
+        let _ = (first, count);
+    }
+}
+
+impl<L: Leaves> Leaves for &mut L {
+    const RESTARTABLE: bool = L::RESTARTABLE;
+
+    #[inline(always)]
+    fn test<H: Hit8>(&mut self, simd: H, first: usize, count: usize, t_max: f32) -> Option<f32> {
+        (**self).test(simd, first, count, t_max)
+    }
+
+    #[inline(always)]
+    fn prefetch(&self, first: usize, count: usize) {
+        (**self).prefetch(first, count)
+    }
+}
+
+/// A closure as leaves (it does not use the SIMD token).
+struct FnLeaves<F>(F);
+
+impl<F: FnMut(usize, usize, f32) -> Option<f32>> Leaves for FnLeaves<F> {
+    #[inline(always)]
+    fn test<H: Hit8>(&mut self, _: H, first: usize, count: usize, t_max: f32) -> Option<f32> {
+        (self.0)(first, count, t_max)
+    }
+}
+
 /// A postponed child: node index or first primitive, leaf count (0 for a node), entry distance.
 #[derive(Clone, Copy, Default)]
 struct Entry {
@@ -94,6 +145,9 @@ struct Entry {
 /// 18 all of it, deeper ones a heap stack. Kept small because it is initialised per ray.
 const STACK: usize = 128;
 
+/// The stack a restartable traversal ([`Leaves::RESTARTABLE`]) tries first.
+const SMALL_STACK: usize = 16;
+
 impl Bvh8 {
     /// Builds the binary SAH hierarchy (with [`super::Bvh4::PARAMS`], as the leaves are the
     /// same blocks of four triangles) and collapses it; returns the hierarchy and the order in
@@ -104,19 +158,32 @@ impl Bvh8 {
 
     /// [`Bvh8::build`] with a chosen leaf-size trade-off.
     pub fn build_with(bounds: &[Aabb], params: BuildParams) -> (Bvh8, Vec<u32>) {
-        let (bin, order) = Bvh::build_with(bounds, params);
-        (Bvh8::from_binary(&bin), order)
+        Bvh8::build_collapsed(bounds, params, Collapse::DEFAULT)
     }
 
-    /// Collapses a binary hierarchy: each node takes its binary children and keeps replacing the
-    /// interior child of largest surface area by that child's two children while it has fewer
-    /// than eight. Leaves (primitive ranges) are unchanged. Detects AVX2 for the traversal.
+    /// [`Bvh8::build`] with a chosen leaf-size trade-off and collapse.
+    pub fn build_collapsed(
+        bounds: &[Aabb],
+        params: BuildParams,
+        how: Collapse,
+    ) -> (Bvh8, Vec<u32>) {
+        let (bin, order) = Bvh::build_with(bounds, params);
+        (Bvh8::from_binary_with(&bin, how), order)
+    }
+
+    /// Collapses a binary hierarchy with [`Collapse::DEFAULT`]. Detects AVX2 for the traversal.
     pub fn from_binary(bin: &Bvh) -> Bvh8 {
-        let mut nodes = Vec::with_capacity(bin.nodes.len() / 7 + 1);
-        let mut depth = 0;
-        if !bin.nodes.is_empty() {
-            collapse(bin, 0, 1, &mut depth, &mut nodes);
-        }
+        Bvh8::from_binary_with(bin, Collapse::DEFAULT)
+    }
+
+    /// Collapses a binary hierarchy into 8-wide nodes as `how` says (leaves are ranges of the
+    /// binary build's primitive order). Detects AVX2 for the traversal.
+    pub fn from_binary_with(bin: &Bvh, how: Collapse) -> Bvh8 {
+        let (nodes, depth) = if bin.nodes.is_empty() {
+            (Vec::new(), 0)
+        } else {
+            how.run(bin)
+        };
         Bvh8 {
             nodes,
             bounds: bin.bounds(),
@@ -168,14 +235,14 @@ impl Bvh8 {
     /// `leaf(first, count, t_max)` tests the primitives and returns the new `t_max`.
     #[inline]
     pub fn traverse_closest(&self, ray: &Ray, mut leaf: impl FnMut(usize, usize, f32) -> f32) {
-        self.walk::<false, false>(ray, |f, c, t| Some(leaf(f, c, t)), &mut 0);
+        self.walk::<false, false>(ray, FnLeaves(|f, c, t| Some(leaf(f, c, t))), &mut 0);
     }
 
     /// Any-hit traversal: `leaf(first, count, t_max)` returns true to stop (a hit was found).
     #[inline]
     pub fn traverse_any(&self, ray: &Ray, mut leaf: impl FnMut(usize, usize, f32) -> bool) {
         let leaf = |f, c, t| if leaf(f, c, t) { None } else { Some(t) };
-        self.walk::<true, false>(ray, leaf, &mut 0);
+        self.walk::<true, false>(ray, FnLeaves(leaf), &mut 0);
     }
 
     /// [`Bvh8::traverse_closest`] that also adds the number of nodes it visits to `nodes` (for
@@ -187,7 +254,7 @@ impl Bvh8 {
         mut leaf: impl FnMut(usize, usize, f32) -> f32,
         nodes: &mut u64,
     ) {
-        self.walk::<false, true>(ray, |f, c, t| Some(leaf(f, c, t)), nodes);
+        self.walk::<false, true>(ray, FnLeaves(|f, c, t| Some(leaf(f, c, t))), nodes);
     }
 
     /// [`Bvh8::traverse_any`] that also adds the number of nodes it visits to `nodes`.
@@ -199,7 +266,16 @@ impl Bvh8 {
         nodes: &mut u64,
     ) {
         let leaf = |f, c, t| if leaf(f, c, t) { None } else { Some(t) };
-        self.walk::<true, true>(ray, leaf, nodes);
+        self.walk::<true, true>(ray, FnLeaves(leaf), nodes);
+    }
+
+    /// A traversal whose leaves are tested by `leaves` with the SIMD tests the traversal is
+    /// compiled for (AVX2 where detected), inlined into its loop: closest hit (`ANY == false`:
+    /// visits nearest entry first, `leaves` returns the new `t_max`) or any hit (`ANY`: stops
+    /// when `leaves` returns `None`).
+    #[inline]
+    pub fn cast<const ANY: bool>(&self, ray: &Ray, leaves: impl Leaves) {
+        self.walk::<ANY, false>(ray, leaves, &mut 0);
     }
 
     /// Picks the box test (one traversal loop is compiled per test) and the stack size.
@@ -207,7 +283,7 @@ impl Bvh8 {
     fn walk<const ANY: bool, const COUNT: bool>(
         &self,
         ray: &Ray,
-        leaf: impl FnMut(usize, usize, f32) -> Option<f32>,
+        leaf: impl Leaves,
         nodes: &mut u64,
     ) {
         if self.nodes.is_empty() {
@@ -226,14 +302,21 @@ impl Bvh8 {
     }
 
     #[inline(always)]
-    fn walk_sized<const ANY: bool, const COUNT: bool, H: Hit8>(
+    fn walk_sized<const ANY: bool, const COUNT: bool, H: Hit8, L: Leaves>(
         &self,
         test: H,
         ray: &Ray,
-        leaf: impl FnMut(usize, usize, f32) -> Option<f32>,
+        mut leaf: L,
         nodes: &mut u64,
     ) {
         let need = 7 * self.depth + 1;
+        if L::RESTARTABLE && !COUNT && need > SMALL_STACK {
+            // Most rays: a small stack; the rare ray that overflows it starts again below.
+            let stack = &mut [Entry::default(); SMALL_STACK];
+            if self.walk_with::<ANY, COUNT, H>(test, ray, stack, &mut leaf, nodes) {
+                return;
+            }
+        }
         if need <= STACK / 4 {
             // Small scenes (the Cornell box): zeroing 32 entries is a few stores, not a memset.
             let stack = &mut [Entry::default(); STACK / 4];
@@ -256,9 +339,9 @@ impl Bvh8 {
         test: H,
         ray: &Ray,
         stack: &mut [Entry],
-        mut leaf: impl FnMut(usize, usize, f32) -> Option<f32>,
+        mut leaf: impl Leaves,
         nodes: &mut u64,
-    ) {
+    ) -> bool {
         let pre = RayPre::new(ray);
         let mut t_max = ray.t_max;
         let mut sp = 0usize;
@@ -271,12 +354,32 @@ impl Bvh8 {
                 let node = &self.nodes[cur.child as usize];
                 let (mask, t_near) = test.hit8(&node.boxes, &pre, t_max);
                 let mut mask = mask & node.used;
+                // Start loading every child hit, before the work of ordering them: the nearest is
+                // next, most others follow (measured: prefetching only the postponed ones, which
+                // costs fewer instructions, was slower).
+                let mut hit_leaves = mask & node.leaves;
+                while hit_leaves != 0 {
+                    let lane = hit_leaves.trailing_zeros() as usize;
+                    hit_leaves &= hit_leaves - 1;
+                    leaf.prefetch(node.child[lane] as usize, usize::from(node.count[lane]));
+                }
+                let mut hit_nodes = mask & !node.leaves;
+                while hit_nodes != 0 {
+                    let lane = hit_nodes.trailing_zeros() as usize;
+                    hit_nodes &= hit_nodes - 1;
+                    // The boxes (the first three lines), which the node test reads first.
+                    prefetch_in(&self.nodes, node.child[lane] as usize, 192);
+                }
                 if mask != 0 {
                     let entry = |lane: usize| Entry {
                         child: node.child[lane],
                         count: u32::from(node.count[lane]),
                         t_near: t_near[lane],
                     };
+                    if sp + mask.count_ones() as usize > stack.len() {
+                        // Only a restartable walk's small stack can overflow (see `STACK`).
+                        return false;
+                    }
                     if ANY {
                         cur = entry(mask.trailing_zeros() as usize);
                         mask &= mask - 1;
@@ -316,14 +419,14 @@ impl Bvh8 {
                     continue;
                 }
             } else {
-                match leaf(cur.child as usize, cur.count as usize, t_max) {
+                match leaf.test(test, cur.child as usize, cur.count as usize, t_max) {
                     Some(t) => t_max = t,
-                    None => return,
+                    None => return true,
                 }
             }
             loop {
                 if sp == 0 {
-                    return;
+                    return true;
                 }
                 sp -= 1;
                 cur = stack[sp];
@@ -344,63 +447,12 @@ struct Walk<'a, L, const ANY: bool, const COUNT: bool> {
     nodes: &'a mut u64,
 }
 
-impl<L, const ANY: bool, const COUNT: bool> WithHit8 for Walk<'_, L, ANY, COUNT>
-where
-    L: FnMut(usize, usize, f32) -> Option<f32>,
-{
+impl<L: Leaves, const ANY: bool, const COUNT: bool> WithHit8 for Walk<'_, L, ANY, COUNT> {
     type Output = ();
 
     #[inline(always)]
     fn call<H: Hit8>(self, test: H) {
         self.bvh
-            .walk_sized::<ANY, COUNT, H>(test, self.ray, self.leaf, self.nodes);
+            .walk_sized::<ANY, COUNT, H, L>(test, self.ray, self.leaf, self.nodes);
     }
-}
-
-fn collapse(
-    bin: &Bvh,
-    at: usize,
-    depth: usize,
-    max_depth: &mut usize,
-    nodes: &mut Vec<Bvh8Node>,
-) -> u32 {
-    *max_depth = (*max_depth).max(depth);
-    let n = &bin.nodes[at];
-    let mut kids = [at; 8];
-    let mut k = 1;
-    if n.count == 0 {
-        kids[0] = at + 1;
-        kids[1] = n.offset as usize;
-        k = 2;
-        while k < 8 {
-            let mut best: Option<(usize, f32)> = None;
-            for (j, &c) in kids[..k].iter().enumerate() {
-                let cn = &bin.nodes[c];
-                if cn.count == 0 && best.is_none_or(|(_, a)| cn.bounds.area() > a) {
-                    best = Some((j, cn.bounds.area()));
-                }
-            }
-            let Some((j, _)) = best else { break };
-            let c = kids[j];
-            kids[j] = c + 1;
-            kids[k] = bin.nodes[c].offset as usize;
-            k += 1;
-        }
-    }
-    let me = nodes.len();
-    nodes.push(Bvh8Node::EMPTY);
-    for (lane, &c) in kids[..k].iter().enumerate() {
-        let cn = &bin.nodes[c];
-        let (child, count) = if cn.count > 0 {
-            (cn.offset, cn.count)
-        } else {
-            (collapse(bin, c, depth + 1, max_depth, nodes), 0)
-        };
-        let node = &mut nodes[me];
-        node.set_box(lane, cn.bounds);
-        node.child[lane] = child;
-        node.count[lane] = count;
-        node.used |= 1 << lane;
-    }
-    me as u32
 }

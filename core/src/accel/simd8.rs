@@ -19,6 +19,8 @@
 #![allow(unsafe_code)]
 
 use super::simd::{RayPre, MAX_X, MIN_X};
+use super::tri4::{test4, Lanes, Ray4, Tri4};
+use super::tri8::{test8_portable, Lanes8};
 use crate::math::gamma;
 
 /// Eight boxes in SoA layout: `b[MIN_X + axis][lane]` and `b[MAX_X + axis][lane]` (the row
@@ -169,10 +171,52 @@ pub fn hit8_avx2(boxes: &Boxes8, ray: &RayPre, t_max: f32) -> (u32, [f32; 8]) {
     (mask, t_near)
 }
 
-/// An eight-box slab test, chosen by type so a traversal loop compiles with one of them inlined.
+/// Asks the CPU to bring the first `bytes` bytes of `slice[i]` into the cache: a hint, with no
+/// effect on results (nothing on targets without a prefetch instruction here). No bounds check:
+/// prefetching an address outside the slice is harmless.
+#[inline(always)]
+pub fn prefetch_in<T>(slice: &[T], i: usize, bytes: usize) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use core::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+        // Address arithmetic only: the pointer is never dereferenced.
+        let p = slice.as_ptr().wrapping_add(i).cast::<i8>();
+        let mut at = 0;
+        while at < bytes {
+            // SAFETY: `prefetcht0` (SSE, in the x86_64 baseline) never faults, whatever the
+            // address, and has no architectural effect.
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(at)) };
+            at += 64;
+        }
+        // A type aligned to lines whose size is a whole number of lines is covered by the steps.
+        let covered = core::mem::align_of::<T>().is_multiple_of(64) && bytes.is_multiple_of(64);
+        if bytes > 0 && !covered {
+            // SAFETY: as above (the last byte's line, which the steps may not reach).
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(bytes - 1)) };
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        let _ = (slice, i, bytes);
+    }
+}
+
+/// An eight-box slab test and the triangle tests of the leaves, chosen by type so a traversal
+/// loop compiles with one set of them inlined.
 pub trait Hit8: Copy {
     /// Mask of the boxes the ray meets within `[0, t_max]`, and their entry distances.
     fn hit8(self, boxes: &Boxes8, ray: &RayPre, t_max: f32) -> (u32, [f32; 8]);
+
+    /// The four-lane triangle test ([`test4`]; the same everywhere, compiled with the caller's
+    /// features).
+    #[inline(always)]
+    fn tri4(self, blk: &Tri4, ray: &Ray4, t_max: f32) -> Lanes {
+        test4(blk, ray, t_max)
+    }
+
+    /// Two blocks' triangle tests at once, `a` in lanes 0-3 and `b` in lanes 4-7
+    /// ([`super::tri8`]).
+    fn tri8(self, a: &Tri4, b: &Tri4, ray: &Ray4, t_max: f32) -> Lanes8;
 }
 
 /// The portable test: two SSE halves on x86_64, the scalar loop elsewhere.
@@ -191,16 +235,23 @@ impl Hit8 for Portable {
             hit8_scalar(boxes, ray, t_max)
         }
     }
+
+    #[inline(always)]
+    fn tri8(self, a: &Tri4, b: &Tri4, ray: &Ray4, t_max: f32) -> Lanes8 {
+        test8_portable(a, b, ray, t_max)
+    }
 }
 
-/// Proof that this CPU runs AVX2 code: only [`Avx2::detect`] makes one, and only when it does.
+/// Proof that this CPU runs AVX2 (and POPCNT) code: only [`Avx2::detect`] makes one, and only
+/// when it does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Avx2 {
     _private: (),
 }
 
 impl Avx2 {
-    /// Asks the CPU (CPUID, XGETBV): AVX2 present and its registers enabled by the OS.
+    /// Asks the CPU (CPUID, XGETBV): AVX2 and POPCNT present, the AVX registers enabled by the
+    /// OS.
     pub fn detect() -> Option<Avx2> {
         #[cfg(target_arch = "x86_64")]
         {
@@ -210,7 +261,9 @@ impl Avx2 {
             let l1 = __cpuid(1);
             let osxsave = l1.ecx & (1 << 27) != 0;
             let avx = l1.ecx & (1 << 28) != 0;
-            if max_leaf < 7 || !osxsave || !avx {
+            // POPCNT (every AVX2 CPU has it): the traversal counts hit children with it.
+            let popcnt = l1.ecx & (1 << 23) != 0;
+            if max_leaf < 7 || !osxsave || !avx || !popcnt {
                 return None;
             }
             // SAFETY: CPUID.1:ECX.OSXSAVE (checked above) says the OS has enabled XSAVE, which
@@ -238,7 +291,7 @@ impl Avx2 {
     pub fn run<W: WithHit8>(self, work: W) -> W::Output {
         #[cfg(target_arch = "x86_64")]
         {
-            // SAFETY: `self` exists only when `detect` found AVX2 usable on this CPU.
+            // SAFETY: `self` exists only when `detect` found AVX2 and POPCNT usable on this CPU.
             unsafe { run_avx2(self, work) }
         }
         #[cfg(not(target_arch = "x86_64"))]
@@ -258,10 +311,10 @@ pub trait WithHit8 {
     fn call<H: Hit8>(self, test: H) -> Self::Output;
 }
 
-/// `work.call(token)`, compiled with AVX2 (`call` is inlined into this function, monomorphised
-/// per use).
+/// `work.call(token)`, compiled with AVX2 and POPCNT (`call` is inlined into this function,
+/// monomorphised per use).
 #[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
+#[target_feature(enable = "avx2,popcnt")]
 #[inline]
 fn run_avx2<W: WithHit8>(token: Avx2, work: W) -> W::Output {
     work.call(token)
@@ -278,6 +331,19 @@ impl Hit8 for Avx2 {
         #[cfg(not(target_arch = "x86_64"))]
         {
             hit8_scalar(boxes, ray, t_max)
+        }
+    }
+
+    #[inline(always)]
+    fn tri8(self, a: &Tri4, b: &Tri4, ray: &Ray4, t_max: f32) -> Lanes8 {
+        #[cfg(target_arch = "x86_64")]
+        {
+            // SAFETY: `self` exists only when `detect` found AVX2 usable on this CPU.
+            unsafe { super::tri8::test8_avx2(a, b, ray, t_max) }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            test8_portable(a, b, ray, t_max)
         }
     }
 }

@@ -65,11 +65,11 @@ impl Tri4 {
 /// The per-ray part of the four-lane test: origin, axis permutation and shear of a [`TriRay`].
 #[derive(Clone, Copy, Debug)]
 pub struct Ray4 {
-    o: [f32; 3],
+    pub(super) o: [f32; 3],
     /// `kx, ky, kz`.
-    k: [usize; 3],
+    pub(super) k: [usize; 3],
     /// `sx, sy, sz`.
-    s: [f32; 3],
+    pub(super) s: [f32; 3],
 }
 
 impl Ray4 {
