@@ -315,28 +315,7 @@ fn collapse(
     nodes: &mut Vec<Bvh4Node>,
 ) -> u32 {
     *max_depth = (*max_depth).max(depth);
-    let n = &bin.nodes[at];
-    let mut kids = [at; 4];
-    let mut k = 1;
-    if n.count == 0 {
-        kids[0] = at + 1;
-        kids[1] = n.offset as usize;
-        k = 2;
-        while k < 4 {
-            let mut best: Option<(usize, f32)> = None;
-            for (j, &c) in kids[..k].iter().enumerate() {
-                let cn = &bin.nodes[c];
-                if cn.count == 0 && best.is_none_or(|(_, a)| cn.bounds.area() > a) {
-                    best = Some((j, cn.bounds.area()));
-                }
-            }
-            let Some((j, _)) = best else { break };
-            let c = kids[j];
-            kids[j] = c + 1;
-            kids[k] = bin.nodes[c].offset as usize;
-            k += 1;
-        }
-    }
+    let (kids, k) = super::collapse::greedy_children::<4>(bin, at);
     let me = nodes.len();
     nodes.push(Bvh4Node::EMPTY);
     for (lane, &c) in kids[..k].iter().enumerate() {

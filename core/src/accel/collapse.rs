@@ -71,22 +71,19 @@ fn set_lane(nodes: &mut [Bvh8Node], me: usize, lane: usize, bin: &Bvh, c: usize,
     node.used |= 1 << lane;
 }
 
-fn greedy(
-    bin: &Bvh,
-    at: usize,
-    depth: usize,
-    max_depth: &mut usize,
-    nodes: &mut Vec<Bvh8Node>,
-) -> u32 {
-    *max_depth = (*max_depth).max(depth);
+/// The binary nodes that become the children of the wide node made from binary node `at`, and
+/// how many there are (at most `W`): its two children, then, while fewer than `W`, the interior
+/// child of largest surface area replaced by its own two children (the first of equal areas).
+/// A leaf stays a single child. Shared by the greedy 8-wide collapse and the 4-wide BVH.
+pub(super) fn greedy_children<const W: usize>(bin: &Bvh, at: usize) -> ([usize; W], usize) {
     let n = &bin.nodes[at];
-    let mut kids = [at; 8];
+    let mut kids = [at; W];
     let mut k = 1;
     if n.count == 0 {
         kids[0] = at + 1;
         kids[1] = n.offset as usize;
         k = 2;
-        while k < 8 {
+        while k < W {
             let mut best: Option<(usize, f32)> = None;
             for (j, &c) in kids[..k].iter().enumerate() {
                 let cn = &bin.nodes[c];
@@ -101,6 +98,18 @@ fn greedy(
             k += 1;
         }
     }
+    (kids, k)
+}
+
+fn greedy(
+    bin: &Bvh,
+    at: usize,
+    depth: usize,
+    max_depth: &mut usize,
+    nodes: &mut Vec<Bvh8Node>,
+) -> u32 {
+    *max_depth = (*max_depth).max(depth);
+    let (kids, k) = greedy_children::<8>(bin, at);
     let me = nodes.len();
     nodes.push(Bvh8Node::EMPTY);
     for (lane, &c) in kids[..k].iter().enumerate() {
