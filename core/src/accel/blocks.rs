@@ -7,7 +7,7 @@
 //! hands back as a fallback lane, and the caller's own test decides it. The loops visit lanes in
 //! primitive order and lower `t_max` as they go, exactly as a loop of scalar tests over the
 //! leaf's primitives would, so they find the same primitive at the same distance.
-use super::bvh8::Leaves;
+use super::leaves::Leaves;
 use super::simd8::{prefetch_in, Hit8, Portable};
 use super::tri4::{Ray4, Tri4};
 use super::{Bvh4, Bvh8};

@@ -7,9 +7,10 @@
 //! popped if a closer hit has been found; any hit stops at the first hit. Nodes are stored depth
 //! first, the root at index 0; a child is either an interior node (its index) or a leaf (a range
 //! of the primitive order returned by the build).
+use super::leaves::FnLeaves;
 use super::simd::{RayPre, MAX_X, MIN_X};
 use super::simd8::{prefetch_in, Avx2, Boxes8, Hit8, Portable, WithHit8};
-use super::{BuildParams, Bvh, Collapse};
+use super::{BuildParams, Bvh, Collapse, Leaves};
 use crate::math::{Aabb, Ray};
 use alloc::vec::Vec;
 use glam::Vec3;
@@ -83,51 +84,6 @@ impl Default for Bvh8 {
             depth: 0,
             avx2: None,
         }
-    }
-}
-
-/// The leaves of a traversal ([`Bvh8::cast`]).
-pub trait Leaves {
-    /// Whether a traversal may stop early and start again from the root with a larger stack
-    /// (when a small one overflows), calling [`Leaves::test`] again for the same leaves: true
-    /// when the effect of the last, complete traversal is all that counts (the closest hit, as
-    /// each improvement overwrites the last; whether any hit was found, since a hit stops the
-    /// traversal). Then most rays need only a small stack, which is cheaper to set up.
-    const RESTARTABLE: bool = false;
-
-    /// Tests the leaf of `count` primitives at `first` within `(0, t_max)` with the SIMD tests
-    /// of `simd`: `Some(new t_max)` to go on, `None` to stop the traversal.
-    fn test<H: Hit8>(&mut self, simd: H, first: usize, count: usize, t_max: f32) -> Option<f32>;
-
-    /// A hint that the leaf of `count` primitives at `first` will probably be tested soon (its
-    /// box is hit): implementations may prefetch its data. No effect on results.
-    #[inline(always)]
-    fn prefetch(&self, first: usize, count: usize) {
-        let _ = (first, count);
-    }
-}
-
-impl<L: Leaves> Leaves for &mut L {
-    const RESTARTABLE: bool = L::RESTARTABLE;
-
-    #[inline(always)]
-    fn test<H: Hit8>(&mut self, simd: H, first: usize, count: usize, t_max: f32) -> Option<f32> {
-        (**self).test(simd, first, count, t_max)
-    }
-
-    #[inline(always)]
-    fn prefetch(&self, first: usize, count: usize) {
-        (**self).prefetch(first, count)
-    }
-}
-
-/// A closure as leaves (it does not use the SIMD token).
-struct FnLeaves<F>(F);
-
-impl<F: FnMut(usize, usize, f32) -> Option<f32>> Leaves for FnLeaves<F> {
-    #[inline(always)]
-    fn test<H: Hit8>(&mut self, _: H, first: usize, count: usize, t_max: f32) -> Option<f32> {
-        (self.0)(first, count, t_max)
     }
 }
 

@@ -12,13 +12,13 @@
 //! *dimension* for `next_1d`, two for `next_2d`) then:
 //! 1. permutes `m` by a nested (Owen) scramble of its bits seeded by a hash of
 //!    (seed, dimension, epoch), so each dimension visits the sequence in a different order while
-//!    aligned blocks stay aligned blocks ([`scramble_index`]: the pixel bits by one scramble per
+//!    aligned blocks stay aligned blocks ([`scramble_index`](super::owen::scramble_index): the pixel bits by one scramble per
 //!    dimension, the sample bits by one seeded by the pixel too); the epoch is `s >> K`, so
 //!    samples beyond `2^K` start fresh randomizations instead of running into the next pixel;
 //! 2. takes Sobol dimension 0 (and 1 for a 2D request) of the permuted index's low 32 bits
-//!    ([`sobol_dim0`], [`sobol_dim1`]);
+//!    ([`sobol_dim0`](super::sobol::sobol_dim0), [`sobol_dim1`](super::sobol::sobol_dim1));
 //! 3. Owen-scrambles each coordinate with a seed hashed from (seed, dimension, epoch, the
-//!    permuted index's high 32 bits) ([`owen_scramble_u32`]), and keeps its top 24 bits.
+//!    permuted index's high 32 bits) ([`owen_scramble_u32`](super::owen::owen_scramble_u32)), and keeps its top 24 bits.
 //!
 //! Dimensions. `next_1d` reads the next dimension and `next_2d` the next two; the integrators
 //! jump to each stage's first dimension by the fixed per-bounce layout
