@@ -50,8 +50,8 @@ impl Discrete1D {
     pub fn sample_reuse(&self, u: f32) -> (usize, f32) {
         let n = self.cdf.len();
         let i = self.cdf.partition_point(|&c| c <= u).min(n - 1);
-        // Skip zero-weight items that share a cdf value. (A select, not a branch: `i == 0` is
-        // as good as random for a two-triangle light.)
+        // Skip zero-weight items that share a cdf value. (Written as a select, since `i == 0`
+        // is as good as random for a two-triangle light; the compiler may still branch.)
         let lo = self.cdf[i.saturating_sub(1)];
         let lo = if i == 0 { 0.0 } else { lo };
         let p = self.cdf[i] - lo;

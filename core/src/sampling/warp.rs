@@ -24,7 +24,7 @@ pub fn square_to_uniform_disk_concentric(u: Vec2) -> Vec2 {
     }
     // theta = q in the x-dominant wedges and pi/2 - q in the y-dominant ones, with |q| <= pi/4;
     // cos and sin of pi/2 - q are sin and cos of q, so one sincos of the small angle serves
-    // both (no range reduction, and selects instead of a branch that mispredicts half the time).
+    // both, with no range reduction inside sincosf (whose range branches mispredicted).
     let x_major = o.x.abs() > o.y.abs();
     let (r, num) = if x_major { (o.x, o.y) } else { (o.y, o.x) };
     let q = (PI / 4.0) * (num / r);
