@@ -79,11 +79,11 @@ impl RayPre {
 }
 
 /// Widening of the exit distance that covers the rounding of the slab test (as pbrt-v4).
-const FAR_SCALE: f32 = 1.0 + 2.0 * gamma(3);
+pub(super) const FAR_SCALE: f32 = 1.0 + 2.0 * gamma(3);
 
 /// `minps` on one lane: `a` if `a < b`, else `b` (also when either is NaN).
 #[inline(always)]
-fn min_sse(a: f32, b: f32) -> f32 {
+pub(super) fn min_sse(a: f32, b: f32) -> f32 {
     if a < b {
         a
     } else {
@@ -93,7 +93,7 @@ fn min_sse(a: f32, b: f32) -> f32 {
 
 /// `maxps` on one lane: `a` if `a > b`, else `b` (also when either is NaN).
 #[inline(always)]
-fn max_sse(a: f32, b: f32) -> f32 {
+pub(super) fn max_sse(a: f32, b: f32) -> f32 {
     if a > b {
         a
     } else {

@@ -18,10 +18,9 @@
 //! and SSE intrinsics outside a `#[target_feature]` function. Each block says why it is sound.
 #![allow(unsafe_code)]
 
-use super::simd::{RayPre, MAX_X, MIN_X};
+use super::simd::{max_sse, min_sse, RayPre, FAR_SCALE, MAX_X, MIN_X};
 use super::tri4::{test4, Lanes, Ray4, Tri4};
 use super::tri8::{test8_portable, Lanes8};
-use crate::math::gamma;
 
 /// Eight boxes in SoA layout: `b[MIN_X + axis][lane]` and `b[MAX_X + axis][lane]` (the row
 /// indices of [`super::simd`], so a [`RayPre`] serves both widths). An unused lane holds the
@@ -49,29 +48,6 @@ impl Boxes8 {
 
 // The rows start where the bounds' indices say.
 const _: () = assert!(MIN_X == 0 && MAX_X == 3);
-
-/// Widening of the exit distance that covers the rounding of the slab test (as [`super::simd`]).
-const FAR_SCALE: f32 = 1.0 + 2.0 * gamma(3);
-
-/// `minps` on one lane: `a` if `a < b`, else `b` (also when either is NaN).
-#[inline(always)]
-fn min_sse(a: f32, b: f32) -> f32 {
-    if a < b {
-        a
-    } else {
-        b
-    }
-}
-
-/// `maxps` on one lane: `a` if `a > b`, else `b` (also when either is NaN).
-#[inline(always)]
-fn max_sse(a: f32, b: f32) -> f32 {
-    if a > b {
-        a
-    } else {
-        b
-    }
-}
 
 /// The reference slab test: bit `i` of the mask is set when the ray meets box `i` within
 /// `[0, t_max]`; `t_near[i]` is where it enters (meaningful for set bits only).
