@@ -167,4 +167,5 @@ pub mod analytic_scenes;
 pub mod bsdf;
 pub mod cap;
 pub mod rng;
+pub mod soup;
 pub mod stress;

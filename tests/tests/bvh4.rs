@@ -4,50 +4,13 @@
 //! portable one is conservative against an independent f64 check; structure invariants.
 use tessera_core::accel::simd::{hit4_scalar, Boxes4, RayPre, MAX_X, MIN_X};
 use tessera_core::accel::Bvh4;
-use tessera_core::bsdf::{Bsdf, Diffuse};
-use tessera_core::camera::{Filter, FovAxis, Perspective};
-use tessera_core::geometry::{Mesh, Shape, ShapeKind, Sphere, TriRay};
+use tessera_core::geometry::{Sphere, TriRay};
 use tessera_core::glam::Vec3;
-use tessera_core::math::{Aabb, Ray, Transform};
-use tessera_core::scene::{Scene, SceneParts};
-use tessera_core::texture::Texture;
+use tessera_core::math::{Aabb, Ray};
+use tessera_core::scene::Scene;
 
 use tessera_tests::rng::SplitMix as Rng;
-
-fn scene(tris: Vec<[Vec3; 3]>, spheres: Vec<Sphere>) -> Scene {
-    let positions: Vec<Vec3> = tris.iter().flatten().copied().collect();
-    let indices = (0..tris.len() as u32)
-        .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
-        .collect();
-    let shape = |kind| Shape {
-        kind,
-        bsdf: 0,
-        emitter: None,
-        flip_normals: false,
-    };
-    let mut shapes = Vec::new();
-    if !tris.is_empty() {
-        shapes.push(shape(ShapeKind::Mesh(Mesh::new(
-            positions,
-            vec![],
-            vec![],
-            indices,
-        ))));
-    }
-    shapes.extend(spheres.into_iter().map(|s| shape(ShapeKind::Sphere(s))));
-    Scene::new(SceneParts {
-        shapes,
-        disks: vec![],
-        bsdfs: vec![Bsdf::Diffuse(Diffuse {
-            reflectance: Texture::constant(0.5),
-        })],
-        emitters: vec![],
-        camera: Perspective::new(Transform::IDENTITY, 4, 4, 40.0, FovAxis::X, 0.01, 1e4),
-        filter: Filter::Box,
-        light_selection: Default::default(),
-    })
-    .expect("valid scene")
-}
+use tessera_tests::soup::{random_rays, random_soup, scene};
 
 /// Checks the scene against a loop over every primitive; returns the number of hits. Exact ties
 /// may resolve to either primitive; there must be few of them.
@@ -88,37 +51,6 @@ fn check_rays(scene: &Scene, rays: &[Ray]) -> usize {
     }
     assert!(ties * 20 <= hits, "{ties} ties in {hits} hits");
     hits
-}
-
-fn random_soup(rng: &mut Rng, n: usize) -> Vec<[Vec3; 3]> {
-    (0..n)
-        .map(|t| {
-            let c = rng.v(20.0);
-            let s = if t % 10 == 0 { 8.0 } else { 1.5 };
-            match t % 17 {
-                // Degenerate: a point, and a segment (three collinear corners).
-                0 => [c, c, c],
-                1 => {
-                    let d = rng.v(s);
-                    [c, c + d, c + 2.0 * d]
-                }
-                _ => [c + rng.v(s), c + rng.v(s), c + rng.v(s)],
-            }
-        })
-        .collect()
-}
-
-fn random_rays(rng: &mut Rng, n: usize) -> Vec<Ray> {
-    (0..n)
-        .map(|_| {
-            let o = rng.v(50.0);
-            let mut ray = Ray::new(o, (rng.v(20.0) - o).normalize());
-            if rng.f() < 0.3 {
-                ray.t_max = rng.f() * 40.0;
-            }
-            ray
-        })
-        .collect()
 }
 
 #[test]

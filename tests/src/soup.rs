@@ -1,0 +1,86 @@
+//! Ray-casting test data shared by the BVH tests: a flat scene of triangles (one mesh) and
+//! spheres with a diffuse BSDF and no emitters, random triangle soups with degenerate
+//! triangles, and random rays, some with a short extent.
+use crate::rng::SplitMix;
+use tessera_core::bsdf::{Bsdf, Diffuse};
+use tessera_core::camera::{Filter, FovAxis, Perspective};
+use tessera_core::geometry::{Mesh, Shape, ShapeKind, Sphere};
+use tessera_core::glam::Vec3;
+use tessera_core::math::{Ray, Transform};
+use tessera_core::scene::{Scene, SceneParts};
+use tessera_core::texture::Texture;
+
+/// A scene of separate triangles (one mesh, three vertices each) and spheres.
+pub fn scene(tris: Vec<[Vec3; 3]>, spheres: Vec<Sphere>) -> Scene {
+    let positions: Vec<Vec3> = tris.iter().flatten().copied().collect();
+    let indices = (0..tris.len() as u32)
+        .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+        .collect();
+    mesh_scene(positions, indices, spheres)
+}
+
+/// A scene of one indexed mesh (none when `indices` is empty) and spheres.
+pub fn mesh_scene(positions: Vec<Vec3>, indices: Vec<[u32; 3]>, spheres: Vec<Sphere>) -> Scene {
+    let shape = |kind| Shape {
+        kind,
+        bsdf: 0,
+        emitter: None,
+        flip_normals: false,
+    };
+    let mut shapes = Vec::new();
+    if !indices.is_empty() {
+        shapes.push(shape(ShapeKind::Mesh(Mesh::new(
+            positions,
+            vec![],
+            vec![],
+            indices,
+        ))));
+    }
+    shapes.extend(spheres.into_iter().map(|s| shape(ShapeKind::Sphere(s))));
+    Scene::new(SceneParts {
+        shapes,
+        disks: vec![],
+        bsdfs: vec![Bsdf::Diffuse(Diffuse {
+            reflectance: Texture::constant(0.5),
+        })],
+        emitters: vec![],
+        camera: Perspective::new(Transform::IDENTITY, 4, 4, 40.0, FovAxis::X, 0.01, 1e4),
+        filter: Filter::Box,
+        light_selection: Default::default(),
+    })
+    .expect("valid scene")
+}
+
+/// `n` triangles in a cube of side 20: mostly small, every tenth large, and degenerate ones (a
+/// point, and a segment of three collinear corners) among them.
+pub fn random_soup(rng: &mut SplitMix, n: usize) -> Vec<[Vec3; 3]> {
+    (0..n)
+        .map(|t| {
+            let c = rng.v(20.0);
+            let s = if t % 10 == 0 { 8.0 } else { 1.5 };
+            match t % 17 {
+                0 => [c, c, c],
+                1 => {
+                    let d = rng.v(s);
+                    [c, c + d, c + 2.0 * d]
+                }
+                _ => [c + rng.v(s), c + rng.v(s), c + rng.v(s)],
+            }
+        })
+        .collect()
+}
+
+/// `n` rays from a cube of side 50 toward points of the soup's cube; 30% with a random extent
+/// below 40.
+pub fn random_rays(rng: &mut SplitMix, n: usize) -> Vec<Ray> {
+    (0..n)
+        .map(|_| {
+            let o = rng.v(50.0);
+            let mut ray = Ray::new(o, (rng.v(20.0) - o).normalize());
+            if rng.f() < 0.3 {
+                ray.t_max = rng.f() * 40.0;
+            }
+            ray
+        })
+        .collect()
+}
