@@ -83,7 +83,7 @@ pub(super) const FAR_SCALE: f32 = 1.0 + 2.0 * gamma(3);
 
 /// `minps` on one lane: `a` if `a < b`, else `b` (also when either is NaN).
 #[inline(always)]
-pub(super) fn min_sse(a: f32, b: f32) -> f32 {
+fn min_sse(a: f32, b: f32) -> f32 {
     if a < b {
         a
     } else {
@@ -93,7 +93,7 @@ pub(super) fn min_sse(a: f32, b: f32) -> f32 {
 
 /// `maxps` on one lane: `a` if `a > b`, else `b` (also when either is NaN).
 #[inline(always)]
-pub(super) fn max_sse(a: f32, b: f32) -> f32 {
+fn max_sse(a: f32, b: f32) -> f32 {
     if a > b {
         a
     } else {
@@ -106,19 +106,30 @@ pub(super) fn max_sse(a: f32, b: f32) -> f32 {
 /// results of the SSE version; used where SSE is unavailable, and by tests on every target.
 #[inline]
 pub fn hit4_scalar(boxes: &Boxes4, ray: &RayPre, t_max: f32) -> (u32, [f32; 4]) {
-    let s = FAR_SCALE;
+    hit_scalar(&boxes.b, ray, t_max)
+}
+
+/// The portable slab test on `N` boxes in SoA rows (`rows[MIN_X + axis][lane]`,
+/// `rows[MAX_X + axis][lane]`): lane by lane the operations of the SSE and AVX2 tests, so the
+/// 4- and 8-wide scalar tests ([`hit4_scalar`], `simd8::hit8_scalar`) are this one.
+#[inline]
+pub(super) fn hit_scalar<const N: usize>(
+    rows: &[[f32; N]; 6],
+    ray: &RayPre,
+    t_max: f32,
+) -> (u32, [f32; N]) {
     let mut mask = 0;
-    let mut t_near = [0.0f32; 4];
+    let mut t_near = [0.0f32; N];
     for (lane, tn_out) in t_near.iter_mut().enumerate() {
         let mut tn = 0.0f32;
         let mut tf = f32::INFINITY;
         for a in 0..3 {
-            let t0 = (boxes.b[ray.near[a]][lane] - ray.o[a]) * ray.inv[a];
-            let t1 = (boxes.b[ray.far[a]][lane] - ray.o[a]) * ray.inv[a];
+            let t0 = (rows[ray.near[a]][lane] - ray.o[a]) * ray.inv[a];
+            let t1 = (rows[ray.far[a]][lane] - ray.o[a]) * ray.inv[a];
             tn = max_sse(t0, tn);
             tf = min_sse(t1, tf);
         }
-        tf = min_sse(tf * s, t_max);
+        tf = min_sse(tf * FAR_SCALE, t_max);
         *tn_out = tn;
         if tn <= tf {
             mask |= 1 << lane;

@@ -18,7 +18,7 @@
 //! and SSE intrinsics outside a `#[target_feature]` function. Each block says why it is sound.
 #![allow(unsafe_code)]
 
-use super::simd::{max_sse, min_sse, RayPre, FAR_SCALE, MAX_X, MIN_X};
+use super::simd::{hit_scalar, RayPre, FAR_SCALE, MAX_X, MIN_X};
 use super::tri4::{test4, Lanes, Ray4, Tri4};
 use super::tri8::{test8_portable, Lanes8};
 
@@ -53,24 +53,7 @@ const _: () = assert!(MIN_X == 0 && MAX_X == 3);
 /// `[0, t_max]`; `t_near[i]` is where it enters (meaningful for set bits only).
 #[inline]
 pub fn hit8_scalar(boxes: &Boxes8, ray: &RayPre, t_max: f32) -> (u32, [f32; 8]) {
-    let mut mask = 0;
-    let mut t_near = [0.0f32; 8];
-    for (lane, tn_out) in t_near.iter_mut().enumerate() {
-        let mut tn = 0.0f32;
-        let mut tf = f32::INFINITY;
-        for a in 0..3 {
-            let t0 = (boxes.b[ray.near[a]][lane] - ray.o[a]) * ray.inv[a];
-            let t1 = (boxes.b[ray.far[a]][lane] - ray.o[a]) * ray.inv[a];
-            tn = max_sse(t0, tn);
-            tf = min_sse(t1, tf);
-        }
-        tf = min_sse(tf * FAR_SCALE, t_max);
-        *tn_out = tn;
-        if tn <= tf {
-            mask |= 1 << lane;
-        }
-    }
-    (mask, t_near)
+    hit_scalar(&boxes.b, ray, t_max)
 }
 
 /// The slab test on two SSE halves; same contract and bits as [`hit8_scalar`].
