@@ -329,3 +329,28 @@ fn bad_parameters_are_located_errors() {
         bad(plugin, props, prop, words);
     }
 }
+
+/// `material` `none` (eta 0, k 1) skips the Fresnel formula and uses 1: exact, because the
+/// formula gives exactly 1 there. Checked on a million cosines spread over `[0, 1]` by their bit
+/// patterns (every float in `[0, 1]` was checked once by hand). Control: a metal whose `eta` is
+/// barely above 0 does not give exactly 1, so the comparison can fail.
+#[test]
+fn perfect_reflector_fresnel_is_exactly_one() {
+    use tessera_core::bsdf::fresnel::fresnel_conductor;
+    use tessera_core::Color;
+    let one_bits = 1.0f32.to_bits();
+    let cosines = (0..=1_000_000u32)
+        .map(|i| f32::from_bits((u64::from(one_bits) * u64::from(i) / 1_000_000) as u32));
+    let mut not_one = 0;
+    let mut control_not_one = 0;
+    for c in cosines {
+        if fresnel_conductor(c, Color::ZERO, Color::ONE) != Color::ONE {
+            not_one += 1;
+        }
+        if fresnel_conductor(c, Color::splat(1e-3), Color::ONE) != Color::ONE {
+            control_not_one += 1;
+        }
+    }
+    assert_eq!(not_one, 0);
+    assert!(control_not_one > 100_000, "{control_not_one}");
+}

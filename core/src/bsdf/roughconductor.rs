@@ -13,7 +13,8 @@
 //! `f(wi, wo) = F(wi.h) D(h) G(wi, wo, h) / (4 cos theta_i cos theta_o)` with the half vector
 //! `h = normalize(wi + wo)`. Sampling draws a microfacet normal `m` (visible normals by
 //! default) and reflects `wi` about it; the density of `wo` is `pdf_m(m) / (4 wo.m)`.
-use super::fresnel::{fresnel_conductor, reflect};
+use super::conductor::conductor_fresnel;
+use super::fresnel::reflect;
 use super::microfacet::Microfacet;
 use super::BsdfSample;
 use crate::texture::Texture;
@@ -47,8 +48,7 @@ impl RoughConductor {
 
     #[inline]
     fn fresnel(&self, cos: f32, uv: Vec2) -> Color {
-        fresnel_conductor(cos, self.eta.eval(uv), self.k.eval(uv))
-            * self.specular_reflectance.eval(uv)
+        conductor_fresnel(cos, &self.eta, &self.k, uv) * self.specular_reflectance.eval(uv)
     }
 
     /// `f(wi, wo) cos theta_o`.
