@@ -38,7 +38,14 @@ pub fn sample_light<S: Sampler, P: Probe>(
     want_bsdf_pdf: bool,
     probe: &mut P,
 ) -> Option<LightSample> {
-    let (idx, sel_pdf) = scene.select_emitter(sampler.next_1d())?;
+    let (idx, sel_pdf) = if scene.emitters.len() == 1 {
+        // Nothing to choose (probability exactly 1 either way): the choice's dimension is
+        // skipped, not drawn, so later draws read what they read before.
+        sampler.skip_1d();
+        (0, 1.0)
+    } else {
+        scene.select_emitter(sampler.next_1d())?
+    };
     let u = sampler.next_2d();
     let es = scene.emitters[idx].sample(&scene.emitter_ctx(), si, u);
     probe.emitter_sample(idx, sel_pdf, es.as_ref());

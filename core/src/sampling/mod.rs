@@ -31,6 +31,12 @@ pub trait Sampler {
         let y = self.next_1d();
         Vec2::new(x, y)
     }
+    /// Moves past one dimension without using it: the state `next_1d` would leave, at no more
+    /// cost (samplers that address dimensions directly only advance the dimension).
+    #[inline]
+    fn skip_1d(&mut self) {
+        let _ = self.next_1d();
+    }
     /// Makes the next draw read dimension `dim`, for samplers whose dimensions are stratified
     /// across a pixel's samples (see [`layout`](self::dimension_of)). Samplers whose draws are
     /// independent of each other ignore it (the default), so their streams do not move.

@@ -251,6 +251,11 @@ impl Sampler for ZSobolSampler {
     }
 
     #[inline]
+    fn skip_1d(&mut self) {
+        self.dimension = self.dimension.wrapping_add(1);
+    }
+
+    #[inline]
     fn start_dimension(&mut self, dim: u32) {
         self.dimension = dim;
     }
