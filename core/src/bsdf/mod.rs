@@ -41,6 +41,7 @@ pub use thindielectric::ThinDielectric;
 pub use twosided::TwoSided;
 pub use wakame_microfacet::WakameMicrofacet;
 
+use crate::sampling::Sampler;
 use crate::Color;
 use glam::{Vec2, Vec3};
 
@@ -150,6 +151,42 @@ impl Bsdf {
     #[inline]
     pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
         dispatch!(self, b => b.sample(wi, u1, u2, uv))
+    }
+    /// Which random inputs [`Bsdf::sample`] reads: `(u1, u2)`. The integrators skip the draws
+    /// of inputs a BSDF ignores (with [`crate::sampling::Sampler::skip_1d`], which leaves the
+    /// sampler where the draw would have), so skipping changes no value, only the work.
+    #[inline]
+    pub fn sample_inputs(&self) -> (bool, bool) {
+        match self {
+            Bsdf::Diffuse(_) | Bsdf::RoughConductor(_) | Bsdf::BlinnPhongMetal(_) => (false, true),
+            Bsdf::Conductor(_) | Bsdf::Mirror(_) => (false, false),
+            Bsdf::Dielectric(_) | Bsdf::ThinDielectric(_) => (true, false),
+            Bsdf::TwoSided(t) => {
+                let (f, b) = (t.front.sample_inputs(), t.back.sample_inputs());
+                (f.0 || b.0, f.1 || b.1)
+            }
+            _ => (true, true),
+        }
+    }
+    /// Draws `(u1, u2)` for [`Bsdf::sample`] from the sampler's next three dimensions; inputs
+    /// the BSDF ignores are skipped, not drawn, and given as 0.5.
+    #[inline]
+    pub fn draw_sample_inputs<S: Sampler>(&self, sampler: &mut S) -> (f32, Vec2) {
+        let (uses_u1, uses_u2) = self.sample_inputs();
+        let u1 = if uses_u1 {
+            sampler.next_1d()
+        } else {
+            sampler.skip_1d();
+            0.5
+        };
+        let u2 = if uses_u2 {
+            sampler.next_2d()
+        } else {
+            sampler.skip_1d();
+            sampler.skip_1d();
+            Vec2::splat(0.5)
+        };
+        (u1, u2)
     }
     /// Whether any component is smooth (non-delta): emitter sampling is useful.
     #[inline]

@@ -97,8 +97,7 @@ impl DirectIntegrator {
         }
         for j in 0..self.bsdf_samples {
             sampler.start_stage(j, Stage::Bsdf);
-            let u1 = sampler.next_1d();
-            let u2 = sampler.next_2d();
+            let (u1, u2) = bsdf.draw_sample_inputs(sampler);
             let Some(bs) = bsdf.sample(wi, u1, u2, si.uv) else {
                 probe.bsdf_sample(None, Vec3::ZERO, Color::ZERO);
                 continue;
