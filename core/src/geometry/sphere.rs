@@ -4,8 +4,8 @@
 //! default 1), `to_world` (transform: a uniform scale, rotation and translation of the unit sphere;
 //! combined with center/radius), `flip_normals` (boolean, default false). Normals point outward
 //! unless flipped.
+use crate::math::sincos_turns;
 use crate::math::{gamma, safe_sqrt, Frame, Ray, PI};
-use crate::sampling::warp::square_to_uniform_cone_omc;
 use glam::{Vec2, Vec3};
 
 /// A sphere in world space.
@@ -105,29 +105,41 @@ impl Sphere {
     /// Samples the part of the sphere visible from `r` uniformly in solid angle (the cone of
     /// directions toward it); `None` when `r` is inside or on the sphere (within rounding), where
     /// callers sample by area instead.
+    ///
+    /// The direction's angle `theta` from the axis `r -> centre` is drawn by solid angle, then
+    /// the point is placed directly by its angle `alpha` at the centre (the near root of the
+    /// triangle `r`, centre, point), `cos alpha = sin^2 theta / sin theta_max + cos theta *
+    /// sqrt(1 - sin^2 theta / sin^2 theta_max)`: no ray-sphere intersection and no re-projection
+    /// of an intersection point, which made a long chain of square roots and divisions.
     pub fn sample_cone(&self, r: Vec3, u: Vec2) -> Option<ConeSample> {
         let dc = self.center - r;
         let dist2 = self.outside(r)?;
-        let r2 = self.radius * self.radius;
-        let dist = libm::sqrtf(dist2);
-        let sin2 = r2 / dist2;
-        let cos_max = safe_sqrt(1.0 - sin2);
-        let omc = sin2 / (1.0 + cos_max);
-        let local = square_to_uniform_cone_omc(u, omc);
-        let frame = Frame::from_normal(dc / dist);
-        let w = frame.to_world(local).normalize();
-        // Distance to the near intersection along w; fall back to the tangent point on a graze.
-        let cos_t = local.z;
-        let b = dist * cos_t;
-        let disc = r2 - dist2 * (1.0 - cos_t * cos_t).max(0.0);
-        let t = b - safe_sqrt(disc);
-        let (p, p_err) = self.project(r + w * t.max(0.0));
-        let n = (p - self.center) / self.radius;
+        let cone = Cone::new(self.radius, dist2);
+        // 1 - cos theta, and sin^2 theta / sin^2 theta_max = u.x (2 - omc) / (1 + cos theta_max),
+        // which stays accurate for the tiny cones of far spheres.
+        let omc = u.x * cone.omc;
+        let cos_t = 1.0 - omc;
+        let ratio = (u.x * (2.0 - omc) * cone.inv_one_plus_cos).min(1.0);
+        let inv_dist = 1.0 / libm::sqrtf(dist2);
+        let sin_max = self.radius * inv_dist;
+        let cos_a = (ratio * sin_max + cos_t * safe_sqrt(1.0 - ratio)).min(1.0);
+        let sin_a = safe_sqrt(1.0 - cos_a * cos_a);
+        let (s, c) = sincos_turns(u.y);
+        let frame = Frame::from_normal(dc * inv_dist);
+        // The outward normal leans back toward `r` by alpha from the axis.
+        let n = frame
+            .to_world(Vec3::new(sin_a * c, sin_a * s, -cos_a))
+            .normalize_or(-frame.n);
+        let v = n * self.radius;
+        // `n` is unit up to a few rounding steps per component, so `p` sits on the sphere within
+        // the bound of [`Sphere::project`] (per-component relative error of `v`, then the sum).
+        let p = self.center + v;
+        let p_err = v.abs() * gamma(6) + self.center.abs() * gamma(2);
         Some(ConeSample {
             p,
             p_err,
             n,
-            pdf: 1.0 / (2.0 * PI * omc),
+            pdf: cone.pdf(),
         })
     }
 
@@ -135,9 +147,33 @@ impl Sphere {
     /// on the sphere.
     pub fn cone_pdf(&self, r: Vec3) -> Option<f32> {
         let dist2 = self.outside(r)?;
-        let r2 = self.radius * self.radius;
-        let sin2 = r2 / dist2;
-        let cos_max = safe_sqrt(1.0 - sin2);
-        Some(1.0 / (2.0 * PI * (sin2 / (1.0 + cos_max))))
+        Some(Cone::new(self.radius, dist2).pdf())
+    }
+}
+
+/// The cone of directions from a point at squared distance `dist2` from the centre of a sphere
+/// of radius `radius`: what [`Sphere::sample_cone`] and [`Sphere::cone_pdf`] share, so their
+/// densities are the same bits.
+struct Cone {
+    /// `1 - cos theta_max`, as `sin^2 / (1 + cos)` (exact for tiny cones).
+    omc: f32,
+    /// `1 / (1 + cos theta_max)`.
+    inv_one_plus_cos: f32,
+}
+
+impl Cone {
+    #[inline]
+    fn new(radius: f32, dist2: f32) -> Cone {
+        let sin2 = radius * radius / dist2;
+        let inv_one_plus_cos = 1.0 / (1.0 + safe_sqrt(1.0 - sin2));
+        Cone {
+            omc: sin2 * inv_one_plus_cos,
+            inv_one_plus_cos,
+        }
+    }
+    /// Uniform density over the cone's solid angle, `1 / (2 pi (1 - cos theta_max))`.
+    #[inline]
+    fn pdf(&self) -> f32 {
+        1.0 / (2.0 * PI * self.omc)
     }
 }
