@@ -48,6 +48,26 @@ impl Tri4 {
         }
     }
 
+    /// Lanes holding no triangle (NaN first corner): primitives that are not triangles, and
+    /// unused lanes. Bit `i` is lane `i`.
+    #[inline(always)]
+    pub fn nan_lanes(&self) -> u32 {
+        #[cfg(target_arch = "x86_64")]
+        {
+            use core::arch::x86_64::{_mm_cmpunord_ps, _mm_loadu_ps, _mm_movemask_ps};
+            // SAFETY: SSE and SSE2 are in the x86_64 baseline; the load reads the four
+            // initialised f32s of `self.v[0]`, borrowed for the call (no alignment needed).
+            unsafe {
+                let x = _mm_loadu_ps(self.v[0].as_ptr());
+                _mm_movemask_ps(_mm_cmpunord_ps(x, x)) as u32
+            }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            (0..4).fold(0, |m, l| m | (u32::from(self.v[0][l].is_nan()) << l))
+        }
+    }
+
     /// The corners stored in `lane`.
     #[inline(always)]
     pub fn corners(&self, lane: usize) -> [Vec3; 3] {
