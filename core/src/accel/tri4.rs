@@ -96,12 +96,10 @@ impl Ray4 {
     /// Takes the permutation and shear the scalar test uses for this ray.
     #[inline]
     pub fn new(tri: &TriRay) -> Ray4 {
-        let (o, kz, s) = tri.parts();
-        let kx = if kz == 2 { 0 } else { kz + 1 };
-        let ky = if kx == 2 { 0 } else { kx + 1 };
+        let (o, k, s) = tri.parts();
         Ray4 {
             o: o.to_array(),
-            k: [kx, ky, kz],
+            k,
             s,
         }
     }
