@@ -314,6 +314,7 @@ fn agrees_on_soups_of_spheres_and_disks() {
     let mut rng = Rng(29);
     let mut hits = 0;
     let mut kinds = [0usize; 3];
+    let mut one_node = 0;
     for (tris, spheres, disks) in [
         (0, 1, 0),
         (0, 0, 1),
@@ -344,6 +345,8 @@ fn agrees_on_soups_of_spheres_and_disks() {
                 }
             }
         }
+        // One-node hierarchies take the stackless walk (accel/root.rs).
+        one_node += usize::from(s.bvh.nodes.len() == 1);
         let w8 = WideScene::<Bvh8>::new(&s);
         let rays = random_rays(&mut rng, 1500);
         let (h, bad) = compare(&s, &w8, &rays);
@@ -353,6 +356,10 @@ fn agrees_on_soups_of_spheres_and_disks() {
     eprintln!("{hits} hits; blocks without, with some, with only triangles: {kinds:?}");
     assert!(hits > 3000, "too few hits ({hits}) to mean anything");
     assert!(kinds.iter().all(|&k| k > 3), "block kinds {kinds:?}");
+    assert!(
+        (3..9).contains(&one_node),
+        "{one_node} one-node hierarchies"
+    );
 
     // Control: spheres and disks never hit.
     let s = mixed_scene(&mut rng, 40, 60, 60);

@@ -101,9 +101,6 @@ struct Entry {
 /// 18 all of it, deeper ones a heap stack. Kept small because it is initialised per ray.
 const STACK: usize = 128;
 
-/// The stack of a one-node hierarchy (depth 1: at most 7 postponed children).
-const TINY_STACK: usize = 8;
-
 /// The stack a restartable traversal ([`Leaves::RESTARTABLE`]) tries first.
 const SMALL_STACK: usize = 16;
 
@@ -268,14 +265,12 @@ impl Bvh8 {
         mut leaf: L,
         nodes: &mut u64,
     ) {
-        let need = 7 * self.depth + 1;
-        if need <= TINY_STACK {
-            // A hierarchy that is one node (the Cornell box): its children fit, and zeroing the
-            // stack is one or two vector stores.
-            let stack = &mut [Entry::default(); TINY_STACK];
-            self.walk_with::<ANY, COUNT, H>(test, ray, stack, leaf, nodes);
+        if self.nodes.len() == 1 {
+            // Small scenes: no stack (accel/root.rs).
+            self.walk_root::<ANY, COUNT, H, L>(test, ray, leaf, nodes);
             return;
         }
+        let need = 7 * self.depth + 1;
         if L::RESTARTABLE && !COUNT && need > SMALL_STACK {
             // Most rays: a small stack; the rare ray that overflows it starts again below.
             let stack = &mut [Entry::default(); SMALL_STACK];
