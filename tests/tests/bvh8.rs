@@ -132,7 +132,7 @@ impl<'a, B: Wide> WideScene<'a, B> {
         };
         let leaf = |first, count, t_max| {
             self.blocks
-                .closest(first, count, (&tri, &r4), t_max, &mut best, other)
+                .closest(first, count, &r4, t_max, &mut best, other)
         };
         self.bvh.closest(ray, leaf, nodes);
         best.map(|h| Hit {
@@ -152,7 +152,7 @@ impl<'a, B: Wide> WideScene<'a, B> {
         self.bvh.any(
             ray,
             |first, count, t_max| {
-                hit = self.blocks.any(first, count, (&tri, &r4), t_max, other);
+                hit = self.blocks.any(first, count, &r4, t_max, other);
                 hit
             },
             nodes,
@@ -373,14 +373,14 @@ fn agrees_on_soups_of_spheres_and_disks() {
             &ray,
             ClosestLeaves {
                 blocks: &s.blocks,
-                ray: (&tri, &r4),
+                ray: &r4,
                 best: &mut best,
                 other: blind,
             },
         );
         let mut any = AnyLeaves {
             blocks: &s.blocks,
-            ray: (&tri, &r4),
+            ray: &r4,
             hit: false,
             other: blind,
         };
@@ -725,7 +725,7 @@ fn restarted_casts_agree() {
         let mut small = Recording::<_, true> {
             inner: ClosestLeaves {
                 blocks: &s.blocks,
-                ray: (&tri, &r4),
+                ray: &r4,
                 best: &mut best[0],
                 other,
             },
@@ -736,7 +736,7 @@ fn restarted_casts_agree() {
         let mut plain = Recording::<_, false> {
             inner: ClosestLeaves {
                 blocks: &s.blocks,
-                ray: (&tri, &r4),
+                ray: &r4,
                 best: &mut best[1],
                 other,
             },
@@ -753,7 +753,7 @@ fn restarted_casts_agree() {
         assert_eq!(best[0].map(|h| h.t), brute);
         let mut any = AnyLeaves {
             blocks: &s.blocks,
-            ray: (&tri, &r4),
+            ray: &r4,
             hit: false,
             other,
         };

@@ -12,7 +12,7 @@ use super::leaves::Leaves;
 use super::simd8::{prefetch_in, Hit8, Portable};
 use super::tri4::{Ray4, Tri4};
 use super::{Bvh4, Bvh8};
-use crate::geometry::{Hit, TriRay};
+use crate::geometry::Hit;
 use alloc::vec::Vec;
 use glam::{Vec2, Vec3};
 
@@ -101,7 +101,7 @@ impl TriBlocks {
         &self,
         first: usize,
         count: usize,
-        ray: (&TriRay, &Ray4),
+        ray: &Ray4,
         t_max: f32,
         best: &mut Option<Hit>,
         other: impl FnMut(usize, &[Vec3; 3], f32) -> Option<(f32, Vec2)>,
@@ -121,12 +121,12 @@ impl TriBlocks {
         simd: H,
         first: usize,
         count: usize,
-        ray: (&TriRay, &Ray4),
+        ray: &Ray4,
         mut t_max: f32,
         best: &mut Option<Hit>,
         mut other: impl FnMut(usize, &[Vec3; 3], f32) -> Option<(f32, Vec2)>,
     ) -> f32 {
-        let (tri, r4) = ray;
+        let r4 = ray;
         let n = count.div_ceil(4);
         let mut k = 0;
         let mut found = |prim: usize, f: Option<(f32, Vec2)>, t_max: &mut f32| {
@@ -163,7 +163,7 @@ impl TriBlocks {
                     let f = if others & (1 << lane) != 0 {
                         other(prim, &NOT_A_TRIANGLE, t_max)
                     } else if lanes.fallback & (1 << lane) != 0 {
-                        fallback(blk, lane & 3, tri, t_max)
+                        fallback(blk, lane & 3, r4, t_max)
                     } else if lanes.accepts(lane, t_max) {
                         Some((lanes.t[lane], Vec2::new(lanes.b[1][lane], lanes.b[2][lane])))
                     } else {
@@ -196,7 +196,7 @@ impl TriBlocks {
                     let f = if others & (1 << lane) != 0 {
                         other(prim, &NOT_A_TRIANGLE, t_max)
                     } else if lanes.fallback & (1 << lane) != 0 {
-                        fallback(blk, lane, tri, t_max)
+                        fallback(blk, lane, r4, t_max)
                     } else if lanes.accepts(lane, t_max) {
                         Some((lanes.t[lane], Vec2::new(lanes.b[1][lane], lanes.b[2][lane])))
                     } else {
@@ -216,7 +216,7 @@ impl TriBlocks {
         &self,
         first: usize,
         count: usize,
-        ray: (&TriRay, &Ray4),
+        ray: &Ray4,
         t_max: f32,
         other: impl FnMut(usize, &[Vec3; 3], f32) -> Option<(f32, Vec2)>,
     ) -> bool {
@@ -231,11 +231,11 @@ impl TriBlocks {
         simd: H,
         first: usize,
         count: usize,
-        ray: (&TriRay, &Ray4),
+        ray: &Ray4,
         t_max: f32,
         mut other: impl FnMut(usize, &[Vec3; 3], f32) -> Option<(f32, Vec2)>,
     ) -> bool {
-        let (tri, r4) = ray;
+        let r4 = ray;
         let n = count.div_ceil(4);
         let mut k = 0;
         while k < n {
@@ -274,7 +274,7 @@ impl TriBlocks {
                 let lane = m.trailing_zeros() as usize;
                 m &= m - 1;
                 let blk = if lane < 4 { a } else { b };
-                if fallback(blk, lane & 3, tri, t_max).is_some() {
+                if fallback(blk, lane & 3, r4, t_max).is_some() {
                     return true;
                 }
             }
@@ -300,7 +300,7 @@ pub struct ClosestLeaves<'a, F> {
     /// The blocks the leaves refer to.
     pub blocks: &'a TriBlocks,
     /// The ray's triangle-test setup, computed once per ray.
-    pub ray: (&'a TriRay, &'a Ray4),
+    pub ray: &'a Ray4,
     /// The closest hit so far.
     pub best: &'a mut Option<Hit>,
     /// The test of a primitive that is not a triangle (see [`TriBlocks::closest`]).
@@ -333,7 +333,7 @@ pub struct AnyLeaves<'a, F> {
     /// The blocks the leaves refer to.
     pub blocks: &'a TriBlocks,
     /// The ray's triangle-test setup, computed once per ray.
-    pub ray: (&'a TriRay, &'a Ray4),
+    pub ray: &'a Ray4,
     /// Whether a hit was found.
     pub hit: bool,
     /// The test of a primitive that is not a triangle (see [`TriBlocks::closest`]).
@@ -367,8 +367,9 @@ const NOT_A_TRIANGLE: [Vec3; 3] = [Vec3::NAN; 3];
 /// The scalar test of a triangle lane the four-lane test left undecided (an edge function
 /// exactly zero: rare, so kept out of the loop).
 #[inline(never)]
-fn fallback(blk: &Tri4, lane: usize, tri: &TriRay, t_max: f32) -> Option<(f32, Vec2)> {
+fn fallback(blk: &Tri4, lane: usize, ray: &Ray4, t_max: f32) -> Option<(f32, Vec2)> {
     let [p0, p1, p2] = blk.corners(lane);
-    tri.intersect(t_max, p0, p1, p2)
+    ray.tri()
+        .intersect(t_max, p0, p1, p2)
         .map(|(t, _, b1, b2)| (t, Vec2::new(b1, b2)))
 }

@@ -103,6 +103,19 @@ impl Ray4 {
             s,
         }
     }
+
+    /// The setup of `ray`: that of [`TriRay::new`], taken as [`Ray4::new`] does.
+    #[inline(always)]
+    pub fn from_ray(ray: &crate::math::Ray) -> Ray4 {
+        Ray4::new(&TriRay::new(ray))
+    }
+
+    /// The scalar test's setup this was taken from (the same bits as the [`TriRay`] given to
+    /// [`Ray4::new`]).
+    #[inline(always)]
+    pub fn tri(&self) -> TriRay {
+        TriRay::from_parts(Vec3::from(self.o), self.k, self.s)
+    }
 }
 
 /// What the four-lane test found. Lane `i` is bit `i` of the masks; the arrays hold meaningful

@@ -48,6 +48,19 @@ impl TriRay {
         }
     }
 
+    /// The setup with origin `o`, axis permutation `k` and shear `s`, as [`TriRay::parts`]
+    /// returns them (so `from_parts` of `parts` is the same setup, bit for bit).
+    #[inline(always)]
+    pub(crate) fn from_parts(o: Vec3, k: [usize; 3], s: [f32; 3]) -> TriRay {
+        TriRay {
+            o,
+            k,
+            sx: s[0],
+            sy: s[1],
+            sz: s[2],
+        }
+    }
+
     /// The origin, the axis permutation `[kx, ky, kz]` (the ray is sheared along `kz`, its
     /// largest direction component) and the shear `(sx, sy, sz)`: what the four-lane test
     /// ([`crate::accel::tri4`]) needs to repeat this test's operations exactly.
