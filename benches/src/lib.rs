@@ -9,7 +9,7 @@ use tessera_core::accel::{
 };
 use tessera_core::bsdf::{Bsdf, Diffuse};
 use tessera_core::camera::{Filter, FovAxis, Perspective};
-use tessera_core::geometry::{intersect_triangle, Hit, Mesh, Shape, ShapeKind, TriRay};
+use tessera_core::geometry::{intersect_triangle, Hit, Mesh, Shape, ShapeKind};
 use tessera_core::math::{Aabb, Ray, Transform};
 use tessera_core::scene::{Scene, SceneParts};
 use tessera_core::texture::Texture;
@@ -424,13 +424,12 @@ impl<B: WideBvh> WideScene<B> {
     #[inline]
     pub fn intersect_hit(&self, ray: &Ray) -> Option<Hit> {
         let mut best: Option<Hit> = None;
-        let tri = TriRay::new(ray);
-        let r4 = Ray4::new(&tri);
+        let r4 = Ray4::from_ray(ray);
         self.bvh.closest(
             ray,
             ClosestLeaves {
                 blocks: &self.blocks,
-                ray: (&tri, &r4),
+                ray: &r4,
                 best: &mut best,
                 other: no_other,
             },
@@ -444,13 +443,12 @@ impl<B: WideBvh> WideScene<B> {
     /// Any hit.
     #[inline]
     pub fn occluded(&self, ray: &Ray) -> bool {
-        let tri = TriRay::new(ray);
-        let r4 = Ray4::new(&tri);
+        let r4 = Ray4::from_ray(ray);
         self.bvh.any(
             ray,
             AnyLeaves {
                 blocks: &self.blocks,
-                ray: (&tri, &r4),
+                ray: &r4,
                 hit: false,
                 other: no_other,
             },

@@ -8,7 +8,7 @@ use crate::geometry::{Disk, Hit, Interaction, Prim, Shape, ShapeKind, TriRay};
 use crate::math::{Aabb, Ray};
 use crate::sampling::Discrete1D;
 use alloc::vec::Vec;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// How emitter sampling picks one light.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -298,20 +298,31 @@ impl Scene {
     /// The closest hit along the ray, if any.
     pub fn intersect_hit(&self, ray: &Ray) -> Option<Hit> {
         let mut best: Option<Hit> = None;
-        let tri = TriRay::new(ray);
-        let r4 = Ray4::new(&tri);
+        let r4 = Ray4::from_ray(ray);
         self.bvh.cast::<false>(
             ray,
             ClosestLeaves {
                 blocks: &self.blocks,
-                ray: (&tri, &r4),
+                ray: &r4,
                 best: &mut best,
-                other: |i: usize, v: &[Vec3; 3], t_max: f32| {
-                    self.prims[i].intersect(ray, &tri, v, t_max, &self.disks)
-                },
+                other: |i: usize, v: &[Vec3; 3], t_max: f32| self.other_prim(i, ray, v, t_max),
             },
         );
         best
+    }
+
+    /// The test of primitive `i`, which is not a triangle (the leaves' `other`; `v` is its NaN
+    /// corners).
+    #[inline(always)]
+    fn other_prim(&self, i: usize, ray: &Ray, v: &[Vec3; 3], t_max: f32) -> Option<(f32, Vec2)> {
+        match &self.prims[i] {
+            Prim::Sphere { sphere, .. } => sphere.intersect(ray, t_max).map(|t| (t, Vec2::ZERO)),
+            Prim::Disk { disk, .. } => self.disks[*disk as usize].intersect(ray, t_max),
+            // Not reached from the blocks (a triangle's lane is tested there); as the scalar test.
+            pr @ Prim::Triangle { .. } => {
+                pr.intersect(ray, &TriRay::new(ray), v, t_max, &self.disks)
+            }
+        }
     }
 
     /// Tests the primitives `prims` of a leaf for a hit closer than `t_max`, updating `best`;
@@ -320,19 +331,15 @@ impl Scene {
     pub(crate) fn leaf_closest(
         &self,
         ray: &Ray,
-        (tri, r4): (&TriRay, &Ray4),
+        r4: &Ray4,
         prims: core::ops::Range<usize>,
         t_max: f32,
         best: &mut Option<Hit>,
     ) -> f32 {
-        self.blocks.closest(
-            prims.start,
-            prims.len(),
-            (tri, r4),
-            t_max,
-            best,
-            |i, v, t_max| self.prims[i].intersect(ray, tri, v, t_max, &self.disks),
-        )
+        self.blocks
+            .closest(prims.start, prims.len(), r4, t_max, best, |i, v, t_max| {
+                self.other_prim(i, ray, v, t_max)
+            })
     }
 
     /// Whether any primitive of `prims` blocks the ray before `t_max` (ordinary and counted
@@ -341,13 +348,13 @@ impl Scene {
     pub(crate) fn leaf_any(
         &self,
         ray: &Ray,
-        (tri, r4): (&TriRay, &Ray4),
+        r4: &Ray4,
         prims: core::ops::Range<usize>,
         t_max: f32,
     ) -> bool {
         self.blocks
-            .any(prims.start, prims.len(), (tri, r4), t_max, |i, v, t_max| {
-                self.prims[i].intersect(ray, tri, v, t_max, &self.disks)
+            .any(prims.start, prims.len(), r4, t_max, |i, v, t_max| {
+                self.other_prim(i, ray, v, t_max)
             })
     }
 
@@ -361,15 +368,12 @@ impl Scene {
 
     /// Whether anything blocks the ray within its extent (any hit, early exit).
     pub fn occluded(&self, ray: &Ray) -> bool {
-        let tri = TriRay::new(ray);
-        let r4 = Ray4::new(&tri);
+        let r4 = Ray4::from_ray(ray);
         let mut leaves = AnyLeaves {
             blocks: &self.blocks,
-            ray: (&tri, &r4),
+            ray: &r4,
             hit: false,
-            other: |i: usize, v: &[Vec3; 3], t_max: f32| {
-                self.prims[i].intersect(ray, &tri, v, t_max, &self.disks)
-            },
+            other: |i: usize, v: &[Vec3; 3], t_max: f32| self.other_prim(i, ray, v, t_max),
         };
         self.bvh.cast::<true>(ray, &mut leaves);
         leaves.hit

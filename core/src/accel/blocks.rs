@@ -3,15 +3,16 @@
 //!
 //! Each leaf's primitives (a range of the build order) fill `ceil(count / 4)` consecutive
 //! blocks; the leaf then refers to its first block instead of its first primitive. A primitive
-//! that is not a triangle (sphere, disk) takes a lane with NaN corners, which the four-lane test
-//! hands back as a fallback lane, and the caller's own test decides it. The loops visit lanes in
-//! primitive order and lower `t_max` as they go, exactly as a loop of scalar tests over the
-//! leaf's primitives would, so they find the same primitive at the same distance.
+//! that is not a triangle (sphere, disk) takes a lane with NaN corners; the loops find those
+//! lanes with one compare per block ([`Tri4::nan_lanes`]) and call the caller's own test for
+//! them directly (a block holding no triangle skips the triangle test). The closest-hit loop
+//! visits lanes in primitive order and lowers `t_max` as it goes, exactly as a loop of scalar
+//! tests over the leaf's primitives would, so it finds the same primitive at the same distance.
 use super::leaves::Leaves;
 use super::simd8::{prefetch_in, Hit8, Portable};
 use super::tri4::{Ray4, Tri4};
 use super::{Bvh4, Bvh8};
-use crate::geometry::{Hit, TriRay};
+use crate::geometry::Hit;
 use alloc::vec::Vec;
 use glam::{Vec2, Vec3};
 
@@ -38,6 +39,9 @@ impl LeafRanges for Bvh8 {
 pub struct TriBlocks {
     /// Blocks, each leaf's consecutive.
     pub blocks: Vec<Tri4>,
+    /// Whether some lane holds a primitive that is not a triangle (else the loops skip looking
+    /// for such lanes).
+    others: bool,
 }
 
 impl TriBlocks {
@@ -63,12 +67,23 @@ impl TriBlocks {
         });
         // The capacity guess above is generous; keep only what the leaves use.
         blocks.shrink_to_fit();
-        TriBlocks { blocks }
+        let others = corners.iter().any(|c| c[0].x.is_nan());
+        TriBlocks { blocks, others }
     }
 
     /// Bytes the blocks occupy (not counting spare vector capacity).
     pub fn memory_bytes(&self) -> usize {
         core::mem::size_of_val(self.blocks.as_slice())
+    }
+
+    /// The lanes of `blk` (within `valid`) that hold no triangle.
+    #[inline(always)]
+    fn others(&self, blk: &Tri4, valid: u32) -> u32 {
+        if self.others {
+            blk.nan_lanes() & valid
+        } else {
+            0
+        }
     }
 
     /// The lanes of block `k` (0-based within a leaf of `count` primitives) that hold primitives.
@@ -86,7 +101,7 @@ impl TriBlocks {
         &self,
         first: usize,
         count: usize,
-        ray: (&TriRay, &Ray4),
+        ray: &Ray4,
         t_max: f32,
         best: &mut Option<Hit>,
         other: impl FnMut(usize, &[Vec3; 3], f32) -> Option<(f32, Vec2)>,
@@ -96,7 +111,9 @@ impl TriBlocks {
 
     /// [`TriBlocks::closest`] with the SIMD tests of `simd`: a leaf's blocks are tested two at a
     /// time with [`Hit8::tri8`] (eight lanes in one AVX2 pass), an odd last block with the
-    /// four-lane test. Lanes are visited in primitive order, so the result is the same.
+    /// four-lane test. Lanes are visited in primitive order, so the result is the same. Lanes
+    /// that hold no triangle go straight to `other`; blocks (or pairs) that hold no triangle at
+    /// all skip the triangle test.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub fn closest_with<H: Hit8>(
@@ -104,64 +121,88 @@ impl TriBlocks {
         simd: H,
         first: usize,
         count: usize,
-        ray: (&TriRay, &Ray4),
+        ray: &Ray4,
         mut t_max: f32,
         best: &mut Option<Hit>,
         mut other: impl FnMut(usize, &[Vec3; 3], f32) -> Option<(f32, Vec2)>,
     ) -> f32 {
-        let (tri, r4) = ray;
+        let r4 = ray;
         let n = count.div_ceil(4);
         let mut k = 0;
+        let mut found = |prim: usize, f: Option<(f32, Vec2)>, t_max: &mut f32| {
+            if let Some((t, uv)) = f {
+                *t_max = t;
+                *best = Some(Hit {
+                    t,
+                    prim: prim as u32,
+                    uv,
+                });
+            }
+        };
         while k + 1 < n {
             let (a, b) = (&self.blocks[first + k], &self.blocks[first + k + 1]);
-            let lanes = simd.tri8(a, b, r4, t_max);
             let valid = Self::valid(k, count) | (Self::valid(k + 1, count) << 4);
-            let mut m = (lanes.hit | lanes.fallback) & valid;
-            while m != 0 {
-                let lane = m.trailing_zeros() as usize;
-                m &= m - 1;
-                let blk = if lane < 4 { a } else { b };
-                let prim = blk.first as usize + (lane & 3);
-                let found = if lanes.fallback & (1 << lane) != 0 {
-                    fallback(blk, lane & 3, prim, tri, t_max, &mut other)
-                } else if lanes.accepts(lane, t_max) {
-                    Some((lanes.t[lane], Vec2::new(lanes.b[1][lane], lanes.b[2][lane])))
-                } else {
-                    None
-                };
-                if let Some((t, uv)) = found {
-                    t_max = t;
-                    *best = Some(Hit {
-                        t,
-                        prim: prim as u32,
-                        uv,
-                    });
+            let others = self.others(a, valid) | self.others(b, valid >> 4) << 4;
+            let blk = |lane: usize| if lane < 4 { a } else { b };
+            if others == valid {
+                let mut m = others;
+                while m != 0 {
+                    let lane = m.trailing_zeros() as usize;
+                    m &= m - 1;
+                    let prim = blk(lane).first as usize + (lane & 3);
+                    found(prim, other(prim, &NOT_A_TRIANGLE, t_max), &mut t_max);
+                }
+            } else {
+                let lanes = simd.tri8(a, b, r4, t_max);
+                let mut m = (lanes.hit | lanes.fallback) & valid;
+                while m != 0 {
+                    let lane = m.trailing_zeros() as usize;
+                    m &= m - 1;
+                    let blk = blk(lane);
+                    let prim = blk.first as usize + (lane & 3);
+                    let f = if others & (1 << lane) != 0 {
+                        other(prim, &NOT_A_TRIANGLE, t_max)
+                    } else if lanes.fallback & (1 << lane) != 0 {
+                        fallback(blk, lane & 3, r4, t_max)
+                    } else if lanes.accepts(lane, t_max) {
+                        Some((lanes.t[lane], Vec2::new(lanes.b[1][lane], lanes.b[2][lane])))
+                    } else {
+                        None
+                    };
+                    found(prim, f, &mut t_max);
                 }
             }
             k += 2;
         }
         if k < n {
             let blk = &self.blocks[first + k];
-            let lanes = simd.tri4(blk, r4, t_max);
-            let mut m = (lanes.hit | lanes.fallback) & Self::valid(k, count);
-            while m != 0 {
-                let lane = m.trailing_zeros() as usize;
-                m &= m - 1;
-                let prim = blk.first as usize + lane;
-                let found = if lanes.fallback & (1 << lane) != 0 {
-                    fallback(blk, lane, prim, tri, t_max, &mut other)
-                } else if lanes.accepts(lane, t_max) {
-                    Some((lanes.t[lane], Vec2::new(lanes.b[1][lane], lanes.b[2][lane])))
-                } else {
-                    None
-                };
-                if let Some((t, uv)) = found {
-                    t_max = t;
-                    *best = Some(Hit {
-                        t,
-                        prim: prim as u32,
-                        uv,
-                    });
+            let valid = Self::valid(k, count);
+            let others = self.others(blk, valid);
+            if others == valid {
+                let mut m = others;
+                while m != 0 {
+                    let lane = m.trailing_zeros() as usize;
+                    m &= m - 1;
+                    let prim = blk.first as usize + lane;
+                    found(prim, other(prim, &NOT_A_TRIANGLE, t_max), &mut t_max);
+                }
+            } else {
+                let lanes = simd.tri4(blk, r4, t_max);
+                let mut m = (lanes.hit | lanes.fallback) & valid;
+                while m != 0 {
+                    let lane = m.trailing_zeros() as usize;
+                    m &= m - 1;
+                    let prim = blk.first as usize + lane;
+                    let f = if others & (1 << lane) != 0 {
+                        other(prim, &NOT_A_TRIANGLE, t_max)
+                    } else if lanes.fallback & (1 << lane) != 0 {
+                        fallback(blk, lane, r4, t_max)
+                    } else if lanes.accepts(lane, t_max) {
+                        Some((lanes.t[lane], Vec2::new(lanes.b[1][lane], lanes.b[2][lane])))
+                    } else {
+                        None
+                    };
+                    found(prim, f, &mut t_max);
                 }
             }
         }
@@ -175,7 +216,7 @@ impl TriBlocks {
         &self,
         first: usize,
         count: usize,
-        ray: (&TriRay, &Ray4),
+        ray: &Ray4,
         t_max: f32,
         other: impl FnMut(usize, &[Vec3; 3], f32) -> Option<(f32, Vec2)>,
     ) -> bool {
@@ -183,42 +224,67 @@ impl TriBlocks {
     }
 
     /// [`TriBlocks::any`] with the SIMD tests of `simd` (blocks two at a time, as
-    /// [`TriBlocks::closest_with`]).
+    /// [`TriBlocks::closest_with`]; blocks without triangles skip the triangle test).
     #[inline(always)]
     pub fn any_with<H: Hit8>(
         &self,
         simd: H,
         first: usize,
         count: usize,
-        ray: (&TriRay, &Ray4),
+        ray: &Ray4,
         t_max: f32,
         mut other: impl FnMut(usize, &[Vec3; 3], f32) -> Option<(f32, Vec2)>,
     ) -> bool {
-        let (tri, r4) = ray;
+        let r4 = ray;
         let n = count.div_ceil(4);
         let mut k = 0;
         while k < n {
             let a = &self.blocks[first + k];
+            let pair = k + 1 < n;
             // The next block of the leaf, if any (else `a` again; its lanes are then not valid).
-            let b = &self.blocks[first + k + usize::from(k + 1 < n)];
-            let (hit, fb, valid) = if k + 1 < n {
-                let lanes = simd.tri8(a, b, r4, t_max);
+            let b = &self.blocks[first + k + usize::from(pair)];
+            let (valid, others) = if pair {
                 let valid = Self::valid(k, count) | (Self::valid(k + 1, count) << 4);
-                (lanes.hit, lanes.fallback, valid)
+                (
+                    valid,
+                    self.others(a, valid) | self.others(b, valid >> 4) << 4,
+                )
             } else {
-                let lanes = simd.tri4(a, r4, t_max);
-                (lanes.hit, lanes.fallback, Self::valid(k, count))
+                let valid = Self::valid(k, count);
+                (valid, self.others(a, valid))
             };
-            if hit & valid != 0 {
-                return true;
+            let fb = if others == valid {
+                0
+            } else {
+                let (hit, fb) = if pair {
+                    let lanes = simd.tri8(a, b, r4, t_max);
+                    (lanes.hit, lanes.fallback)
+                } else {
+                    let lanes = simd.tri4(a, r4, t_max);
+                    (lanes.hit, lanes.fallback)
+                };
+                if hit & valid != 0 {
+                    return true;
+                }
+                fb & valid & !others
+            };
+            // Triangles left to the scalar test, then the other primitives.
+            let mut m = fb;
+            while m != 0 {
+                let lane = m.trailing_zeros() as usize;
+                m &= m - 1;
+                let blk = if lane < 4 { a } else { b };
+                if fallback(blk, lane & 3, r4, t_max).is_some() {
+                    return true;
+                }
             }
-            let mut m = fb & valid;
+            let mut m = others;
             while m != 0 {
                 let lane = m.trailing_zeros() as usize;
                 m &= m - 1;
                 let blk = if lane < 4 { a } else { b };
                 let prim = blk.first as usize + (lane & 3);
-                if fallback(blk, lane & 3, prim, tri, t_max, &mut other).is_some() {
+                if other(prim, &NOT_A_TRIANGLE, t_max).is_some() {
                     return true;
                 }
             }
@@ -234,7 +300,7 @@ pub struct ClosestLeaves<'a, F> {
     /// The blocks the leaves refer to.
     pub blocks: &'a TriBlocks,
     /// The ray's triangle-test setup, computed once per ray.
-    pub ray: (&'a TriRay, &'a Ray4),
+    pub ray: &'a Ray4,
     /// The closest hit so far.
     pub best: &'a mut Option<Hit>,
     /// The test of a primitive that is not a triangle (see [`TriBlocks::closest`]).
@@ -267,7 +333,7 @@ pub struct AnyLeaves<'a, F> {
     /// The blocks the leaves refer to.
     pub blocks: &'a TriBlocks,
     /// The ray's triangle-test setup, computed once per ray.
-    pub ray: (&'a TriRay, &'a Ray4),
+    pub ray: &'a Ray4,
     /// Whether a hit was found.
     pub hit: bool,
     /// The test of a primitive that is not a triangle (see [`TriBlocks::closest`]).
@@ -295,21 +361,15 @@ where
     }
 }
 
-/// The scalar test of a lane the four-lane test left undecided.
+/// The corners passed to `other` for a primitive that is not a triangle.
+const NOT_A_TRIANGLE: [Vec3; 3] = [Vec3::NAN; 3];
+
+/// The scalar test of a triangle lane the four-lane test left undecided (an edge function
+/// exactly zero: rare, so kept out of the loop).
 #[inline(never)]
-fn fallback(
-    blk: &Tri4,
-    lane: usize,
-    prim: usize,
-    tri: &TriRay,
-    t_max: f32,
-    other: &mut impl FnMut(usize, &[Vec3; 3], f32) -> Option<(f32, Vec2)>,
-) -> Option<(f32, Vec2)> {
-    let v = blk.corners(lane);
-    if v[0].x.is_nan() {
-        return other(prim, &v, t_max);
-    }
-    let [p0, p1, p2] = v;
-    tri.intersect(t_max, p0, p1, p2)
+fn fallback(blk: &Tri4, lane: usize, ray: &Ray4, t_max: f32) -> Option<(f32, Vec2)> {
+    let [p0, p1, p2] = blk.corners(lane);
+    ray.tri()
+        .intersect(t_max, p0, p1, p2)
         .map(|(t, _, b1, b2)| (t, Vec2::new(b1, b2)))
 }

@@ -265,6 +265,11 @@ impl Bvh8 {
         mut leaf: L,
         nodes: &mut u64,
     ) {
+        if self.nodes.len() == 1 {
+            // Small scenes: no stack (accel/root.rs).
+            self.walk_root::<ANY, COUNT, H, L>(test, ray, leaf, nodes);
+            return;
+        }
         let need = 7 * self.depth + 1;
         if L::RESTARTABLE && !COUNT && need > SMALL_STACK {
             // Most rays: a small stack; the rare ray that overflows it starts again below.

@@ -3,7 +3,7 @@
 //! exactly what [`Scene::intersect_hit`] and [`Scene::occluded`] return; the ordinary casts are
 //! compiled without counters.
 use super::tri4::Ray4;
-use crate::geometry::{Hit, TriRay};
+use crate::geometry::Hit;
 use crate::math::Ray;
 use crate::scene::Scene;
 
@@ -34,13 +34,12 @@ impl Scene {
     /// [`Scene::intersect_hit`], counting its work into `c`.
     pub fn intersect_hit_counted(&self, ray: &Ray, c: &mut TraversalCounts) -> Option<Hit> {
         let mut best: Option<Hit> = None;
-        let tri = TriRay::new(ray);
-        let r4 = Ray4::new(&tri);
+        let r4 = Ray4::from_ray(ray);
         let (mut leaves, mut blocks) = (0u64, 0u64);
         let leaf = |first: usize, count: usize, t_max: f32| {
             leaves += 1;
             blocks += count.div_ceil(4) as u64;
-            self.leaf_closest(ray, (&tri, &r4), first..first + count, t_max, &mut best)
+            self.leaf_closest(ray, &r4, first..first + count, t_max, &mut best)
         };
         self.bvh.traverse_closest_counted(ray, leaf, &mut c.nodes);
         c.rays += 1;
@@ -52,13 +51,12 @@ impl Scene {
     /// [`Scene::occluded`], counting its work into `c`.
     pub fn occluded_counted(&self, ray: &Ray, c: &mut TraversalCounts) -> bool {
         let mut hit = false;
-        let tri = TriRay::new(ray);
-        let r4 = Ray4::new(&tri);
+        let r4 = Ray4::from_ray(ray);
         let (mut leaves, mut blocks) = (0u64, 0u64);
         let leaf = |first: usize, count: usize, t_max: f32| {
             leaves += 1;
             blocks += count.div_ceil(4) as u64;
-            hit = self.leaf_any(ray, (&tri, &r4), first..first + count, t_max);
+            hit = self.leaf_any(ray, &r4, first..first + count, t_max);
             hit
         };
         self.bvh.traverse_any_counted(ray, leaf, &mut c.nodes);

@@ -8,6 +8,7 @@ mod bvh8;
 mod collapse;
 mod counts;
 mod leaves;
+mod root;
 pub mod simd;
 pub mod simd8;
 pub mod tri4;

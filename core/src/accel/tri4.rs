@@ -48,6 +48,26 @@ impl Tri4 {
         }
     }
 
+    /// Lanes holding no triangle (NaN first corner): primitives that are not triangles, and
+    /// unused lanes. Bit `i` is lane `i`.
+    #[inline(always)]
+    pub fn nan_lanes(&self) -> u32 {
+        #[cfg(target_arch = "x86_64")]
+        {
+            use core::arch::x86_64::{_mm_cmpunord_ps, _mm_loadu_ps, _mm_movemask_ps};
+            // SAFETY: SSE and SSE2 are in the x86_64 baseline; the load reads the four
+            // initialised f32s of `self.v[0]`, borrowed for the call (no alignment needed).
+            unsafe {
+                let x = _mm_loadu_ps(self.v[0].as_ptr());
+                _mm_movemask_ps(_mm_cmpunord_ps(x, x)) as u32
+            }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            (0..4).fold(0, |m, l| m | (u32::from(self.v[0][l].is_nan()) << l))
+        }
+    }
+
     /// The corners stored in `lane`.
     #[inline(always)]
     pub fn corners(&self, lane: usize) -> [Vec3; 3] {
@@ -76,14 +96,25 @@ impl Ray4 {
     /// Takes the permutation and shear the scalar test uses for this ray.
     #[inline]
     pub fn new(tri: &TriRay) -> Ray4 {
-        let (o, kz, s) = tri.parts();
-        let kx = if kz == 2 { 0 } else { kz + 1 };
-        let ky = if kx == 2 { 0 } else { kx + 1 };
+        let (o, k, s) = tri.parts();
         Ray4 {
             o: o.to_array(),
-            k: [kx, ky, kz],
+            k,
             s,
         }
+    }
+
+    /// The setup of `ray`: that of [`TriRay::new`], taken as [`Ray4::new`] does.
+    #[inline(always)]
+    pub fn from_ray(ray: &crate::math::Ray) -> Ray4 {
+        Ray4::new(&TriRay::new(ray))
+    }
+
+    /// The scalar test's setup this was taken from (the same bits as the [`TriRay`] given to
+    /// [`Ray4::new`]).
+    #[inline(always)]
+    pub fn tri(&self) -> TriRay {
+        TriRay::from_parts(Vec3::from(self.o), self.k, self.s)
     }
 }
 

@@ -12,7 +12,8 @@ use glam::Vec3;
 #[derive(Clone, Copy, Debug)]
 pub struct TriRay {
     o: Vec3,
-    kz: usize,
+    /// `kx, ky, kz`: the permutation (`kz` the largest direction component).
+    k: [usize; 3],
     sx: f32,
     sy: f32,
     sz: f32,
@@ -40,19 +41,32 @@ impl TriRay {
         let sz = 1.0 / d[kz];
         TriRay {
             o: ray.o,
-            kz,
+            k: [kx, ky, kz],
             sx: -d[kx] * sz,
             sy: -d[ky] * sz,
             sz,
         }
     }
 
-    /// The origin, the index of the axis the ray is sheared along (its largest direction
-    /// component) and the shear `(sx, sy, sz)`: what the four-lane test
+    /// The setup with origin `o`, axis permutation `k` and shear `s`, as [`TriRay::parts`]
+    /// returns them (so `from_parts` of `parts` is the same setup, bit for bit).
+    #[inline(always)]
+    pub(crate) fn from_parts(o: Vec3, k: [usize; 3], s: [f32; 3]) -> TriRay {
+        TriRay {
+            o,
+            k,
+            sx: s[0],
+            sy: s[1],
+            sz: s[2],
+        }
+    }
+
+    /// The origin, the axis permutation `[kx, ky, kz]` (the ray is sheared along `kz`, its
+    /// largest direction component) and the shear `(sx, sy, sz)`: what the four-lane test
     /// ([`crate::accel::tri4`]) needs to repeat this test's operations exactly.
     #[inline(always)]
-    pub fn parts(&self) -> (Vec3, usize, [f32; 3]) {
-        (self.o, self.kz, [self.sx, self.sy, self.sz])
+    pub fn parts(&self) -> (Vec3, [usize; 3], [f32; 3]) {
+        (self.o, self.k, [self.sx, self.sy, self.sz])
     }
 
     /// Intersects the ray (within `[0, t_max)`) with the triangle; returns `(t, b0, b1, b2)`.
@@ -64,7 +78,7 @@ impl TriRay {
         p1: Vec3,
         p2: Vec3,
     ) -> Option<(f32, f32, f32, f32)> {
-        match self.kz {
+        match self.k[2] {
             0 => self.hit::<1, 2, 0>(t_max, p0, p1, p2),
             1 => self.hit::<2, 0, 1>(t_max, p0, p1, p2),
             _ => self.hit::<0, 1, 2>(t_max, p0, p1, p2),
