@@ -169,3 +169,4 @@ pub mod cap;
 pub mod rng;
 pub mod soup;
 pub mod stress;
+pub mod wide;
