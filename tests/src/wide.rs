@@ -21,41 +21,36 @@ pub trait Wide: LeafRanges + Sized {
     fn any(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> bool, n: Option<&mut u64>);
 }
 
-impl Wide for Bvh4 {
-    fn build(bounds: &[Aabb]) -> (Self, Vec<u32>) {
-        Bvh4::build(bounds)
-    }
-    fn closest(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> f32, n: Option<&mut u64>) {
-        match n {
-            Some(n) => self.traverse_closest_counted(ray, leaf, n),
-            None => self.traverse_closest(ray, leaf),
+/// `Wide` for a hierarchy type with the usual walk methods (`Bvh4` and `Bvh8` have the same
+/// names and signatures).
+macro_rules! wide_by_methods {
+    ($($t:ty),*) => {$(
+        impl Wide for $t {
+            fn build(bounds: &[Aabb]) -> (Self, Vec<u32>) {
+                <$t>::build(bounds)
+            }
+            fn closest(
+                &self,
+                ray: &Ray,
+                leaf: impl FnMut(usize, usize, f32) -> f32,
+                n: Option<&mut u64>,
+            ) {
+                match n {
+                    Some(n) => self.traverse_closest_counted(ray, leaf, n),
+                    None => self.traverse_closest(ray, leaf),
+                }
+            }
+            fn any(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> bool, n: Option<&mut u64>) {
+                match n {
+                    Some(n) => self.traverse_any_counted(ray, leaf, n),
+                    None => self.traverse_any(ray, leaf),
+                }
+            }
         }
-    }
-    fn any(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> bool, n: Option<&mut u64>) {
-        match n {
-            Some(n) => self.traverse_any_counted(ray, leaf, n),
-            None => self.traverse_any(ray, leaf),
-        }
-    }
+    )*};
 }
 
-impl Wide for Bvh8 {
-    fn build(bounds: &[Aabb]) -> (Self, Vec<u32>) {
-        Bvh8::build(bounds)
-    }
-    fn closest(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> f32, n: Option<&mut u64>) {
-        match n {
-            Some(n) => self.traverse_closest_counted(ray, leaf, n),
-            None => self.traverse_closest(ray, leaf),
-        }
-    }
-    fn any(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> bool, n: Option<&mut u64>) {
-        match n {
-            Some(n) => self.traverse_any_counted(ray, leaf, n),
-            None => self.traverse_any(ray, leaf),
-        }
-    }
-}
+wide_by_methods!(Bvh4, Bvh8);
 
 /// The 8-wide hierarchy collapsed greedily (the default is the surface-area collapse).
 pub struct Greedy8(pub Bvh8);
