@@ -22,7 +22,7 @@ pub struct Sphere {
 pub struct ConeSample {
     /// Point on the sphere.
     pub p: Vec3,
-    /// Error bound of `p` (from its projection onto the sphere, [`Sphere::project`]).
+    /// Error bound of `p` (the bound [`Sphere::project`] gives a point it places on the sphere).
     pub p_err: Vec3,
     /// Outward unit normal there.
     pub n: Vec3,
