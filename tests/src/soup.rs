@@ -1,10 +1,10 @@
 //! Ray-casting test data shared by the BVH tests: a flat scene of triangles (one mesh) and
-//! spheres with a diffuse BSDF and no emitters, random triangle soups with degenerate
+//! spheres (or any shapes and disks) with a diffuse BSDF and no emitters, random triangle soups with degenerate
 //! triangles, and random rays, some with a short extent.
 use crate::rng::SplitMix;
 use tessera_core::bsdf::{Bsdf, Diffuse};
 use tessera_core::camera::{Filter, FovAxis, Perspective};
-use tessera_core::geometry::{Mesh, Shape, ShapeKind, Sphere};
+use tessera_core::geometry::{Disk, Mesh, Shape, ShapeKind, Sphere, TriRay};
 use tessera_core::glam::Vec3;
 use tessera_core::math::{Ray, Transform};
 use tessera_core::scene::{Scene, SceneParts};
@@ -21,25 +21,39 @@ pub fn scene(tris: Vec<[Vec3; 3]>, spheres: Vec<Sphere>) -> Scene {
 
 /// A scene of one indexed mesh (none when `indices` is empty) and spheres.
 pub fn mesh_scene(positions: Vec<Vec3>, indices: Vec<[u32; 3]>, spheres: Vec<Sphere>) -> Scene {
-    let shape = |kind| Shape {
-        kind,
-        bsdf: 0,
-        emitter: None,
-        flip_normals: false,
-    };
     let mut shapes = Vec::new();
     if !indices.is_empty() {
-        shapes.push(shape(ShapeKind::Mesh(Mesh::new(
+        shapes.push(diffuse_shape(ShapeKind::Mesh(Mesh::new(
             positions,
             vec![],
             vec![],
             indices,
         ))));
     }
-    shapes.extend(spheres.into_iter().map(|s| shape(ShapeKind::Sphere(s))));
+    shapes.extend(
+        spheres
+            .into_iter()
+            .map(|s| diffuse_shape(ShapeKind::Sphere(s))),
+    );
+    scene_of(shapes, vec![])
+}
+
+/// A shape with the test scenes' one diffuse BSDF and no emitter.
+pub fn diffuse_shape(kind: ShapeKind) -> Shape {
+    Shape {
+        kind,
+        bsdf: 0,
+        emitter: None,
+        flip_normals: false,
+    }
+}
+
+/// A scene of `shapes` (made with [`diffuse_shape`]) and the disks they refer to, with one
+/// diffuse BSDF, no emitters and a small camera.
+pub fn scene_of(shapes: Vec<Shape>, disks: Vec<Disk>) -> Scene {
     Scene::new(SceneParts {
         shapes,
-        disks: vec![],
+        disks,
         bsdfs: vec![Bsdf::Diffuse(Diffuse {
             reflectance: Texture::constant(0.5),
         })],
@@ -49,6 +63,18 @@ pub fn mesh_scene(positions: Vec<Vec3>, indices: Vec<[u32; 3]>, spheres: Vec<Sph
         light_selection: Default::default(),
     })
     .expect("valid scene")
+}
+
+/// The closest hit by brute force, a loop over every primitive of the scene: `(t, primitive)`.
+pub fn brute_closest(scene: &Scene, ray: &Ray) -> Option<(f32, usize)> {
+    let tri = TriRay::new(ray);
+    let mut best: Option<(f32, usize)> = None;
+    for i in 0..scene.prims.len() {
+        if let Some((t, _)) = scene.intersect_prim(i, ray, &tri, best.map_or(ray.t_max, |b| b.0)) {
+            best = Some((t, i));
+        }
+    }
+    best
 }
 
 /// `n` triangles in a cube of side 20: mostly small, every tenth large, and degenerate ones (a

@@ -3,6 +3,7 @@
 //! closest and any hits against brute force, the 4-wide hierarchy, the greedy collapse, the
 //! portable box test, the counted walks and the scene's own casts. Used by `tests/bvh8.rs` and
 //! `tests/bvh8_mixed.rs`.
+use crate::soup::brute_closest;
 use tessera_core::accel::tri4::Ray4;
 use tessera_core::accel::{Bvh, Bvh4, Bvh8, Collapse, LeafRanges, TriBlocks};
 use tessera_core::geometry::{Hit, TriRay};
@@ -162,15 +163,7 @@ pub fn compare(scene: &Scene, w8: &WideScene<Bvh8>, rays: &[Ray]) -> (usize, usi
     let (mut hits, mut ties, mut bad) = (0, 0, 0);
     let key = |h: Option<Hit>| h.map(|h| (h.t.to_bits(), h.prim));
     for ray in rays {
-        let mut best: Option<(f32, usize)> = None;
-        let tri = TriRay::new(ray);
-        for i in 0..scene.prims.len() {
-            if let Some((t, _)) =
-                scene.intersect_prim(i, ray, &tri, best.map_or(ray.t_max, |b| b.0))
-            {
-                best = Some((t, i));
-            }
-        }
+        let best = brute_closest(scene, ray);
         let h8 = w8.intersect_hit(ray, None);
         let any8 = w8.occluded(ray, None);
         let mut n = 0;

@@ -2,13 +2,14 @@
 //! (distance and primitive) and occlusion, on random triangle soups with spheres and disks.
 use tessera_core::bsdf::{Bsdf, Diffuse};
 use tessera_core::camera::{Filter, FovAxis, Perspective};
-use tessera_core::geometry::{Disk, Mesh, Shape, ShapeKind, Sphere, TriRay};
+use tessera_core::geometry::{Disk, Mesh, Shape, ShapeKind, Sphere};
 use tessera_core::glam::{Mat4, Vec2, Vec3};
 use tessera_core::math::{Ray, Transform};
 use tessera_core::scene::{Scene, SceneParts};
 use tessera_core::texture::Texture;
 
 use tessera_tests::rng::SplitMix as Rng;
+use tessera_tests::soup::brute_closest;
 
 fn random_scene(rng: &mut Rng, triangles: usize) -> Scene {
     let mut positions = Vec::new();
@@ -79,15 +80,7 @@ fn bvh_agrees_with_brute_force() {
             if rng.f() < 0.3 {
                 ray.t_max = rng.f() * 40.0;
             }
-            let mut best: Option<(f32, usize)> = None;
-            let tri = TriRay::new(&ray);
-            for i in 0..scene.prims.len() {
-                if let Some((t, _)) =
-                    scene.intersect_prim(i, &ray, &tri, best.map_or(ray.t_max, |b| b.0))
-                {
-                    best = Some((t, i));
-                }
-            }
+            let best = brute_closest(&scene, &ray);
             let hit = scene.intersect_hit(&ray);
             match (best, hit) {
                 (None, None) => {}

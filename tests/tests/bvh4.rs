@@ -10,22 +10,14 @@ use tessera_core::math::{Aabb, Ray};
 use tessera_core::scene::Scene;
 
 use tessera_tests::rng::SplitMix as Rng;
-use tessera_tests::soup::{random_rays, random_soup, scene};
+use tessera_tests::soup::{brute_closest, random_rays, random_soup, scene};
 
 /// Checks the scene against a loop over every primitive; returns the number of hits. Exact ties
 /// may resolve to either primitive; there must be few of them.
 fn check_rays(scene: &Scene, rays: &[Ray]) -> usize {
     let (mut hits, mut ties) = (0, 0);
     for ray in rays {
-        let mut best: Option<(f32, usize)> = None;
-        let tri = TriRay::new(ray);
-        for i in 0..scene.prims.len() {
-            if let Some((t, _)) =
-                scene.intersect_prim(i, ray, &tri, best.map_or(ray.t_max, |b| b.0))
-            {
-                best = Some((t, i));
-            }
-        }
+        let best = brute_closest(scene, ray);
         let hit = scene.intersect_hit(ray);
         match (best, hit) {
             (None, None) => {}
@@ -40,6 +32,7 @@ fn check_rays(scene: &Scene, rays: &[Ray]) -> usize {
                 if i as u32 != h.prim {
                     // An exact tie (a ray along an edge shared by two triangles): the other
                     // primitive must be hit at the very same distance.
+                    let tri = TriRay::new(ray);
                     let other = scene.intersect_prim(h.prim as usize, ray, &tri, ray.t_max);
                     assert_eq!(other.map(|o| o.0), Some(t), "closest primitive differs");
                     ties += 1;

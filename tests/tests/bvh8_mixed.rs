@@ -5,15 +5,12 @@
 //! disagree.
 use tessera_core::accel::tri4::Ray4;
 use tessera_core::accel::{AnyLeaves, Bvh8, ClosestLeaves};
-use tessera_core::bsdf::{Bsdf, Diffuse};
-use tessera_core::camera::{Filter, FovAxis, Perspective};
-use tessera_core::geometry::{Disk, Hit, Mesh, Shape, ShapeKind, Sphere, TriRay};
+use tessera_core::geometry::{Disk, Hit, Mesh, ShapeKind, Sphere, TriRay};
 use tessera_core::glam::{EulerRot, Mat4, Quat, Vec3};
 use tessera_core::math::Transform;
-use tessera_core::scene::{Scene, SceneParts};
-use tessera_core::texture::Texture;
+use tessera_core::scene::Scene;
 use tessera_tests::rng::SplitMix as Rng;
-use tessera_tests::soup::{random_rays, random_soup};
+use tessera_tests::soup::{diffuse_shape, random_rays, random_soup, scene_of};
 use tessera_tests::wide::{compare, WideScene};
 
 /// A scene of a triangle soup (one mesh), spheres and disks (random ellipses), all diffuse.
@@ -23,27 +20,17 @@ fn mixed_scene(rng: &mut Rng, tris: usize, spheres: usize, disks: usize) -> Scen
     let indices: Vec<[u32; 3]> = (0..tris as u32)
         .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
         .collect();
-    let mut parts = SceneParts {
-        shapes: vec![],
-        disks: vec![],
-        bsdfs: vec![Bsdf::Diffuse(Diffuse {
-            reflectance: Texture::constant(0.5),
-        })],
-        emitters: vec![],
-        camera: Perspective::new(Transform::IDENTITY, 4, 4, 40.0, FovAxis::X, 0.01, 1e4),
-        filter: Filter::Box,
-        light_selection: Default::default(),
-    };
+    let (mut shapes, mut disk_list) = (Vec::new(), Vec::new());
     if tris > 0 {
         let mesh = Mesh::new(positions, vec![], vec![], indices);
-        parts.shapes.push(shape(ShapeKind::Mesh(mesh)));
+        shapes.push(diffuse_shape(ShapeKind::Mesh(mesh)));
     }
     for _ in 0..spheres {
         let sphere = Sphere {
             center: rng.v(20.0),
             radius: 0.2 + 1.5 * rng.f(),
         };
-        parts.shapes.push(shape(ShapeKind::Sphere(sphere)));
+        shapes.push(diffuse_shape(ShapeKind::Sphere(sphere)));
     }
     for _ in 0..disks {
         let m = Mat4::from_scale_rotation_translation(
@@ -52,22 +39,10 @@ fn mixed_scene(rng: &mut Rng, tris: usize, spheres: usize, disks: usize) -> Scen
             rng.v(20.0),
         );
         let disk = Disk::new(Transform::new(m).expect("invertible")).expect("a disk");
-        parts
-            .shapes
-            .push(shape(ShapeKind::Disk(parts.disks.len() as u32)));
-        parts.disks.push(disk);
+        shapes.push(diffuse_shape(ShapeKind::Disk(disk_list.len() as u32)));
+        disk_list.push(disk);
     }
-    Scene::new(parts).expect("valid scene")
-}
-
-/// A diffuse shape without emitter.
-fn shape(kind: ShapeKind) -> Shape {
-    Shape {
-        kind,
-        bsdf: 0,
-        emitter: None,
-        flip_normals: false,
-    }
+    scene_of(shapes, disk_list)
 }
 
 /// Leaves of spheres and disks alone (blocks, and pairs of blocks, without a triangle: the
