@@ -3,7 +3,7 @@ use crate::accel::tri4::Ray4;
 use crate::accel::{AnyLeaves, BuildParams, Bvh4, Bvh8, ClosestLeaves, TriBlocks};
 use crate::bsdf::Bsdf;
 use crate::camera::{Filter, Perspective};
-use crate::emitter::{Emitter, EmitterCtx};
+use crate::emitter::{Emitter, EmitterCtx, LightBound};
 use crate::geometry::{Disk, Hit, Interaction, Prim, Shape, ShapeKind, TriRay};
 use crate::math::{Aabb, Ray};
 use crate::sampling::Discrete1D;
@@ -13,9 +13,14 @@ use glam::{Vec2, Vec3};
 /// How emitter sampling picks one light.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum LightSelection {
-    /// In proportion to each light's emitted power (luminance), so shadow rays go where the light
-    /// is: the default. Falls back to uniform when no light reports a positive power.
+    /// At each vertex, in proportion to an estimate of each light's contribution there (its
+    /// irradiance times the BSDF toward it), a fifth spread evenly: the default
+    /// ([`crate::integrator::VertexSelection`]). Scenes with one light or more than
+    /// [`crate::integrator::MAX_VERTEX_LIGHTS`] choose by power instead.
     #[default]
+    Contribution,
+    /// In proportion to each light's emitted power (luminance), so shadow rays go where the light
+    /// is. Falls back to uniform when no light reports a positive power.
     Power,
     /// Every light with the same probability (the seeds' and Mitsuba 3's default).
     Uniform,
@@ -81,8 +86,10 @@ pub struct Scene {
     pub emitters: Vec<Emitter>,
     /// Indices of the emitters at infinity (seen by rays that escape the scene).
     pub environments: Vec<u32>,
-    /// Light choice by power (None: uniform).
+    /// Light choice by power (None: uniform), where no vertex selection applies.
     selection: Option<Discrete1D>,
+    /// Each light as vertex selection sees it (empty: the scene-wide `selection` applies).
+    light_bounds: Vec<LightBound>,
     /// The camera.
     pub camera: Perspective,
     /// The pixel filter.
@@ -95,6 +102,29 @@ pub struct Scene {
     pub scene_center: glam::Vec3,
     /// Radius of the scene's bounding sphere (lights at infinity aim at it).
     pub scene_radius: f32,
+}
+
+/// The scene-wide light choice (by power, or `None` for uniform) and the per-light bounds of
+/// vertex selection (empty unless `how` is `Contribution` and 2 to
+/// [`crate::integrator::MAX_VERTEX_LIGHTS`] lights exist; the scene-wide choice is by power then).
+fn selection_for(
+    how: LightSelection,
+    emitters: &[Emitter],
+    ctx: &EmitterCtx,
+) -> (Option<Discrete1D>, Vec<LightBound>) {
+    let by_power = || Discrete1D::new(emitters.iter().map(|e| e.power(ctx)));
+    match how {
+        LightSelection::Contribution => {
+            let bounds = if (2..=crate::integrator::MAX_VERTEX_LIGHTS).contains(&emitters.len()) {
+                emitters.iter().map(|e| LightBound::of(e, ctx)).collect()
+            } else {
+                Vec::new()
+            };
+            (by_power(), bounds)
+        }
+        LightSelection::Power => (by_power(), Vec::new()),
+        LightSelection::Uniform => (None, Vec::new()),
+    }
 }
 
 /// Why a scene could not be built (the driver checks inputs first; this guards embedders).
@@ -186,10 +216,7 @@ impl Scene {
             scene_center: center,
             scene_radius: radius,
         };
-        let selection = match p.light_selection {
-            LightSelection::Power => Discrete1D::new(p.emitters.iter().map(|e| e.power(&ctx))),
-            LightSelection::Uniform => None,
-        };
+        let (selection, light_bounds) = selection_for(p.light_selection, &p.emitters, &ctx);
         let prims: Vec<Prim> = order.iter().map(|&i| prims[i as usize]).collect();
         let tris: Vec<[Vec3; 3]> = order.iter().map(|&i| tris[i as usize]).collect();
         let blocks = TriBlocks::build(&mut bvh, &tris);
@@ -212,6 +239,7 @@ impl Scene {
             emitters: p.emitters,
             environments,
             selection,
+            light_bounds,
             scene_center: center,
             scene_radius: radius,
             camera: p.camera,
@@ -239,11 +267,15 @@ impl Scene {
 
     /// Changes how emitter sampling picks a light.
     pub fn set_light_selection(&mut self, how: LightSelection) {
-        let ctx = self.emitter_ctx();
-        self.selection = match how {
-            LightSelection::Power => Discrete1D::new(self.emitters.iter().map(|e| e.power(&ctx))),
-            LightSelection::Uniform => None,
-        };
+        let (selection, bounds) = selection_for(how, &self.emitters, &self.emitter_ctx());
+        self.selection = selection;
+        self.light_bounds = bounds;
+    }
+
+    /// Each light as vertex selection sees it; empty where the scene-wide choice applies.
+    #[inline]
+    pub fn light_bounds(&self) -> &[LightBound] {
+        &self.light_bounds
     }
 
     /// Picks a light for emitter sampling: its index and the probability it was picked.

@@ -7,7 +7,8 @@ use tessera::image_io::read_image;
 use tessera::render::Framebuffer;
 use tessera::stats::sidak_alpha;
 use tessera_tests::{
-    load_file, region_stats, render_loaded, scenes_dir, worst_against_reference, worst_region,
+    load_file, region_stats, render_like_mitsuba, render_loaded, scenes_dir,
+    worst_against_reference, worst_region,
 };
 
 const RES: u32 = 64;
@@ -59,11 +60,16 @@ fn integrators_agree_on_the_cornell_box() {
 fn matches_mitsuba(name: &str) {
     let spp = 512;
     let ref_spp = 16384.0;
-    let ours = render_scene(&format!("{name}.xml"), "path_mis", spp, 11);
+    let mut loaded = load_file(&format!("{name}.xml"), &[("res", "64"), ("rfilter", "box")]);
+    loaded
+        .set_integrator(Some("path_mis"), None)
+        .expect("known integrator");
+    let ours = render_loaded(&loaded, spp, 11);
+    let like = render_like_mitsuba(&loaded, spp, 12);
     let reference = read_image(&scenes_dir().join(format!("refs/{name}_64x64_mitsuba.exr")))
         .expect("reference image");
     let alpha = sidak_alpha(0.01, (RES / BLOCK).pow(2) as usize * 3);
-    let (p, what) = worst_against_reference(&ours, spp, &reference, ref_spp, RES, BLOCK);
+    let (p, what) = worst_against_reference(&ours, &like, spp, &reference, ref_spp, RES, BLOCK);
     eprintln!("{name}: Tessera vs Mitsuba 3: worst p = {p:.3e} at {what}");
     assert!(
         p >= alpha,

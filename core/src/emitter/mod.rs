@@ -1,5 +1,6 @@
 //! Emitters: a closed enum, one variant per file.
 mod area;
+mod bound;
 mod constant;
 mod directional;
 mod distant_disk;
@@ -8,6 +9,7 @@ mod point;
 mod spot;
 
 pub use area::AreaLight;
+pub use bound::{LightBound, LightEstimate};
 pub use constant::ConstantEnv;
 pub use directional::DirectionalLight;
 pub use distant_disk::DistantDisk;

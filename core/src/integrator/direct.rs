@@ -10,6 +10,7 @@
 //! (a delta light for BSDF sampling, a delta BSDF for emitter sampling) leaves it to the other.
 use super::light::{emission_along, sample_light};
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
+use super::select::VertexSelection;
 use super::Heuristic;
 use crate::math::Ray;
 use crate::sampling::{Sampler, Stage};
@@ -59,6 +60,7 @@ impl DirectIntegrator {
                 ray.d.normalize(),
                 hit.as_ref(),
                 false,
+                None,
                 probe,
                 |probe, le, _| {
                     result += le;
@@ -73,12 +75,20 @@ impl DirectIntegrator {
         let bsdf = &scene.bsdfs[scene.shapes[si.shape as usize].bsdf as usize];
         let wi = si.frame.to_local(si.wi);
         let (ne, nb) = (self.emitter_samples as f32, self.bsdf_samples as f32);
-        if scene.features.has_emitters && bsdf.has_smooth() {
+        let nee = scene.features.has_emitters && bsdf.has_smooth();
+        let sel = if nee {
+            VertexSelection::new(scene.light_bounds(), &si, bsdf, wi)
+        } else {
+            None
+        };
+        if nee {
             let want_pdf = self.bsdf_samples > 0;
             for i in 0..self.emitter_samples {
                 // Emitter sample i reads the emitter dimensions of bounce i of the layout.
                 sampler.start_stage(i, Stage::Light);
-                if let Some(ls) = sample_light(scene, &si, bsdf, wi, sampler, want_pdf, probe) {
+                if let Some(ls) =
+                    sample_light(scene, &si, bsdf, wi, sampler, want_pdf, sel.as_ref(), probe)
+                {
                     let w = if ls.delta || self.bsdf_samples == 0 {
                         1.0
                     } else {
@@ -115,6 +125,7 @@ impl DirectIntegrator {
                 d,
                 next.as_ref(),
                 mis,
+                sel.as_ref(),
                 probe,
                 |probe, le, light_pdf| {
                     let w = if mis {

@@ -2,6 +2,7 @@
 //! surface point, and reading what a BSDF-sampled ray ran into. Each returns the densities both
 //! strategies would have had, so the caller applies its own weights.
 use super::probe::{Probe, RayKind};
+use super::select::VertexSelection;
 use crate::bsdf::Bsdf;
 use crate::emitter::Emitter;
 use crate::geometry::Interaction;
@@ -24,11 +25,13 @@ pub struct LightSample {
     pub delta: bool,
 }
 
-/// Picks a light, samples it from `si`, evaluates the BSDF and traces the shadow ray. `None` when
+/// Picks a light (by `sel`, the vertex's own selection, else by the scene's), samples it from
+/// `si`, evaluates the BSDF and traces the shadow ray. `None` when
 /// nothing arrives (no light, back side, blocked, zero BSDF). The BSDF density is evaluated only
 /// when `want_bsdf_pdf` (callers that do not weigh strategies by density skip its cost; it
 /// feeds no other value, so skipping it changes nothing else).
 #[inline]
+#[allow(clippy::too_many_arguments)]
 pub fn sample_light<S: Sampler, P: Probe>(
     scene: &Scene,
     si: &Interaction,
@@ -36,9 +39,12 @@ pub fn sample_light<S: Sampler, P: Probe>(
     wi: Vec3,
     sampler: &mut S,
     want_bsdf_pdf: bool,
+    sel: Option<&VertexSelection>,
     probe: &mut P,
 ) -> Option<LightSample> {
-    let (idx, sel_pdf) = if scene.emitters.len() == 1 {
+    let (idx, sel_pdf) = if let Some(sel) = sel {
+        sel.pick(sampler.next_1d())
+    } else if scene.emitters.len() == 1 {
         // Nothing to choose (probability exactly 1 either way): the choice's dimension is
         // skipped, not drawn, so later draws read what they read before.
         sampler.skip_1d();
@@ -84,14 +90,17 @@ pub fn sample_light<S: Sampler, P: Probe>(
 /// Calls `add(probe, le, light_pdf)` for each emitter a ray from `from` along unit direction `d` sees:
 /// the area emitter of the surface it hit, or every environment when it escaped. `light_pdf` is
 /// the density emitter sampling from `from` has for that direction (selection included), or 0
-/// when `with_pdf` is false (callers that do not weigh strategies skip its cost).
+/// when `with_pdf` is false (callers that do not weigh strategies skip its cost). The selection
+/// probability is `sel`'s, the selection of the vertex at `from`, else the scene's.
 #[inline]
+#[allow(clippy::too_many_arguments)]
 pub fn emission_along<P: Probe>(
     scene: &Scene,
     from: Vec3,
     d: Vec3,
     hit: Option<&Interaction>,
     with_pdf: bool,
+    sel: Option<&VertexSelection>,
     probe: &mut P,
     mut add: impl FnMut(&mut P, Color, f32),
 ) {
@@ -105,7 +114,10 @@ pub fn emission_along<P: Probe>(
                 if le != Color::ZERO {
                     let pdf = if with_pdf {
                         a.pdf(&scene.emitter_ctx(), from, si.p, si.ng)
-                            * scene.emitter_select_pdf(ei as usize)
+                            * sel.map_or_else(
+                                || scene.emitter_select_pdf(ei as usize),
+                                |s| s.pdf(ei as usize),
+                            )
                     } else {
                         0.0
                     };
@@ -121,7 +133,11 @@ pub fn emission_along<P: Probe>(
                 if le != Color::ZERO {
                     let pdf = if with_pdf {
                         probe.env_lookup();
-                        e.pdf_environment(from, d) * scene.emitter_select_pdf(env as usize)
+                        e.pdf_environment(from, d)
+                            * sel.map_or_else(
+                                || scene.emitter_select_pdf(env as usize),
+                                |s| s.pdf(env as usize),
+                            )
                     } else {
                         0.0
                     };

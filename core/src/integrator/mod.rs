@@ -5,6 +5,7 @@ mod mis;
 mod path;
 mod probe;
 mod record;
+mod select;
 
 pub use direct::DirectIntegrator;
 pub use light::{emission_along, sample_light, LightSample};
@@ -12,6 +13,7 @@ pub use mis::{balance_heuristic, power_heuristic, Heuristic};
 pub use path::{PathIntegrator, Strategy};
 pub use probe::{Counters, NoProbe, PathEnd, Probe, RayKind};
 pub use record::{Event, PathRecord};
+pub use select::{VertexSelection, MAX_VERTEX_LIGHTS, UNIFORM_SHARE};
 
 use crate::math::Ray;
 use crate::sampling::Sampler;

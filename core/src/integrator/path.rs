@@ -19,6 +19,7 @@
 //!   parameter `heuristic`, string power|balance, default power).
 use super::light::{emission_along, sample_light};
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
+use super::select::VertexSelection;
 use super::Heuristic;
 use crate::math::Ray;
 use crate::sampling::{Sampler, Stage};
@@ -74,6 +75,8 @@ struct Prev {
     pdf: f32,
     /// Whether emitter sampling ran there and could have produced this direction.
     nee: bool,
+    /// The light selection used there, when it was the vertex's own.
+    sel: Option<VertexSelection>,
 }
 
 impl PathIntegrator {
@@ -166,6 +169,7 @@ impl PathIntegrator {
                     d,
                     hit.as_ref(),
                     with_pdf,
+                    prev.as_ref().and_then(|p| p.sel.as_ref()),
                     probe,
                     |probe, le, light_pdf| {
                         let w = self.hit_weight(prev, light_pdf, probe);
@@ -187,10 +191,17 @@ impl PathIntegrator {
             let bsdf = &scene.bsdfs[shape.bsdf as usize];
             let wi = si.frame.to_local(si.wi);
             let nee = self.strategy != Strategy::Bsdf && features.has_emitters && bsdf.has_smooth();
+            let sel = if nee {
+                VertexSelection::new(scene.light_bounds(), &si, bsdf, wi)
+            } else {
+                None
+            };
             if nee {
                 let want_pdf = self.strategy == Strategy::Mis;
                 sampler.start_stage(depth, Stage::Light);
-                if let Some(ls) = sample_light(scene, &si, bsdf, wi, sampler, want_pdf, probe) {
+                if let Some(ls) =
+                    sample_light(scene, &si, bsdf, wi, sampler, want_pdf, sel.as_ref(), probe)
+                {
                     let w = match (ls.delta, self.strategy) {
                         (true, _) | (_, Strategy::Emitter) => 1.0,
                         (_, Strategy::Half) => 0.5,
@@ -229,6 +240,7 @@ impl PathIntegrator {
                 p: si.p,
                 pdf: bs.pdf,
                 nee: nee_next,
+                sel,
             });
             let wo = si.frame.to_world(bs.wo);
             probe.bsdf_sample(Some(&bs), wo, throughput);

@@ -110,18 +110,19 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
     let sensor = sensor.ok_or_else(|| root.error("the scene has no sensor (camera)"))?;
     // Tessera's own integrator parameter (Mitsuba has none): how emitter sampling picks a light.
     let light_selection = match integrator_obj
-        .map(|o| o.string("light_selection", "power"))
+        .map(|o| o.string("light_selection", "contribution"))
         .transpose()?
         .as_deref()
     {
-        None | Some("power") => LightSelection::Power,
+        None | Some("contribution") => LightSelection::Contribution,
+        Some("power") => LightSelection::Power,
         Some("uniform") => LightSelection::Uniform,
         Some(other) => {
             let obj = integrator_obj.expect("a value implies an integrator");
             return Err(super::util::at_prop(
                 obj,
                 "light_selection",
-                format!("unknown light_selection \"{other}\" (power, uniform)"),
+                format!("unknown light_selection \"{other}\" (contribution, power, uniform)"),
             ));
         }
     };

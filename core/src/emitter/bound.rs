@@ -1,0 +1,248 @@
+//! What light selection at a vertex knows of each light: a cheap estimate of how strongly it
+//! lights a point, and the direction it lights it from.
+//!
+//! The estimate is the irradiance the light would give a surface at the point facing it:
+//! radiance times the solid angle it subtends (exact for a sphere; area times the cosine at the
+//! light over the squared distance for a flat light, a quarter of the area for any other shape,
+//! both capped at a hemisphere), intensity over the squared distance for point and spot lights,
+//! irradiance for directional lights, radiance times pi for environments. It only steers a
+//! choice whose probabilities are exact, so a poor estimate costs variance, never bias.
+use super::{luminance, Emitter, EmitterCtx};
+use crate::geometry::ShapeKind;
+use crate::math::PI;
+use glam::Vec3;
+
+/// A light as light selection sees it.
+#[derive(Clone, Copy, Debug)]
+pub enum LightBound {
+    /// A spherical area light: the cone it subtends.
+    Sphere {
+        /// Centre.
+        center: Vec3,
+        /// Radius.
+        radius: f32,
+        /// Luminance of its radiance.
+        lum: f32,
+    },
+    /// A flat one-sided area light (a planar mesh, a rectangle, a disk).
+    Flat {
+        /// Area-weighted centre.
+        center: Vec3,
+        /// Unit normal of the lit side.
+        normal: Vec3,
+        /// Area.
+        area: f32,
+        /// Luminance of its radiance.
+        lum: f32,
+    },
+    /// Any other area light, seen as a quarter of its area from every side.
+    Solid {
+        /// Area-weighted centre.
+        center: Vec3,
+        /// Area.
+        area: f32,
+        /// Luminance of its radiance.
+        lum: f32,
+    },
+    /// A point or spot light.
+    Point {
+        /// Position.
+        position: Vec3,
+        /// Luminance of its (largest) intensity.
+        lum: f32,
+    },
+    /// A directional light or a distant disk: light from one direction.
+    Direction {
+        /// Unit direction toward the light.
+        to_light: Vec3,
+        /// Luminance of the irradiance it gives a surface facing it.
+        lum: f32,
+    },
+    /// An environment: light from everywhere.
+    Environment {
+        /// Luminance of the irradiance a uniform environment of its mean radiance gives.
+        lum: f32,
+    },
+}
+
+/// What a light gives a point, as [`LightBound::estimate`] sees it.
+#[derive(Clone, Copy, Debug)]
+pub struct LightEstimate {
+    /// Estimated irradiance (luminance) on a surface facing the light; zero where it cannot
+    /// reach.
+    pub irradiance: f32,
+    /// Unit direction toward the light (`None` for an environment).
+    pub toward: Option<Vec3>,
+}
+
+impl LightBound {
+    /// The bound of `e`.
+    pub fn of(e: &Emitter, ctx: &EmitterCtx) -> LightBound {
+        match e {
+            Emitter::Area(a) => {
+                let lum = luminance(a.radiance).max(0.0);
+                let shape = &ctx.shapes[a.shape as usize];
+                let flip = if shape.flip_normals { -1.0 } else { 1.0 };
+                match &shape.kind {
+                    ShapeKind::Sphere(s) => LightBound::Sphere {
+                        center: s.center,
+                        radius: s.radius,
+                        lum,
+                    },
+                    ShapeKind::Disk(i) => {
+                        let d = &ctx.disks[*i as usize];
+                        LightBound::Flat {
+                            center: d.to_world.point(Vec3::ZERO),
+                            normal: d.normal * flip,
+                            area: d.area,
+                            lum,
+                        }
+                    }
+                    ShapeKind::Mesh(m) => {
+                        let mut center = Vec3::ZERO;
+                        let mut normal = Vec3::ZERO;
+                        let mut area = 0.0;
+                        for i in 0..m.indices.len() {
+                            let a = m.triangle_area(i);
+                            let [p0, p1, p2] = m.vertices(i);
+                            center += (p0 + p1 + p2) * (a / 3.0);
+                            normal += m.face_normal(i) * a;
+                            area += a;
+                        }
+                        if !(area > 0.0) {
+                            return LightBound::Point {
+                                position: Vec3::ZERO,
+                                lum: 0.0,
+                            };
+                        }
+                        center /= area;
+                        // Flat when the area-weighted normal is as long as the area: every
+                        // face points the same way.
+                        let len = normal.length();
+                        if len >= area * 0.9999 {
+                            LightBound::Flat {
+                                center,
+                                normal: normal / len * flip,
+                                area,
+                                lum,
+                            }
+                        } else {
+                            LightBound::Solid { center, area, lum }
+                        }
+                    }
+                }
+            }
+            Emitter::Point(p) => LightBound::Point {
+                position: p.position,
+                lum: luminance(p.intensity).max(0.0),
+            },
+            Emitter::Spot(s) => LightBound::Point {
+                position: s.position,
+                lum: luminance(s.intensity).max(0.0),
+            },
+            Emitter::Directional(d) => LightBound::Direction {
+                to_light: -d.direction,
+                lum: luminance(d.irradiance).max(0.0),
+            },
+            Emitter::DistantDisk(d) => LightBound::Direction {
+                to_light: d.to_world * Vec3::Z,
+                lum: luminance(d.radiance).max(0.0) * d.solid_angle(),
+            },
+            Emitter::Constant(c) => LightBound::Environment {
+                lum: PI * luminance(c.radiance).max(0.0),
+            },
+            Emitter::EnvMap(e) => LightBound::Environment {
+                // The integral of luminance over the sphere, spread evenly: the mean times 4 pi.
+                lum: PI * e.luminance_integral().max(0.0) / (4.0 * PI),
+            },
+        }
+    }
+
+    /// What the light gives the point `p`.
+    #[inline]
+    pub fn estimate(&self, p: Vec3) -> LightEstimate {
+        let toward = |d: Vec3, dist2: f32| d / libm::sqrtf(dist2);
+        match *self {
+            LightBound::Sphere {
+                center,
+                radius,
+                lum,
+            } => {
+                let d = center - p;
+                let dist2 = d.length_squared();
+                let r2 = radius * radius;
+                if !(dist2 > r2) {
+                    // Inside or on the sphere: it fills half the sky or more.
+                    return LightEstimate {
+                        irradiance: 2.0 * PI * lum,
+                        toward: None,
+                    };
+                }
+                // 1 - cos(theta_max), without cancellation for small spheres.
+                let sin2 = r2 / dist2;
+                let omega = 2.0 * PI * sin2 / (1.0 + libm::sqrtf(1.0 - sin2));
+                LightEstimate {
+                    irradiance: lum * omega,
+                    toward: Some(toward(d, dist2)),
+                }
+            }
+            LightBound::Flat {
+                center,
+                normal,
+                area,
+                lum,
+            } => {
+                let d = center - p;
+                let dist2 = d.length_squared();
+                if !(dist2 > 0.0) {
+                    return LightEstimate {
+                        irradiance: 2.0 * PI * lum,
+                        toward: None,
+                    };
+                }
+                let w = toward(d, dist2);
+                let cos = -normal.dot(w);
+                LightEstimate {
+                    irradiance: lum * (area * cos.max(0.0) / dist2).min(2.0 * PI),
+                    toward: Some(w),
+                }
+            }
+            LightBound::Solid { center, area, lum } => {
+                let d = center - p;
+                let dist2 = d.length_squared();
+                if !(dist2 > 0.0) {
+                    return LightEstimate {
+                        irradiance: 2.0 * PI * lum,
+                        toward: None,
+                    };
+                }
+                LightEstimate {
+                    irradiance: lum * (0.25 * area / dist2).min(2.0 * PI),
+                    toward: Some(toward(d, dist2)),
+                }
+            }
+            LightBound::Point { position, lum } => {
+                let d = position - p;
+                let dist2 = d.length_squared();
+                if !(dist2 > 0.0) {
+                    return LightEstimate {
+                        irradiance: 0.0,
+                        toward: None,
+                    };
+                }
+                LightEstimate {
+                    irradiance: lum / dist2,
+                    toward: Some(toward(d, dist2)),
+                }
+            }
+            LightBound::Direction { to_light, lum } => LightEstimate {
+                irradiance: lum,
+                toward: Some(to_light),
+            },
+            LightBound::Environment { lum } => LightEstimate {
+                irradiance: lum,
+                toward: None,
+            },
+        }
+    }
+}
