@@ -43,6 +43,21 @@ impl VertexSelection {
         if !(2..=MAX_VERTEX_LIGHTS).contains(&n) {
             return None;
         }
+        // The BSDF toward `wo` (local), in luminance. A diffuse BSDF is its reflectance over pi
+        // times the cosine; the reflectance is common to every light and cancels, so the cosine
+        // alone weighs (no texture lookup per light).
+        let diffuse = matches!(bsdf, Bsdf::Diffuse(_));
+        let weigh = |wo: Vec3| {
+            if diffuse {
+                if wi.z > 0.0 && wo.z > 0.0 {
+                    wo.z
+                } else {
+                    0.0
+                }
+            } else {
+                luminance(bsdf.eval(wi, wo, si.uv))
+            }
+        };
         let mut weight = [0.0f32; MAX_VERTEX_LIGHTS];
         let mut sum = 0.0f32;
         for (w, b) in weight.iter_mut().zip(bounds) {
@@ -51,14 +66,10 @@ impl VertexSelection {
                 continue;
             }
             let f = match e.toward {
-                Some(d) => luminance(bsdf.eval(wi, si.frame.to_local(d), si.uv)),
+                Some(d) => weigh(si.frame.to_local(d)),
                 // Light from everywhere: the BSDF toward the normal or the mirror direction,
                 // whichever is larger.
-                None => {
-                    let n = luminance(bsdf.eval(wi, Vec3::Z, si.uv));
-                    let m = luminance(bsdf.eval(wi, Vec3::new(-wi.x, -wi.y, wi.z), si.uv));
-                    n.max(m)
-                }
+                None => weigh(Vec3::Z).max(weigh(Vec3::new(-wi.x, -wi.y, wi.z))),
             };
             *w = e.irradiance * f.max(0.0);
             sum += *w;
