@@ -3,10 +3,11 @@
 //! (chi-square), it puts shadow rays where light arrives (a lower-variance emitter estimate on
 //! Veach's plates than a uniform choice), and it changes the noise, never the image.
 use tessera::stats::{chi2_test, sidak_alpha, DEFAULT_MIN_EXPECTED};
+use tessera_core::emitter::LightBound;
 use tessera_core::integrator::{sample_light, NoProbe, VertexSelection, UNIFORM_SHARE};
 use tessera_core::sampling::{IndependentSampler, Sampler};
 use tessera_core::scene::{LightSelection, Scene};
-use tessera_tests::{load_file, region_stats, render_loaded, worst_region};
+use tessera_tests::{load_file, load_xml, region_stats, render_loaded, worst_region};
 
 const RES: u32 = 64;
 const BLOCK: u32 = 8;
@@ -178,6 +179,56 @@ fn selection_changes_the_noise_not_the_image() {
         assert!(
             p >= alpha,
             "{name}: {integrator} vs {other} ({how:?}): p = {p:.3e} at {what}"
+        );
+    }
+}
+
+/// Each light kind gets its bound: a sphere its cone, a rectangle and a disk a one-sided flat
+/// light facing where the shape's normal (after `flip_normals`) points, a cube a solid, a point
+/// light a point; `light_selection` `power` and `uniform` turn vertex selection off.
+#[test]
+fn each_light_gets_its_bound() {
+    let xml = |selection: &str| {
+        format!(
+            r#"<scene version="3.0.0">
+            <integrator type="path"><string name="light_selection" value="{selection}"/></integrator>
+            <sensor type="perspective"><film type="hdrfilm"><integer name="width" value="4"/>
+                <integer name="height" value="4"/></film></sensor>
+            <shape type="sphere"><float name="radius" value="0.5"/>
+                <emitter type="area"><rgb name="radiance" value="1"/></emitter></shape>
+            <shape type="rectangle"><boolean name="flip_normals" value="true"/>
+                <emitter type="area"><rgb name="radiance" value="1"/></emitter></shape>
+            <shape type="disk"><emitter type="area"><rgb name="radiance" value="1"/></emitter></shape>
+            <shape type="cube"><emitter type="area"><rgb name="radiance" value="1"/></emitter></shape>
+            <emitter type="point"><point name="position" value="0, 0, 5"/></emitter>
+            </scene>"#
+        )
+    };
+    let l = load_xml(&xml("contribution"), &[]);
+    let b = l.scene.light_bounds();
+    assert_eq!(b.len(), 5);
+    assert!(matches!(b[0], LightBound::Sphere { radius, .. } if radius == 0.5));
+    assert!(
+        matches!(b[1], LightBound::Flat { normal, area, .. }
+        if normal == -glam::Vec3::Z && (area - 4.0).abs() < 1e-5),
+        "{:?}",
+        b[1]
+    );
+    assert!(
+        matches!(b[2], LightBound::Flat { normal, .. } if normal == glam::Vec3::Z),
+        "{:?}",
+        b[2]
+    );
+    assert!(
+        matches!(b[3], LightBound::Solid { area, .. } if (area - 24.0).abs() < 1e-4),
+        "{:?}",
+        b[3]
+    );
+    assert!(matches!(b[4], LightBound::Point { .. }), "{:?}", b[4]);
+    for other in ["power", "uniform"] {
+        assert!(
+            load_xml(&xml(other), &[]).scene.light_bounds().is_empty(),
+            "{other}"
         );
     }
 }

@@ -246,3 +246,58 @@ impl LightBound {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A sphere's estimate is its radiance times the exact solid angle of its cone,
+    /// 2 pi (1 - cos theta_max), also for a sphere so small that 1 - cos would cancel.
+    #[test]
+    fn sphere_is_radiance_times_cone_solid_angle() {
+        for (radius, dist) in [(1.0f32, 2.0f32), (0.5, 10.0), (1e-4, 100.0)] {
+            let b = LightBound::Sphere {
+                center: Vec3::new(0.0, dist, 0.0),
+                radius,
+                lum: 3.0,
+            };
+            let e = b.estimate(Vec3::ZERO);
+            let sin2 = (radius as f64 / dist as f64).powi(2);
+            let omega = 2.0 * core::f64::consts::PI * sin2 / (1.0 + (1.0 - sin2).sqrt());
+            let rel = (e.irradiance as f64 / (3.0 * omega) - 1.0).abs();
+            assert!(
+                rel < 1e-5,
+                "r {radius} d {dist}: {} vs {}",
+                e.irradiance,
+                3.0 * omega
+            );
+            assert_eq!(e.toward, Some(Vec3::Y));
+        }
+        let inside = LightBound::Sphere {
+            center: Vec3::ZERO,
+            radius: 1.0,
+            lum: 1.0,
+        };
+        assert_eq!(inside.estimate(Vec3::X * 0.5).toward, None);
+    }
+
+    /// A flat light lights only its front side, by area times the cosine at the light over the
+    /// squared distance, capped at a hemisphere.
+    #[test]
+    fn flat_light_is_one_sided_and_capped() {
+        let b = LightBound::Flat {
+            center: Vec3::ZERO,
+            normal: -Vec3::Y,
+            area: 0.5,
+            lum: 2.0,
+        };
+        let below = b.estimate(Vec3::new(0.0, -2.0, 0.0));
+        assert!((below.irradiance - 2.0 * 0.5 / 4.0).abs() < 1e-6);
+        let oblique = b.estimate(Vec3::new(2.0, -2.0, 0.0));
+        let cos = core::f32::consts::FRAC_1_SQRT_2;
+        assert!((oblique.irradiance - 2.0 * 0.5 * cos / 8.0).abs() < 1e-6);
+        assert_eq!(b.estimate(Vec3::new(0.0, 2.0, 0.0)).irradiance, 0.0);
+        let close = b.estimate(Vec3::new(0.0, -1e-3, 0.0));
+        assert_eq!(close.irradiance, 2.0 * 2.0 * PI);
+    }
+}

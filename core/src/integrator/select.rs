@@ -93,7 +93,9 @@ impl VertexSelection {
         let mut c = 0.0;
         for (k, w) in weight[..n].iter().enumerate() {
             s.cdf[k] = c;
-            s.pdf[k] = even + w * scale;
+            // Without a usable sum (all zero, or a weight infinite or NaN) the choice is even:
+            // no weight is read then, as 0 times infinity would be NaN.
+            s.pdf[k] = if scale > 0.0 { even + w * scale } else { even };
             c += s.pdf[k];
         }
         // The last light takes what rounding left: its probability is 1 minus the others'.
@@ -115,5 +117,84 @@ impl VertexSelection {
     #[inline]
     pub fn pdf(&self, k: usize) -> f32 {
         self.pdf[k]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bsdf::Diffuse;
+    use crate::geometry::Interaction;
+    use crate::math::Frame;
+    use crate::texture::Texture;
+    use crate::Color;
+    use glam::Vec2;
+
+    fn vertex() -> (Interaction, Bsdf) {
+        let si = Interaction {
+            p: Vec3::ZERO,
+            p_err: Vec3::ZERO,
+            t: 1.0,
+            ng: Vec3::Z,
+            frame: Frame::from_normal(Vec3::Z),
+            uv: Vec2::ZERO,
+            shape: 0,
+            wi: Vec3::Z,
+        };
+        let bsdf = Bsdf::Diffuse(Diffuse {
+            reflectance: Texture::Constant(Color::splat(0.5)),
+        });
+        (si, bsdf)
+    }
+
+    fn point(position: Vec3, lum: f32) -> LightBound {
+        LightBound::Point { position, lum }
+    }
+
+    /// Two point lights above a diffuse vertex, one four times as strong: 0.1 + 0.8 * 4/5 and
+    /// 0.1 + 0.8 / 5.
+    #[test]
+    fn weighs_by_estimate_with_an_even_share() {
+        let (si, bsdf) = vertex();
+        let bounds = [point(Vec3::Z, 4.0), point(Vec3::Z * 2.0, 4.0)];
+        let sel = VertexSelection::new(&bounds, &si, &bsdf, Vec3::Z).unwrap();
+        assert!((sel.pdf(0) - 0.74).abs() < 1e-6, "{}", sel.pdf(0));
+        assert!((sel.pdf(1) - 0.26).abs() < 1e-6, "{}", sel.pdf(1));
+        assert_eq!(sel.pick(0.0).0, 0);
+        assert_eq!(sel.pick(0.7399).0, 0);
+        assert_eq!(sel.pick(0.7401).0, 1);
+        assert_eq!(sel.pick(0.9999999).0, 1);
+    }
+
+    /// A light below the horizon, or with a NaN estimate, has weight zero and keeps only its
+    /// even share; an infinite estimate (times a zero BSDF: NaN) or all-zero weights give the
+    /// even choice, never NaN.
+    #[test]
+    fn degenerate_weights_fall_back_to_even() {
+        let (si, bsdf) = vertex();
+        for bounds in [
+            [point(Vec3::Z, 1.0), point(-Vec3::Z, 1.0)],
+            [point(Vec3::Z, 1.0), point(Vec3::Z, f32::NAN)],
+        ] {
+            let sel = VertexSelection::new(&bounds, &si, &bsdf, Vec3::Z).unwrap();
+            assert!((sel.pdf(1) - 0.1).abs() < 1e-6, "{}", sel.pdf(1));
+        }
+        for bounds in [
+            [point(Vec3::Z, 1.0), point(-Vec3::Z, f32::INFINITY)],
+            [point(-Vec3::Z, 1.0), point(-Vec3::Z * 2.0, 1.0)],
+        ] {
+            let sel = VertexSelection::new(&bounds, &si, &bsdf, Vec3::Z).unwrap();
+            assert_eq!((sel.pdf(0), sel.pdf(1)), (0.5, 0.5), "{bounds:?}");
+        }
+    }
+
+    /// One light, or more than the maximum: no vertex selection.
+    #[test]
+    fn only_two_to_eight_lights() {
+        let (si, bsdf) = vertex();
+        let b = point(Vec3::Z, 1.0);
+        assert!(VertexSelection::new(&[b], &si, &bsdf, Vec3::Z).is_none());
+        assert!(VertexSelection::new(&[b; MAX_VERTEX_LIGHTS + 1], &si, &bsdf, Vec3::Z).is_none());
+        assert!(VertexSelection::new(&[b; MAX_VERTEX_LIGHTS], &si, &bsdf, Vec3::Z).is_some());
     }
 }
