@@ -6,8 +6,9 @@
 //! Direct lighting, `direct` (Mitsuba 3): `shading_samples` (integer, 1), `emitter_samples`,
 //! `bsdf_samples` (integers, default shading_samples), `hide_emitters`; `direct_ems`,
 //! `direct_mats`, `direct_mis` (Wakame: 1/0, 0/1, 1/1 samples with the balance heuristic) take
-//! only `hide_emitters`. Every integrator also takes Tessera's `light_selection` (read by the
-//! scene builder). A scene without an integrator uses `path`.
+//! only `hide_emitters`. Every integrator also takes Tessera's `light_selection` (string
+//! contribution|power|uniform, default contribution; read by the scene builder). A scene without
+//! an integrator uses `path`.
 use super::util::{at_prop, Result};
 use crate::xml::Object;
 use tessera_core::integrator::{DirectIntegrator, Heuristic, Integrator, PathIntegrator, Strategy};
