@@ -30,6 +30,15 @@ pub fn load_file(name: &str, defines: &[(&str, &str)]) -> LoadedScene {
 
 /// Renders a loaded scene with `spp` samples on 2 threads.
 pub fn render_loaded(l: &LoadedScene, spp: u64, seed: u64) -> Framebuffer {
+    render_two_threads(&l.scene, &l.integrator, spp, seed)
+}
+
+fn render_two_threads(
+    scene: &tessera_core::scene::Scene,
+    integrator: &tessera_core::integrator::Integrator,
+    spp: u64,
+    seed: u64,
+) -> Framebuffer {
     let opts = RenderOptions {
         samples: 0..spp,
         threads: 2,
@@ -37,7 +46,7 @@ pub fn render_loaded(l: &LoadedScene, spp: u64, seed: u64) -> Framebuffer {
         seed,
         pixels: Default::default(),
     };
-    render(&l.scene, &l.integrator, &opts, &mut |_, _| {})
+    render(scene, integrator, &opts, &mut |_, _| {})
 }
 
 /// Mean and variance of the mean of a block of pixels, per channel. Pixels are strata: the
@@ -139,14 +148,7 @@ pub fn worst_region(
 pub fn render_like_mitsuba(l: &LoadedScene, spp: u64, seed: u64) -> Framebuffer {
     let mut scene = l.scene.clone();
     scene.set_light_selection(tessera_core::scene::LightSelection::Uniform);
-    let opts = RenderOptions {
-        samples: 0..spp,
-        threads: 2,
-        tile_size: 16,
-        seed,
-        pixels: Default::default(),
-    };
-    render(&scene, &l.integrator, &opts, &mut |_, _| {})
+    render_two_threads(&scene, &l.integrator, spp, seed)
 }
 
 /// Smallest z-test p-value over the `block`-pixel regions of our `res x res` render `ours`

@@ -161,79 +161,35 @@ impl LightBound {
     /// What the light gives the point `p`.
     #[inline]
     pub fn estimate(&self, p: Vec3) -> LightEstimate {
-        let toward = |d: Vec3, dist2: f32| d / libm::sqrtf(dist2);
         match *self {
             LightBound::Sphere {
                 center,
                 radius,
                 lum,
             } => {
-                let d = center - p;
-                let dist2 = d.length_squared();
                 let r2 = radius * radius;
-                if !(dist2 > r2) {
-                    // Inside or on the sphere: it fills half the sky or more.
-                    return LightEstimate {
-                        irradiance: 2.0 * PI * lum,
-                        toward: None,
-                    };
-                }
-                // 1 - cos(theta_max), without cancellation for small spheres.
-                let sin2 = r2 / dist2;
-                let omega = 2.0 * PI * sin2 / (1.0 + libm::sqrtf(1.0 - sin2));
-                LightEstimate {
-                    irradiance: lum * omega,
-                    toward: Some(toward(d, dist2)),
-                }
+                from_point(p, center, r2, lum, |_, dist2| {
+                    // 2 pi (1 - cos theta_max), without cancellation for small spheres.
+                    let sin2 = r2 / dist2;
+                    lum * (2.0 * PI * sin2 / (1.0 + libm::sqrtf(1.0 - sin2)))
+                })
             }
             LightBound::Flat {
                 center,
                 normal,
                 area,
                 lum,
-            } => {
-                let d = center - p;
-                let dist2 = d.length_squared();
-                if !(dist2 > 0.0) {
-                    return LightEstimate {
-                        irradiance: 2.0 * PI * lum,
-                        toward: None,
-                    };
-                }
-                let w = toward(d, dist2);
-                let cos = -normal.dot(w);
-                LightEstimate {
-                    irradiance: lum * (area * cos.max(0.0) / dist2).min(2.0 * PI),
-                    toward: Some(w),
-                }
-            }
+            } => from_point(p, center, 0.0, lum, |w, dist2| {
+                lum * (area * (-normal.dot(w)).max(0.0) / dist2).min(2.0 * PI)
+            }),
             LightBound::Solid { center, area, lum } => {
-                let d = center - p;
-                let dist2 = d.length_squared();
-                if !(dist2 > 0.0) {
-                    return LightEstimate {
-                        irradiance: 2.0 * PI * lum,
-                        toward: None,
-                    };
-                }
-                LightEstimate {
-                    irradiance: lum * (0.25 * area / dist2).min(2.0 * PI),
-                    toward: Some(toward(d, dist2)),
-                }
+                from_point(p, center, 0.0, lum, |_, dist2| {
+                    lum * (0.25 * area / dist2).min(2.0 * PI)
+                })
             }
+            // A point light at the point itself lights nothing measurable.
             LightBound::Point { position, lum } => {
-                let d = position - p;
-                let dist2 = d.length_squared();
-                if !(dist2 > 0.0) {
-                    return LightEstimate {
-                        irradiance: 0.0,
-                        toward: None,
-                    };
-                }
-                LightEstimate {
-                    irradiance: lum / dist2,
-                    toward: Some(toward(d, dist2)),
-                }
+                from_point(p, position, 0.0, 0.0, |_, dist2| lum / dist2)
             }
             LightBound::Direction { to_light, lum } => LightEstimate {
                 irradiance: lum,
@@ -244,6 +200,32 @@ impl LightBound {
                 toward: None,
             },
         }
+    }
+}
+
+/// What a light at `at` gives `p`: `irradiance(unit direction, squared distance)`, or, when the
+/// squared distance is not above `inside2` (on or inside the light), half the sky's worth of
+/// radiance `lum` from no particular direction.
+#[inline]
+fn from_point(
+    p: Vec3,
+    at: Vec3,
+    inside2: f32,
+    lum: f32,
+    irradiance: impl Fn(Vec3, f32) -> f32,
+) -> LightEstimate {
+    let d = at - p;
+    let dist2 = d.length_squared();
+    if !(dist2 > inside2) {
+        return LightEstimate {
+            irradiance: 2.0 * PI * lum,
+            toward: None,
+        };
+    }
+    let w = d / libm::sqrtf(dist2);
+    LightEstimate {
+        irradiance: irradiance(w, dist2),
+        toward: Some(w),
     }
 }
 
