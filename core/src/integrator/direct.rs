@@ -76,7 +76,7 @@ impl DirectIntegrator {
         let wi = si.frame.to_local(si.wi);
         let (ne, nb) = (self.emitter_samples as f32, self.bsdf_samples as f32);
         let nee = scene.features.has_emitters && bsdf.has_smooth();
-        let sel = if nee {
+        let sel = if nee && self.emitter_samples > 0 {
             VertexSelection::new(scene.light_bounds(), &si, bsdf, wi)
         } else {
             None
