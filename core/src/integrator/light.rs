@@ -114,10 +114,7 @@ pub fn emission_along<P: Probe>(
                 if le != Color::ZERO {
                     let pdf = if with_pdf {
                         a.pdf(&scene.emitter_ctx(), from, si.p, si.ng)
-                            * sel.map_or_else(
-                                || scene.emitter_select_pdf(ei as usize),
-                                |s| s.pdf(ei as usize),
-                            )
+                            * selection_pdf(scene, sel, ei as usize)
                     } else {
                         0.0
                     };
@@ -133,11 +130,7 @@ pub fn emission_along<P: Probe>(
                 if le != Color::ZERO {
                     let pdf = if with_pdf {
                         probe.env_lookup();
-                        e.pdf_environment(from, d)
-                            * sel.map_or_else(
-                                || scene.emitter_select_pdf(env as usize),
-                                |s| s.pdf(env as usize),
-                            )
+                        e.pdf_environment(from, d) * selection_pdf(scene, sel, env as usize)
                     } else {
                         0.0
                     };
@@ -146,4 +139,11 @@ pub fn emission_along<P: Probe>(
             }
         }
     }
+}
+
+/// The probability that light `i` was picked at the vertex whose selection is `sel` (the
+/// scene-wide choice where the vertex has none).
+#[inline]
+fn selection_pdf(scene: &Scene, sel: Option<&VertexSelection>, i: usize) -> f32 {
+    sel.map_or_else(|| scene.emitter_select_pdf(i), |s| s.pdf(i))
 }
