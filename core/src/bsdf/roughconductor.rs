@@ -51,6 +51,17 @@ impl RoughConductor {
         conductor_fresnel(cos, &self.eta, &self.k, uv) * self.specular_reflectance.eval(uv)
     }
 
+    /// The shape of the lobe toward `wo`, `D(h) / (4 cos theta_i)`: [`RoughConductor::eval`]
+    /// without the Fresnel factor, the tint and the masking term (all near constant over the
+    /// lobe), for weighing lights against each other at a vertex. No texture lookup.
+    #[inline]
+    pub fn lobe(&self, wi: Vec3, wo: Vec3) -> f32 {
+        match Self::half_vector(wi, wo) {
+            Some(h) => self.distribution.d(h) / (4.0 * wi.z),
+            None => 0.0,
+        }
+    }
+
     /// `f(wi, wo) cos theta_o`.
     pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
         let Some(h) = Self::half_vector(wi, wo) else {
@@ -108,5 +119,39 @@ impl RoughConductor {
     /// No delta component.
     pub fn has_delta(&self) -> bool {
         false
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bsdf::microfacet::MicrofacetKind;
+
+    /// For the perfect reflector (Fresnel 1, no tint), `eval` is the lobe times the masking
+    /// term, and both vanish together on the wrong side.
+    #[test]
+    fn lobe_is_eval_without_fresnel_and_masking() {
+        for kind in [MicrofacetKind::Beckmann, MicrofacetKind::Ggx] {
+            let c = RoughConductor {
+                distribution: Microfacet::new(kind, 0.3),
+                eta: Texture::Constant(Color::ZERO),
+                k: Texture::Constant(Color::ONE),
+                specular_reflectance: Texture::Constant(Color::ONE),
+            };
+            let wi = Vec3::new(0.3, -0.2, 0.9).normalize();
+            for wo in [
+                Vec3::new(-0.3, 0.2, 0.9).normalize(),
+                Vec3::new(0.5, 0.5, 0.4).normalize(),
+                Vec3::new(-0.8, 0.1, 0.2).normalize(),
+            ] {
+                let h = (wi + wo).normalize();
+                let g = c.distribution.g(wi, wo, h);
+                let f = c.eval(wi, wo, Vec2::ZERO);
+                let want = c.lobe(wi, wo) * g;
+                assert!((f.x - want).abs() <= 1e-5 * want, "{kind:?} {wo}: {f} {want}");
+                assert!(c.lobe(wi, wo) > 0.0);
+            }
+            assert_eq!(c.lobe(wi, Vec3::new(0.0, 0.6, -0.8)), 0.0);
+        }
     }
 }

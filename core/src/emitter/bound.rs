@@ -222,7 +222,8 @@ fn from_point(
             toward: None,
         };
     }
-    let w = d / libm::sqrtf(dist2);
+    // One division, not one per component: the estimate only steers.
+    let w = d * (1.0 / libm::sqrtf(dist2));
     LightEstimate {
         irradiance: irradiance(w, dist2),
         toward: Some(w),

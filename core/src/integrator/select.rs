@@ -43,20 +43,21 @@ impl VertexSelection {
         if !(2..=MAX_VERTEX_LIGHTS).contains(&n) {
             return None;
         }
-        // The BSDF toward `wo` (local), in luminance. A diffuse BSDF is its reflectance over pi
-        // times the cosine; the reflectance is common to every light and cancels, so the cosine
-        // alone weighs (no texture lookup per light).
-        let diffuse = matches!(bsdf, Bsdf::Diffuse(_));
-        let weigh = |wo: Vec3| {
-            if diffuse {
+        // The BSDF toward `wo` (local), in luminance, up to a factor common to every light
+        // (which cancels). A diffuse BSDF is its reflectance over pi times the cosine: the
+        // cosine alone weighs. A rough conductor weighs by its lobe's shape alone (no Fresnel,
+        // tint or masking, which vary little over the lobe and cost square roots, divisions
+        // and texture lookups per light). Any other BSDF is evaluated.
+        let weigh = |wo: Vec3| match bsdf {
+            Bsdf::Diffuse(_) => {
                 if wi.z > 0.0 && wo.z > 0.0 {
                     wo.z
                 } else {
                     0.0
                 }
-            } else {
-                luminance(bsdf.eval(wi, wo, si.uv))
             }
+            Bsdf::RoughConductor(c) => c.lobe(wi, wo),
+            _ => luminance(bsdf.eval(wi, wo, si.uv)),
         };
         let mut weight = [0.0f32; MAX_VERTEX_LIGHTS];
         let mut sum = 0.0f32;
