@@ -12,6 +12,8 @@
 //!   not give multinomial counts), and over many seeds at fixed pixels; 2D histograms of pairs
 //!   of different dimensions test independence. Controls: a sampler that forgets to permute the
 //!   index per dimension fails independence, one that ignores the pixel fails uniformity.
+//! - Paired draws: the couples of 2D draws the layout pairs are 4D (3, m, 4)-nets per pixel
+//!   (the second 2D point alone a (2, m, 2)-net); control: an unpaired couple is not.
 //! - Determinism: a value is a pure function of (seed, K, pixel, sample, dimension).
 //! - Rendering: closed-form scenes rendered with zsobol, t-tested across independent seeds (each
 //!   seed's pixel mean is one independent, unbiased estimate; the samples within a pixel are
@@ -19,7 +21,10 @@
 use tessera::stats::rng::Pcg32;
 use tessera::stats::{chi2_test, sidak_alpha, DEFAULT_MIN_EXPECTED};
 use tessera_core::sampling::owen::{mix64, owen_scramble_u32, scramble_index};
-use tessera_core::sampling::sobol::{sobol_dim0, sobol_dim1, sobol_dim1_reference};
+use tessera_core::sampling::sobol::{
+    sobol_dim0, sobol_dim1, sobol_dim1_reference, sobol_dim2_reversed, sobol_dim3_reversed,
+    sobol_reference,
+};
 use tessera_core::sampling::zsobol::{log2_spp_for, to_unit};
 use tessera_core::sampling::{IndependentSampler, Sampler, SamplerKind, ZSobolSampler};
 use tessera_tests::load_xml;
@@ -61,6 +66,17 @@ fn sobol_tables_match_the_matrix_product() {
     for i in (0..4096).chain((0..4096).map(|_| rng.next_u32())) {
         assert_eq!(sobol_dim1(i), sobol_dim1_reference(i), "index {i}");
     }
+    for i in (0..4096).chain((0..4096).map(|_| rng.next_u32())) {
+        assert_eq!(sobol_dim2_reversed(i).reverse_bits(), sobol_reference(2, i));
+        assert_eq!(sobol_dim3_reversed(i).reverse_bits(), sobol_reference(3, i));
+    }
+    // The first points of dimensions 2 and 3 (Joe and Kuo's direction numbers).
+    let d2: Vec<u32> = (0..4).map(|i| sobol_reference(2, i)).collect();
+    let d3: Vec<u32> = (0..4).map(|i| sobol_reference(3, i)).collect();
+    assert_eq!(d2, [0, 1 << 31, 3 << 30, 1 << 30]);
+    assert_eq!(d3, [0, 1 << 31, 3 << 30, 1 << 30]);
+    assert_eq!(sobol_reference(2, 4), 0x6000_0000);
+    assert_eq!(sobol_reference(3, 4), 0x2000_0000);
     // Known start of both dimensions.
     let d0: Vec<u32> = (0..4).map(sobol_dim0).collect();
     let d1: Vec<u32> = (0..4).map(sobol_dim1).collect();
@@ -171,6 +187,106 @@ fn controls_break_the_net_property() {
         // A pixel block of N/2: two independently scrambled halves.
         let halves = pixel_points(seed, x, y, n, m - 1, 0);
         assert!(!is_02_net(&halves, m), "two half blocks form a net");
+    }
+}
+
+/// Whether the `2^m` points `pts` (each `D` coordinates) form a `(t, m, D)`-net: exactly `2^t`
+/// points in every elementary box of volume `2^(t - m)` (every split of `m - t` bits over the
+/// coordinates).
+fn is_net<const D: usize>(pts: &[[f32; D]], m: u32, t: u32) -> bool {
+    assert_eq!(pts.len(), 1 << m);
+    let t = t.min(m);
+    let bits = m - t;
+    // Every split of `bits` over the D coordinates.
+    let mut splits = vec![[0u32; D]];
+    for c in 0..D {
+        splits = splits
+            .into_iter()
+            .flat_map(|s| {
+                let used: u32 = s.iter().sum();
+                (0..=bits - used).map(move |b| {
+                    let mut s = s;
+                    s[c] = b;
+                    s
+                })
+            })
+            .collect();
+    }
+    splits.retain(|s| s.iter().sum::<u32>() == bits);
+    splits.iter().all(|split| {
+        let mut count = vec![0u32; 1 << bits];
+        for p in pts {
+            let mut cell = 0u64;
+            for c in 0..D {
+                let n = 1u64 << split[c];
+                let i = ((p[c] as f64 * n as f64) as u64).min(n - 1);
+                cell = cell * n + i;
+            }
+            count[cell as usize] += 1;
+        }
+        count.iter().all(|&c| c == 1 << t)
+    })
+}
+
+/// The couple of 2D draws at dimensions `a` and `b` of the first `n` samples of a pixel, as 4D
+/// points.
+fn couple(seed: u64, x: u32, y: u32, n: u64, k: u32, a: u32, b: u32) -> Vec<[f32; 4]> {
+    (0..n)
+        .map(|i| {
+            let mut s = ZSobolSampler::new(seed, x, y, i, k);
+            s.start_dimension(a);
+            let p = s.next_2d();
+            s.start_dimension(b);
+            let q = s.next_2d();
+            [p.x, p.y, q.x, q.y]
+        })
+        .collect()
+}
+
+/// The layout's couples (camera offset with the emitter position of bounce 0, the BSDF
+/// direction of bounce `d` with the emitter position of bounce `d + 1`) are 4D (3, m, 4)-nets
+/// per pixel, their second halves (2, m, 2)-nets, their first halves still (0, m, 2)-nets; the
+/// same holds through the per-pixel cache. Control: two unpaired 2D draws (joined at random)
+/// are not (3, m, 4)-nets.
+#[test]
+fn paired_draws_are_4d_nets() {
+    use tessera_core::sampling::{dimension_of, Stage, ZSobolPixel};
+    let light = |d: u32| dimension_of(d, Stage::Light) + 1;
+    let bsdf = |d: u32| dimension_of(d, Stage::Bsdf) + 1;
+    let couples = [(0, light(0)), (bsdf(0), light(1)), (bsdf(3), light(4))];
+    for (seed, x, y) in [(0u64, 0u32, 0u32), (7, 13, 5), (123, 1000, 3)] {
+        for m in 0..=9u32 {
+            let n = 1u64 << m;
+            for k in [m, 20] {
+                for &(a, b) in &couples {
+                    let pts = couple(seed, x, y, n, k, a, b);
+                    let what = format!("seed {seed} pixel ({x}, {y}) N {n} K {k} dims {a}+{b}");
+                    assert!(is_net(&pts, m, 3), "4D: {what}");
+                    let first: Vec<[f32; 2]> = pts.iter().map(|p| [p[0], p[1]]).collect();
+                    let second: Vec<[f32; 2]> = pts.iter().map(|p| [p[2], p[3]]).collect();
+                    assert!(is_net(&first, m, 0), "first: {what}");
+                    assert!(is_net(&second, m, 2), "second: {what}");
+                    // The cached sampler draws the same couple.
+                    let mut px = ZSobolPixel::new(seed, x, y, k);
+                    for (i, p) in pts.iter().enumerate() {
+                        let mut s = px.sampler(i as u64);
+                        s.start_dimension(a);
+                        let u = s.next_2d();
+                        s.start_dimension(b);
+                        let v = s.next_2d();
+                        assert_eq!([u.x, u.y, v.x, v.y], *p, "{what}");
+                    }
+                }
+            }
+        }
+        // Control: the camera offset with an unpaired 2D draw.
+        let m = 9;
+        let unpaired = couple(seed, x, y, 1 << m, m, 0, bsdf(0));
+        assert!(!is_net(&unpaired, m, 3), "unpaired draws form a 4D net");
+        assert!(
+            is_net(&unpaired, m, m),
+            "the checker accepts any set at t = m"
+        );
     }
 }
 

@@ -148,7 +148,10 @@ mod tests {
                 let g = c.distribution.g(wi, wo, h);
                 let f = c.eval(wi, wo, Vec2::ZERO);
                 let want = c.lobe(wi, wo) * g;
-                assert!((f.x - want).abs() <= 1e-5 * want, "{kind:?} {wo}: {f} {want}");
+                assert!(
+                    (f.x - want).abs() <= 1e-5 * want,
+                    "{kind:?} {wo}: {f} {want}"
+                );
                 assert!(c.lobe(wi, wo) > 0.0);
             }
             assert_eq!(c.lobe(wi, Vec3::new(0.0, 0.6, -0.8)), 0.0);

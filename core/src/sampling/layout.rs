@@ -49,9 +49,47 @@ pub const fn dimension_of(depth: u32, stage: Stage) -> u32 {
         .wrapping_add(stage.offset())
 }
 
+/// The 2D draw whose sequence index the 2D draw starting at `dim` shares, if any: the point on
+/// the emitter at bounce 0 shares the camera's (dimension 0), the point on the emitter at bounce
+/// `d + 1` shares the BSDF direction's of bounce `d`. A stratified sampler can then make each
+/// such couple one 4D point of a net (see [`zsobol`](super::zsobol)): the pixel footprint with
+/// the light seen from the first vertex, and each bounce's direction with the light sampled
+/// where it lands, which is what one-bounce lighting integrates over.
+#[inline]
+pub const fn paired_dimension(dim: u32) -> Option<u32> {
+    // The emitter position follows the 1D emitter choice.
+    let position = Stage::Light.offset() + 1;
+    if dim < CAMERA_DIMENSIONS || (dim - CAMERA_DIMENSIONS) % BOUNCE_DIMENSIONS != position {
+        return None;
+    }
+    let depth = (dim - CAMERA_DIMENSIONS) / BOUNCE_DIMENSIONS;
+    if depth == 0 {
+        Some(0)
+    } else {
+        // The BSDF direction follows the 1D component choice.
+        Some(dimension_of(depth - 1, Stage::Bsdf) + 1)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Camera with the first emitter position; each BSDF direction with the next bounce's
+    /// emitter position; nothing else.
+    #[test]
+    fn pairs_light_positions_with_what_came_before() {
+        assert_eq!(paired_dimension(3), Some(0));
+        assert_eq!(paired_dimension(10), Some(6));
+        assert_eq!(paired_dimension(17), Some(13));
+        let paired = (0..200).filter(|&d| paired_dimension(d).is_some()).count();
+        assert_eq!(paired, (200u32 - 3).div_ceil(7) as usize);
+        for d in 0..200 {
+            if let Some(p) = paired_dimension(d) {
+                assert!(p < d && paired_dimension(p).is_none());
+            }
+        }
+    }
 
     /// Stages of consecutive bounces tile the dimensions after the camera's without overlap.
     #[test]

@@ -1,4 +1,4 @@
-//! The first two dimensions of the Sobol sequence, as 32-bit binary fractions.
+//! The first four dimensions of the Sobol sequence, as 32-bit binary fractions.
 //!
 //! Point `i` of a digital sequence is the generator matrix times the bits of `i` over GF(2).
 //! Dimension 0 is the van der Corput sequence (the matrix is the identity read backwards, so the
@@ -8,23 +8,50 @@
 //! consecutive indices is a (0, m, 2)-net, i.e. it has exactly one point in each elementary
 //! interval `[a / 2^k, (a + 1) / 2^k) x [b / 2^(m-k), (b + 1) / 2^(m-k))`. Only the low 32 bits
 //! of an index matter at 32-bit precision.
+//!
+//! Dimensions 2 and 3 use the polynomials `x^2 + x + 1` and `x^3 + x + 1` with the initial
+//! direction numbers `1, 3` and `1, 3, 1` (Joe and Kuo's table, the standard choice). The four
+//! dimensions together form a (3, 4)-sequence: every aligned block of `2^m` indices has exactly
+//! `8` points in each elementary box of volume `2^(3-m)`; dimensions 2 and 3 alone form a
+//! (2, 2)-sequence. The zsobol sampler uses them to draw two 2D points from one index.
 
-/// Column `j` of dimension 1's generator matrix (top bit = first binary digit).
-const fn dim1_columns() -> [u32; 32] {
-    let mut c = [0u32; 32];
-    c[0] = 1 << 31;
-    let mut j = 1;
-    while j < 32 {
-        c[j] = c[j - 1] ^ (c[j - 1] >> 1);
-        j += 1;
+/// Columns of a Sobol dimension's generator matrix (top bit = first binary digit): its
+/// primitive polynomial has degree `s` and middle coefficients `a` (bit `s - 1 - i` is the
+/// coefficient of `x^(s - i)`), and `m` holds its first `s` direction numbers (odd, below
+/// `2^k` for the `k`-th).
+const fn columns(s: usize, a: u32, m: &[u32]) -> [u32; 32] {
+    let mut v = [0u32; 32];
+    let mut k = 0;
+    while k < s {
+        v[k] = m[k] << (31 - k);
+        k += 1;
     }
-    c
+    while k < 32 {
+        let mut x = v[k - s] ^ (v[k - s] >> s);
+        let mut i = 1;
+        while i < s {
+            if (a >> (s - 1 - i)) & 1 != 0 {
+                x ^= v[k - i];
+            }
+            i += 1;
+        }
+        v[k] = x;
+        k += 1;
+    }
+    v
 }
 
-/// `TABLE[b][v]`: XOR of the columns `8b..8b+8` of dimension 1 selected by the bits of byte `v`,
+/// Generator columns of dimensions 1, 2 and 3.
+const COLUMNS: [[u32; 32]; 3] = [
+    columns(1, 0, &[1]),
+    columns(2, 1, &[1, 3]),
+    columns(3, 1, &[1, 3, 1]),
+];
+
+/// `TABLE[b][v]`: XOR of the columns `8b..8b+8` selected by the bits of byte `v`,
 /// bit-reversed if `reversed`.
-const fn dim1_tables(reversed: bool) -> [[u32; 256]; 4] {
-    let mut cols = dim1_columns();
+const fn tables(columns: [u32; 32], reversed: bool) -> [[u32; 256]; 4] {
+    let mut cols = columns;
     if reversed {
         let mut j = 0;
         while j < 32 {
@@ -53,8 +80,19 @@ const fn dim1_tables(reversed: bool) -> [[u32; 256]; 4] {
     t
 }
 
-static DIM1: [[u32; 256]; 4] = dim1_tables(false);
-static DIM1_REVERSED: [[u32; 256]; 4] = dim1_tables(true);
+static DIM1: [[u32; 256]; 4] = tables(COLUMNS[0], false);
+static DIM1_REVERSED: [[u32; 256]; 4] = tables(COLUMNS[0], true);
+static DIM2_REVERSED: [[u32; 256]; 4] = tables(COLUMNS[1], true);
+static DIM3_REVERSED: [[u32; 256]; 4] = tables(COLUMNS[2], true);
+
+/// The XOR of a table's entries for the four bytes of `i`.
+#[inline(always)]
+fn lookup(t: &[[u32; 256]; 4], i: u32) -> u32 {
+    t[0][(i & 0xff) as usize]
+        ^ t[1][((i >> 8) & 0xff) as usize]
+        ^ t[2][((i >> 16) & 0xff) as usize]
+        ^ t[3][(i >> 24) as usize]
+}
 
 /// Dimension 0 of point `i` (van der Corput), as a fraction of 2^32.
 #[inline]
@@ -65,24 +103,34 @@ pub fn sobol_dim0(i: u32) -> u32 {
 /// Dimension 1 of point `i`, as a fraction of 2^32.
 #[inline]
 pub fn sobol_dim1(i: u32) -> u32 {
-    DIM1[0][(i & 0xff) as usize]
-        ^ DIM1[1][((i >> 8) & 0xff) as usize]
-        ^ DIM1[2][((i >> 16) & 0xff) as usize]
-        ^ DIM1[3][(i >> 24) as usize]
+    lookup(&DIM1, i)
 }
 
 /// Dimension 1 of point `i` with its bits reversed (what Owen scrambling works on).
 #[inline]
 pub fn sobol_dim1_reversed(i: u32) -> u32 {
-    DIM1_REVERSED[0][(i & 0xff) as usize]
-        ^ DIM1_REVERSED[1][((i >> 8) & 0xff) as usize]
-        ^ DIM1_REVERSED[2][((i >> 16) & 0xff) as usize]
-        ^ DIM1_REVERSED[3][(i >> 24) as usize]
+    lookup(&DIM1_REVERSED, i)
 }
 
-/// Dimension 1 by the plain matrix-vector product (the tables' definition; for tests).
-pub fn sobol_dim1_reference(mut i: u32) -> u32 {
-    let cols = dim1_columns();
+/// Dimension 2 of point `i` with its bits reversed.
+#[inline]
+pub fn sobol_dim2_reversed(i: u32) -> u32 {
+    lookup(&DIM2_REVERSED, i)
+}
+
+/// Dimension 3 of point `i` with its bits reversed.
+#[inline]
+pub fn sobol_dim3_reversed(i: u32) -> u32 {
+    lookup(&DIM3_REVERSED, i)
+}
+
+/// Dimension `dim` (0 to 3) of point `i` by the plain matrix-vector product (the tables'
+/// definition; for tests).
+pub fn sobol_reference(dim: usize, mut i: u32) -> u32 {
+    if dim == 0 {
+        return i.reverse_bits();
+    }
+    let cols = COLUMNS[dim - 1];
     let mut x = 0;
     let mut j = 0;
     while i != 0 {
@@ -93,4 +141,9 @@ pub fn sobol_dim1_reference(mut i: u32) -> u32 {
         j += 1;
     }
     x
+}
+
+/// Dimension 1 by the plain matrix-vector product.
+pub fn sobol_dim1_reference(i: u32) -> u32 {
+    sobol_reference(1, i)
 }

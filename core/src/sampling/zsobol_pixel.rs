@@ -6,7 +6,10 @@
 //! keeps a [`ZSobolPixel`] for the pixel; its samplers ([`ZSobolPixel::sampler`]) compute each
 //! dimension's pixel part once, on first use, and only the sample's own bits per draw. Values
 //! are exactly those of [`ZSobolSampler`] (tested below): caching changes no bit.
-use super::zsobol::{to_unit, value_1d_of, value_2d_of, PixelDraw, ZSobolSampler};
+use super::layout::paired_dimension;
+use super::zsobol::{
+    to_unit, value_1d_of, value_2d_of, value_2d_paired_of, PixelDraw, ZSobolSampler,
+};
 use super::Sampler;
 use glam::Vec2;
 
@@ -99,7 +102,13 @@ impl Sampler for CachedZSobol<'_> {
         let p = self.pixel_draw(dim);
         let d = self.sample.finish_draw(p);
         self.sample.start_dimension(dim.wrapping_add(2));
-        let (a, b) = value_2d_of(d);
+        let (a, b) = match paired_dimension(dim) {
+            Some(partner) => {
+                let q = self.pixel_draw(partner);
+                value_2d_paired_of(d, self.sample.finish_draw(q).index)
+            }
+            None => value_2d_of(d),
+        };
         Vec2::new(to_unit(a), to_unit(b))
     }
 
