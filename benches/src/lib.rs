@@ -519,11 +519,11 @@ pub fn wanted_sizes() -> Vec<(&'static str, usize)> {
         .collect()
 }
 
-/// The wide BVHs' build parameters: `Bvh4::PARAMS` (also the 8-wide BVH's), or those of the environment variable
+/// The wide BVHs' build parameters: `Bvh8::PARAMS`, or those of the environment variable
 /// `BVH4_PARAMS=max_leaf,traversal_cost,block` (for measuring other trade-offs).
 pub fn build_params() -> tessera_core::accel::BuildParams {
     let Ok(v) = std::env::var("BVH4_PARAMS") else {
-        return tessera_core::accel::Bvh4::PARAMS;
+        return tessera_core::accel::Bvh8::PARAMS;
     };
     let f: Vec<&str> = v.split(',').collect();
     assert!(f.len() == 3, "BVH4_PARAMS=max_leaf,traversal_cost,block");

@@ -1,6 +1,6 @@
 //! The flat, read-only scene: shapes, primitives under a BVH, BSDFs, emitters, camera.
 use crate::accel::tri4::Ray4;
-use crate::accel::{AnyLeaves, BuildParams, Bvh4, Bvh8, ClosestLeaves, TriBlocks};
+use crate::accel::{AnyLeaves, BuildParams, Bvh8, ClosestLeaves, TriBlocks};
 use crate::bsdf::Bsdf;
 use crate::camera::{Filter, Perspective};
 use crate::emitter::{Emitter, EmitterCtx, LightBound};
@@ -142,7 +142,7 @@ pub enum BuildError {
 impl Scene {
     /// Validates the parts, builds primitives and the BVH, and computes the features.
     pub fn new(p: SceneParts) -> Result<Scene, BuildError> {
-        Scene::with_build_params(p, Bvh4::PARAMS)
+        Scene::with_build_params(p, Bvh8::PARAMS)
     }
 
     /// [`Scene::new`] with a chosen BVH leaf-size trade-off (for measuring it).

@@ -64,7 +64,7 @@ impl LeafRanges for Greedy8 {
 
 impl Wide for Greedy8 {
     fn build(bounds: &[Aabb]) -> (Self, Vec<u32>) {
-        let (bin, order) = Bvh::build_with(bounds, Bvh4::PARAMS);
+        let (bin, order) = Bvh::build_with(bounds, Bvh8::PARAMS);
         (
             Greedy8(Bvh8::from_binary_with(&bin, Collapse::Greedy)),
             order,

@@ -424,7 +424,7 @@ fn surface_area_collapse_fills_nodes_better() {
         .iter()
         .map(|t| Aabb::point(t[0]).grow(t[1]).grow(t[2]))
         .collect();
-    let (bin, _) = Bvh::build_with(&boxes, Bvh4::PARAMS);
+    let (bin, _) = Bvh::build_with(&boxes, Bvh8::PARAMS);
     let fill = |b: &Bvh8| {
         f64::from(b.nodes.iter().map(|n| n.used.count_ones()).sum::<u32>()) / b.nodes.len() as f64
     };

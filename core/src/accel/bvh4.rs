@@ -91,26 +91,10 @@ struct Entry {
 const STACK: usize = 64;
 
 impl Bvh4 {
-    /// The leaf-size trade-off for leaves of four-triangle blocks ([`super::tri4`]): a leaf of
-    /// `n` primitives costs `ceil(n / 4)` block tests, one traversal step a quarter of one.
-    /// Measured (`BVH4_PARAMS=leaf,cost,block cargo bench -p tessera-benches --bench
-    /// bvh_compare`, and callgrind / `--threads 1` renders of the Cornell box): with block costs
-    /// the SAH fills blocks, and memory falls from 71-75 bytes per triangle (nodes and corners)
-    /// to 49-51 (cost 1) or 55-57 (costs 0.25 and 0.5) for leaf limits 8 to 16; costs 0.5 and 1
-    /// made the Cornell
-    /// box (32 large, overlapping triangles) test more blocks per ray and render 5-10% slower
-    /// than leaves of at most 4 scalar tests; cost 0.25 renders it 3-5% faster and casts
-    /// bench rays as fast as 0.5.
-    pub const PARAMS: BuildParams = BuildParams {
-        max_leaf: 16,
-        traversal_cost: 0.25,
-        block: 4,
-    };
-
     /// Builds the binary SAH hierarchy and collapses it; returns the hierarchy and the order in
     /// which the caller must store its primitives (leaves refer to ranges of that order).
     pub fn build(bounds: &[Aabb]) -> (Bvh4, Vec<u32>) {
-        Bvh4::build_with(bounds, Bvh4::PARAMS)
+        Bvh4::build_with(bounds, super::Bvh8::PARAMS)
     }
 
     /// [`Bvh4::build`] with a chosen leaf-size trade-off.
