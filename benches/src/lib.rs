@@ -5,7 +5,7 @@ use glam::{Vec2, Vec3};
 use std::time::Instant;
 use tessera_core::accel::tri4::Ray4;
 use tessera_core::accel::{
-    AnyLeaves, BuildParams, Bvh, Bvh4, Bvh8, ClosestLeaves, Collapse, LeafRanges, TriBlocks,
+    AnyLeaves, BuildParams, Bvh, Bvh8, ClosestLeaves, Collapse, LeafRanges, TriBlocks,
 };
 use tessera_core::bsdf::{Bsdf, Diffuse};
 use tessera_core::camera::{Filter, FovAxis, Perspective};
@@ -294,31 +294,6 @@ pub trait WideBvh: LeafRanges + Sized {
     fn any(&self, ray: &Ray, leaves: AnyLeaves<'_, NoOther>) -> bool;
     /// Bytes of the nodes.
     fn node_bytes(&self) -> usize;
-}
-
-impl WideBvh for Bvh4 {
-    fn build_with(bounds: &[Aabb], params: BuildParams) -> (Self, Vec<u32>) {
-        Bvh4::build_with(bounds, params)
-    }
-    #[inline(always)]
-    fn closest(&self, ray: &Ray, l: ClosestLeaves<'_, NoOther>) {
-        self.traverse_closest(ray, |first, count, t_max| {
-            l.blocks
-                .closest(first, count, l.ray, t_max, l.best, |_, _, _| None)
-        })
-    }
-    #[inline(always)]
-    fn any(&self, ray: &Ray, l: AnyLeaves<'_, NoOther>) -> bool {
-        let mut hit = false;
-        self.traverse_any(ray, |first, count, t_max| {
-            hit = l.blocks.any(first, count, l.ray, t_max, |_, _, _| None);
-            hit
-        });
-        hit
-    }
-    fn node_bytes(&self) -> usize {
-        self.memory_bytes()
-    }
 }
 
 impl WideBvh for Bvh8 {

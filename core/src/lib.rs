@@ -5,8 +5,8 @@
 //! state and never panics on data: a non-finite sample is reported to the caller, who drops it.
 //! Math goes through `glam` with the `libm` backend, so every build computes the same bits.
 #![no_std]
-// `unsafe` only in `accel::simd`, `accel::simd8`, `accel::tri4` and `accel::tri8` (SSE/AVX2
-// intrinsics, CPU feature detection), which allow it and justify each block.
+// `unsafe` only in `accel::simd8`, `accel::tri4` and `accel::tri8` (SSE/AVX2 intrinsics, CPU
+// feature detection), which allow it and justify each block.
 #![deny(unsafe_code)]
 // `!(x > 0.0)` is this crate's way of rejecting NaN along with the values it names; clippy's
 // suggestion (`partial_cmp`) would hide that intent.

@@ -1,6 +1,7 @@
 //! Ray-casting test data shared by the BVH tests: a flat scene of triangles (one mesh) and
 //! spheres (or any shapes and disks) with a diffuse BSDF and no emitters, random triangle soups with degenerate
-//! triangles, and random rays, some with a short extent.
+//! triangles, and random rays, some with a short extent; and the brute-force oracle (a loop over
+//! every primitive) that the scene's casts are checked against.
 use crate::rng::SplitMix;
 use tessera_core::bsdf::{Bsdf, Diffuse};
 use tessera_core::camera::{Filter, FovAxis, Perspective};
@@ -75,6 +76,40 @@ pub fn brute_closest(scene: &Scene, ray: &Ray) -> Option<(f32, usize)> {
         }
     }
     best
+}
+
+/// Checks the scene's casts ([`Scene::intersect_hit`], [`Scene::occluded`]) against brute force
+/// ([`brute_closest`]) on `rays`: the same closest distance (bits) and primitive, and the same
+/// any-hit answer; returns the number of rays that hit. Exact ties (a ray along an edge shared by
+/// two triangles) may resolve to another primitive hit at the very same distance; there must be
+/// few of them.
+pub fn check_scene_casts(scene: &Scene, rays: &[Ray]) -> usize {
+    let (mut hits, mut ties) = (0, 0);
+    for ray in rays {
+        let best = brute_closest(scene, ray);
+        match (best, scene.intersect_hit(ray)) {
+            (None, None) => {}
+            (Some((t, i)), Some(h)) => {
+                hits += 1;
+                assert!(
+                    h.t.is_finite() && h.t > 0.0,
+                    "bad distance {} for {ray:?}",
+                    h.t
+                );
+                assert_eq!(t, h.t, "closest distance differs for {ray:?}");
+                if i as u32 != h.prim {
+                    let tri = TriRay::new(ray);
+                    let other = scene.intersect_prim(h.prim as usize, ray, &tri, ray.t_max);
+                    assert_eq!(other.map(|o| o.0), Some(t), "closest primitive differs");
+                    ties += 1;
+                }
+            }
+            (b, h) => panic!("brute force {b:?} vs the scene {h:?} for {ray:?}"),
+        }
+        assert_eq!(scene.occluded(ray), best.is_some(), "any hit differs");
+    }
+    assert!(ties * 20 <= hits, "{ties} ties in {hits} hits");
+    hits
 }
 
 /// `n` triangles in a cube of side 20: mostly small, every tenth large, and degenerate ones (a

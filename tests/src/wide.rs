@@ -1,18 +1,19 @@
-//! The BVH tests' harness: hierarchies of either width (`Wide`) over a scene's primitives with
-//! the scene's leaf code (`WideScene`), and `compare`, which checks the 8-wide hierarchy's
-//! closest and any hits against brute force, the 4-wide hierarchy, the greedy collapse, the
-//! portable box test, the counted walks and the scene's own casts. Used by `tests/bvh8.rs` and
+//! The BVH tests' harness: 8-wide hierarchies of either collapse (`Wide`) over a scene's
+//! primitives with the scene's leaf code (`WideScene`), and `compare`, which checks the 8-wide
+//! hierarchy's closest and any hits against brute force, the greedy collapse, the portable box
+//! test, the counted walks and the scene's own casts. Used by `tests/bvh8.rs` and
 //! `tests/bvh8_mixed.rs`.
 use crate::soup::brute_closest;
 use tessera_core::accel::tri4::Ray4;
-use tessera_core::accel::{Bvh, Bvh4, Bvh8, Collapse, LeafRanges, TriBlocks};
+use tessera_core::accel::{Bvh, Bvh8, Collapse, LeafRanges, TriBlocks};
 use tessera_core::geometry::{Hit, TriRay};
 use tessera_core::glam::Vec3;
 use tessera_core::math::{Aabb, Ray};
 use tessera_core::scene::Scene;
 
-/// Traversal of either width, so one harness checks both: the counted walk when given a node
-/// counter, else the ordinary one (they are compiled separately).
+/// Traversal of an 8-wide hierarchy of either collapse (the default [`Bvh8`] or [`Greedy8`]),
+/// so one harness checks both: the counted walk when given a node counter, else the ordinary
+/// one (they are compiled separately).
 pub trait Wide: LeafRanges + Sized {
     /// Builds over `bounds`: the hierarchy and its primitive order.
     fn build(bounds: &[Aabb]) -> (Self, Vec<u32>);
@@ -22,36 +23,23 @@ pub trait Wide: LeafRanges + Sized {
     fn any(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> bool, n: Option<&mut u64>);
 }
 
-/// `Wide` for a hierarchy type with the usual walk methods (`Bvh4` and `Bvh8` have the same
-/// names and signatures).
-macro_rules! wide_by_methods {
-    ($($t:ty),*) => {$(
-        impl Wide for $t {
-            fn build(bounds: &[Aabb]) -> (Self, Vec<u32>) {
-                <$t>::build(bounds)
-            }
-            fn closest(
-                &self,
-                ray: &Ray,
-                leaf: impl FnMut(usize, usize, f32) -> f32,
-                n: Option<&mut u64>,
-            ) {
-                match n {
-                    Some(n) => self.traverse_closest_counted(ray, leaf, n),
-                    None => self.traverse_closest(ray, leaf),
-                }
-            }
-            fn any(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> bool, n: Option<&mut u64>) {
-                match n {
-                    Some(n) => self.traverse_any_counted(ray, leaf, n),
-                    None => self.traverse_any(ray, leaf),
-                }
-            }
+impl Wide for Bvh8 {
+    fn build(bounds: &[Aabb]) -> (Self, Vec<u32>) {
+        Bvh8::build(bounds)
+    }
+    fn closest(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> f32, n: Option<&mut u64>) {
+        match n {
+            Some(n) => self.traverse_closest_counted(ray, leaf, n),
+            None => self.traverse_closest(ray, leaf),
         }
-    )*};
+    }
+    fn any(&self, ray: &Ray, leaf: impl FnMut(usize, usize, f32) -> bool, n: Option<&mut u64>) {
+        match n {
+            Some(n) => self.traverse_any_counted(ray, leaf, n),
+            None => self.traverse_any(ray, leaf),
+        }
+    }
 }
-
-wide_by_methods!(Bvh4, Bvh8);
 
 /// The 8-wide hierarchy collapsed greedily (the default is the surface-area collapse).
 pub struct Greedy8(pub Bvh8);
@@ -78,7 +66,7 @@ impl Wide for Greedy8 {
     }
 }
 
-/// A hierarchy of either width over a scene's primitives, with the scene's leaf code.
+/// An 8-wide hierarchy over a scene's primitives, with the scene's leaf code.
 pub struct WideScene<'a, B> {
     /// The scene whose primitives are cast against.
     pub scene: &'a Scene,
@@ -152,11 +140,10 @@ impl<'a, B: Wide> WideScene<'a, B> {
 }
 
 /// Compares the 8-wide hierarchy `w8` (with its box test, counted and not) with brute force,
-/// the 4-wide hierarchy and an 8-wide one with the portable box test; returns (hits, rays that
-/// disagree). Exact ties may resolve to another primitive at the same distance; there must be
+/// the greedily collapsed hierarchy, one with the portable box test and the scene's own casts;
+/// returns (hits, rays that disagree). Exact ties may resolve to another primitive at the same distance; there must be
 /// few of them.
 pub fn compare(scene: &Scene, w8: &WideScene<Bvh8>, rays: &[Ray]) -> (usize, usize) {
-    let w4 = WideScene::<Bvh4>::new(scene);
     let g8 = WideScene::<Greedy8>::new(scene);
     let mut p8 = WideScene::<Bvh8>::new(scene);
     p8.bvh.use_portable();
@@ -172,8 +159,6 @@ pub fn compare(scene: &Scene, w8: &WideScene<Bvh8>, rays: &[Ray]) -> (usize, usi
             w8.occluded(ray, Some(&mut n)),
         );
         let portable = (key(p8.intersect_hit(ray, None)), p8.occluded(ray, None));
-        let t4 = w4.intersect_hit(ray, None).map(|h| h.t.to_bits());
-        let any4 = w4.occluded(ray, None);
         let tg = g8.intersect_hit(ray, None).map(|h| h.t.to_bits());
         let anyg = g8.occluded(ray, None);
         // The scene's own casts: leaves inside the AVX2 walk, blocks in pairs, restartable.
@@ -194,10 +179,8 @@ pub fn compare(scene: &Scene, w8: &WideScene<Bvh8>, rays: &[Ray]) -> (usize, usi
             _ => false,
         };
         if !same
-            || t4 != key(h8).map(|k| k.0)
             || tg != key(h8).map(|k| k.0)
             || any8 != best.is_some()
-            || any4 != any8
             || anyg != any8
             || cast != (key(h8).map(|k| k.0), any8)
             || portable != (key(h8), any8)

@@ -47,8 +47,8 @@ fn mixed_scene(rng: &mut Rng, tris: usize, spheres: usize, disks: usize) -> Scen
 
 /// Leaves of spheres and disks alone (blocks, and pairs of blocks, without a triangle: the
 /// triangle test is skipped), and mixed with triangles (those lanes go straight to the
-/// primitive's own test): closest hits and any hits equal brute force's, the 4-wide and
-/// portable walks' and the scene's own casts'. Control: leaves whose test of the primitives that
+/// primitive's own test): closest hits and any hits equal brute force's, the greedily collapsed
+/// and portable walks' and the scene's own casts'. Control: leaves whose test of the primitives that
 /// are not triangles always misses must disagree with brute force.
 #[test]
 fn agrees_on_soups_of_spheres_and_disks() {

@@ -1,5 +1,5 @@
-//! Leaves as blocks of four triangles: packing a wide BVH's leaves ([`Bvh4`], [`Bvh8`]) into
-//! [`Tri4`] blocks, and the closest-hit and any-hit loops over one leaf.
+//! Leaves as blocks of four triangles: packing a wide BVH's leaves ([`Bvh8`]) into [`Tri4`]
+//! blocks, and the closest-hit and any-hit loops over one leaf.
 //!
 //! Each leaf's primitives (a range of the build order) fill `ceil(count / 4)` consecutive
 //! blocks; the leaf then refers to its first block instead of its first primitive. A primitive
@@ -11,7 +11,7 @@
 use super::leaves::Leaves;
 use super::simd8::{prefetch_in, Hit8, Portable};
 use super::tri4::{Ray4, Tri4};
-use super::{Bvh4, Bvh8};
+use super::Bvh8;
 use crate::geometry::Hit;
 use alloc::vec::Vec;
 use glam::{Vec2, Vec3};
@@ -20,12 +20,6 @@ use glam::{Vec2, Vec3};
 pub trait LeafRanges {
     /// Replaces each leaf's first primitive by `f(first, count)`, visiting leaves in node order.
     fn map_leaves(&mut self, f: impl FnMut(usize, usize) -> u32);
-}
-
-impl LeafRanges for Bvh4 {
-    fn map_leaves(&mut self, f: impl FnMut(usize, usize) -> u32) {
-        Bvh4::map_leaves(self, f);
-    }
 }
 
 impl LeafRanges for Bvh8 {

@@ -2,9 +2,9 @@
 //! whose boxes are stored in SoA layout and tested against a ray at once ([`super::simd8`]:
 //! AVX2 where the CPU has it, detected once per build, else a portable test with the same bits).
 //!
-//! Traversal mirrors [`super::Bvh4`]: closest hit visits the children a ray meets nearest entry
-//! first, postponing the others on a stack with their entry distance and skipping them when
-//! popped if a closer hit has been found; any hit stops at the first hit. Nodes are stored depth
+//! Closest-hit traversal visits the children a ray meets nearest entry first, postponing the
+//! others on a stack with their entry distance and skipping them when popped if a closer hit has
+//! been found; any hit stops at the first hit. Nodes are stored depth
 //! first, the root at index 0; a child is either an interior node (its index) or a leaf (a range
 //! of the primitive order returned by the build).
 use super::leaves::FnLeaves;
@@ -376,8 +376,8 @@ impl Bvh8 {
                         continue;
                     }
                     // Push the hit children sorted by entry distance, farthest deepest (equal
-                    // distances in lane order, as Bvh4): an insertion sort in place on the top
-                    // of the stack, then pop the nearest.
+                    // distances in lane order, which accel/root.rs reproduces): an insertion sort
+                    // in place on the top of the stack, then pop the nearest.
                     let base = sp;
                     stack[sp] = first;
                     sp += 1;

@@ -71,11 +71,12 @@ fn set_lane(nodes: &mut [Bvh8Node], me: usize, lane: usize, bin: &Bvh, c: usize,
     node.used |= 1 << lane;
 }
 
-/// The binary nodes that become the children of the wide node made from binary node `at`, and
-/// how many there are (at most `W`): its two children, then, while fewer than `W`, the interior
-/// child of largest surface area replaced by its own two children (the first of equal areas).
-/// A leaf stays a single child. Shared by the greedy 8-wide collapse and the 4-wide BVH.
-pub(super) fn greedy_children<const W: usize>(bin: &Bvh, at: usize) -> ([usize; W], usize) {
+/// The binary nodes that become the children of the 8-wide node made from binary node `at`
+/// in the greedy collapse, and how many there are (at most eight): its two children, then,
+/// while fewer than eight, the interior child of largest surface area replaced by its own two
+/// children (the first of equal areas). A leaf stays a single child.
+fn greedy_children(bin: &Bvh, at: usize) -> ([usize; 8], usize) {
+    const W: usize = 8;
     let n = &bin.nodes[at];
     let mut kids = [at; W];
     let mut k = 1;
@@ -109,7 +110,7 @@ fn greedy(
     nodes: &mut Vec<Bvh8Node>,
 ) -> u32 {
     *max_depth = (*max_depth).max(depth);
-    let (kids, k) = greedy_children::<8>(bin, at);
+    let (kids, k) = greedy_children(bin, at);
     let me = nodes.len();
     nodes.push(Bvh8Node::EMPTY);
     for (lane, &c) in kids[..k].iter().enumerate() {

@@ -23,7 +23,7 @@ use super::tri4::{test4, Lanes, Ray4, Tri4};
 use super::tri8::{test8_portable, Lanes8};
 
 /// Eight boxes in SoA layout: `b[MIN_X + axis][lane]` and `b[MAX_X + axis][lane]` (the row
-/// indices of [`super::simd`], so a [`RayPre`] serves both widths). An unused lane holds the
+/// indices of [`super::simd`], which a [`RayPre`]'s planes refer to). An unused lane holds the
 /// empty box (min `+inf`, max `-inf`), which no ray hits.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C, align(32))]

@@ -1,4 +1,4 @@
-//! Four watertight ray-triangle tests at once (the second module of the crate allowed `unsafe`).
+//! Four watertight ray-triangle tests at once (one of the crate's few modules allowed `unsafe`).
 //!
 //! A [`Tri4`] block holds the corners of up to four triangles in SoA layout. [`test4`] runs the
 //! test of [`crate::geometry::TriRay::intersect`] (Woop, Benthin and Wald 2013) on all four
@@ -12,8 +12,10 @@
 //! holding no triangle (NaN corners: spheres and disks stored in the block); the caller runs the
 //! scalar test (or the primitive's own) for those.
 //!
-//! Why `unsafe` here: as in [`super::simd`], the SSE intrinsics are `unsafe fn`s, although SSE
-//! and SSE2 are part of the x86_64 baseline. The one block below says why it is sound.
+//! Why `unsafe` here: the SSE intrinsics are `unsafe fn`s unless the calling function itself is
+//! declared `#[target_feature(enable = "sse")]`, and calling such a function from ordinary code
+//! is `unsafe` again, even though SSE and SSE2 are part of the x86_64 baseline and statically
+//! enabled. The one block below says why it is sound.
 #![allow(unsafe_code)]
 
 use crate::geometry::TriRay;

@@ -1,5 +1,5 @@
-//! Eight watertight ray-triangle tests at once: two [`Tri4`] blocks in one AVX2 pass (the
-//! fourth module of the crate allowed `unsafe`).
+//! Eight watertight ray-triangle tests at once: two [`Tri4`] blocks in one AVX2 pass (one of
+//! the crate's few modules allowed `unsafe`).
 //!
 //! [`test8_avx2`] runs, on the 256-bit register whose low half holds block `a` and high half
 //! block `b`, exactly the operations of [`super::tri4::test4_sse`] in the same order (IEEE
