@@ -32,7 +32,7 @@ fn accel(c: &mut Criterion) {
             .filter(|r| scene.intersect_hit(r).is_some())
             .count();
         println!(
-            "mesh {label}: {tris} triangles, {} BVH4 nodes; bytes/triangle: {nodes:.1} nodes + \
+            "mesh {label}: {tris} triangles, {} BVH8 nodes; bytes/triangle: {nodes:.1} nodes + \
              {corners:.1} triangle blocks = {:.1} (+ {prims:.1} primitive ids); camera rays \
              hitting: {:.0}%",
             scene.bvh.nodes.len(),

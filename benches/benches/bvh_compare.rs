@@ -1,11 +1,14 @@
-//! The scene's wide BVH (8-wide since it replaced the 4-wide one; the Embree bench compares the
-//! two widths) against the binary one in the same run: rays per second (best of 5 alternating rounds)
-//! for coherent camera rays and incoherent random rays, closest and any hit, on bumpy spheres
-//! of about 10^3 to 10^6 triangles, the ratio, and build time against triangle count; and per
-//! ray the nodes visited, leaves reached and triangle blocks tested.
+//! The scene's 8-wide BVH (its casts, `Scene::intersect_hit` and `Scene::occluded`) against the
+//! binary BVH it is collapsed from, traversed as scenes did before the wide BVHs
+//! (`tessera_benches::BinaryScene`), in the same run: rays per second (best of 5 alternating
+//! rounds) for coherent camera rays and incoherent random rays, closest and any hit, on bumpy
+//! spheres of about 10^3 to 10^6 triangles, the ratio, and build time against triangle count;
+//! and per ray the nodes visited, leaves reached and triangle blocks tested. The Embree bench
+//! compares the 8-wide BVH with Embree.
 //!
 //! `cargo bench -p tessera-benches --bench bvh_compare` (all sizes) or with sizes as arguments,
-//! e.g. `cargo bench -p tessera-benches --bench bvh_compare -- 1k 100k`.
+//! e.g. `cargo bench -p tessera-benches --bench bvh_compare -- 1k 100k`;
+//! `BVH_PARAMS=max_leaf,traversal_cost,block` builds with other SAH parameters.
 use std::time::Instant;
 use tessera_benches::{
     build_params, bumpy_sphere, bytes_per_triangle, camera_rays, frequency_for, mesh_parts,

@@ -269,35 +269,35 @@ fn main() {
         let parts = mesh_parts(positions, indices);
         let scene = Scene::with_build_params(parts, build_params()).expect("valid scene");
         let start = Instant::now();
-        let w4 = WideScene::<Bvh8Greedy>::new(&scene, build_params());
-        let b4 = start.elapsed().as_secs_f64();
+        let g8w = WideScene::<Bvh8Greedy>::new(&scene, build_params());
+        let bg = start.elapsed().as_secs_f64();
         let start = Instant::now();
         let w8 = WideScene::<Bvh8>::new(&scene, build_params());
         let b8 = start.elapsed().as_secs_f64();
         let tris = scene.prims.len();
-        let ((n4, t4), (n8, t8)) = (w4.bytes_per_triangle(), w8.bytes_per_triangle());
+        let ((ng, tg), (n8, t8)) = (g8w.bytes_per_triangle(), w8.bytes_per_triangle());
         println!(
-            "{label:>5}: bytes/triangle: greedy {n4:.1} + {t4:.1} = {:.1}, bvh8 {n8:.1} + {t8:.1} = \
+            "{label:>5}: bytes/triangle: greedy {ng:.1} + {tg:.1} = {:.1}, bvh8 {n8:.1} + {t8:.1} = \
              {:.1} (nodes + blocks); depth greedy {} bvh8 {}; children per node greedy {:.2} \
              bvh8 {:.2}; avx2 {}",
-            n4 + t4,
+            ng + tg,
             n8 + t8,
-            w4.bvh.0.depth(),
+            g8w.bvh.0.depth(),
             w8.bvh.depth(),
-            fill(&w4.bvh.0),
+            fill(&g8w.bvh.0),
             fill(&w8.bvh),
             w8.bvh.uses_avx2()
         );
         for (kind, rays) in [("camera", &camera), ("random", &random)] {
             for any in [false, true] {
-                let (mut r4, mut r8, mut e) = (0.0f64, 0.0f64, 0.0f64);
+                let (mut rg, mut r8, mut e) = (0.0f64, 0.0f64, 0.0f64);
                 for _ in 0..5 {
                     if any {
-                        r4 = r4.max(rays_per_second(rays, 1, |r| w4.occluded(r)));
+                        rg = rg.max(rays_per_second(rays, 1, |r| g8w.occluded(r)));
                         r8 = r8.max(rays_per_second(rays, 1, |r| w8.occluded(r)));
                         e = e.max(rays_per_second(rays, 1, |r| embree.occluded(r)));
                     } else {
-                        r4 = r4.max(rays_per_second(rays, 1, |r| w4.intersect_hit(r).is_some()));
+                        rg = rg.max(rays_per_second(rays, 1, |r| g8w.intersect_hit(r).is_some()));
                         r8 = r8.max(rays_per_second(rays, 1, |r| w8.intersect_hit(r).is_some()));
                         e = e.max(rays_per_second(rays, 1, |r| embree.intersect(r).is_some()));
                     }
@@ -306,20 +306,20 @@ fn main() {
                     .iter()
                     .filter(|r| {
                         let o = embree.occluded(r);
-                        w4.occluded(r) == o && w8.occluded(r) == o
+                        g8w.occluded(r) == o && w8.occluded(r) == o
                     })
                     .count() as f64
                     / rays.len() as f64;
                 println!(
                     "{label:>5} {tris:>8} {:>6.1} ms {:>6.1} ms {:>6.1} ms {:>9.2} {:>9.2} {:>9.2} \
                      {:>6.2} {:>6.2} {:>6.2}%  {kind} {}",
-                    b4 * 1e3,
+                    bg * 1e3,
                     b8 * 1e3,
                     eb * 1e3,
-                    r4 / 1e6,
+                    rg / 1e6,
                     r8 / 1e6,
                     e / 1e6,
-                    r4 / e,
+                    rg / e,
                     r8 / e,
                     agree * 100.0,
                     if any { "any" } else { "closest" }

@@ -197,7 +197,7 @@ pub fn bytes_per_triangle(scene: &Scene) -> (f64, f64, f64) {
     )
 }
 
-/// A triangle as scenes stored it before the 4-wide BVH: corners inline with shape and face ids
+/// A triangle as scenes stored it before the wide BVHs: corners inline with shape and face ids
 /// (padded to 48 bytes like the old primitive enum).
 #[derive(Clone, Copy)]
 pub struct OldTriangle {
@@ -207,7 +207,7 @@ pub struct OldTriangle {
     pub ids: [u32; 3],
 }
 
-/// The binary SAH BVH over a scene's triangles, traversed as scenes did before the 4-wide BVH
+/// The binary SAH BVH over a scene's triangles, traversed as scenes did before the wide BVHs
 /// (one box per step, near child first by the split axis, the triangle test's per-ray setup
 /// redone per triangle): the baseline of the comparison. Triangle meshes only.
 pub struct BinaryScene {
@@ -284,7 +284,7 @@ fn no_other(_: usize, _: &[Vec3; 3], _: f32) -> Option<(f32, Vec2)> {
     None
 }
 
-/// A wide BVH (4 or 8 children per node) as [`WideScene`] traverses it.
+/// An 8-wide BVH (of either collapse: [`Bvh8`], [`Bvh8Greedy`]) as [`WideScene`] traverses it.
 pub trait WideBvh: LeafRanges + Sized {
     /// Builds over primitive boxes: the hierarchy and the primitive order.
     fn build_with(bounds: &[Aabb], params: BuildParams) -> (Self, Vec<u32>);
@@ -367,9 +367,9 @@ pub fn collapse() -> Collapse {
     }
 }
 
-/// A scene's triangles under a wide BVH of either width, with the scene's leaf code (blocks of
-/// four triangles, [`TriBlocks`]): compares the widths whatever [`Scene`] itself uses.
-/// Triangle meshes only.
+/// A scene's triangles under an 8-wide BVH of either collapse, with the scene's leaf code
+/// (blocks of four triangles, [`TriBlocks`]): compares the collapses whatever [`Scene`] itself
+/// uses. Triangle meshes only.
 pub struct WideScene<B> {
     /// The hierarchy; leaves refer to blocks.
     pub bvh: B,
@@ -494,19 +494,20 @@ pub fn wanted_sizes() -> Vec<(&'static str, usize)> {
         .collect()
 }
 
-/// The wide BVHs' build parameters: `Bvh8::PARAMS`, or those of the environment variable
-/// `BVH4_PARAMS=max_leaf,traversal_cost,block` (for measuring other trade-offs).
+/// The binary build's parameters (that of every hierarchy the benches build but the binary
+/// baseline's): `Bvh8::PARAMS`, or those of the environment variable
+/// `BVH_PARAMS=max_leaf,traversal_cost,block` (for measuring other trade-offs).
 pub fn build_params() -> tessera_core::accel::BuildParams {
-    let Ok(v) = std::env::var("BVH4_PARAMS") else {
+    let Ok(v) = std::env::var("BVH_PARAMS") else {
         return tessera_core::accel::Bvh8::PARAMS;
     };
     let f: Vec<&str> = v.split(',').collect();
-    assert!(f.len() == 3, "BVH4_PARAMS=max_leaf,traversal_cost,block");
+    assert!(f.len() == 3, "BVH_PARAMS=max_leaf,traversal_cost,block");
     let p = tessera_core::accel::BuildParams {
         max_leaf: f[0].parse().expect("max_leaf"),
         traversal_cost: f[1].parse().expect("traversal_cost"),
         block: f[2].parse().expect("block"),
     };
-    eprintln!("BVH4_PARAMS: {p:?}");
+    eprintln!("BVH_PARAMS: {p:?}");
     p
 }

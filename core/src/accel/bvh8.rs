@@ -108,7 +108,8 @@ impl Bvh8 {
     /// The binary build's leaf-size trade-off, for leaves of four-triangle blocks
     /// ([`super::tri4`]): a leaf of `n` primitives costs `ceil(n / 4)` block tests, one
     /// traversal step a quarter of one. Measured on the 4-wide BVH that preceded this one
-    /// (`BVH4_PARAMS=leaf,cost,block cargo bench -p tessera-benches --bench bvh_compare`, and
+    /// (`BVH_PARAMS=leaf,cost,block cargo bench -p tessera-benches --bench bvh_compare`, then
+    /// named `BVH4_PARAMS`, and
     /// callgrind / `--threads 1` renders of the Cornell box) and kept when the 8-wide BVH
     /// replaced it, so the binary build and its primitive order stayed the same: with block
     /// costs the SAH fills blocks, and memory fell from 71-75 bytes per triangle (4-wide nodes
