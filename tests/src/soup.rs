@@ -131,6 +131,16 @@ pub fn random_soup(rng: &mut SplitMix, n: usize) -> Vec<[Vec3; 3]> {
         .collect()
 }
 
+/// `n` spheres in the soup's cube, radii 0.3 to 1.3.
+pub fn random_spheres(rng: &mut SplitMix, n: usize) -> Vec<Sphere> {
+    (0..n)
+        .map(|_| Sphere {
+            center: rng.v(20.0),
+            radius: 0.3 + rng.f(),
+        })
+        .collect()
+}
+
 /// `n` rays from a cube of side 50 toward points of the soup's cube; 30% with a random extent
 /// below 40.
 pub fn random_rays(rng: &mut SplitMix, n: usize) -> Vec<Ray> {

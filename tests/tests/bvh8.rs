@@ -13,12 +13,14 @@ use tessera_core::accel::simd::{RayPre, MAX_X, MIN_X};
 use tessera_core::accel::simd8::{hit8_scalar, Avx2, Boxes8, Hit8, Portable, WithHit8};
 use tessera_core::accel::tri4::Ray4;
 use tessera_core::accel::{AnyLeaves, Bvh, Bvh8, ClosestLeaves, Collapse, Leaves};
-use tessera_core::geometry::{Hit, Sphere, TriRay};
+use tessera_core::geometry::{Hit, TriRay};
 use tessera_core::glam::Vec3;
 use tessera_core::math::{Aabb, Ray};
 
 use tessera_tests::rng::SplitMix as Rng;
-use tessera_tests::soup::{check_scene_casts, mesh_scene, random_rays, random_soup, scene};
+use tessera_tests::soup::{
+    check_scene_casts, mesh_scene, random_rays, random_soup, random_spheres, scene,
+};
 use tessera_tests::wide::{compare, WideScene};
 
 #[test]
@@ -26,12 +28,7 @@ fn agrees_with_brute_force_on_soups() {
     let mut rng = Rng(21);
     let mut hits = 0;
     for n in [1usize, 2, 7, 8, 9, 33, 64, 500, 5000] {
-        let spheres = (0..n % 4)
-            .map(|_| Sphere {
-                center: rng.v(20.0),
-                radius: 0.3 + rng.f(),
-            })
-            .collect();
+        let spheres = random_spheres(&mut rng, n % 4);
         let s = scene(random_soup(&mut rng, n), spheres);
         let w8 = WideScene::<Bvh8>::new(&s);
         let rays = random_rays(&mut rng, 2000);
