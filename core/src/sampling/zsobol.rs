@@ -241,19 +241,22 @@ pub fn value_1d_of(d: DimensionDraw) -> u32 {
 /// The 2D value of a draw (see [`ZSobolSampler::value_2d`]).
 #[inline(always)]
 pub fn value_2d_of(d: DimensionDraw) -> (u32, u32) {
-    let x_r = reversed_lk(d.index, d.seed_x);
-    let y_r = reversed_lk(sobol_dim1_reversed(d.index), d.seed_y);
-    // Both coordinates un-reversed by one 64-bit reversal (the high word lands low).
-    let both = (((x_r as u64) << 32) | y_r as u64).reverse_bits();
-    (both as u32, (both >> 32) as u32)
+    scramble_pair(d.index, sobol_dim1_reversed(d.index), d)
 }
 
 /// The 2D value of a paired draw (see the module header): Sobol dimensions 2 and 3 of the
 /// partner's permuted index `index`, Owen-scrambled with this draw's own seeds.
 #[inline(always)]
 pub fn value_2d_paired_of(d: DimensionDraw, index: u32) -> (u32, u32) {
-    let x_r = reversed_lk(sobol_dim2_reversed(index), d.seed_x);
-    let y_r = reversed_lk(sobol_dim3_reversed(index), d.seed_y);
+    scramble_pair(sobol_dim2_reversed(index), sobol_dim3_reversed(index), d)
+}
+
+/// Owen-scrambles two bit-reversed Sobol coordinates with `d`'s seeds and un-reverses them.
+#[inline(always)]
+fn scramble_pair(x_reversed: u32, y_reversed: u32, d: DimensionDraw) -> (u32, u32) {
+    let x_r = reversed_lk(x_reversed, d.seed_x);
+    let y_r = reversed_lk(y_reversed, d.seed_y);
+    // Both coordinates un-reversed by one 64-bit reversal (the high word lands low).
     let both = (((x_r as u64) << 32) | y_r as u64).reverse_bits();
     (both as u32, (both >> 32) as u32)
 }
