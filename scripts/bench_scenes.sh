@@ -6,7 +6,9 @@
 #   scripts/bench_scenes.sh [THREADS [MAX_SECONDS [OUTDIR]]]      (defaults: 2, 60, docs/bench)
 #
 # Needs the dist build (cargo build --profile dist -p tessera; release plus fat LTO), Mitsuba 3 (scripts/install_mitsuba.sh) and, for
-# llvm_ad_rgb, scripts/install_llvm.sh. Set VARIANTS=scalar_rgb to skip the LLVM variant.
+# llvm_ad_rgb, scripts/install_llvm.sh. Set VARIANTS=scalar_rgb to skip the LLVM variant,
+# SAMPLERS=zsobol to measure only Tessera's zsobol curve, and SEEDS=N to make every curve (both
+# renderers) the wave-by-wave mean of N seeds (N times the time; MAX_SECONDS applies per seed).
 # For a build tuned to this CPU, as Mitsuba's LLVM variant's kernels are (same image bits):
 #   RUSTFLAGS="-C target-cpu=native" cargo build --profile dist -p tessera --target-dir target/native
 #   TESSERA=target/native/dist/tessera scripts/bench_scenes.sh 2 30
@@ -18,14 +20,16 @@ MAX="${2:-60}"
 OUT="${3:-docs/bench}"
 PYTHON="${PYTHON:-python3}"
 VARIANTS="${VARIANTS:-scalar_rgb,llvm_ad_rgb}"
+SAMPLERS="${SAMPLERS:-independent,zsobol}"
+SEEDS="${SEEDS:-1}"
 TESSERA="${TESSERA:-target/dist/tessera}"
 mkdir -p "$OUT"
 for NAME in cbox veach_mis; do
     REF="scenes/refs/${NAME}_128x128_mitsuba.exr"
     "$TESSERA" bench "scenes/$NAME.xml" -D res=128 -D rfilter=box --reference "$REF" \
-        --integrators path_mis --sampler independent,zsobol --threads "$THREADS" --max-seconds "$MAX" -o "$OUT/$NAME.csv"
+        --integrators path_mis --sampler "$SAMPLERS" --seeds "$SEEDS" --threads "$THREADS" --max-seconds "$MAX" -o "$OUT/$NAME.csv"
     "$PYTHON" scripts/mitsuba_bench.py "scenes/$NAME.xml" -D res=128 -D rfilter=box \
-        --reference "$REF" --variant "$VARIANTS" --threads "$THREADS" --max-seconds "$MAX" \
+        --reference "$REF" --variant "$VARIANTS" --seeds "$SEEDS" --threads "$THREADS" --max-seconds "$MAX" \
         -o "$OUT/$NAME.csv"
     "$TESSERA" bench --plot-only "$OUT/$NAME.csv" --plot "$OUT/$NAME.png" \
         --title "$NAME.xml, 128x128, max_depth 8, $THREADS threads"

@@ -4,7 +4,7 @@
 Usage:
     scripts/mitsuba_bench.py SCENE.xml --reference REF.exr -o report.csv
         [--variant scalar_rgb[,llvm_ad_rgb]] [--threads N] [--max-seconds S] [--max-spp N]
-        [--seed S] [--target-relmse E] [--label NAME] [-D name=value ...]
+        [--seed S] [--seeds N] [--target-relmse E] [--label NAME] [-D name=value ...]
 
 Renders the scene in waves of 1, 2, 4, ... samples per pixel. Unlike `tessera bench`, which
 continues one sample sequence, each wave here is a FRESH Mitsuba render with that sample count
@@ -14,6 +14,10 @@ result to a NumPy array (which, for the LLVM variants, waits for the kernels to 
 the waves one untimed 1 spp render warms up (LLVM variants compile their kernels then; later
 calls hit Dr.Jit's kernel cache). A curve stops before a wave whose predicted time (twice the
 last one) would pass --max-seconds, or at --max-spp.
+
+With --seeds N, each wave renders N times, with seeds S, S + 1, ..., S + N - 1, and its row is the
+mean of those renders (seconds, relMSE, MSE, MAE; RMSE is the root of the mean MSE), as
+`tessera bench --seeds N` reports; the time limit applies to the mean seconds.
 
 Errors are computed as in Tessera, in float64 over every pixel and channel against the
 reference: RMSE, relMSE = mean((a - b)^2 / (b^2 + 0.01)), MAE. Rows are APPENDED to the report
@@ -85,6 +89,8 @@ def main():
     ap.add_argument("--max-seconds", type=float, default=60.0)
     ap.add_argument("--max-spp", type=int, default=1 << 20)
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--seeds", type=int, default=1,
+                    help="renders per wave, seeds --seed, --seed + 1, ...; rows are their means")
     ap.add_argument("--target-relmse", type=float, default=0.01)
     ap.add_argument("--label", default=None, help="integrator column (default mitsuba-VARIANT:NAME)")
     ap.add_argument("-D", dest="defines", action="append", default=[], metavar="NAME=VALUE",
@@ -98,8 +104,8 @@ def main():
             ap.error(f"-D expects name=value, got {d!r}")
         k, v = d.split("=", 1)
         params[k.strip()] = v.strip()
-    if args.max_seconds <= 0 or args.max_spp < 1:
-        ap.error("--max-seconds must be positive and --max-spp at least 1")
+    if args.max_seconds <= 0 or args.max_spp < 1 or args.seeds < 1:
+        ap.error("--max-seconds must be positive, --max-spp and --seeds at least 1")
     variants = [v.strip() for v in args.variant.split(",") if v.strip()]
     if any(v.startswith("llvm") for v in variants) and "DRJIT_LIBLLVM_PATH" not in os.environ \
             and os.path.exists(LLVM19):
@@ -147,10 +153,16 @@ def main():
         np.asarray(mi.render(scene, spp=1, seed=args.seed))  # warm-up, untimed
         rows, spp, last = [], 1, 0.0
         while spp <= args.max_spp and (not rows or 2.0 * last <= args.max_seconds):
-            t0 = time.perf_counter()
-            img = rgb(mi.render(scene, spp=spp, seed=args.seed))
-            last = time.perf_counter() - t0
-            rmse, relmse, mae = errors(img, ref)
+            runs = []
+            for k in range(args.seeds):
+                t0 = time.perf_counter()
+                img = rgb(mi.render(scene, spp=spp, seed=args.seed + k))
+                runs.append((time.perf_counter() - t0,) + errors(img, ref))
+            n = len(runs)
+            last = sum(r[0] for r in runs) / n
+            rmse = (sum(r[1] ** 2 for r in runs) / n) ** 0.5
+            relmse = sum(r[2] for r in runs) / n
+            mae = sum(r[3] for r in runs) / n
             row = dict(integrator=label, spp=spp, seconds=last,
                        sps=w * h * spp / max(last, 1e-9), rmse=rmse, relmse=relmse, mae=mae)
             rows.append(row)

@@ -292,3 +292,66 @@ fn bad_references_and_reports_are_one_line_errors() {
     let o = run(&[os("bench"), cbox().as_os_str(), os("-o"), csv.as_os_str()]);
     assert_bad_input(&tmp, &o, "--reference", &before);
 }
+
+/// `--seeds 2 --seed 3` reports, wave by wave, the mean of the errors of the seed 3 and seed 4
+/// images (exactly those renders: the errors are recomputed here); `--seeds 0` is a usage error.
+#[test]
+fn seeds_average_the_errors_of_each_seeds_images() {
+    let tmp = Tmp::new("seeds");
+    let l = small_cbox();
+    let reference = write_reference(&tmp.0, &l);
+    let csv = tmp.0.join("r.csv");
+    let bench = |seeds: &str| {
+        run(&[
+            os("bench"),
+            cbox().as_os_str(),
+            os("-D"),
+            os("res=12"),
+            os("-D"),
+            os("rfilter=box"),
+            os("--reference"),
+            reference.as_os_str(),
+            os("--integrators"),
+            os("path_mis"),
+            os("--max-spp"),
+            os("2"),
+            os("--seed"),
+            os("3"),
+            os("--seeds"),
+            os(seeds),
+            os("-q"),
+            os("-o"),
+            csv.as_os_str(),
+        ])
+    };
+    let o = bench("2");
+    assert_eq!(o.status.code(), Some(0), "{o:?}");
+    let rows = read_csv(&csv).unwrap();
+    assert_eq!(rows.iter().map(|r| r.spp).collect::<Vec<_>>(), [1, 2]);
+    let refimg = read_image(&reference).unwrap();
+    for r in &rows {
+        let e: Vec<_> = [3u64, 4]
+            .iter()
+            .map(|&seed| {
+                let o = RenderOptions {
+                    seed,
+                    ..opts(0..r.spp, 1)
+                };
+                let img = render(&l.scene, &l.integrator, &o, &mut |_, _| {});
+                errors(&img.rgb(), &refimg.data)
+            })
+            .collect();
+        assert_ne!(e[0].relmse, e[1].relmse, "the seeds must differ");
+        let mean = (e[0].relmse + e[1].relmse) / 2.0;
+        assert!(
+            (r.errors.relmse - mean).abs() <= 1e-12 * mean,
+            "{r:?} {e:?}"
+        );
+        let rmse = ((e[0].rmse.powi(2) + e[1].rmse.powi(2)) / 2.0).sqrt();
+        assert!((r.errors.rmse - rmse).abs() <= 1e-12 * rmse, "{r:?} {e:?}");
+    }
+    std::fs::remove_file(&csv).unwrap();
+    let before = tmp.entries();
+    let o = bench("0");
+    assert_bad_input(&tmp, &o, "--seeds must be at least 1", &before);
+}

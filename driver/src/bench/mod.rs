@@ -11,6 +11,7 @@
 //! CSV columns ([`CSV_HEADER`]): `integrator, sampler, spp, threads, seconds,
 //! samples_per_second, rmse, relmse, mae`; `samples_per_second` is pixels x spp / seconds.
 //! `scripts/mitsuba_bench.py` appends rows of the same form (integrator `mitsuba:NAME`).
+pub mod mean;
 pub mod plot;
 pub(crate) mod text;
 

@@ -1,6 +1,7 @@
 //! `tessera bench`: error against time for one or more integrators (see `crate::bench`), or
 //! (`--plot-only`) just the plot of an existing report, e.g. one with Mitsuba 3 rows appended by
 //! `scripts/mitsuba_bench.py`.
+use crate::bench::mean::mean_curve;
 use crate::bench::plot::write_plot;
 use crate::bench::{curves, read_csv, run_waves, time_to_target, write_csv, Row, WaveLimits};
 use crate::image_io::{read_image, Format};
@@ -37,6 +38,11 @@ pub struct BenchArgs {
     /// Seed (default: the sampler's `seed`, else 0).
     #[arg(long)]
     pub seed: Option<u64>,
+    /// Measure each curve with this many seeds (the seed, the seed + 1, ...) and report their
+    /// wave-by-wave mean (seconds, relMSE, MSE, MAE), which estimates the expected error
+    /// better than one seed; `--max-seconds` applies to each seed's run.
+    #[arg(long, default_value_t = 1)]
+    pub seeds: u64,
     /// Longest path (-1 = unbounded), overriding the scene file.
     #[arg(long, allow_hyphen_values = true)]
     pub max_depth: Option<i64>,
@@ -121,6 +127,9 @@ pub fn run(args: &BenchArgs) -> i32 {
     if args.max_spp == 0 {
         return usage("--max-spp must be at least 1");
     }
+    if args.seeds == 0 {
+        return usage("--seeds must be at least 1");
+    }
     if args.tile_size == 0 || args.tile_size > 4096 {
         return usage(format!(
             "--tile-size must be between 1 and 4096, found {}",
@@ -197,28 +206,48 @@ pub fn run(args: &BenchArgs) -> i32 {
             return usage(e);
         }
         let sampler = loaded.scene.sampler.name();
-        let (r, _) = run_waves(
-            &loaded.scene,
-            &loaded.integrator,
-            n,
-            &opts,
-            &reference,
-            limits,
-            &mut |row| {
-                if !args.quiet {
-                    eprintln!(
-                        "{n} ({sampler}): {:>7} spp {:>9.3} s {:>7.3} M samples/s  relMSE {:.4e}  RMSE {:.4e}  MAE {:.4e}",
-                        row.spp,
-                        row.seconds,
-                        row.samples_per_second / 1e6,
-                        row.errors.relmse,
-                        row.errors.rmse,
-                        row.errors.mae
-                    );
-                }
-            },
-        );
-        rows.extend(r);
+        let mut runs = Vec::new();
+        for k in 0..args.seeds {
+            let seed = opts.seed.wrapping_add(k);
+            let seeded = RenderOptions {
+                seed,
+                ..opts.clone()
+            };
+            let seed_note = if args.seeds > 1 {
+                format!(" seed {seed}")
+            } else {
+                String::new()
+            };
+            let (r, _) = run_waves(
+                &loaded.scene,
+                &loaded.integrator,
+                n,
+                &seeded,
+                &reference,
+                limits,
+                &mut |row| {
+                    if !args.quiet {
+                        eprintln!(
+                            "{n} ({sampler}{seed_note}): {:>7} spp {:>9.3} s {:>7.3} M samples/s  relMSE {:.4e}  RMSE {:.4e}  MAE {:.4e}",
+                            row.spp,
+                            row.seconds,
+                            row.samples_per_second / 1e6,
+                            row.errors.relmse,
+                            row.errors.rmse,
+                            row.errors.mae
+                        );
+                    }
+                },
+            );
+            runs.push(r);
+        }
+        match mean_curve(&runs) {
+            Some(r) => rows.extend(r),
+            None => {
+                eprintln!("error: {n} ({sampler}): the seeds' waves do not line up");
+                return 1;
+            }
+        }
     }
     print_times(&rows, args.target_relmse);
     let mut code = 0;
