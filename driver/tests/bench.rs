@@ -73,6 +73,23 @@ fn os(s: &str) -> &std::ffi::OsStr {
     std::ffi::OsStr::new(s)
 }
 
+/// `tessera bench` on the 12x12 box-filtered box against `reference`, then `rest`.
+fn bench_small(reference: &Path, rest: &[&std::ffi::OsStr]) -> Output {
+    let scene = cbox();
+    let mut args = vec![
+        os("bench"),
+        scene.as_os_str(),
+        os("-D"),
+        os("res=12"),
+        os("-D"),
+        os("rfilter=box"),
+        os("--reference"),
+        reference.as_os_str(),
+    ];
+    args.extend_from_slice(rest);
+    run(&args)
+}
+
 /// A reference of the small box: its own 16 spp render with another seed.
 fn write_reference(dir: &Path, l: &LoadedScene) -> PathBuf {
     let mut o = opts(0..16, 2);
@@ -162,29 +179,24 @@ fn cli_writes_the_report_and_plots() {
     let l = small_cbox();
     let reference = write_reference(&tmp.0, &l);
     let (csv, png) = (tmp.0.join("r.csv"), tmp.0.join("r.png"));
-    let o = run(&[
-        os("bench"),
-        cbox().as_os_str(),
-        os("-D"),
-        os("res=12"),
-        os("-D"),
-        os("rfilter=box"),
-        os("--reference"),
-        reference.as_os_str(),
-        os("--integrators"),
-        os("path_mis,path_mats"),
-        os("--max-spp"),
-        os("4"),
-        os("--seed"),
-        os("3"),
-        os("--threads"),
-        os("2"),
-        os("-q"),
-        os("-o"),
-        csv.as_os_str(),
-        os("--plot"),
-        png.as_os_str(),
-    ]);
+    let o = bench_small(
+        &reference,
+        &[
+            os("--integrators"),
+            os("path_mis,path_mats"),
+            os("--max-spp"),
+            os("4"),
+            os("--seed"),
+            os("3"),
+            os("--threads"),
+            os("2"),
+            os("-q"),
+            os("-o"),
+            csv.as_os_str(),
+            os("--plot"),
+            png.as_os_str(),
+        ],
+    );
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert_eq!(o.status.code(), Some(0), "{o:?}");
     assert!(
@@ -302,27 +314,22 @@ fn seeds_average_the_errors_of_each_seeds_images() {
     let reference = write_reference(&tmp.0, &l);
     let csv = tmp.0.join("r.csv");
     let bench = |seeds: &str| {
-        run(&[
-            os("bench"),
-            cbox().as_os_str(),
-            os("-D"),
-            os("res=12"),
-            os("-D"),
-            os("rfilter=box"),
-            os("--reference"),
-            reference.as_os_str(),
-            os("--integrators"),
-            os("path_mis"),
-            os("--max-spp"),
-            os("2"),
-            os("--seed"),
-            os("3"),
-            os("--seeds"),
-            os(seeds),
-            os("-q"),
-            os("-o"),
-            csv.as_os_str(),
-        ])
+        bench_small(
+            &reference,
+            &[
+                os("--integrators"),
+                os("path_mis"),
+                os("--max-spp"),
+                os("2"),
+                os("--seed"),
+                os("3"),
+                os("--seeds"),
+                os(seeds),
+                os("-q"),
+                os("-o"),
+                csv.as_os_str(),
+            ],
+        )
     };
     let o = bench("2");
     assert_eq!(o.status.code(), Some(0), "{o:?}");
