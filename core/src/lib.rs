@@ -15,6 +15,7 @@
 extern crate alloc;
 
 pub mod accel;
+pub mod adaptive;
 pub mod bsdf;
 pub mod camera;
 pub mod emitter;

@@ -134,7 +134,7 @@ pub fn render(
     opts: &RenderOptions,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Framebuffer {
-    render_tiles::<NoProbe>(scene, integrator, opts, None, None, progress).0
+    render_tiles::<NoProbe>(scene, integrator, opts, None, None, None, progress).0
 }
 
 /// [`render`] with a probe per worker thread observing every sample (e.g. [`Counters`] for
@@ -146,7 +146,7 @@ pub fn render_probed<P: TileProbe>(
     opts: &RenderOptions,
     progress: &mut dyn FnMut(usize, usize),
 ) -> (Framebuffer, P) {
-    render_tiles(scene, integrator, opts, None, None, progress)
+    render_tiles(scene, integrator, opts, None, None, None, progress)
 }
 
 /// Panics unless `fb` is the scene's size (a caller's mistake: start from `Framebuffer::new`).
@@ -174,7 +174,59 @@ pub fn render_into(
     progress: &mut dyn FnMut(usize, usize),
 ) {
     check_size(scene, fb, "render_into");
-    *fb = render_tiles::<NoProbe>(scene, integrator, opts, Some(&fb.pixels), None, progress).0;
+    *fb = render_tiles::<NoProbe>(
+        scene,
+        integrator,
+        opts,
+        Some(&fb.pixels),
+        None,
+        None,
+        progress,
+    )
+    .0;
+}
+
+/// Brings every selected pixel of `fb` to `targets[i]` samples (`targets` row-major, one per
+/// pixel of the image), each pixel continuing from its own count (`count + dropped`);
+/// `opts.samples` is not used. Used by adaptive sampling, where pixels hold different counts:
+/// a pixel's bits equal a plain render of its first `targets[i]` samples. With `stop`, no tile
+/// is started once it is set (the tiles not rendered keep their sums); returns whether every
+/// tile was rendered.
+///
+/// # Panics
+/// If `fb` is not the scene's size or `targets` has another length.
+pub fn render_into_targets(
+    scene: &Scene,
+    integrator: &Integrator,
+    opts: &RenderOptions,
+    fb: &mut Framebuffer,
+    targets: &[u64],
+    stop: Option<&AtomicBool>,
+    progress: &mut dyn FnMut(usize, usize),
+) -> bool {
+    check_size(scene, fb, "render_into_targets");
+    assert_eq!(
+        targets.len(),
+        fb.pixels.len(),
+        "render_into_targets: one target per pixel"
+    );
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let total = opts.pixels.rects(w, h, opts.tile_size).len();
+    let mut done = 0;
+    *fb = render_tiles::<NoProbe>(
+        scene,
+        integrator,
+        opts,
+        Some(&fb.pixels),
+        stop,
+        Some(targets),
+        &mut |d, t| {
+            done = d;
+            progress(d, t)
+        },
+    )
+    .0;
+    done == total
 }
 
 /// Brings every selected pixel of `fb` to `opts.samples.end` samples, each pixel continuing from
@@ -204,6 +256,7 @@ pub fn render_into_until(
         opts,
         Some(&fb.pixels),
         Some(stop),
+        None,
         &mut |d, t| {
             done = d;
             progress(d, t)
@@ -216,13 +269,15 @@ pub fn render_into_until(
 /// The tile loop: each tile's accumulators start from `start` (or empty) and take the samples
 /// `opts.samples` in order. With `stop` (resumable mode), each pixel instead continues from its
 /// own count up to `opts.samples.end`, and no tile is started once `stop` is set (the tiles not
-/// rendered keep `start`). Pixels outside the selection keep `start` (or stay empty).
+/// rendered keep `start`). With `targets`, each pixel continues from its own count up to its
+/// own target instead. Pixels outside the selection keep `start` (or stay empty).
 fn render_tiles<P: TileProbe>(
     scene: &Scene,
     integrator: &Integrator,
     opts: &RenderOptions,
     start: Option<&[PixelAccum]>,
     stop: Option<&AtomicBool>,
+    targets: Option<&[u64]>,
     progress: &mut dyn FnMut(usize, usize),
 ) -> (Framebuffer, P) {
     let (w, h) = (scene.camera.width, scene.camera.height);
@@ -267,9 +322,11 @@ fn render_tiles<P: TileProbe>(
                     for y in t.y0..t.y1 {
                         for x in t.x0..t.x1 {
                             let a = &mut acc[k];
-                            let samples = match stop {
-                                Some(_) => a.count + a.dropped..opts.samples.end,
-                                None => opts.samples.clone(),
+                            let own = a.count + a.dropped;
+                            let samples = match (targets, stop) {
+                                (Some(t), _) => own..t[y as usize * w as usize + x as usize],
+                                (None, Some(_)) => own..opts.samples.end,
+                                (None, None) => opts.samples.clone(),
                             };
                             render_samples_probed(
                                 scene,

@@ -143,6 +143,7 @@ fn waves_continue_the_sample_sequence_bit_for_bit() {
         &opts(0..1, 2),
         &reference,
         limits,
+        None,
         &mut |_| seen += 1,
     );
     assert_eq!(last, whole);

@@ -16,9 +16,10 @@ pub mod plot;
 pub(crate) mod text;
 
 use crate::image_io::{write_atomic, RgbImage};
-use crate::render::{render_into, Framebuffer, RenderOptions};
+use crate::render::{render_into, render_into_targets, Framebuffer, RenderOptions};
 use std::path::Path;
 use std::time::Instant;
+use tessera_core::adaptive::{plan_pass, AdaptiveParams};
 use tessera_core::integrator::Integrator;
 use tessera_core::scene::Scene;
 
@@ -89,6 +90,12 @@ pub struct WaveLimits {
 
 /// Renders `integrator` in waves 1, 2, 4, ... spp into one framebuffer until a limit is reached,
 /// calling `on_wave` with each row; returns the rows and the final framebuffer.
+///
+/// With `adaptive`, the waves after the warm-up (`adaptive.warmup` samples in every pixel) share
+/// the same budgets (pixels x spp) out by [`plan_pass`]: a row's `spp` is then the mean over
+/// pixels, and its sampler is named `SAMPLER+adaptive`. The time to plan a pass counts in the
+/// wave's seconds.
+#[allow(clippy::too_many_arguments)]
 pub fn run_waves(
     scene: &Scene,
     integrator: &Integrator,
@@ -96,6 +103,7 @@ pub fn run_waves(
     opts: &RenderOptions,
     reference: &RgbImage,
     limits: WaveLimits,
+    adaptive: Option<&AdaptiveParams>,
     on_wave: &mut dyn FnMut(&Row),
 ) -> (Vec<Row>, Framebuffer) {
     let (w, h) = (scene.camera.width, scene.camera.height);
@@ -112,12 +120,37 @@ pub fn run_waves(
             ..opts.clone()
         };
         let start = Instant::now();
-        render_into(scene, integrator, &wave, &mut fb, &mut |_, _| {});
+        match adaptive {
+            Some(a) if done >= a.warmup.max(2) => {
+                let pixels = w as u64 * h as u64;
+                let add = plan_pass(&fb.pixels, w, h, pixels * (next - done), a);
+                let targets: Vec<u64> = fb
+                    .pixels
+                    .iter()
+                    .zip(&add)
+                    .map(|(p, k)| p.count + p.dropped + k)
+                    .collect();
+                render_into_targets(
+                    scene,
+                    integrator,
+                    &wave,
+                    &mut fb,
+                    &targets,
+                    None,
+                    &mut |_, _| {},
+                );
+            }
+            _ => render_into(scene, integrator, &wave, &mut fb, &mut |_, _| {}),
+        }
         seconds += start.elapsed().as_secs_f64();
         done = next;
+        let sampler = match adaptive {
+            Some(_) => format!("{}+adaptive", scene.sampler.name()),
+            None => scene.sampler.name().into(),
+        };
         let row = Row {
             integrator: label.to_string(),
-            sampler: scene.sampler.name().into(),
+            sampler,
             spp: done,
             threads: opts.threads,
             seconds,

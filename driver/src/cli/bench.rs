@@ -9,6 +9,7 @@ use crate::render::RenderOptions;
 use crate::scene::load_scene;
 use clap::Args;
 use std::path::{Path, PathBuf};
+use tessera_core::adaptive::AdaptiveParams;
 
 /// Arguments of `tessera bench`.
 #[derive(Args, Debug, Clone)]
@@ -72,6 +73,14 @@ pub struct BenchArgs {
     /// No line per wave.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Also measure each curve with adaptive sampling (after 2 samples in every pixel, each
+    /// wave's samples go where the relative variance is highest); its curves are named
+    /// `NAME (SAMPLER+adaptive)`.
+    #[arg(long)]
+    pub adaptive: bool,
+    /// Measure only the adaptive curves (implies --adaptive).
+    #[arg(long)]
+    pub adaptive_only: bool,
 }
 
 fn usage(msg: impl std::fmt::Display) -> i32 {
@@ -194,18 +203,32 @@ pub fn run(args: &BenchArgs) -> i32 {
         max_seconds: args.max_seconds,
         max_spp: args.max_spp,
     };
+    let params = AdaptiveParams::default();
+    let modes: Vec<Option<&AdaptiveParams>> = match (args.adaptive, args.adaptive_only) {
+        (_, true) => vec![Some(&params)],
+        (true, false) => vec![None, Some(&params)],
+        (false, false) => vec![None],
+    };
     let mut rows = Vec::new();
-    for (n, s) in names
-        .iter()
-        .flat_map(|n| samplers.iter().map(move |s| (n, *s)))
-    {
+    let mut jobs = Vec::new();
+    for n in &names {
+        for s in &samplers {
+            for a in &modes {
+                jobs.push((n, *s, *a));
+            }
+        }
+    }
+    for (n, s, adaptive) in jobs {
         if let Err(e) = loaded.set_integrator(Some(n), args.max_depth) {
             return usage(e);
         }
         if let Err(e) = loaded.set_sampler(s, args.max_spp) {
             return usage(e);
         }
-        let sampler = loaded.scene.sampler.name();
+        let sampler = match adaptive {
+            Some(_) => format!("{}+adaptive", loaded.scene.sampler.name()),
+            None => loaded.scene.sampler.name().to_string(),
+        };
         let mut runs = Vec::new();
         for k in 0..args.seeds {
             let seed = opts.seed.wrapping_add(k);
@@ -225,6 +248,7 @@ pub fn run(args: &BenchArgs) -> i32 {
                 &seeded,
                 &reference,
                 limits,
+                adaptive,
                 &mut |row| {
                     if !args.quiet {
                         eprintln!(

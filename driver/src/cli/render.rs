@@ -18,6 +18,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
+use tessera_core::adaptive::AdaptiveParams;
 use tessera_core::camera::Perspective;
 
 /// Arguments of `tessera render`.
@@ -84,6 +85,11 @@ pub struct RenderArgs {
     /// No progress bar.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Adaptive sampling: after 2 samples in every pixel, passes doubling the mean sample count
+    /// send each pass's samples where the relative variance is highest; --spp is then the mean
+    /// over pixels. Consistent, not unbiased (see the README).
+    #[arg(long, conflicts_with_all = ["checkpoint", "resume"])]
+    pub adaptive: bool,
     /// Render a piece of the image (a part, for `tessera merge`).
     #[command(flatten)]
     pub split: super::split_args::SplitArgs,
@@ -250,6 +256,7 @@ pub fn run(args: &RenderArgs) -> i32 {
         target,
         budget,
         write_every,
+        adaptive: args.adaptive.then(AdaptiveParams::default),
     };
     let taken = |fb: &Framebuffer| fb.pixels.iter().map(|p| p.count + p.dropped).sum::<u64>();
     let samples_before = taken(&fb);
@@ -372,7 +379,11 @@ impl Decor {
 fn spp_text(fb: &Framebuffer) -> String {
     match spp_range(fb) {
         (lo, hi) if lo == hi => format!("{lo}"),
-        (lo, hi) => format!("{lo}-{hi}"),
+        (lo, hi) => {
+            let n = (fb.pixels.len() as u64).max(1);
+            let taken: u64 = fb.pixels.iter().map(|p| p.count + p.dropped).sum();
+            format!("{lo}-{hi} (mean {:.1})", taken as f64 / n as f64)
+        }
     }
 }
 

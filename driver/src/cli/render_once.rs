@@ -24,6 +24,7 @@ pub fn progressive_flag(args: &RenderArgs) -> Option<&'static str> {
         (args.write_every.is_some(), "--write-every"),
         (args.checkpoint.is_some(), "--checkpoint"),
         (args.resume.is_some(), "--resume"),
+        (args.adaptive, "--adaptive"),
     ]
     .into_iter()
     .find_map(|(given, name)| given.then_some(name))

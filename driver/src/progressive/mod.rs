@@ -10,11 +10,18 @@
 //! Pass sizes: 1 spp first, then as many spp as fit in [`PASS_SECONDS`] at the measured speed
 //! (at most double the previous pass; at most half the write interval and at most the time left),
 //! never past the target. Pass sizes change nothing in the bits.
+//!
+//! Adaptive sampling ([`Plan::adaptive`]): the target and the pass ends count the *mean* samples
+//! per pixel. Every pixel first takes `warmup` samples; then each pass doubles the image's mean
+//! (`warmup * 2^j`, the last pass ending at the target) and shares its samples out by
+//! [`plan_pass`]. The schedule is fixed, not timed, because here pass boundaries do change the
+//! bits: the same target gives the same image on any machine and thread count.
 pub mod bar;
 
-use crate::render::{render_into_until, Framebuffer, RenderOptions};
+use crate::render::{render_into_targets, render_into_until, Framebuffer, RenderOptions};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
+use tessera_core::adaptive::{plan_pass, AdaptiveParams};
 use tessera_core::integrator::Integrator;
 use tessera_core::scene::Scene;
 
@@ -46,6 +53,8 @@ pub struct Plan {
     pub budget: Option<Duration>,
     /// Call the writer after a pass when this much time has passed since the last write.
     pub write_every: Option<Duration>,
+    /// Adaptive sampling: `target` is then the mean over pixels (see the module notes).
+    pub adaptive: Option<AdaptiveParams>,
 }
 
 /// Why the passes ended.
@@ -133,6 +142,9 @@ fn passes(
     write: &mut dyn FnMut(&Framebuffer, u64) -> Result<(), String>,
     start: Instant,
 ) -> Result<(Ending, u64), String> {
+    if let Some(a) = &plan.adaptive {
+        return adaptive_passes(job, fb, plan, a, stop, progress, write, start);
+    }
     let target = plan.target.unwrap_or(u64::MAX);
     let mut last_write = start;
     let mut next = 1u64;
@@ -192,6 +204,101 @@ fn passes(
         next = end - low;
         let due = plan.write_every.is_some_and(|w| last_write.elapsed() >= w);
         if due && spp_range(fb).0 < target {
+            write(fb, done)?;
+            last_write = Instant::now();
+        }
+    }
+}
+
+/// Samples taken so far (`count + dropped` over every pixel).
+fn taken(fb: &Framebuffer) -> u64 {
+    fb.pixels.iter().map(|p| p.count + p.dropped).sum()
+}
+
+/// [`passes`] with adaptive sampling: the fixed schedule of the module notes. The time budget
+/// only stops a pass (at a tile boundary); it never changes a pass's size.
+#[allow(clippy::too_many_arguments)]
+fn adaptive_passes(
+    job: Job,
+    fb: &mut Framebuffer,
+    plan: &Plan,
+    params: &AdaptiveParams,
+    stop: &AtomicBool,
+    progress: &mut dyn FnMut(&Status),
+    write: &mut dyn FnMut(&Framebuffer, u64) -> Result<(), String>,
+    start: Instant,
+) -> Result<(Ending, u64), String> {
+    let target = plan.target.unwrap_or(u64::MAX);
+    let warmup = params.warmup.max(2);
+    let pixels = (fb.pixels.len() as u64).max(1);
+    let mut last_write = start;
+    let mut done = 0u64;
+    loop {
+        if stop.load(Ordering::SeqCst) {
+            return Ok((Ending::Stopped, done));
+        }
+        let (low, _) = spp_range(fb);
+        let mean = taken(fb) / pixels;
+        if mean >= target && low >= warmup.min(target) {
+            return Ok((Ending::Target, done));
+        }
+        let opts = RenderOptions {
+            samples: 0..warmup.min(target),
+            threads: job.threads,
+            tile_size: job.tile_size,
+            seed: job.seed,
+            ..Default::default()
+        };
+        let (from, end) = if low < warmup.min(target) {
+            (low, opts.samples.end)
+        } else {
+            let mut end = warmup;
+            while end <= mean {
+                end = end.saturating_mul(2);
+            }
+            (mean, end.min(target))
+        };
+        let mut report = |d: usize, t: usize| {
+            progress(&Status {
+                passes: done,
+                spp_low: from,
+                pass_end: end,
+                spp_done: from as f64 + (end - from) as f64 * d as f64 / t.max(1) as f64,
+                elapsed: start.elapsed(),
+            })
+        };
+        let complete = if low < warmup.min(target) {
+            render_into_until(job.scene, job.integrator, &opts, fb, stop, &mut report)
+        } else {
+            let add = plan_pass(
+                &fb.pixels,
+                fb.width,
+                fb.height,
+                end * pixels - taken(fb),
+                params,
+            );
+            let targets: Vec<u64> = fb
+                .pixels
+                .iter()
+                .zip(&add)
+                .map(|(p, k)| p.count + p.dropped + k)
+                .collect();
+            render_into_targets(
+                job.scene,
+                job.integrator,
+                &opts,
+                fb,
+                &targets,
+                Some(stop),
+                &mut report,
+            )
+        };
+        if !complete {
+            continue;
+        }
+        done += 1;
+        let due = plan.write_every.is_some_and(|w| last_write.elapsed() >= w);
+        if due && taken(fb) / pixels < target {
             write(fb, done)?;
             last_write = Instant::now();
         }
