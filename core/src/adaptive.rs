@@ -31,6 +31,14 @@ use crate::film::PixelAccum;
 use alloc::vec;
 use alloc::vec::Vec;
 
+/// How many times the mean sample count an adaptive render's `zsobol` pixel blocks hold
+/// (`tessera render --adaptive` sets the sampler up for this many times the scene's sample
+/// count). Noisy pixels take several times the mean (cbox at a mean of 64: 23 to 325), and
+/// samples past a pixel's block start a fresh randomisation instead of continuing its
+/// stratified sequence. Measured at a mean of 64 spp (128x128, 4 seeds): blocks of 1024 instead
+/// of 64 lowered relMSE from 7.28e-5 to 6.52e-5 on veach_mis and from 2.09e-3 to 2.00e-3 on cbox.
+pub const ZSOBOL_BLOCK_FACTOR: u64 = 16;
+
 /// Settings of [`plan_pass`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AdaptiveParams {

@@ -12,7 +12,7 @@ use tessera::image_io::read_image;
 use tessera::progressive::{self, Job, Plan};
 use tessera::render::{render, Framebuffer, RenderOptions};
 use tessera::scene::{load_scene, LoadedScene};
-use tessera_core::adaptive::AdaptiveParams;
+use tessera_core::adaptive::{AdaptiveParams, ZSOBOL_BLOCK_FACTOR};
 
 const BIN: &str = env!("CARGO_BIN_EXE_tessera");
 
@@ -199,6 +199,19 @@ fn command_line() {
     let o = render(&["--threads", "2", "--tile-size", "5"], &two);
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(std::fs::read(&one).unwrap(), std::fs::read(&two).unwrap());
+    // The command's zsobol blocks are ZSOBOL_BLOCK_FACTOR times the scene's sample count (64).
+    let mut l = load("cbox", 16);
+    let block = |l: &mut LoadedScene, spp: u64| {
+        l.set_sampler(Some("zsobol"), spp).unwrap();
+        adaptive(l, 8, 2, 16, 0, AdaptiveParams::default()).rgb()
+    };
+    let file = read_image(Path::new(&one)).unwrap().data;
+    assert_eq!(file, block(&mut l, 64 * ZSOBOL_BLOCK_FACTOR));
+    assert_ne!(
+        file,
+        block(&mut l, 64),
+        "control: blocks of 64 give other bits"
+    );
     // Flags it cannot honour: one line, exit 2, no output.
     let bad = t.file("bad.exr");
     for extra in [

@@ -18,7 +18,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
-use tessera_core::adaptive::AdaptiveParams;
+use tessera_core::adaptive::{AdaptiveParams, ZSOBOL_BLOCK_FACTOR};
 use tessera_core::camera::Perspective;
 
 /// Arguments of `tessera render`.
@@ -167,7 +167,12 @@ pub fn run(args: &RenderArgs) -> i32 {
     }
     // zsobol's pixel blocks follow the scene's sample count, never --spp or --time, so that
     // progressive passes, resumed checkpoints and sample-range parts all draw one sequence.
-    let scene_spp = loaded.spp;
+    // Adaptive renders (no resume, no parts) give noisy pixels several times the mean: their
+    // blocks are ZSOBOL_BLOCK_FACTOR times larger, so those pixels stay in one block.
+    let scene_spp = match args.adaptive {
+        true => loaded.spp.saturating_mul(ZSOBOL_BLOCK_FACTOR),
+        false => loaded.spp,
+    };
     if let Err(e) = loaded.set_sampler(args.sampler.as_deref(), scene_spp) {
         return usage(e);
     }
