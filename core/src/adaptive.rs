@@ -150,6 +150,23 @@ pub fn plan_pass(
     round_to_budget(&want, budget)
 }
 
+/// [`plan_pass`] as the sample count each pixel should hold after the pass (what it holds,
+/// `count + dropped`, plus its share), the form the renderer's per-pixel targets take.
+pub fn pass_targets(
+    pixels: &[PixelAccum],
+    width: u32,
+    height: u32,
+    budget: u64,
+    params: &AdaptiveParams,
+) -> Vec<u64> {
+    let add = plan_pass(pixels, width, height, budget, params);
+    pixels
+        .iter()
+        .zip(add)
+        .map(|(p, k)| p.count + p.dropped + k)
+        .collect()
+}
+
 /// Integer counts from fractional ones by a running sum in index order (each count is the
 /// growth of `floor(running sum)`), adding what rounding lost to the largest share, so that the
 /// counts sum to `budget` exactly.

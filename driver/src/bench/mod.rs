@@ -19,7 +19,7 @@ use crate::image_io::{write_atomic, RgbImage};
 use crate::render::{render_into, render_into_targets, Framebuffer, RenderOptions};
 use std::path::Path;
 use std::time::Instant;
-use tessera_core::adaptive::{plan_pass, AdaptiveParams};
+use tessera_core::adaptive::{pass_targets, AdaptiveParams};
 use tessera_core::integrator::Integrator;
 use tessera_core::scene::Scene;
 
@@ -92,7 +92,7 @@ pub struct WaveLimits {
 /// calling `on_wave` with each row; returns the rows and the final framebuffer.
 ///
 /// With `adaptive`, the waves after the warm-up (`adaptive.warmup` samples in every pixel) share
-/// the same budgets (pixels x spp) out by [`plan_pass`]: a row's `spp` is then the mean over
+/// the same budgets (pixels x spp) out by [`pass_targets`]: a row's `spp` is then the mean over
 /// pixels, and its sampler is named `SAMPLER+adaptive`. The time to plan a pass counts in the
 /// wave's seconds.
 #[allow(clippy::too_many_arguments)]
@@ -123,13 +123,7 @@ pub fn run_waves(
         match adaptive {
             Some(a) if done >= a.warmup.max(2) => {
                 let pixels = w as u64 * h as u64;
-                let add = plan_pass(&fb.pixels, w, h, pixels * (next - done), a);
-                let targets: Vec<u64> = fb
-                    .pixels
-                    .iter()
-                    .zip(&add)
-                    .map(|(p, k)| p.count + p.dropped + k)
-                    .collect();
+                let targets = pass_targets(&fb.pixels, w, h, pixels * (next - done), a);
                 render_into_targets(
                     scene,
                     integrator,

@@ -14,14 +14,14 @@
 //! Adaptive sampling ([`Plan::adaptive`]): the target and the pass ends count the *mean* samples
 //! per pixel. Every pixel first takes `warmup` samples; then each pass doubles the image's mean
 //! (`warmup * 2^j`, the last pass ending at the target) and shares its samples out by
-//! [`plan_pass`]. The schedule is fixed, not timed, because here pass boundaries do change the
+//! [`pass_targets`]. The schedule is fixed, not timed, because here pass boundaries do change the
 //! bits: the same target gives the same image on any machine and thread count.
 pub mod bar;
 
 use crate::render::{render_into_targets, render_into_until, Framebuffer, RenderOptions};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
-use tessera_core::adaptive::{plan_pass, AdaptiveParams};
+use tessera_core::adaptive::{pass_targets, AdaptiveParams};
 use tessera_core::integrator::Integrator;
 use tessera_core::scene::Scene;
 
@@ -270,19 +270,8 @@ fn adaptive_passes(
         let complete = if low < warmup.min(target) {
             render_into_until(job.scene, job.integrator, &opts, fb, stop, &mut report)
         } else {
-            let add = plan_pass(
-                &fb.pixels,
-                fb.width,
-                fb.height,
-                end * pixels - taken(fb),
-                params,
-            );
-            let targets: Vec<u64> = fb
-                .pixels
-                .iter()
-                .zip(&add)
-                .map(|(p, k)| p.count + p.dropped + k)
-                .collect();
+            let budget = end * pixels - taken(fb);
+            let targets = pass_targets(&fb.pixels, fb.width, fb.height, budget, params);
             render_into_targets(
                 job.scene,
                 job.integrator,
