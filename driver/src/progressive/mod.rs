@@ -229,7 +229,8 @@ fn adaptive_passes(
     start: Instant,
 ) -> Result<(Ending, u64), String> {
     let target = plan.target.unwrap_or(u64::MAX);
-    let warmup = params.warmup.max(2);
+    // Samples every pixel takes before the first adaptive pass (never past the target).
+    let first = params.warmup.max(2).min(target);
     let pixels = (fb.pixels.len() as u64).max(1);
     let mut last_write = start;
     let mut done = 0u64;
@@ -239,20 +240,21 @@ fn adaptive_passes(
         }
         let (low, _) = spp_range(fb);
         let mean = taken(fb) / pixels;
-        if mean >= target && low >= warmup.min(target) {
+        if mean >= target && low >= first {
             return Ok((Ending::Target, done));
         }
         let opts = RenderOptions {
-            samples: 0..warmup.min(target),
+            samples: 0..first,
             threads: job.threads,
             tile_size: job.tile_size,
             seed: job.seed,
             ..Default::default()
         };
-        let (from, end) = if low < warmup.min(target) {
-            (low, opts.samples.end)
+        let warming = low < first;
+        let (from, end) = if warming {
+            (low, first)
         } else {
-            let mut end = warmup;
+            let mut end = params.warmup.max(2);
             while end <= mean {
                 end = end.saturating_mul(2);
             }
@@ -267,10 +269,10 @@ fn adaptive_passes(
                 elapsed: start.elapsed(),
             })
         };
-        let complete = if low < warmup.min(target) {
+        let complete = if warming {
             render_into_until(job.scene, job.integrator, &opts, fb, stop, &mut report)
         } else {
-            let budget = end * pixels - taken(fb);
+            let budget = end.saturating_mul(pixels).saturating_sub(taken(fb));
             let targets = pass_targets(&fb.pixels, fb.width, fb.height, budget, params);
             render_into_targets(
                 job.scene,
