@@ -19,6 +19,7 @@ pub mod adaptive;
 pub mod bsdf;
 pub mod camera;
 pub mod emitter;
+pub mod error_estimate;
 pub mod film;
 pub mod geometry;
 pub mod integrator;

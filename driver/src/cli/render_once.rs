@@ -1,7 +1,7 @@
 //! `tessera render` in one pass: split renders (`--crop`, `--tiles`, `--sample-range`, whose EXR
 //! outputs are part files for `tessera merge`), `--stats` and `--debug-pixel`. These render a
 //! fixed sample range once, so they do not combine with the progressive flags (`--time`,
-//! `--forever`, `--write-every`, `--checkpoint`, `--resume`).
+//! `--forever`, `--write-every`, `--checkpoint`, `--resume`, `--adaptive`, `--target-error`).
 use super::render::{Decor, RenderArgs};
 use super::split_args::write_render_output;
 use crate::error::InputError;
@@ -25,6 +25,7 @@ pub fn progressive_flag(args: &RenderArgs) -> Option<&'static str> {
         (args.checkpoint.is_some(), "--checkpoint"),
         (args.resume.is_some(), "--resume"),
         (args.adaptive, "--adaptive"),
+        (args.target_error.is_some(), "--target-error"),
     ]
     .into_iter()
     .find_map(|(given, name)| given.then_some(name))

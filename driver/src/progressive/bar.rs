@@ -51,7 +51,10 @@ pub fn progress_bar(
 
 /// Shows `s`.
 pub fn update_bar(bar: &ProgressBar, mode: BarMode, s: &Status) {
-    let pass = s.passes + 1;
+    let pass = match s.estimate {
+        Some(e) => format!("{} (relMSE ~{e:.1e})", s.passes + 1),
+        None => format!("{}", s.passes + 1),
+    };
     match mode {
         BarMode::Samples { pixels, target } => {
             bar.set_message(format!("pass {pass}, {:.1}/{target}", s.spp_done));

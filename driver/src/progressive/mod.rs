@@ -16,9 +16,15 @@
 //! (`warmup * 2^j`, the last pass ending at the target) and shares its samples out by
 //! [`pass_targets`]. The schedule is fixed, not timed, because here pass boundaries do change the
 //! bits: the same target gives the same image on any machine and thread count.
+//!
+//! A target error ([`Plan::target_error`]) ends the render at the first check point where the
+//! estimated relative MSE is at most the target ([`check`]): uniform passes then end at every
+//! power of two spp (never past it), adaptive ones check at every doubling of the mean.
 pub mod bar;
+pub mod check;
 
 use crate::render::{render_into_targets, render_into_until, Framebuffer, RenderOptions};
+use check::{clamp_to_check_point, ErrorCheck};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 use tessera_core::adaptive::{pass_targets, AdaptiveParams};
@@ -55,6 +61,8 @@ pub struct Plan {
     pub write_every: Option<Duration>,
     /// Adaptive sampling: `target` is then the mean over pixels (see the module notes).
     pub adaptive: Option<AdaptiveParams>,
+    /// Stop at the first check point where the estimated relative MSE is at most this.
+    pub target_error: Option<f64>,
 }
 
 /// Why the passes ended.
@@ -66,6 +74,19 @@ pub enum Ending {
     Time,
     /// The stop flag was set from outside (a signal).
     Stopped,
+    /// The estimated error reached [`Plan::target_error`].
+    ErrorReached,
+}
+
+/// How the passes ended.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Outcome {
+    /// Why.
+    pub ending: Ending,
+    /// Passes completed in this run.
+    pub passes: u64,
+    /// The latest error estimate (with [`Plan::target_error`], from 16 spp on).
+    pub estimate: Option<f64>,
 }
 
 /// Where the render is, for a progress display.
@@ -81,6 +102,8 @@ pub struct Status {
     pub spp_done: f64,
     /// Time spent in this run.
     pub elapsed: Duration,
+    /// The latest error estimate (with [`Plan::target_error`]).
+    pub estimate: Option<f64>,
 }
 
 /// Fewest and most samples (`count + dropped`) of any pixel.
@@ -93,7 +116,8 @@ pub fn spp_range(fb: &Framebuffer) -> (u64, u64) {
 
 /// Renders passes into `fb` (which may hold a resumed render) until `plan` says stop or `stop`
 /// is set. `progress` is called as tiles arrive; `write(fb, passes_done)` after each pass when the
-/// write interval is due (its error ends the render). Returns why it ended and the passes completed.
+/// write interval is due (its error ends the render). Returns why it ended, the passes completed
+/// and the last error estimate.
 pub fn run(
     job: Job,
     fb: &mut Framebuffer,
@@ -101,7 +125,8 @@ pub fn run(
     stop: &AtomicBool,
     progress: &mut dyn FnMut(&Status),
     write: &mut dyn FnMut(&Framebuffer, u64) -> Result<(), String>,
-) -> Result<(Ending, u64), String> {
+) -> Result<Outcome, String> {
+    let mut check = plan.target_error.map(ErrorCheck::new);
     let start = Instant::now();
     let deadline = plan.budget.map(|b| start + b);
     let time_up = AtomicBool::new(false);
@@ -122,11 +147,17 @@ pub fn run(
                 }
             });
         }
-        let out = passes(job, fb, plan, deadline, stop, progress, write, start);
+        let out = passes(
+            job, fb, plan, deadline, stop, progress, write, start, &mut check,
+        );
         finished.store(true, Ordering::SeqCst);
-        out.map(|(e, n)| match e {
-            Ending::Stopped if time_up.load(Ordering::SeqCst) => (Ending::Time, n),
-            e => (e, n),
+        out.map(|(e, passes)| Outcome {
+            ending: match e {
+                Ending::Stopped if time_up.load(Ordering::SeqCst) => Ending::Time,
+                e => e,
+            },
+            passes,
+            estimate: check.as_ref().and_then(|c| c.last),
         })
     })
 }
@@ -141,9 +172,10 @@ fn passes(
     progress: &mut dyn FnMut(&Status),
     write: &mut dyn FnMut(&Framebuffer, u64) -> Result<(), String>,
     start: Instant,
+    check: &mut Option<ErrorCheck>,
 ) -> Result<(Ending, u64), String> {
     if let Some(a) = &plan.adaptive {
-        return adaptive_passes(job, fb, plan, a, stop, progress, write, start);
+        return adaptive_passes(job, fb, plan, a, stop, progress, write, start, check);
     }
     let target = plan.target.unwrap_or(u64::MAX);
     let mut last_write = start;
@@ -176,7 +208,11 @@ fn passes(
         if let Some(r) = rate {
             next = ((r * budget) as u64).clamp(1, next.saturating_mul(2));
         }
-        let end = low.saturating_add(next).min(target);
+        let mut end = low.saturating_add(next).min(target);
+        if check.is_some() {
+            end = clamp_to_check_point(low, end);
+        }
+        let estimate = check.as_ref().and_then(|c| c.last);
         let opts = RenderOptions {
             samples: low..end,
             threads: job.threads,
@@ -193,6 +229,7 @@ fn passes(
                     pass_end: end,
                     spp_done: low as f64 + (end - low) as f64 * d as f64 / t.max(1) as f64,
                     elapsed: start.elapsed(),
+                    estimate,
                 })
             });
         if !complete {
@@ -202,6 +239,11 @@ fn passes(
         let dt = t0.elapsed().as_secs_f64().max(1e-6);
         rate = Some((end - low) as f64 / dt);
         next = end - low;
+        if let Some(c) = check.as_mut() {
+            if end.is_power_of_two() && c.at(end, &fb.pixels) {
+                return Ok((Ending::ErrorReached, done));
+            }
+        }
         let due = plan.write_every.is_some_and(|w| last_write.elapsed() >= w);
         if due && spp_range(fb).0 < target {
             write(fb, done)?;
@@ -227,6 +269,7 @@ fn adaptive_passes(
     progress: &mut dyn FnMut(&Status),
     write: &mut dyn FnMut(&Framebuffer, u64) -> Result<(), String>,
     start: Instant,
+    check: &mut Option<ErrorCheck>,
 ) -> Result<(Ending, u64), String> {
     let target = plan.target.unwrap_or(u64::MAX);
     // Samples every pixel takes before the first adaptive pass (never past the target).
@@ -260,6 +303,7 @@ fn adaptive_passes(
             }
             (mean, end.min(target))
         };
+        let estimate = check.as_ref().and_then(|c| c.last);
         let mut report = |d: usize, t: usize| {
             progress(&Status {
                 passes: done,
@@ -267,6 +311,7 @@ fn adaptive_passes(
                 pass_end: end,
                 spp_done: from as f64 + (end - from) as f64 * d as f64 / t.max(1) as f64,
                 elapsed: start.elapsed(),
+                estimate,
             })
         };
         let complete = if warming {
@@ -288,6 +333,12 @@ fn adaptive_passes(
             continue;
         }
         done += 1;
+        // Every pass ends at the warm-up count or a doubling of the mean: each is a check point.
+        if let Some(c) = check.as_mut() {
+            if c.at(end, &fb.pixels) {
+                return Ok((Ending::ErrorReached, done));
+            }
+        }
         let due = plan.write_every.is_some_and(|w| last_write.elapsed() >= w);
         if due && taken(fb) / pixels < target {
             write(fb, done)?;
