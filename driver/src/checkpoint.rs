@@ -1,7 +1,7 @@
 //! Render checkpoints: the accumulated sums of every pixel plus what identifies the render, so
 //! that `tessera render --resume FILE` continues exactly where a render stopped.
 //!
-//! # File format (version 1, all integers and floats little-endian)
+//! # File format (version 2, all integers and floats little-endian)
 //!
 //! | offset | size | field |
 //! |---|---|---|
@@ -17,11 +17,15 @@
 //! | 60 | 4 | integrator description length `n`, u32 <= 4096 |
 //! | 64 | n | integrator description, UTF-8 (its name and every parameter) |
 //! | 64+n | 64 per pixel | row-major pixels: `sum` 3 x f64, `sum_sq` 3 x f64, `count` u64, `dropped` u64 |
+//! | 64+n+64p | 8 | `k`, u64: 0, or the pixel count `p` when a pass was interrupted (version 2) |
+//! | 72+n+64p | 8 per pixel if `k > 0` | the interrupted adaptive pass's target per pixel, u64 >= `count + dropped` (version 2) |
 //! | end-8 | 8 | FNV-1a 64 of every byte before it |
 //!
 //! A pixel has taken `count + dropped` samples, indices `0..count + dropped`; a resumed render
 //! continues each pixel from its own count, so the result is the same bits as one uninterrupted
-//! render. The reader checks the total length against the header before allocating anything,
+//! render. An adaptive pass decides every pixel's target from the image at its start, so when one
+//! is interrupted its targets are saved, and the resumed render first finishes them. Version 1
+//! files (no targets section) are still read. The reader checks the total length against the header before allocating anything,
 //! then the checksum, then every value (finite sums, no count overflow): a truncated, corrupted
 //! or hostile file gives an error, never a panic or a huge allocation.
 //!
@@ -34,8 +38,8 @@ use tessera_core::film::PixelAccum;
 
 /// The file's first 8 bytes.
 pub const MAGIC: [u8; 8] = *b"TESSCKPT";
-/// The format version this build writes and reads.
-pub const VERSION: u32 = 1;
+/// The format version this build writes (it also reads version 1).
+pub const VERSION: u32 = 2;
 /// Longest integrator description accepted.
 pub const MAX_DESCRIPTION: usize = 4096;
 const HEADER: usize = 64;
@@ -142,17 +146,20 @@ pub struct Checkpoint {
     pub meta: CheckpointMeta,
     /// Every pixel's sums, row-major.
     pub pixels: Vec<PixelAccum>,
+    /// The targets of an interrupted adaptive pass, one per pixel.
+    pub pending: Option<Vec<u64>>,
 }
 
-/// Writes `meta` and `pixels` to `path` atomically (a temporary file in the same directory,
-/// synced, then renamed).
+/// Writes `meta`, `pixels` and the targets of an interrupted adaptive pass (`pending`, one per
+/// pixel) to `path` atomically (a temporary file in the same directory, synced, then renamed).
 pub fn write_checkpoint(
     path: &Path,
     meta: &CheckpointMeta,
     pixels: &[PixelAccum],
+    pending: Option<&[u64]>,
 ) -> Result<(), String> {
     write_atomic(path, |tmp| {
-        write_to(tmp, meta, pixels).map_err(|e| e.to_string())
+        write_to(tmp, meta, pixels, pending).map_err(|e| e.to_string())
     })
     .map_err(|e| format!("{}: cannot write checkpoint: {e}", path.display()))
 }
@@ -174,10 +181,18 @@ impl<W: Write> Write for Hashing<W> {
     }
 }
 
-fn write_to(path: &Path, meta: &CheckpointMeta, pixels: &[PixelAccum]) -> std::io::Result<()> {
+fn write_to(
+    path: &Path,
+    meta: &CheckpointMeta,
+    pixels: &[PixelAccum],
+    pending: Option<&[u64]>,
+) -> std::io::Result<()> {
     let bad = |m: &str| std::io::Error::new(std::io::ErrorKind::InvalidInput, m.to_string());
     if pixels.len() != meta.width as usize * meta.height as usize {
         return Err(bad("pixel count does not match the size"));
+    }
+    if pending.is_some_and(|t| t.len() != pixels.len()) {
+        return Err(bad("pass targets do not match the size"));
     }
     if meta.integrator.len() > MAX_DESCRIPTION {
         return Err(bad("integrator description too long"));
@@ -203,6 +218,11 @@ fn write_to(path: &Path, meta: &CheckpointMeta, pixels: &[PixelAccum]) -> std::i
             rec[i * 8..i * 8 + 8].copy_from_slice(&v.to_le_bytes());
         }
         w.write_all(&rec)?;
+    }
+    let targets = pending.unwrap_or(&[]);
+    w.write_all(&(targets.len() as u64).to_le_bytes())?;
+    for t in targets {
+        w.write_all(&t.to_le_bytes())?;
     }
     let sum = w.hash.0;
     let mut inner = w.inner;
@@ -251,9 +271,9 @@ pub fn read_checkpoint(bytes: &[u8]) -> Result<Checkpoint, String> {
     }
     let mut c = Cursor { bytes, at: 8 };
     let version = c.u32();
-    if version != VERSION {
+    if version != 1 && version != VERSION {
         return Err(format!(
-            "format version {version}, this build reads version {VERSION}"
+            "format version {version}, this build reads versions 1 and {VERSION}"
         ));
     }
     let width = c.u32();
@@ -269,10 +289,25 @@ pub fn read_checkpoint(bytes: &[u8]) -> Result<Checkpoint, String> {
             "integrator description of {n} bytes (at most {MAX_DESCRIPTION})"
         ));
     }
-    let expected = (width as u64)
-        .checked_mul(height as u64)
-        .and_then(|p| p.checked_mul(PIXEL as u64))
-        .and_then(|p| p.checked_add((HEADER + n + 8) as u64));
+    let count = width as u64 * height as u64;
+    let pixels_end = count
+        .checked_mul(PIXEL as u64)
+        .and_then(|p| p.checked_add((HEADER + n) as u64));
+    // Version 2: the targets count follows the pixels; it is read (bounds checked) to know the
+    // length, and checked against the pixel count after the checksum.
+    let targets = match (version, pixels_end) {
+        (1, _) | (_, None) => 0,
+        (_, Some(end)) => match bytes.get(end as usize..end as usize + 8) {
+            Some(b) if end <= usize::MAX as u64 - 8 => {
+                u64::from_le_bytes(b.try_into().map_err(|_| "targets")?)
+            }
+            _ => 0,
+        },
+    };
+    let section = if version == 1 { 0 } else { 8 };
+    let expected = pixels_end
+        .and_then(|e| e.checked_add(section + 8))
+        .and_then(|e| targets.checked_mul(8).and_then(|t| e.checked_add(t)));
     if expected != Some(bytes.len() as u64) {
         return Err(format!(
             "file is {} bytes, a {width}x{height} checkpoint takes {} (truncated or corrupted)",
@@ -293,8 +328,13 @@ pub fn read_checkpoint(bytes: &[u8]) -> Result<Checkpoint, String> {
     let integrator = std::str::from_utf8(&bytes[HEADER..HEADER + n])
         .map_err(|_| "integrator description is not UTF-8".to_string())?
         .to_string();
+    if targets != 0 && targets != count {
+        return Err(format!(
+            "{targets} pass targets for {count} pixels (corrupted)"
+        ));
+    }
     c.at = HEADER + n;
-    let count = width as usize * height as usize;
+    let count = count as usize;
     let mut pixels = Vec::with_capacity(count);
     for i in 0..count {
         let p = PixelAccum::from_words(std::array::from_fn(|_| c.u64()));
@@ -306,6 +346,19 @@ pub fn read_checkpoint(bytes: &[u8]) -> Result<Checkpoint, String> {
         }
         pixels.push(p);
     }
+    let pending = if targets == 0 {
+        None
+    } else {
+        c.at += 8;
+        let t: Vec<u64> = (0..count).map(|_| c.u64()).collect();
+        if let Some(i) = (0..count).find(|&i| t[i] < pixels[i].count + pixels[i].dropped) {
+            let (x, y) = (i % width as usize, i / width as usize);
+            return Err(format!(
+                "pixel ({x}, {y}) has a pass target below its sample count"
+            ));
+        }
+        Some(t)
+    };
     Ok(Checkpoint {
         meta: CheckpointMeta {
             width,
@@ -318,6 +371,7 @@ pub fn read_checkpoint(bytes: &[u8]) -> Result<Checkpoint, String> {
             integrator,
         },
         pixels,
+        pending,
     })
 }
 
@@ -377,26 +431,52 @@ mod tests {
             })
             .collect();
         let path = std::env::temp_dir().join(format!("tessera-ckpt-{}.bin", std::process::id()));
-        write_checkpoint(&path, &meta, &pixels).unwrap();
+        let targets: Vec<u64> = (0..6).map(|i| 2 * i + 1).collect();
+        write_checkpoint(&path, &meta, &pixels, Some(&targets)).unwrap();
+        let with_targets = std::fs::read(&path).unwrap();
+        write_checkpoint(&path, &meta, &pixels, None).unwrap();
         let bytes = std::fs::read(&path).unwrap();
         let _ = std::fs::remove_file(&path);
         let back = read_checkpoint(&bytes).unwrap();
         assert_eq!(back.meta, meta);
         assert_eq!(back.pixels, pixels);
-        for len in 0..bytes.len() {
-            assert!(
-                read_checkpoint(&bytes[..len]).is_err(),
-                "truncated to {len}"
-            );
-        }
-        for i in 0..bytes.len() {
-            for bit in [0x01u8, 0x80] {
-                let mut b = bytes.clone();
-                b[i] ^= bit;
+        assert_eq!(back.pending, None);
+        let back = read_checkpoint(&with_targets).unwrap();
+        assert_eq!((back.meta, back.pixels), (meta.clone(), pixels.clone()));
+        assert_eq!(back.pending.as_deref(), Some(&targets[..]));
+        // Version 1 (no targets section) is still read.
+        let mut v1 = bytes[..bytes.len() - 16].to_vec();
+        v1[8..12].copy_from_slice(&1u32.to_le_bytes());
+        let mut h = Fnv1a::default();
+        h.update(&v1);
+        v1.extend_from_slice(&h.0.to_le_bytes());
+        assert_eq!(read_checkpoint(&v1).unwrap().pixels, pixels);
+        // A target below a pixel's sample count (with a valid checksum) is refused.
+        let mut low = with_targets[..with_targets.len() - 8].to_vec();
+        let at = low.len() - 8 * 6;
+        low[at..at + 8].copy_from_slice(&0u64.to_le_bytes());
+        let mut h = Fnv1a::default();
+        h.update(&low);
+        low.extend_from_slice(&h.0.to_le_bytes());
+        assert!(read_checkpoint(&low)
+            .unwrap_err()
+            .contains("below its sample count"));
+        for bytes in [&with_targets, &bytes] {
+            for len in 0..bytes.len() {
                 assert!(
-                    read_checkpoint(&b).is_err(),
-                    "byte {i} bit {bit:#x} flipped"
+                    read_checkpoint(&bytes[..len]).is_err(),
+                    "truncated to {len}"
                 );
+            }
+            for i in 0..bytes.len() {
+                for bit in [0x01u8, 0x80] {
+                    let mut b = bytes.clone();
+                    b[i] ^= bit;
+                    assert!(
+                        read_checkpoint(&b).is_err(),
+                        "byte {i} bit {bit:#x} flipped"
+                    );
+                }
             }
         }
         // A huge size in the header with a matching checksum: rejected by length, no allocation.

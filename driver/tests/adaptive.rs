@@ -8,8 +8,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::atomic::AtomicBool;
 use tessera::bench::errors;
+use tessera::checkpoint::{read_checkpoint, write_checkpoint, CheckpointMeta};
 use tessera::image_io::read_image;
-use tessera::progressive::{self, Job, Plan};
+use tessera::progressive::{self, Ending, Job, Plan};
 use tessera::render::{render, Framebuffer, RenderOptions};
 use tessera::scene::{load_scene, LoadedScene};
 use tessera_core::adaptive::{AdaptiveParams, ZSOBOL_BLOCK_FACTOR};
@@ -110,6 +111,92 @@ fn a_uniform_share_of_one_is_the_plain_render() {
         adaptive(&l, 16, 2, 5, 3, AdaptiveParams::default()),
         plain(&l, 16, 3)
     );
+}
+
+/// An adaptive render stopped inside a pass and resumed from a checkpoint file (which keeps the
+/// pass's targets) gives the same bits as one that never stopped, whether it stopped in the
+/// warm-up or in an adaptive pass. The control: resuming without the saved targets (planning the
+/// pass again from the part-finished image) gives other bits.
+#[test]
+fn interrupted_and_resumed_gives_the_same_bits() {
+    let l = load("cbox", 64);
+    let p = AdaptiveParams::default();
+    let want = adaptive(&l, 16, 2, 8, 3, p);
+    let (w, h) = (l.scene.camera.width, l.scene.camera.height);
+    let job = Job {
+        scene: &l.scene,
+        integrator: &l.integrator,
+        seed: 3,
+        threads: 2,
+        tile_size: 8,
+    };
+    let plan = Plan {
+        target: Some(16),
+        adaptive: Some(p),
+        ..Default::default()
+    };
+    let meta = CheckpointMeta {
+        width: w,
+        height: h,
+        seed: 3,
+        target_spp: 16,
+        scene_hash: 1,
+        passes: 0,
+        seconds: 0.0,
+        integrator: "test".into(),
+    };
+    let path = std::env::temp_dir().join(format!("tessera-adaptive-{}.ckpt", std::process::id()));
+    let mut stopped_inside_a_pass = 0;
+    // Stopped at the first tile of the warm-up, then of the passes to means of 4, 8 and 16 (64
+    // tiles each: the workers see the stop before they finish the pass).
+    for stop_after in 0..4u64 {
+        let mut fb = Framebuffer::new(w, h);
+        let stop = AtomicBool::new(false);
+        let out = progressive::run(
+            job,
+            &mut fb,
+            &plan,
+            &stop,
+            &mut |s| {
+                if s.passes == stop_after {
+                    stop.store(true, std::sync::atomic::Ordering::SeqCst);
+                }
+            },
+            &mut |_, _| Ok(()),
+        )
+        .unwrap();
+        assert_eq!(out.ending, Ending::Stopped, "stop after {stop_after}");
+        write_checkpoint(&path, &meta, &fb.pixels, out.pending.as_deref()).unwrap();
+        let ck = read_checkpoint(&std::fs::read(&path).unwrap()).unwrap();
+        assert_eq!(ck.pending, out.pending);
+        let resume = |pending: Option<Vec<u64>>| {
+            let mut again = Framebuffer::new(w, h);
+            again.pixels = ck.pixels.clone();
+            let plan = Plan {
+                pending,
+                ..plan.clone()
+            };
+            let stop = AtomicBool::new(false);
+            let out = progressive::run(job, &mut again, &plan, &stop, &mut |_| {}, &mut |_, _| {
+                Ok(())
+            })
+            .unwrap();
+            assert_eq!(out.ending, Ending::Target);
+            again
+        };
+        let again = resume(ck.pending.clone());
+        assert_eq!(again.pixels, want.pixels, "stop after {stop_after}");
+        if ck.pending.is_some() {
+            stopped_inside_a_pass += 1;
+            assert_ne!(
+                resume(None).pixels,
+                want.pixels,
+                "control: replanned at stop {stop_after}"
+            );
+        }
+    }
+    let _ = std::fs::remove_file(&path);
+    assert!(stopped_inside_a_pass >= 2, "{stopped_inside_a_pass}");
 }
 
 /// Mean relMSE against the scene's 64x64 Mitsuba reference over three seeds, adaptive and
@@ -217,8 +304,7 @@ fn command_line() {
     for extra in [
         &["--tiles", "1/2"][..],
         &["--stats"],
-        &["--resume", "nowhere.ckpt"],
-        &["--checkpoint", "x.ckpt"],
+        &["--debug-pixel", "1,1"],
     ] {
         let o = render(extra, &bad);
         let e = stderr(&o);
@@ -227,6 +313,46 @@ fn command_line() {
         assert_eq!(e.trim_end().lines().count(), 1, "{extra:?}: {e}");
         assert!(!Path::new(&bad).exists(), "{extra:?}");
     }
+    // A checkpoint of a render cut short by --time resumes to the bits of the whole render
+    // (wherever the budget happened to stop it), and only as an adaptive render.
+    let (ck, whole, cut) = (t.file("a.ckpt"), t.file("whole.exr"), t.file("cut.exr"));
+    let big = |extra: &[&str], out: &str| {
+        let mut a = vec!["render", "-q", "--sampler", "zsobol", "--adaptive", &scene];
+        a.extend_from_slice(&["-D", "rfilter=box", "-D", "res=64", "--spp", "64"]);
+        a.extend_from_slice(extra);
+        a.extend_from_slice(&["-o", out]);
+        run(&a)
+    };
+    let o = big(&[], &whole);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = big(&["--time", "0.05", "--checkpoint", &ck], &cut);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = big(&["--resume", &ck], &cut);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&whole).unwrap(), std::fs::read(&cut).unwrap());
+    let o = run(&[
+        "render",
+        "-q",
+        "--sampler",
+        "zsobol",
+        &scene,
+        "-D",
+        "rfilter=box",
+        "-D",
+        "res=64",
+        "--spp",
+        "64",
+        "--resume",
+        &ck,
+        "-o",
+        &bad,
+    ]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(
+        e.contains("adaptive") && e.trim_end().lines().count() == 1,
+        "{e}"
+    );
     // bench: --adaptive adds the adaptive curve, --adaptive-only measures just it.
     let reference = t.file("ref.exr");
     let l = load("cbox", 16);

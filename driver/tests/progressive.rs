@@ -299,7 +299,7 @@ fn mixed_counts_continue_to_one_render() {
         seconds: 0.0,
         integrator: format!("{:?}", l.integrator),
     };
-    write_checkpoint(&dir.path("c"), &meta, &fb.pixels).unwrap();
+    write_checkpoint(&dir.path("c"), &meta, &fb.pixels, None).unwrap();
     let back = read_checkpoint(&std::fs::read(dir.path("c")).unwrap()).unwrap();
     assert_eq!(back.meta, meta);
     let mut fb2 = Framebuffer {

@@ -90,7 +90,7 @@ pub struct RenderArgs {
     /// Adaptive sampling: after 2 samples in every pixel, passes doubling the mean sample count
     /// send each pass's samples where the relative variance is highest; --spp is then the mean
     /// over pixels. Consistent, not unbiased (see the README).
-    #[arg(long, conflicts_with_all = ["checkpoint", "resume"])]
+    #[arg(long)]
     pub adaptive: bool,
     /// Stop at the first power of two spp (with --adaptive: doubling of the mean) whose relative
     /// MSE, estimated from the two halves of the samples, is at most this (e.g. 1e-3; checked
@@ -217,12 +217,18 @@ pub fn run(args: &RenderArgs) -> i32 {
         passes: 0,
         seconds: 0.0,
         integrator: format!(
-            "{:?}, sampler {:?}",
-            loaded.integrator, loaded.scene.sampler
+            "{:?}, sampler {:?}{}",
+            loaded.integrator,
+            loaded.scene.sampler,
+            match args.adaptive {
+                true => format!(", adaptive {:?}", AdaptiveParams::default()),
+                false => String::new(),
+            }
         ),
     };
     let mut fb = Framebuffer::new(w, h);
     let mut resumed_target = None;
+    let mut pending = None;
     if let Some(path) = &args.resume {
         let ck = match load_checkpoint(path) {
             Ok(c) => c,
@@ -235,6 +241,7 @@ pub fn run(args: &RenderArgs) -> i32 {
         meta.seconds = ck.meta.seconds;
         resumed_target = (ck.meta.target_spp > 0).then_some(ck.meta.target_spp);
         fb.pixels = ck.pixels;
+        pending = ck.pending;
     }
     let target = if args.forever {
         None
@@ -245,11 +252,18 @@ pub fn run(args: &RenderArgs) -> i32 {
     } else {
         Some(resumed_target.unwrap_or(loaded.spp))
     };
-    let (_, high) = spp_range(&fb);
+    // Adaptive renders count the mean (single pixels may well be past the target).
+    let (what, high) = match args.adaptive {
+        true => (
+            "a mean of",
+            taken_samples(&fb) / (fb.pixels.len() as u64).max(1),
+        ),
+        false => ("pixels at", spp_range(&fb).1),
+    };
     if let Some(t) = target.filter(|t| *t < high) {
         let path = args.resume.as_deref().unwrap_or(args.scene.as_path());
         return usage(format!(
-            "{}: the checkpoint already has pixels at {high} spp, more than the target {t}",
+            "{}: the checkpoint already has {what} {high} spp, more than the target {t}",
             path.display()
         ));
     }
@@ -275,17 +289,25 @@ pub fn run(args: &RenderArgs) -> i32 {
         write_every,
         adaptive: args.adaptive.then(AdaptiveParams::default),
         target_error: args.target_error,
+        pending,
     };
-    let taken = |fb: &Framebuffer| fb.pixels.iter().map(|p| p.count + p.dropped).sum::<u64>();
+    let taken = taken_samples;
     let samples_before = taken(&fb);
     let start = Instant::now();
     let base = meta.clone();
     let decor = Decor::new(args, &loaded);
-    let save = |fb: &Framebuffer, passes: u64| -> Result<(), String> {
+    let save = |fb: &Framebuffer, passes: u64, pending: Option<&[u64]>| -> Result<(), String> {
         let mut m = base.clone();
         m.passes += passes;
         m.seconds += start.elapsed().as_secs_f64();
-        write_all(&args.outputs, checkpoint.as_deref(), &m, fb, &decor)
+        write_all(
+            &args.outputs,
+            checkpoint.as_deref(),
+            &m,
+            fb,
+            pending,
+            &decor,
+        )
     };
     let result = progressive::run(
         job,
@@ -293,13 +315,14 @@ pub fn run(args: &RenderArgs) -> i32 {
         &plan,
         &stop,
         &mut |s: &Status| update_bar(&bar, mode, s),
-        &mut |fb, passes| save(fb, passes),
+        &mut |fb, passes| save(fb, passes, None),
     );
     bar.finish_and_clear();
     let progressive::Outcome {
         ending,
         passes,
         estimate,
+        pending,
     } = match result {
         Ok(r) => r,
         Err(e) => {
@@ -307,7 +330,7 @@ pub fn run(args: &RenderArgs) -> i32 {
             return 1;
         }
     };
-    if let Err(e) = save(&fb, passes) {
+    if let Err(e) = save(&fb, passes, pending.as_deref()) {
         eprintln!("error: {e}");
         return 1;
     }
@@ -414,19 +437,26 @@ fn spp_text(fb: &Framebuffer) -> String {
     }
 }
 
-/// Writes the average to every output, then the checkpoint (each atomically).
+/// Samples taken so far (`count + dropped` over every pixel).
+fn taken_samples(fb: &Framebuffer) -> u64 {
+    fb.pixels.iter().map(|p| p.count + p.dropped).sum()
+}
+
+/// Writes the average to every output, then the checkpoint (each atomically), with the targets of
+/// an interrupted adaptive pass.
 fn write_all(
     outputs: &[PathBuf],
     checkpoint: Option<&std::path::Path>,
     meta: &CheckpointMeta,
     fb: &Framebuffer,
+    pending: Option<&[u64]>,
     decor: &Decor,
 ) -> Result<(), String> {
     for o in outputs {
         decor.write(o, fb, meta.seconds)?;
     }
     if let Some(c) = checkpoint {
-        write_checkpoint(c, meta, &fb.pixels)?;
+        write_checkpoint(c, meta, &fb.pixels, pending)?;
     }
     Ok(())
 }

@@ -51,7 +51,7 @@ pub struct Job<'a> {
 }
 
 /// When to stop and when to write.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Debug, Default)]
 pub struct Plan {
     /// Stop when every pixel has this many samples (`None`: no limit).
     pub target: Option<u64>,
@@ -63,6 +63,9 @@ pub struct Plan {
     pub adaptive: Option<AdaptiveParams>,
     /// Stop at the first check point where the estimated relative MSE is at most this.
     pub target_error: Option<f64>,
+    /// Adaptive sampling resumed: the targets of the pass that was interrupted (one per pixel),
+    /// finished before anything else.
+    pub pending: Option<Vec<u64>>,
 }
 
 /// Why the passes ended.
@@ -79,7 +82,7 @@ pub enum Ending {
 }
 
 /// How the passes ended.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Outcome {
     /// Why.
     pub ending: Ending,
@@ -87,6 +90,9 @@ pub struct Outcome {
     pub passes: u64,
     /// The latest error estimate (with [`Plan::target_error`], from 16 spp on).
     pub estimate: Option<f64>,
+    /// Adaptive sampling stopped inside a pass: that pass's targets, one per pixel (a checkpoint
+    /// keeps them so that a resumed render finishes the same pass).
+    pub pending: Option<Vec<u64>>,
 }
 
 /// Where the render is, for a progress display.
@@ -147,8 +153,18 @@ pub fn run(
                 }
             });
         }
+        let mut pending = None;
         let out = passes(
-            job, fb, plan, deadline, stop, progress, write, start, &mut check,
+            job,
+            fb,
+            plan,
+            deadline,
+            stop,
+            progress,
+            write,
+            start,
+            &mut check,
+            &mut pending,
         );
         finished.store(true, Ordering::SeqCst);
         out.map(|(e, passes)| Outcome {
@@ -158,6 +174,7 @@ pub fn run(
             },
             passes,
             estimate: check.as_ref().and_then(|c| c.last),
+            pending,
         })
     })
 }
@@ -173,9 +190,13 @@ fn passes(
     write: &mut dyn FnMut(&Framebuffer, u64) -> Result<(), String>,
     start: Instant,
     check: &mut Option<ErrorCheck>,
+    pending: &mut Option<Vec<u64>>,
 ) -> Result<(Ending, u64), String> {
     if let Some(a) = &plan.adaptive {
-        return adaptive_passes(job, fb, plan, a, stop, progress, write, start, check);
+        *pending = plan.pending.clone();
+        return adaptive_passes(
+            job, fb, plan, a, stop, progress, write, start, check, pending,
+        );
     }
     let target = plan.target.unwrap_or(u64::MAX);
     let mut last_write = start;
@@ -270,6 +291,7 @@ fn adaptive_passes(
     write: &mut dyn FnMut(&Framebuffer, u64) -> Result<(), String>,
     start: Instant,
     check: &mut Option<ErrorCheck>,
+    pending: &mut Option<Vec<u64>>,
 ) -> Result<(Ending, u64), String> {
     let target = plan.target.unwrap_or(u64::MAX);
     // Samples every pixel takes before the first adaptive pass (never past the target).
@@ -283,7 +305,7 @@ fn adaptive_passes(
         }
         let (low, _) = spp_range(fb);
         let mean = taken(fb) / pixels;
-        if mean >= target && low >= first {
+        if mean >= target && low >= first && pending.is_none() {
             return Ok((Ending::Target, done));
         }
         let opts = RenderOptions {
@@ -293,8 +315,11 @@ fn adaptive_passes(
             seed: job.seed,
             ..Default::default()
         };
-        let warming = low < first;
-        let (from, end) = if warming {
+        let warming = low < first && pending.is_none();
+        let (from, end) = if let Some(t) = pending.as_ref() {
+            // The interrupted pass: it ends at the mean its targets add up to.
+            (mean, t.iter().sum::<u64>() / pixels)
+        } else if warming {
             (low, first)
         } else {
             let mut end = params.warmup.max(2);
@@ -317,9 +342,14 @@ fn adaptive_passes(
         let complete = if warming {
             render_into_until(job.scene, job.integrator, &opts, fb, stop, &mut report)
         } else {
-            let budget = end.saturating_mul(pixels).saturating_sub(taken(fb));
-            let targets = pass_targets(&fb.pixels, fb.width, fb.height, budget, params);
-            render_into_targets(
+            let targets = match pending.take() {
+                Some(t) => t,
+                None => {
+                    let budget = end.saturating_mul(pixels).saturating_sub(taken(fb));
+                    pass_targets(&fb.pixels, fb.width, fb.height, budget, params)
+                }
+            };
+            let complete = render_into_targets(
                 job.scene,
                 job.integrator,
                 &opts,
@@ -327,7 +357,11 @@ fn adaptive_passes(
                 &targets,
                 Some(stop),
                 &mut report,
-            )
+            );
+            if !complete {
+                *pending = Some(targets);
+            }
+            complete
         };
         if !complete {
             continue;
