@@ -1,6 +1,7 @@
 //! Command-line interface: argument definitions and the subcommands.
 pub mod bench;
 pub mod compare;
+pub mod decor;
 pub mod merge;
 pub mod probe_args;
 pub mod render;

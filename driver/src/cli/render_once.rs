@@ -2,7 +2,8 @@
 //! outputs are part files for `tessera merge`), `--stats` and `--debug-pixel`. These render a
 //! fixed sample range once, so they do not combine with the progressive flags (`--time`,
 //! `--forever`, `--write-every`, `--checkpoint`, `--resume`, `--adaptive`, `--target-error`).
-use super::render::{Decor, RenderArgs};
+use super::decor::Decor;
+use super::render::RenderArgs;
 use super::split_args::write_render_output;
 use crate::error::InputError;
 use crate::render::RenderOptions;
