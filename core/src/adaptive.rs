@@ -189,11 +189,12 @@ fn round_to_budget(want: &[f64], budget: u64) -> Vec<u64> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::Color;
 
-    fn pixel(values: &[f32]) -> PixelAccum {
+    /// An accumulator of grey samples `values`.
+    pub(crate) fn pixel(values: &[f32]) -> PixelAccum {
         let mut a = PixelAccum::default();
         for &v in values {
             a.add(Color::splat(v));

@@ -71,16 +71,9 @@ fn pixel_rel_mse(before: &PixelAccum, after: &PixelAccum, floor: f64) -> Option<
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::adaptive::tests::pixel;
     use crate::Color;
     use alloc::vec::Vec;
-
-    fn pixel(values: &[f32]) -> PixelAccum {
-        let mut a = PixelAccum::default();
-        for &v in values {
-            a.add(Color::splat(v));
-        }
-        a
-    }
 
     /// Known halves: first half mean 1, second half mean 2 (2 + 2 samples, mean 1.5): error
     /// estimate (2 - 1)^2 * 2 * 2 / 16 / (1.5^2 + 0.01).

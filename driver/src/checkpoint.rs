@@ -297,12 +297,10 @@ pub fn read_checkpoint(bytes: &[u8]) -> Result<Checkpoint, String> {
     // length, and checked against the pixel count after the checksum.
     let targets = match (version, pixels_end) {
         (1, _) | (_, None) => 0,
-        (_, Some(end)) => match bytes.get(end as usize..end as usize + 8) {
-            Some(b) if end <= usize::MAX as u64 - 8 => {
-                u64::from_le_bytes(b.try_into().map_err(|_| "targets")?)
-            }
-            _ => 0,
-        },
+        (_, Some(end)) => usize::try_from(end)
+            .ok()
+            .and_then(|e| bytes.get(e..e.checked_add(8)?))
+            .map_or(0, |b| u64::from_le_bytes(std::array::from_fn(|i| b[i]))),
     };
     let section = if version == 1 { 0 } else { 8 };
     let expected = pixels_end

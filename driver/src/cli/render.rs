@@ -256,7 +256,7 @@ pub fn run(args: &RenderArgs) -> i32 {
     let (what, high) = match args.adaptive {
         true => (
             "a mean of",
-            taken_samples(&fb) / (fb.pixels.len() as u64).max(1),
+            progressive::taken(&fb) / (fb.pixels.len() as u64).max(1),
         ),
         false => ("pixels at", spp_range(&fb).1),
     };
@@ -291,7 +291,7 @@ pub fn run(args: &RenderArgs) -> i32 {
         target_error: args.target_error,
         pending,
     };
-    let taken = taken_samples;
+    let taken = progressive::taken;
     let samples_before = taken(&fb);
     let start = Instant::now();
     let base = meta.clone();
@@ -361,11 +361,6 @@ pub fn run(args: &RenderArgs) -> i32 {
         }
     }
     code
-}
-
-/// Samples taken so far (`count + dropped` over every pixel).
-fn taken_samples(fb: &Framebuffer) -> u64 {
-    fb.pixels.iter().map(|p| p.count + p.dropped).sum()
 }
 
 /// Writes the average to every output, then the checkpoint (each atomically), with the targets of

@@ -274,7 +274,7 @@ fn passes(
 }
 
 /// Samples taken so far (`count + dropped` over every pixel).
-fn taken(fb: &Framebuffer) -> u64 {
+pub fn taken(fb: &Framebuffer) -> u64 {
     fb.pixels.iter().map(|p| p.count + p.dropped).sum()
 }
 
