@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::atomic::AtomicBool;
 use tessera::bench::errors;
-use tessera::checkpoint::{read_checkpoint, write_checkpoint, CheckpointMeta};
+use tessera::checkpoint::{read_checkpoint, write_checkpoint, CheckpointMeta, Continuation};
 use tessera::image_io::read_image;
 use tessera::progressive::{self, Ending, Job, Plan};
 use tessera::render::{render, Framebuffer, RenderOptions};
@@ -56,7 +56,10 @@ fn adaptive(
         ..Default::default()
     };
     let stop = AtomicBool::new(false);
-    progressive::run(job, &mut fb, &plan, &stop, &mut |_| {}, &mut |_, _| Ok(())).unwrap();
+    progressive::run(job, &mut fb, &plan, &stop, &mut |_| {}, &mut |_, _, _| {
+        Ok(())
+    })
+    .unwrap();
     fb
 }
 
@@ -162,11 +165,20 @@ fn interrupted_and_resumed_gives_the_same_bits() {
                     stop.store(true, std::sync::atomic::Ordering::SeqCst);
                 }
             },
-            &mut |_, _| Ok(()),
+            &mut |_, _, _| Ok(()),
         )
         .unwrap();
         assert_eq!(out.ending, Ending::Stopped, "stop after {stop_after}");
-        write_checkpoint(&path, &meta, &fb.pixels, out.pending.as_deref()).unwrap();
+        write_checkpoint(
+            &path,
+            &meta,
+            &fb.pixels,
+            Continuation {
+                pending: out.pending.as_deref(),
+                check: None,
+            },
+        )
+        .unwrap();
         let ck = read_checkpoint(&std::fs::read(&path).unwrap()).unwrap();
         assert_eq!(ck.pending, out.pending);
         let resume = |pending: Option<Vec<u64>>| {
@@ -177,9 +189,14 @@ fn interrupted_and_resumed_gives_the_same_bits() {
                 ..plan.clone()
             };
             let stop = AtomicBool::new(false);
-            let out = progressive::run(job, &mut again, &plan, &stop, &mut |_| {}, &mut |_, _| {
-                Ok(())
-            })
+            let out = progressive::run(
+                job,
+                &mut again,
+                &plan,
+                &stop,
+                &mut |_| {},
+                &mut |_, _, _| Ok(()),
+            )
             .unwrap();
             assert_eq!(out.ending, Ending::Target);
             again

@@ -12,7 +12,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
-use tessera::checkpoint::{load_checkpoint, read_checkpoint, write_checkpoint, CheckpointMeta};
+use tessera::checkpoint::{
+    load_checkpoint, read_checkpoint, write_checkpoint, CheckpointMeta, Continuation,
+};
 use tessera::image_io::{write_image, RgbImage};
 use tessera::render::{render, render_into_until, Framebuffer, RenderOptions};
 use tessera::scene::{load_scene, LoadedScene};
@@ -299,7 +301,7 @@ fn mixed_counts_continue_to_one_render() {
         seconds: 0.0,
         integrator: format!("{:?}", l.integrator),
     };
-    write_checkpoint(&dir.path("c"), &meta, &fb.pixels, None).unwrap();
+    write_checkpoint(&dir.path("c"), &meta, &fb.pixels, Continuation::default()).unwrap();
     let back = read_checkpoint(&std::fs::read(dir.path("c")).unwrap()).unwrap();
     assert_eq!(back.meta, meta);
     let mut fb2 = Framebuffer {

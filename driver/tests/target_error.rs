@@ -8,7 +8,11 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::atomic::AtomicBool;
 use tessera::bench::errors;
+use tessera::checkpoint::{
+    read_checkpoint, write_checkpoint, Checkpoint, CheckpointMeta, Continuation,
+};
 use tessera::image_io::read_image;
+use tessera::progressive::check::CheckState;
 use tessera::progressive::{self, Ending, Job, Outcome, Plan};
 use tessera::render::Framebuffer;
 use tessera::scene::{load_scene, LoadedScene};
@@ -57,8 +61,10 @@ fn render(
         ..Default::default()
     };
     let stop = AtomicBool::new(false);
-    let out = progressive::run(job, &mut fb, &plan, &stop, &mut |_| {}, &mut |_, _| Ok(()))
-        .expect("renders");
+    let out = progressive::run(job, &mut fb, &plan, &stop, &mut |_| {}, &mut |_, _, _| {
+        Ok(())
+    })
+    .expect("renders");
     (fb, out)
 }
 
@@ -149,6 +155,109 @@ fn stops_at_the_first_check_point_below_the_target() {
     }
 }
 
+/// A render stopped at any pass and resumed from its checkpoint file (the interrupted adaptive
+/// pass's targets and the last check point in it) stops at the same check point with the same
+/// bits and estimate as one that never stopped; a finished one resumed has nothing left to do.
+/// Control: resumed without the check point after the state that the stopping check compares
+/// with, that check lacks its first half, so the render stops later.
+#[test]
+fn interrupted_and_resumed_stops_at_the_same_check_point() {
+    let l = load("cbox", 32, "zsobol");
+    let (w, h) = (l.scene.camera.width, l.scene.camera.height);
+    let target = 4e-3;
+    let path = std::env::temp_dir().join(format!("tessera-te-{}.ckpt", std::process::id()));
+    let meta = CheckpointMeta {
+        width: w,
+        height: h,
+        seed: 5,
+        target_spp: 4096,
+        scene_hash: 1,
+        passes: 0,
+        seconds: 0.0,
+        integrator: "test".into(),
+    };
+    for adaptive in [false, true] {
+        let (want, want_out) = render(&l, 4096, target, 2, 16, 5, adaptive);
+        assert_eq!(want_out.ending, Ending::ErrorReached);
+        let job = Job {
+            scene: &l.scene,
+            integrator: &l.integrator,
+            seed: 5,
+            threads: 2,
+            tile_size: 16,
+        };
+        let plan = Plan {
+            target: Some(4096),
+            target_error: Some(target),
+            adaptive: adaptive.then(AdaptiveParams::default),
+            ..Default::default()
+        };
+        let resume = |ck: &Checkpoint, check: Option<CheckState>| {
+            let mut fb = Framebuffer::new(w, h);
+            fb.pixels = ck.pixels.clone();
+            let plan = Plan {
+                pending: ck.pending.clone(),
+                resumed_check: check,
+                ..plan.clone()
+            };
+            let stop = AtomicBool::new(false);
+            let out = progressive::run(job, &mut fb, &plan, &stop, &mut |_| {}, &mut |_, _, _| {
+                Ok(())
+            })
+            .unwrap();
+            (fb, out)
+        };
+        let mut later = 0;
+        // Where the render stops (mean spp).
+        let last = progressive::taken(&want) / want.pixels.len() as u64;
+        for stop_after in 0..12u64 {
+            let mut fb = Framebuffer::new(w, h);
+            let stop = AtomicBool::new(false);
+            let out = progressive::run(
+                job,
+                &mut fb,
+                &plan,
+                &stop,
+                &mut |s| {
+                    if s.passes == stop_after {
+                        stop.store(true, std::sync::atomic::Ordering::SeqCst);
+                    }
+                },
+                &mut |_, _, _| Ok(()),
+            )
+            .unwrap();
+            let more = Continuation {
+                pending: out.pending.as_deref(),
+                check: out.check.as_ref(),
+            };
+            write_checkpoint(&path, &meta, &fb.pixels, more).unwrap();
+            let ck = read_checkpoint(&std::fs::read(&path).unwrap()).unwrap();
+            let (again, o) = resume(&ck, ck.check.clone());
+            let what = format!(
+                "adaptive {adaptive}, stop after {stop_after}: {:?}",
+                out.ending
+            );
+            assert!(again.pixels == want.pixels, "{what}");
+            assert_eq!(
+                (o.ending, o.estimate),
+                (Ending::ErrorReached, want_out.estimate),
+                "{what}"
+            );
+            if out.ending == Ending::ErrorReached {
+                assert_eq!(o.passes, 0, "{what}: finished, nothing left to do");
+            } else if ck.check.as_ref().is_some_and(|c| 2 * c.spp >= last) {
+                // Past the state the stopping check compares with: without it, no stop there.
+                let (blind, _) = resume(&ck, None);
+                assert!(blind.pixels != want.pixels, "control, {what}");
+                later += 1;
+            }
+        }
+        // One stop position at least (the last pass) is past the stopping check's first half.
+        assert!(later >= 1, "adaptive {adaptive}: no stop past the half");
+    }
+    let _ = std::fs::remove_file(&path);
+}
+
 fn run(args: &[&str]) -> Output {
     Command::new(BIN)
         .args(args)
@@ -190,6 +299,29 @@ fn command_line() {
     let e = stderr(&o);
     assert!(o.status.success(), "{e}");
     assert!(e.contains("at 32 spp"), "{e}");
+    // Through a checkpoint file: a finished render resumed with its target has nothing left to
+    // do; resumed with a lower target it ends where a fresh render with that target does.
+    let ck = dir.join("c.ckpt");
+    let ck = ck.to_str().unwrap();
+    let pfm = |name: &str| dir.join(name).to_string_lossy().into_owned();
+    let render_to = |out: &str, extra: &[&str]| {
+        let mut a = base.to_vec();
+        a.extend_from_slice(extra);
+        a.extend_from_slice(&["-o", out]);
+        let o = run(&a);
+        assert!(o.status.success(), "{extra:?}: {}", stderr(&o));
+        (stderr(&o), std::fs::read(out).unwrap())
+    };
+    let (_, first) = render_to(
+        &pfm("a.pfm"),
+        &["--target-error", "0.02", "--checkpoint", ck],
+    );
+    let (e, again) = render_to(&pfm("b.pfm"), &["--target-error", "0.02", "--resume", ck]);
+    assert!(e.contains(" 0 passes"), "{e}");
+    assert!(again == first);
+    let (_, lower) = render_to(&pfm("c.pfm"), &["--target-error", "0.005", "--resume", ck]);
+    let (_, fresh) = render_to(&pfm("d.pfm"), &["--target-error", "0.005"]);
+    assert!(lower == fresh && lower != first);
     for bad in [
         &["--target-error", "0"][..],
         &["--target-error", "-1"],
@@ -197,7 +329,6 @@ fn command_line() {
         &["--target-error", "inf"],
         &["--target-error", "1e-3", "--stats"],
         &["--target-error", "1e-3", "--tiles", "1/2"],
-        &["--target-error", "1e-3", "--resume", "x.ckpt"],
         &["--target-error", "1e-3", "--forever"],
     ] {
         let o = with(bad);

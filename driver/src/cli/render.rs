@@ -8,7 +8,9 @@
 //! `--checkpoint`) and exit 130 / 143; a second signal exits at once without writing.
 //! `--resume FILE` continues a checkpoint to the same bits as an uninterrupted render.
 use super::decor::{spp_text, Decor};
-use crate::checkpoint::{load_checkpoint, scene_hash, write_checkpoint, CheckpointMeta};
+use crate::checkpoint::{
+    load_checkpoint, scene_hash, write_checkpoint, CheckpointMeta, Continuation,
+};
 use crate::error::InputError;
 use crate::image_io::Format;
 use crate::progressive::bar::{progress_bar, update_bar};
@@ -95,7 +97,7 @@ pub struct RenderArgs {
     /// Stop at the first power of two spp (with --adaptive: doubling of the mean) whose relative
     /// MSE, estimated from the two halves of the samples, is at most this (e.g. 1e-3; checked
     /// from 16 spp on). Without --spp there is no sample limit.
-    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["forever", "resume"])]
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "forever")]
     pub target_error: Option<f64>,
     /// Render a piece of the image (a part, for `tessera merge`).
     #[command(flatten)]
@@ -179,7 +181,7 @@ pub fn run(args: &RenderArgs) -> i32 {
     }
     // zsobol's pixel blocks follow the scene's sample count, never --spp or --time, so that
     // progressive passes, resumed checkpoints and sample-range parts all draw one sequence.
-    // Adaptive renders (no resume, no parts) give noisy pixels several times the mean: their
+    // Adaptive renders (never split into parts) give noisy pixels several times the mean: their
     // blocks are ZSOBOL_BLOCK_FACTOR times larger, so those pixels stay in one block.
     let scene_spp = match args.adaptive {
         true => loaded.spp.saturating_mul(ZSOBOL_BLOCK_FACTOR),
@@ -229,6 +231,7 @@ pub fn run(args: &RenderArgs) -> i32 {
     let mut fb = Framebuffer::new(w, h);
     let mut resumed_target = None;
     let mut pending = None;
+    let mut resumed_check = None;
     if let Some(path) = &args.resume {
         let ck = match load_checkpoint(path) {
             Ok(c) => c,
@@ -242,15 +245,18 @@ pub fn run(args: &RenderArgs) -> i32 {
         resumed_target = (ck.meta.target_spp > 0).then_some(ck.meta.target_spp);
         fb.pixels = ck.pixels;
         pending = ck.pending;
+        // The check point matters only to a render that checks (it stays in the file otherwise
+        // only until the next write).
+        resumed_check = ck.check.filter(|_| args.target_error.is_some());
     }
     let target = if args.forever {
         None
-    } else if let Some(n) = args.spp {
+    } else if let Some(n) = args.spp.or(resumed_target) {
         Some(n)
     } else if budget.is_some() || args.target_error.is_some() {
         None
     } else {
-        Some(resumed_target.unwrap_or(loaded.spp))
+        Some(loaded.spp)
     };
     // Adaptive renders count the mean (single pixels may well be past the target).
     let (what, high) = match args.adaptive {
@@ -290,24 +296,18 @@ pub fn run(args: &RenderArgs) -> i32 {
         adaptive: args.adaptive.then(AdaptiveParams::default),
         target_error: args.target_error,
         pending,
+        resumed_check,
     };
     let taken = progressive::taken;
     let samples_before = taken(&fb);
     let start = Instant::now();
     let base = meta.clone();
     let decor = Decor::new(args, &loaded);
-    let save = |fb: &Framebuffer, passes: u64, pending: Option<&[u64]>| -> Result<(), String> {
+    let save = |fb: &Framebuffer, passes: u64, more: Continuation| -> Result<(), String> {
         let mut m = base.clone();
         m.passes += passes;
         m.seconds += start.elapsed().as_secs_f64();
-        write_all(
-            &args.outputs,
-            checkpoint.as_deref(),
-            &m,
-            fb,
-            pending,
-            &decor,
-        )
+        write_all(&args.outputs, checkpoint.as_deref(), &m, fb, more, &decor)
     };
     let result = progressive::run(
         job,
@@ -315,7 +315,16 @@ pub fn run(args: &RenderArgs) -> i32 {
         &plan,
         &stop,
         &mut |s: &Status| update_bar(&bar, mode, s),
-        &mut |fb, passes| save(fb, passes, None),
+        &mut |fb, passes, check| {
+            save(
+                fb,
+                passes,
+                Continuation {
+                    pending: None,
+                    check,
+                },
+            )
+        },
     );
     bar.finish_and_clear();
     let progressive::Outcome {
@@ -323,6 +332,7 @@ pub fn run(args: &RenderArgs) -> i32 {
         passes,
         estimate,
         pending,
+        check,
     } = match result {
         Ok(r) => r,
         Err(e) => {
@@ -330,7 +340,11 @@ pub fn run(args: &RenderArgs) -> i32 {
             return 1;
         }
     };
-    if let Err(e) = save(&fb, passes, pending.as_deref()) {
+    let more = Continuation {
+        pending: pending.as_deref(),
+        check: check.as_ref(),
+    };
+    if let Err(e) = save(&fb, passes, more) {
         eprintln!("error: {e}");
         return 1;
     }
@@ -363,21 +377,21 @@ pub fn run(args: &RenderArgs) -> i32 {
     code
 }
 
-/// Writes the average to every output, then the checkpoint (each atomically), with the targets of
-/// an interrupted adaptive pass.
+/// Writes the average to every output, then the checkpoint (each atomically), with what the
+/// render needs to go on the same way (`more`).
 fn write_all(
     outputs: &[PathBuf],
     checkpoint: Option<&std::path::Path>,
     meta: &CheckpointMeta,
     fb: &Framebuffer,
-    pending: Option<&[u64]>,
+    more: Continuation,
     decor: &Decor,
 ) -> Result<(), String> {
     for o in outputs {
         decor.write(o, fb, meta.seconds)?;
     }
     if let Some(c) = checkpoint {
-        write_checkpoint(c, meta, &fb.pixels, pending)?;
+        write_checkpoint(c, meta, &fb.pixels, more)?;
     }
     Ok(())
 }

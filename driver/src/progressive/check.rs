@@ -11,23 +11,36 @@ use tessera_core::film::PixelAccum;
 /// The relMSE floor of the estimate (the bench's measure).
 const FLOOR: f64 = 0.01;
 
+/// The accumulators at a check point, which the next check takes as its first half (a
+/// checkpoint file keeps them, so a resumed render checks where an uninterrupted one would).
+#[derive(Clone, Debug, PartialEq)]
+pub struct CheckState {
+    /// Samples per pixel at the check point (the mean, for adaptive renders).
+    pub spp: u64,
+    /// The estimate made there (`None`: none was, e.g. below [`MIN_CHECK_SPP`]).
+    pub estimate: Option<f64>,
+    /// Every pixel's accumulators there.
+    pub pixels: Vec<PixelAccum>,
+}
+
 /// State between check points.
 #[derive(Clone, Debug)]
 pub struct ErrorCheck {
     target: f64,
-    /// The previous check point: its samples per pixel (the mean) and the accumulators.
-    previous: Option<(u64, Vec<PixelAccum>)>,
+    /// The previous check point.
+    previous: Option<CheckState>,
     /// The latest estimate.
     pub last: Option<f64>,
 }
 
 impl ErrorCheck {
-    /// A check for the relative MSE `target`.
-    pub fn new(target: f64) -> Self {
+    /// A check for the relative MSE `target`, continuing from `previous` (a resumed render's
+    /// last check point, or `None`).
+    pub fn new(target: f64, previous: Option<CheckState>) -> Self {
         ErrorCheck {
             target,
-            previous: None,
-            last: None,
+            last: previous.as_ref().and_then(|p| p.estimate),
+            previous,
         }
     }
 
@@ -35,15 +48,32 @@ impl ErrorCheck {
     /// the error when the previous check point held half as many and `spp` is at least
     /// [`MIN_CHECK_SPP`], then keeps this state. Returns whether the estimate reached the target.
     pub fn at(&mut self, spp: u64, pixels: &[PixelAccum]) -> bool {
-        let mut reached = false;
-        if let Some((half, before)) = &self.previous {
-            if half.saturating_mul(2) == spp && spp >= MIN_CHECK_SPP {
-                self.last = halves_rel_mse(before, pixels, FLOOR);
-                reached = self.last.is_some_and(|e| e <= self.target);
+        let mut estimate = None;
+        if let Some(before) = &self.previous {
+            if before.spp.saturating_mul(2) == spp && spp >= MIN_CHECK_SPP {
+                estimate = halves_rel_mse(&before.pixels, pixels, FLOOR);
+                self.last = estimate;
             }
         }
-        self.previous = Some((spp, pixels.to_vec()));
-        reached
+        self.previous = Some(CheckState {
+            spp,
+            estimate,
+            pixels: pixels.to_vec(),
+        });
+        self.reached(spp)
+    }
+
+    /// Whether the check point at `spp` (the latest one) reached the target: a resumed render
+    /// that was saved after its last check has nothing left to do.
+    pub fn reached(&self, spp: u64) -> bool {
+        self.previous
+            .as_ref()
+            .is_some_and(|p| p.spp == spp && p.estimate.is_some_and(|e| e <= self.target))
+    }
+
+    /// The latest check point, for a checkpoint file.
+    pub fn state(&self) -> Option<&CheckState> {
+        self.previous.as_ref()
     }
 }
 
@@ -84,7 +114,7 @@ mod tests {
             }
             vec![p; 4]
         };
-        let mut c = ErrorCheck::new(1e-9);
+        let mut c = ErrorCheck::new(1e-9, None);
         assert!(!c.at(4, &image(4)));
         assert!(!c.at(8, &image(8)));
         assert_eq!(c.last, None);

@@ -24,7 +24,7 @@ pub mod bar;
 pub mod check;
 
 use crate::render::{render_into_targets, render_into_until, Framebuffer, RenderOptions};
-use check::{clamp_to_check_point, ErrorCheck};
+use check::{clamp_to_check_point, CheckState, ErrorCheck};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 use tessera_core::adaptive::{pass_targets, AdaptiveParams};
@@ -66,6 +66,9 @@ pub struct Plan {
     /// Adaptive sampling resumed: the targets of the pass that was interrupted (one per pixel),
     /// finished before anything else.
     pub pending: Option<Vec<u64>>,
+    /// A resumed render with a target error: its last check point, the first half of the next
+    /// check.
+    pub resumed_check: Option<CheckState>,
 }
 
 /// Why the passes ended.
@@ -93,6 +96,8 @@ pub struct Outcome {
     /// Adaptive sampling stopped inside a pass: that pass's targets, one per pixel (a checkpoint
     /// keeps them so that a resumed render finishes the same pass).
     pub pending: Option<Vec<u64>>,
+    /// With [`Plan::target_error`]: the latest check point (a checkpoint keeps it).
+    pub check: Option<CheckState>,
 }
 
 /// Where the render is, for a progress display.
@@ -120,19 +125,25 @@ pub fn spp_range(fb: &Framebuffer) -> (u64, u64) {
         .fold((u64::MAX, 0), |(lo, hi), n| (lo.min(n), hi.max(n)))
 }
 
+/// The writer's signature: `write(fb, passes_done, check_point)`, the last argument being the
+/// latest check point of a render with a target error.
+pub type Writer<'a> = dyn FnMut(&Framebuffer, u64, Option<&CheckState>) -> Result<(), String> + 'a;
+
 /// Renders passes into `fb` (which may hold a resumed render) until `plan` says stop or `stop`
-/// is set. `progress` is called as tiles arrive; `write(fb, passes_done)` after each pass when the
-/// write interval is due (its error ends the render). Returns why it ended, the passes completed
-/// and the last error estimate.
+/// is set. `progress` is called as tiles arrive; `write` after each pass when the write interval
+/// is due (its error ends the render). Returns why it ended, the passes completed and the last
+/// error estimate.
 pub fn run(
     job: Job,
     fb: &mut Framebuffer,
     plan: &Plan,
     stop: &AtomicBool,
     progress: &mut dyn FnMut(&Status),
-    write: &mut dyn FnMut(&Framebuffer, u64) -> Result<(), String>,
+    write: &mut Writer,
 ) -> Result<Outcome, String> {
-    let mut check = plan.target_error.map(ErrorCheck::new);
+    let mut check = plan
+        .target_error
+        .map(|t| ErrorCheck::new(t, plan.resumed_check.clone()));
     let start = Instant::now();
     let deadline = plan.budget.map(|b| start + b);
     let time_up = AtomicBool::new(false);
@@ -175,6 +186,7 @@ pub fn run(
             passes,
             estimate: check.as_ref().and_then(|c| c.last),
             pending,
+            check: check.as_ref().and_then(|c| c.state().cloned()),
         })
     })
 }
@@ -187,7 +199,7 @@ fn passes(
     deadline: Option<Instant>,
     stop: &AtomicBool,
     progress: &mut dyn FnMut(&Status),
-    write: &mut dyn FnMut(&Framebuffer, u64) -> Result<(), String>,
+    write: &mut Writer,
     start: Instant,
     check: &mut Option<ErrorCheck>,
     pending: &mut Option<Vec<u64>>,
@@ -208,6 +220,9 @@ fn passes(
             return Ok((Ending::Stopped, done));
         }
         let (low, _) = spp_range(fb);
+        if check.as_ref().is_some_and(|c| c.reached(low)) {
+            return Ok((Ending::ErrorReached, done));
+        }
         if low >= target {
             return Ok((Ending::Target, done));
         }
@@ -267,7 +282,7 @@ fn passes(
         }
         let due = plan.write_every.is_some_and(|w| last_write.elapsed() >= w);
         if due && spp_range(fb).0 < target {
-            write(fb, done)?;
+            write(fb, done, check.as_ref().and_then(|c| c.state()))?;
             last_write = Instant::now();
         }
     }
@@ -288,7 +303,7 @@ fn adaptive_passes(
     params: &AdaptiveParams,
     stop: &AtomicBool,
     progress: &mut dyn FnMut(&Status),
-    write: &mut dyn FnMut(&Framebuffer, u64) -> Result<(), String>,
+    write: &mut Writer,
     start: Instant,
     check: &mut Option<ErrorCheck>,
     pending: &mut Option<Vec<u64>>,
@@ -305,6 +320,9 @@ fn adaptive_passes(
         }
         let (low, _) = spp_range(fb);
         let mean = taken(fb) / pixels;
+        if pending.is_none() && check.as_ref().is_some_and(|c| c.reached(mean)) {
+            return Ok((Ending::ErrorReached, done));
+        }
         if mean >= target && low >= first && pending.is_none() {
             return Ok((Ending::Target, done));
         }
@@ -375,7 +393,7 @@ fn adaptive_passes(
         }
         let due = plan.write_every.is_some_and(|w| last_write.elapsed() >= w);
         if due && taken(fb) / pixels < target {
-            write(fb, done)?;
+            write(fb, done, check.as_ref().and_then(|c| c.state()))?;
             last_write = Instant::now();
         }
     }
