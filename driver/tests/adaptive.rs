@@ -15,6 +15,8 @@ use tessera::render::{render, Framebuffer, RenderOptions};
 use tessera::scene::{load_scene, LoadedScene};
 use tessera_core::adaptive::{AdaptiveParams, ZSOBOL_BLOCK_FACTOR};
 
+mod support;
+
 const BIN: &str = env!("CARGO_BIN_EXE_tessera");
 
 fn scene_path(name: &str) -> PathBuf {
@@ -154,20 +156,7 @@ fn interrupted_and_resumed_gives_the_same_bits() {
     // tiles each: the workers see the stop before they finish the pass).
     for stop_after in 0..4u64 {
         let mut fb = Framebuffer::new(w, h);
-        let stop = AtomicBool::new(false);
-        let out = progressive::run(
-            job,
-            &mut fb,
-            &plan,
-            &stop,
-            &mut |s| {
-                if s.passes == stop_after {
-                    stop.store(true, std::sync::atomic::Ordering::SeqCst);
-                }
-            },
-            &mut |_, _, _| Ok(()),
-        )
-        .unwrap();
+        let out = support::run_stopped_in_pass(job, &mut fb, &plan, stop_after);
         assert_eq!(out.ending, Ending::Stopped, "stop after {stop_after}");
         write_checkpoint(
             &path,

@@ -18,6 +18,8 @@ use tessera::render::Framebuffer;
 use tessera::scene::{load_scene, LoadedScene};
 use tessera_core::adaptive::{relative_variance, AdaptiveParams};
 
+mod support;
+
 const BIN: &str = env!("CARGO_BIN_EXE_tessera");
 
 fn scene_path(name: &str) -> PathBuf {
@@ -212,20 +214,7 @@ fn interrupted_and_resumed_stops_at_the_same_check_point() {
         let last = progressive::taken(&want) / want.pixels.len() as u64;
         for stop_after in 0..12u64 {
             let mut fb = Framebuffer::new(w, h);
-            let stop = AtomicBool::new(false);
-            let out = progressive::run(
-                job,
-                &mut fb,
-                &plan,
-                &stop,
-                &mut |s| {
-                    if s.passes == stop_after {
-                        stop.store(true, std::sync::atomic::Ordering::SeqCst);
-                    }
-                },
-                &mut |_, _, _| Ok(()),
-            )
-            .unwrap();
+            let out = support::run_stopped_in_pass(job, &mut fb, &plan, stop_after);
             let more = Continuation {
                 pending: out.pending.as_deref(),
                 check: out.check.as_ref(),
