@@ -6,11 +6,10 @@
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use std::sync::atomic::AtomicBool;
 use tessera::bench::errors;
 use tessera::checkpoint::{read_checkpoint, write_checkpoint, CheckpointMeta, Continuation};
 use tessera::image_io::read_image;
-use tessera::progressive::{self, Ending, Job, Plan};
+use tessera::progressive::{Ending, Plan};
 use tessera::render::{render, Framebuffer, RenderOptions};
 use tessera::scene::{load_scene, LoadedScene};
 use tessera_core::adaptive::{AdaptiveParams, ZSOBOL_BLOCK_FACTOR};
@@ -45,23 +44,12 @@ fn adaptive(
 ) -> Framebuffer {
     let (w, h) = (l.scene.camera.width, l.scene.camera.height);
     let mut fb = Framebuffer::new(w, h);
-    let job = Job {
-        scene: &l.scene,
-        integrator: &l.integrator,
-        seed,
-        threads,
-        tile_size,
-    };
     let plan = Plan {
         target: Some(spp),
         adaptive: Some(params),
         ..Default::default()
     };
-    let stop = AtomicBool::new(false);
-    progressive::run(job, &mut fb, &plan, &stop, &mut |_| {}, &mut |_, _, _| {
-        Ok(())
-    })
-    .unwrap();
+    support::run_plan(support::job(l, seed, threads, tile_size), &mut fb, &plan);
     fb
 }
 
@@ -128,13 +116,7 @@ fn interrupted_and_resumed_gives_the_same_bits() {
     let p = AdaptiveParams::default();
     let want = adaptive(&l, 16, 2, 8, 3, p);
     let (w, h) = (l.scene.camera.width, l.scene.camera.height);
-    let job = Job {
-        scene: &l.scene,
-        integrator: &l.integrator,
-        seed: 3,
-        threads: 2,
-        tile_size: 8,
-    };
+    let job = support::job(&l, 3, 2, 8);
     let plan = Plan {
         target: Some(16),
         adaptive: Some(p),
@@ -177,16 +159,7 @@ fn interrupted_and_resumed_gives_the_same_bits() {
                 pending,
                 ..plan.clone()
             };
-            let stop = AtomicBool::new(false);
-            let out = progressive::run(
-                job,
-                &mut again,
-                &plan,
-                &stop,
-                &mut |_| {},
-                &mut |_, _, _| Ok(()),
-            )
-            .unwrap();
+            let out = support::run_plan(job, &mut again, &plan);
             assert_eq!(out.ending, Ending::Target);
             again
         };

@@ -6,14 +6,13 @@
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use std::sync::atomic::AtomicBool;
 use tessera::bench::errors;
 use tessera::checkpoint::{
     read_checkpoint, write_checkpoint, Checkpoint, CheckpointMeta, Continuation,
 };
 use tessera::image_io::read_image;
 use tessera::progressive::check::CheckState;
-use tessera::progressive::{self, Ending, Job, Outcome, Plan};
+use tessera::progressive::{self, Ending, Outcome, Plan};
 use tessera::render::Framebuffer;
 use tessera::scene::{load_scene, LoadedScene};
 use tessera_core::adaptive::{relative_variance, AdaptiveParams};
@@ -49,24 +48,13 @@ fn render(
 ) -> (Framebuffer, Outcome) {
     let (w, h) = (l.scene.camera.width, l.scene.camera.height);
     let mut fb = Framebuffer::new(w, h);
-    let job = Job {
-        scene: &l.scene,
-        integrator: &l.integrator,
-        seed,
-        threads,
-        tile_size,
-    };
     let plan = Plan {
         target: Some(spp),
         target_error: Some(target_error),
         adaptive: adaptive.then(AdaptiveParams::default),
         ..Default::default()
     };
-    let stop = AtomicBool::new(false);
-    let out = progressive::run(job, &mut fb, &plan, &stop, &mut |_| {}, &mut |_, _, _| {
-        Ok(())
-    })
-    .expect("renders");
+    let out = support::run_plan(support::job(l, seed, threads, tile_size), &mut fb, &plan);
     (fb, out)
 }
 
@@ -181,13 +169,7 @@ fn interrupted_and_resumed_stops_at_the_same_check_point() {
     for adaptive in [false, true] {
         let (want, want_out) = render(&l, 4096, target, 2, 16, 5, adaptive);
         assert_eq!(want_out.ending, Ending::ErrorReached);
-        let job = Job {
-            scene: &l.scene,
-            integrator: &l.integrator,
-            seed: 5,
-            threads: 2,
-            tile_size: 16,
-        };
+        let job = support::job(&l, 5, 2, 16);
         let plan = Plan {
             target: Some(4096),
             target_error: Some(target),
@@ -202,11 +184,7 @@ fn interrupted_and_resumed_stops_at_the_same_check_point() {
                 resumed_check: check,
                 ..plan.clone()
             };
-            let stop = AtomicBool::new(false);
-            let out = progressive::run(job, &mut fb, &plan, &stop, &mut |_| {}, &mut |_, _, _| {
-                Ok(())
-            })
-            .unwrap();
+            let out = support::run_plan(job, &mut fb, &plan);
             (fb, out)
         };
         let mut later = 0;

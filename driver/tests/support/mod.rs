@@ -3,10 +3,31 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 use tessera::progressive::{self, Job, Outcome, Plan};
 use tessera::render::Framebuffer;
+use tessera::scene::LoadedScene;
+
+/// The job of rendering `l` with `seed` on `threads` threads in tiles of `tile_size` pixels.
+pub fn job(l: &LoadedScene, seed: u64, threads: usize, tile_size: u32) -> Job<'_> {
+    Job {
+        scene: &l.scene,
+        integrator: &l.integrator,
+        seed,
+        threads,
+        tile_size,
+    }
+}
+
+/// Runs `plan` into `fb` (which may hold a resumed render) to its end, writing nothing.
+pub fn run_plan(job: Job, fb: &mut Framebuffer, plan: &Plan) -> Outcome {
+    run(job, fb, plan, None)
+}
 
 /// Runs `plan` into `fb` and requests a stop as soon as pass `pass` (counted from 0) is under way,
 /// as a signal would; nothing is written on the way.
 pub fn run_stopped_in_pass(job: Job, fb: &mut Framebuffer, plan: &Plan, pass: u64) -> Outcome {
+    run(job, fb, plan, Some(pass))
+}
+
+fn run(job: Job, fb: &mut Framebuffer, plan: &Plan, stop_in: Option<u64>) -> Outcome {
     let stop = AtomicBool::new(false);
     progressive::run(
         job,
@@ -14,7 +35,7 @@ pub fn run_stopped_in_pass(job: Job, fb: &mut Framebuffer, plan: &Plan, pass: u6
         plan,
         &stop,
         &mut |s| {
-            if s.passes == pass {
+            if stop_in == Some(s.passes) {
                 stop.store(true, Ordering::SeqCst);
             }
         },
