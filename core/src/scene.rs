@@ -3,7 +3,7 @@ use crate::accel::tri4::Ray4;
 use crate::accel::{AnyLeaves, BuildParams, Bvh8, ClosestLeaves, TriBlocks};
 use crate::bsdf::Bsdf;
 use crate::camera::{Filter, Perspective};
-use crate::emitter::{Emitter, EmitterCtx, LightBound};
+use crate::emitter::{Behind, Emitter, EmitterCtx, LightBound};
 use crate::geometry::{Disk, Hit, Interaction, Prim, Shape, ShapeKind, TriRay};
 use crate::math::{Aabb, Ray};
 use crate::sampling::Discrete1D;
@@ -185,11 +185,14 @@ impl Scene {
             return Err(BuildError::TooLarge);
         }
         let mut environments = Vec::new();
-        for (i, e) in p.emitters.iter().enumerate() {
+        let mut p = p;
+        for (i, e) in p.emitters.iter_mut().enumerate() {
             if let Emitter::Area(a) = e {
-                if p.shapes.get(a.shape as usize).and_then(|s| s.emitter) != Some(i as u32) {
+                let shape = p.shapes.get(a.shape as usize);
+                if shape.and_then(|s| s.emitter) != Some(i as u32) {
                     return Err(BuildError::BadIndex);
                 }
+                a.behind = shape.and_then(Behind::of);
             }
             if e.is_environment() {
                 environments.push(i as u32);

@@ -2,8 +2,9 @@
 //!
 //! Scene parameters (`<emitter type="area">`, nested in a `<shape>`): `radiance` (rgb, required).
 //! Sampling: spheres seen from outside by solid angle (the cone toward them), every other shape
-//! uniformly by area (meshes choose a triangle by area).
-use super::{EmitterCtx, EmitterSample};
+//! uniformly by area (meshes choose a triangle by area). Points behind a flat light get no
+//! sample at all ([`Behind`], set when the scene is built).
+use super::{Behind, EmitterCtx, EmitterSample};
 use crate::geometry::{Interaction, SampleToward};
 use crate::math::offset_ray_origin;
 use crate::Color;
@@ -16,9 +17,20 @@ pub struct AreaLight {
     pub shape: u32,
     /// Emitted radiance.
     pub radiance: Color,
+    /// Where none of its light arrives, for a flat mesh (set by [`Scene::new`](crate::scene::Scene::new)).
+    pub behind: Option<Behind>,
 }
 
 impl AreaLight {
+    /// The light of shape `shape` with radiance `radiance` (its half-space is found when the
+    /// scene is built).
+    pub fn new(shape: u32, radiance: Color) -> Self {
+        AreaLight {
+            shape,
+            radiance,
+            behind: None,
+        }
+    }
     /// Radiance leaving a point with shading normal `ns` toward the unit direction `w`.
     #[inline]
     pub fn eval(&self, ns: Vec3, w: Vec3) -> Color {
@@ -31,6 +43,9 @@ impl AreaLight {
     /// Samples a point on the shape for `it`.
     #[inline]
     pub fn sample(&self, ctx: &EmitterCtx, it: &Interaction, u: Vec2) -> Option<EmitterSample> {
+        if self.behind.is_some_and(|b| b.contains(it.p)) {
+            return None;
+        }
         let shape = &ctx.shapes[self.shape as usize];
         let SampleToward { ps, pdf, d, dist } = shape.sample_toward(it.p, u, ctx.disks)?;
         if !(dist > 0.0) {

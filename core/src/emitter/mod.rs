@@ -1,5 +1,6 @@
 //! Emitters: a closed enum, one variant per file.
 mod area;
+mod behind;
 mod bound;
 mod constant;
 mod directional;
@@ -9,6 +10,7 @@ mod point;
 mod spot;
 
 pub use area::AreaLight;
+pub use behind::Behind;
 pub use bound::{LightBound, LightEstimate};
 pub use constant::ConstantEnv;
 pub use directional::DirectionalLight;

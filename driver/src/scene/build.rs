@@ -80,10 +80,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
                 for part in parts.mtl_parts {
                     let shape_index = shapes.len() as u32;
                     let emitter = part.material.emission.map(|radiance| {
-                        emitters.push(Emitter::Area(AreaLight {
-                            shape: shape_index,
-                            radiance,
-                        }));
+                        emitters.push(Emitter::Area(AreaLight::new(shape_index, radiance)));
                         emitters.len() as u32 - 1
                     });
                     shapes.push(Shape {

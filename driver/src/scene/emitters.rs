@@ -30,7 +30,7 @@ pub fn build_area(obj: &Object, shape: u32) -> Result<Emitter> {
     }
     let radiance = color_required(obj, "radiance")?;
     obj.check_unused()?;
-    Ok(Emitter::Area(AreaLight { shape, radiance }))
+    Ok(Emitter::Area(AreaLight::new(shape, radiance)))
 }
 
 /// An emitter declared at scene level.
