@@ -146,7 +146,7 @@ impl Scene {
     }
 
     /// [`Scene::new`] with a chosen BVH leaf-size trade-off (for measuring it).
-    pub fn with_build_params(p: SceneParts, params: BuildParams) -> Result<Scene, BuildError> {
+    pub fn with_build_params(mut p: SceneParts, params: BuildParams) -> Result<Scene, BuildError> {
         let mut prims = Vec::new();
         let mut tris = Vec::new();
         for (si, s) in p.shapes.iter().enumerate() {
@@ -185,7 +185,6 @@ impl Scene {
             return Err(BuildError::TooLarge);
         }
         let mut environments = Vec::new();
-        let mut p = p;
         for (i, e) in p.emitters.iter_mut().enumerate() {
             if let Emitter::Area(a) = e {
                 let shape = p.shapes.get(a.shape as usize);

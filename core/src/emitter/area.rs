@@ -17,7 +17,7 @@ pub struct AreaLight {
     pub shape: u32,
     /// Emitted radiance.
     pub radiance: Color,
-    /// Where none of its light arrives, for a flat mesh (set by [`Scene::new`](crate::scene::Scene::new)).
+    /// Where none of its light arrives, for a flat mesh (set when the [`Scene`](crate::scene::Scene) is built).
     pub behind: Option<Behind>,
 }
 
