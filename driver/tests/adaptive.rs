@@ -5,7 +5,6 @@
 //! reject what they cannot honour with one line and exit code 2.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 use tessera::bench::errors;
 use tessera::checkpoint::{read_checkpoint, write_checkpoint, CheckpointMeta, Continuation};
 use tessera::image_io::read_image;
@@ -15,8 +14,7 @@ use tessera::scene::{load_scene, LoadedScene};
 use tessera_core::adaptive::{AdaptiveParams, ZSOBOL_BLOCK_FACTOR};
 
 mod support;
-
-const BIN: &str = env!("CARGO_BIN_EXE_tessera");
+use support::{run, stderr};
 
 fn scene_path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("../scenes/{name}.xml"))
@@ -207,17 +205,6 @@ fn lower_error_than_uniform_at_equal_samples() {
     assert!(a < 0.6 * u, "veach_mis: adaptive {a:.3e}, uniform {u:.3e}");
     let (a, u) = mean_relmse("cbox", 32);
     assert!(a < 0.9 * u, "cbox: adaptive {a:.3e}, uniform {u:.3e}");
-}
-
-fn run(args: &[&str]) -> Output {
-    Command::new(BIN)
-        .args(args)
-        .output()
-        .expect("cannot run tessera")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 /// A fresh directory, removed on drop.

@@ -5,7 +5,6 @@
 //! cannot honour get one line and exit code 2.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 use tessera::bench::errors;
 use tessera::checkpoint::{
     read_checkpoint, write_checkpoint, Checkpoint, CheckpointMeta, Continuation,
@@ -18,8 +17,7 @@ use tessera::scene::{load_scene, LoadedScene};
 use tessera_core::adaptive::{relative_variance, AdaptiveParams};
 
 mod support;
-
-const BIN: &str = env!("CARGO_BIN_EXE_tessera");
+use support::{run, stderr};
 
 fn scene_path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("../scenes/{name}.xml"))
@@ -223,17 +221,6 @@ fn interrupted_and_resumed_stops_at_the_same_check_point() {
         assert!(later >= 1, "adaptive {adaptive}: no stop past the half");
     }
     let _ = std::fs::remove_file(&path);
-}
-
-fn run(args: &[&str]) -> Output {
-    Command::new(BIN)
-        .args(args)
-        .output()
-        .expect("cannot run tessera")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 #[test]
