@@ -65,6 +65,35 @@ pub fn render_samples_probed<P: Probe>(
     y: u32,
     samples: Range<u64>,
     probe: &mut P,
+    add: impl FnMut(Color),
+) {
+    let mut cache = PixelCache::default();
+    render_samples_cached(
+        scene, integrator, seed, x, y, samples, &mut cache, probe, add,
+    );
+}
+
+/// What the pixels one worker renders one after another share: the zsobol sampler's table of
+/// pixel parts (reused, not rebuilt, for each pixel) and its dimensions' hashes (the same for
+/// every pixel). It holds no result: any cache gives the same values.
+#[derive(Clone, Debug, Default)]
+pub struct PixelCache {
+    zsobol: Option<ZSobolPixel>,
+}
+
+/// [`render_samples_probed`] with a cache kept from pixel to pixel by the caller: the same
+/// values, bit for bit, for any cache (fresh or used by other pixels, seeds or sample counts).
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub fn render_samples_cached<P: Probe>(
+    scene: &Scene,
+    integrator: &Integrator,
+    seed: u64,
+    x: u32,
+    y: u32,
+    samples: Range<u64>,
+    cache: &mut PixelCache,
+    probe: &mut P,
     mut add: impl FnMut(Color),
 ) {
     match scene.sampler {
@@ -75,7 +104,16 @@ pub fn render_samples_probed<P: Probe>(
             }
         }
         SamplerKind::ZSobol { log2_spp } => {
-            let mut pixel = ZSobolPixel::new(seed, x, y, log2_spp);
+            if samples.is_empty() {
+                return;
+            }
+            let pixel = match &mut cache.zsobol {
+                Some(p) => {
+                    p.move_to(seed, x, y, log2_spp);
+                    p
+                }
+                none => none.insert(ZSobolPixel::new(seed, x, y, log2_spp)),
+            };
             for index in samples {
                 add(trace(scene, integrator, x, y, pixel.sampler(index), probe));
             }

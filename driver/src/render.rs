@@ -14,7 +14,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use tessera_core::film::PixelAccum;
 use tessera_core::integrator::Integrator;
 use tessera_core::integrator::{Counters, NoProbe, Probe};
-use tessera_core::render::render_samples_probed;
+use tessera_core::render::{render_samples_cached, PixelCache};
 use tessera_core::scene::Scene;
 
 /// How to render.
@@ -134,7 +134,9 @@ pub fn render(
     opts: &RenderOptions,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Framebuffer {
-    render_tiles::<NoProbe>(scene, integrator, opts, None, None, None, progress).0
+    let mut fb = Framebuffer::new(scene.camera.width, scene.camera.height);
+    render_tiles::<NoProbe>(scene, integrator, opts, &mut fb, None, None, progress);
+    fb
 }
 
 /// [`render`] with a probe per worker thread observing every sample (e.g. [`Counters`] for
@@ -146,7 +148,9 @@ pub fn render_probed<P: TileProbe>(
     opts: &RenderOptions,
     progress: &mut dyn FnMut(usize, usize),
 ) -> (Framebuffer, P) {
-    render_tiles(scene, integrator, opts, None, None, None, progress)
+    let mut fb = Framebuffer::new(scene.camera.width, scene.camera.height);
+    let probe = render_tiles(scene, integrator, opts, &mut fb, None, None, progress);
+    (fb, probe)
 }
 
 /// Panics unless `fb` is the scene's size (a caller's mistake: start from `Framebuffer::new`).
@@ -174,16 +178,7 @@ pub fn render_into(
     progress: &mut dyn FnMut(usize, usize),
 ) {
     check_size(scene, fb, "render_into");
-    *fb = render_tiles::<NoProbe>(
-        scene,
-        integrator,
-        opts,
-        Some(&fb.pixels),
-        None,
-        None,
-        progress,
-    )
-    .0;
+    render_tiles::<NoProbe>(scene, integrator, opts, fb, None, None, progress);
 }
 
 /// Brings every selected pixel of `fb` to `targets[i]` samples (`targets` row-major, one per
@@ -213,19 +208,18 @@ pub fn render_into_targets(
     let (w, h) = (scene.camera.width, scene.camera.height);
     let total = opts.pixels.rects(w, h, opts.tile_size).len();
     let mut done = 0;
-    *fb = render_tiles::<NoProbe>(
+    render_tiles::<NoProbe>(
         scene,
         integrator,
         opts,
-        Some(&fb.pixels),
+        fb,
         stop,
         Some(targets),
         &mut |d, t| {
             done = d;
             progress(d, t)
         },
-    )
-    .0;
+    );
     done == total
 }
 
@@ -250,11 +244,11 @@ pub fn render_into_until(
     let (w, h) = (scene.camera.width, scene.camera.height);
     let total = opts.pixels.rects(w, h, opts.tile_size).len();
     let mut done = 0;
-    let out = render_tiles::<NoProbe>(
+    render_tiles::<NoProbe>(
         scene,
         integrator,
         opts,
-        Some(&fb.pixels),
+        fb,
         Some(stop),
         None,
         &mut |d, t| {
@@ -262,35 +256,30 @@ pub fn render_into_until(
             progress(d, t)
         },
     );
-    *fb = out.0;
     done == total
 }
 
-/// The tile loop: each tile's accumulators start from `start` (or empty) and take the samples
-/// `opts.samples` in order. With `stop` (resumable mode), each pixel instead continues from its
-/// own count up to `opts.samples.end`, and no tile is started once `stop` is set (the tiles not
-/// rendered keep `start`). With `targets`, each pixel continues from its own count up to its
-/// own target instead. Pixels outside the selection keep `start` (or stay empty).
+/// The tile loop, in place: each tile's accumulators start from the sums in `fb` and take the
+/// samples `opts.samples` in order. With `stop` (resumable mode), each pixel instead continues
+/// from its own count up to `opts.samples.end`, and no tile is started once `stop` is set (the
+/// tiles not rendered keep their sums). With `targets`, each pixel continues from its own count
+/// up to its own target instead. Pixels outside the selection keep their sums.
 fn render_tiles<P: TileProbe>(
     scene: &Scene,
     integrator: &Integrator,
     opts: &RenderOptions,
-    start: Option<&[PixelAccum]>,
+    fb: &mut Framebuffer,
     stop: Option<&AtomicBool>,
     targets: Option<&[u64]>,
     progress: &mut dyn FnMut(usize, usize),
-) -> (Framebuffer, P) {
+) -> P {
     let (w, h) = (scene.camera.width, scene.camera.height);
     let list = opts.pixels.rects(w, h, opts.tile_size);
-    let mut fb = match start {
-        Some(p) => Framebuffer {
-            width: w,
-            height: h,
-            pixels: p.to_vec(),
-        },
-        None => Framebuffer::new(w, h),
-    };
     let mut total = P::default();
+    // The finished tiles, written into `fb` once the workers (which read its sums) are done:
+    // `fb` is updated in place, with no copy of the whole buffer per call.
+    let mut finished = Vec::with_capacity(list.len());
+    let start = &fb.pixels;
     let cursor = AtomicUsize::new(0);
     let (tx, rx) = unbounded::<(usize, Vec<PixelAccum>)>();
     let threads = opts.threads.max(1).min(list.len().max(1));
@@ -301,6 +290,7 @@ fn render_tiles<P: TileProbe>(
             let (list, cursor) = (&list, &cursor);
             workers.push(s.spawn(move || {
                 let mut probe = P::default();
+                let mut cache = PixelCache::default();
                 loop {
                     if stop.is_some_and(|f| f.load(Ordering::Relaxed)) {
                         break;
@@ -309,14 +299,8 @@ fn render_tiles<P: TileProbe>(
                     let Some(t) = list.get(i) else { break };
                     let mut acc = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
                     for y in t.y0..t.y1 {
-                        match start {
-                            Some(p) => {
-                                let row = y as usize * w as usize;
-                                acc.extend_from_slice(&p[row + t.x0 as usize..row + t.x1 as usize]);
-                            }
-                            None => acc
-                                .resize(acc.len() + (t.x1 - t.x0) as usize, PixelAccum::default()),
-                        }
+                        let row = y as usize * w as usize;
+                        acc.extend_from_slice(&start[row + t.x0 as usize..row + t.x1 as usize]);
                     }
                     let mut k = 0;
                     for y in t.y0..t.y1 {
@@ -328,13 +312,14 @@ fn render_tiles<P: TileProbe>(
                                 (None, Some(_)) => own..opts.samples.end,
                                 (None, None) => opts.samples.clone(),
                             };
-                            render_samples_probed(
+                            render_samples_cached(
                                 scene,
                                 integrator,
                                 opts.seed,
                                 x,
                                 y,
                                 samples,
+                                &mut cache,
                                 &mut probe,
                                 |c| a.add(c),
                             );
@@ -350,13 +335,8 @@ fn render_tiles<P: TileProbe>(
         }
         drop(tx);
         let mut done = 0;
-        for (i, acc) in rx.iter() {
-            let t = list[i];
-            let tw = (t.x1 - t.x0) as usize;
-            for (row, y) in (t.y0..t.y1).enumerate() {
-                let dst = y as usize * w as usize + t.x0 as usize;
-                fb.pixels[dst..dst + tw].copy_from_slice(&acc[row * tw..(row + 1) * tw]);
-            }
+        for tile in rx.iter() {
+            finished.push(tile);
             done += 1;
             progress(done, list.len());
         }
@@ -367,5 +347,13 @@ fn render_tiles<P: TileProbe>(
             }
         }
     });
-    (fb, total)
+    for (i, acc) in finished {
+        let t = list[i];
+        let tw = (t.x1 - t.x0) as usize;
+        for (row, y) in (t.y0..t.y1).enumerate() {
+            let dst = y as usize * w as usize + t.x0 as usize;
+            fb.pixels[dst..dst + tw].copy_from_slice(&acc[row * tw..(row + 1) * tw]);
+        }
+    }
+    total
 }

@@ -176,7 +176,26 @@ impl ZSobolSampler {
     /// ([`ZSobolPixel`](super::zsobol_pixel::ZSobolPixel)).
     #[inline]
     pub fn pixel_draw(&self, dim: u32) -> PixelDraw {
-        let h = mix64(self.key ^ (dim as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15));
+        self.pixel_draw_hashed(self.dimension_hash(dim))
+    }
+
+    /// The hash of dimension `dim` that [`pixel_draw`](Self::pixel_draw) starts from: a function
+    /// of (seed, epoch, `dim`) alone, the same for every pixel ([`same_key`](Self::same_key)).
+    #[inline]
+    pub fn dimension_hash(&self, dim: u32) -> u64 {
+        mix64(self.key ^ (dim as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15))
+    }
+
+    /// Whether `other` has the same seed and epoch, and so the same
+    /// [`dimension_hash`](Self::dimension_hash) for every dimension.
+    #[inline]
+    pub fn same_key(&self, other: &ZSobolSampler) -> bool {
+        self.key == other.key
+    }
+
+    /// [`pixel_draw`](Self::pixel_draw) from the dimension's hash `h`.
+    #[inline]
+    pub fn pixel_draw_hashed(&self, h: u64) -> PixelDraw {
         let k = self.log2_spp;
         let pixel_r = reversed_lk(self.pixel_reversed, h as u32);
         // The permuted index's bits above 32 (the top K bits of the pixel word), reversed: only

@@ -4,8 +4,13 @@
 //! hash, the scramble of the pixel's Morton bits and the coordinates' Owen seeds
 //! ([`ZSobolSampler::pixel_draw`]). A renderer that takes a pixel's samples one after another
 //! keeps a [`ZSobolPixel`] for the pixel; its samplers ([`ZSobolPixel::sampler`]) compute each
-//! dimension's pixel part once, on first use, and only the sample's own bits per draw. Values
-//! are exactly those of [`ZSobolSampler`] (tested below): caching changes no bit.
+//! dimension's pixel part once, on first use, and only the sample's own bits per draw. One cache
+//! can serve pixel after pixel ([`ZSobolPixel::move_to`]): its table is reused without being
+//! cleared, and the dimensions' hashes, which depend on the seed and epoch alone, are kept
+//! from pixel to pixel. That matters when each pixel takes one sample at a time (the first
+//! waves of a benchmark, adaptive passes), where the table's set-up and the hashes were about a
+//! third of a pixel's sampler work. Values are exactly those of [`ZSobolSampler`] (tested
+//! below): caching changes no bit.
 use super::layout::paired_dimension;
 use super::zsobol::{
     to_unit, value_1d_of, value_2d_of, value_2d_paired_of, PixelDraw, ZSobolSampler,
@@ -29,6 +34,12 @@ pub struct ZSobolPixel {
     table: [PixelDraw; CACHED_DIMENSIONS],
     /// Bit `d` set when `table[d]` holds dimension `d`'s pixel part.
     filled: u64,
+    /// A sample whose seed and epoch the hashes belong to (`None` before the first sampler).
+    hash_block: Option<ZSobolSampler>,
+    /// [`ZSobolSampler::dimension_hash`] of each dimension, for `hash_block`'s seed and epoch.
+    hashes: [u64; CACHED_DIMENSIONS],
+    /// Bit `d` set when `hashes[d]` holds dimension `d`'s hash.
+    hashed: u64,
 }
 
 impl ZSobolPixel {
@@ -43,7 +54,20 @@ impl ZSobolPixel {
             block: None,
             table: [PixelDraw::default(); CACHED_DIMENSIONS],
             filled: 0,
+            hash_block: None,
+            hashes: [0; CACHED_DIMENSIONS],
+            hashed: 0,
         }
+    }
+
+    /// Serves pixel `(x, y)` under `seed` with blocks of `2^log2_spp` samples from now on, as
+    /// [`ZSobolPixel::new`] would, keeping the storage (not cleared: entries are marked
+    /// empty) and the dimensions' hashes where the seed and epoch stay the same.
+    #[inline]
+    pub fn move_to(&mut self, seed: u64, x: u32, y: u32, log2_spp: u32) {
+        (self.seed, self.x, self.y, self.log2_spp) = (seed, x, y, log2_spp);
+        self.block = None;
+        self.filled = 0;
     }
 
     /// The sampler of sample `index` of the pixel: the values of
@@ -55,6 +79,10 @@ impl ZSobolPixel {
         if !self.block.as_ref().is_some_and(|b| b.same_block(&s)) {
             self.block = Some(s.clone());
             self.filled = 0;
+        }
+        if !self.hash_block.as_ref().is_some_and(|b| b.same_key(&s)) {
+            self.hash_block = Some(s.clone());
+            self.hashed = 0;
         }
         CachedZSobol {
             sample: s,
@@ -78,11 +106,16 @@ impl CachedZSobol<'_> {
             return self.sample.pixel_draw(dim);
         }
         let bit = 1u64 << d;
-        if self.pixel.filled & bit == 0 {
-            self.pixel.table[d] = self.sample.pixel_draw(dim);
-            self.pixel.filled |= bit;
+        let px = &mut *self.pixel;
+        if px.filled & bit == 0 {
+            if px.hashed & bit == 0 {
+                px.hashes[d] = self.sample.dimension_hash(dim);
+                px.hashed |= bit;
+            }
+            px.table[d] = self.sample.pixel_draw_hashed(px.hashes[d]);
+            px.filled |= bit;
         }
-        self.pixel.table[d]
+        px.table[d]
     }
 }
 
@@ -166,6 +199,55 @@ mod tests {
             }
         }
         assert!(draws > 100_000, "{draws}");
+    }
+
+    /// One cache moved from pixel to pixel (and across seeds, epochs and `K`, as a worker's
+    /// cache is) gives the plain sampler's values: stale table entries and hashes are never
+    /// served. Control: a table left filled by `move_to` would serve the previous pixel's parts,
+    /// which differ, so the comparison can fail.
+    #[test]
+    fn a_moved_cache_gives_the_plain_values() {
+        let mut px = ZSobolPixel::new(0, 0, 0, 0);
+        let mut draws = 0;
+        for t in 0..2000u64 {
+            let r = mix64(t ^ 0x5eed);
+            // Few seeds and sizes, so consecutive pixels often share the hashes' key.
+            let (seed, x, y) = (r & 1, (r >> 8) as u32 & 0x3f, (r >> 24) as u32 & 0x3f);
+            let k = [0, 2, 4][((r >> 40) % 3) as usize];
+            px.move_to(seed, x, y, k);
+            // One to three samples, sometimes in a later epoch.
+            let start = if (r >> 44) & 3 == 0 {
+                1u64 << k
+            } else {
+                (r >> 46) % 2
+            };
+            for i in start..start + 1 + (r >> 50) % 3 {
+                let mut a = ZSobolSampler::new(seed, x, y, i, k);
+                let mut b = px.sampler(i);
+                for step in 0..12u32 {
+                    if step % 3 == 2 {
+                        assert_eq!(a.next_1d().to_bits(), b.next_1d().to_bits());
+                    } else {
+                        let (va, vb) = (a.next_2d(), b.next_2d());
+                        assert_eq!(
+                            (va.x.to_bits(), va.y.to_bits()),
+                            (vb.x.to_bits(), vb.y.to_bits())
+                        );
+                    }
+                    draws += 1;
+                }
+            }
+        }
+        assert!(draws > 20_000, "{draws}");
+        // The control.
+        let mut stale = ZSobolPixel::new(1, 5, 9, 4);
+        let _ = stale.sampler(0).next_2d();
+        stale.x = 6;
+        stale.block = None;
+        let filled = stale.filled;
+        let mut s = stale.sampler(1);
+        s.pixel.filled = filled;
+        assert_ne!(s.next_2d(), ZSobolSampler::new(1, 6, 9, 1, 4).next_2d());
     }
 
     /// `skip_1d` leaves both samplers where `next_1d` would: the draws after it are equal
