@@ -274,7 +274,10 @@ fn render_tiles<P: TileProbe>(
     progress: &mut dyn FnMut(usize, usize),
 ) -> P {
     let (w, h) = (scene.camera.width, scene.camera.height);
-    let list = opts.pixels.rects(w, h, opts.tile_size);
+    let mut list = opts.pixels.rects(w, h, opts.tile_size);
+    if let Some(targets) = targets {
+        largest_first(&mut list, targets, &fb.pixels, w);
+    }
     let mut total = P::default();
     // The finished tiles, written into `fb` once the workers (which read its sums) are done:
     // `fb` is updated in place, with no copy of the whole buffer per call.
@@ -356,4 +359,62 @@ fn render_tiles<P: TileProbe>(
         }
     }
     total
+}
+
+/// Orders `tiles` by the samples they still take to reach `targets` (row-major, `width` wide),
+/// most first, ties in the given order. With per-pixel targets (adaptive passes) a few tiles can
+/// hold much of a pass's work; started last, one of them would keep one thread busy while the
+/// others wait. Tile order changes no bit: each pixel's sum is its own, in sample order.
+fn largest_first(tiles: &mut [Tile], targets: &[u64], pixels: &[PixelAccum], width: u32) {
+    let work = |t: &Tile| -> u64 {
+        let mut sum = 0u64;
+        for y in t.y0..t.y1 {
+            for x in t.x0..t.x1 {
+                let i = y as usize * width as usize + x as usize;
+                let p = &pixels[i];
+                sum += targets[i].saturating_sub(p.count + p.dropped);
+            }
+        }
+        sum
+    };
+    tiles.sort_by_cached_key(|t| core::cmp::Reverse(work(t)));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Tiles go most work first (what each pixel still lacks of its target, not the target
+    /// itself), ties in scanline order.
+    #[test]
+    fn largest_first_orders_by_remaining_work() {
+        let (w, h) = (8u32, 4u32);
+        let mut list = tiles(w, h, 2);
+        assert_eq!(list.len(), 8);
+        let mut pixels = vec![PixelAccum::default(); (w * h) as usize];
+        let mut targets = vec![1u64; (w * h) as usize];
+        // Tile 6 (x 4..6, y 2..4): 5 more in one pixel. Tile 2 (x 4..6, y 0..2): 3 more,
+        // spread. Tile 5 (x 2..4, y 2..4): a high target it has already reached.
+        targets[2 * 8 + 5] = 6;
+        targets[4] = 2;
+        targets[5] = 2;
+        targets[8 + 4] = 2;
+        targets[3 * 8 + 3] = 9;
+        pixels[3 * 8 + 3].count = 9;
+        largest_first(&mut list, &targets, &pixels, w);
+        let order: Vec<(u32, u32)> = list.iter().map(|t| (t.x0, t.y0)).collect();
+        assert_eq!(
+            order,
+            [
+                (4, 2),
+                (4, 0),
+                (0, 0),
+                (2, 0),
+                (6, 0),
+                (0, 2),
+                (6, 2),
+                (2, 2)
+            ]
+        );
+    }
 }
