@@ -99,31 +99,21 @@ pub fn plan_pass(
     if n == 0 {
         return Vec::new();
     }
+    // Three buffers in all (the estimates, the scores, the counts), each written in one pass;
+    // every sum runs in pixel order, as the module notes say.
     let raw: Vec<Option<f64>> = pixels
         .iter()
         .map(|p| relative_variance(p, params.floor))
         .collect();
     let worst = raw.iter().flatten().fold(0.0f64, |m, &v| m.max(v));
-    let v: Vec<f64> = raw.iter().map(|r| r.unwrap_or(worst)).collect();
-    // 3x3 mean (clipped at the borders), then the square root.
-    let mut score = vec![0.0f64; n];
-    for y in 0..h {
-        for x in 0..w {
-            let (mut s, mut k) = (0.0, 0.0);
-            for yy in y.saturating_sub(1)..(y + 2).min(h) {
-                for xx in x.saturating_sub(1)..(x + 2).min(w) {
-                    s += v[yy * w + xx];
-                    k += 1.0;
-                }
-            }
-            score[y * w + x] = libm::sqrt(s / k);
-        }
-    }
-    let have: Vec<f64> = pixels
+    let mut v: Vec<f64> = raw.iter().map(|r| r.unwrap_or(worst)).collect();
+    drop(raw);
+    let score = smooth_sqrt(&v, w, h);
+    let total = pixels
         .iter()
         .map(|p| (p.count + p.dropped) as f64)
-        .collect();
-    let total = have.iter().sum::<f64>() + budget as f64;
+        .sum::<f64>()
+        + budget as f64;
     let score_sum: f64 = score.iter().sum();
     let uniform = if score_sum > 0.0 && score_sum.is_finite() {
         params.uniform.clamp(0.0, 1.0)
@@ -131,23 +121,61 @@ pub fn plan_pass(
         1.0
     };
     let even = total * uniform / n as f64;
-    let lack: Vec<f64> = (0..n)
-        .map(|i| {
-            let share = if uniform < 1.0 {
-                total * (1.0 - uniform) * score[i] / score_sum
-            } else {
-                0.0
-            };
-            (even + share - have[i]).max(0.0)
-        })
-        .collect();
+    // What each pixel lacks, in `v`'s storage (its estimates are no longer needed).
+    let lack = &mut v;
+    for ((l, &sc), p) in lack.iter_mut().zip(&score).zip(pixels) {
+        let share = if uniform < 1.0 {
+            total * (1.0 - uniform) * sc / score_sum
+        } else {
+            0.0
+        };
+        *l = (even + share - (p.count + p.dropped) as f64).max(0.0);
+    }
     let lack_sum: f64 = lack.iter().sum();
-    let want: Vec<f64> = if lack_sum > 0.0 {
-        lack.iter().map(|l| budget as f64 * l / lack_sum).collect()
+    if lack_sum > 0.0 {
+        for l in lack.iter_mut() {
+            *l = budget as f64 * *l / lack_sum;
+        }
     } else {
-        vec![budget as f64 / n as f64; n]
-    };
-    round_to_budget(&want, budget)
+        lack.fill(budget as f64 / n as f64);
+    }
+    round_to_budget(lack, budget)
+}
+
+/// The square root of each value's 3x3 mean (clipped at the borders), summed row by row in
+/// reading order from 0; interior pixels take a straight-line sum in that same order.
+fn smooth_sqrt(v: &[f64], w: usize, h: usize) -> Vec<f64> {
+    let mut score = vec![0.0f64; v.len()];
+    for y in 0..h {
+        let interior_row = y > 0 && y + 1 < h;
+        for x in 0..w {
+            let mean = if interior_row && x > 0 && x + 1 < w {
+                let (a, b, c) = ((y - 1) * w + x, y * w + x, (y + 1) * w + x);
+                let s = 0.0
+                    + v[a - 1]
+                    + v[a]
+                    + v[a + 1]
+                    + v[b - 1]
+                    + v[b]
+                    + v[b + 1]
+                    + v[c - 1]
+                    + v[c]
+                    + v[c + 1];
+                s / 9.0
+            } else {
+                let (mut s, mut k) = (0.0, 0.0);
+                for yy in y.saturating_sub(1)..(y + 2).min(h) {
+                    for xx in x.saturating_sub(1)..(x + 2).min(w) {
+                        s += v[yy * w + xx];
+                        k += 1.0;
+                    }
+                }
+                s / k
+            };
+            score[y * w + x] = libm::sqrt(mean);
+        }
+    }
+    score
 }
 
 /// [`plan_pass`] as the sample count each pixel should hold after the pass (what it holds,
@@ -159,12 +187,11 @@ pub fn pass_targets(
     budget: u64,
     params: &AdaptiveParams,
 ) -> Vec<u64> {
-    let add = plan_pass(pixels, width, height, budget, params);
-    pixels
-        .iter()
-        .zip(add)
-        .map(|(p, k)| p.count + p.dropped + k)
-        .collect()
+    let mut targets = plan_pass(pixels, width, height, budget, params);
+    for (t, p) in targets.iter_mut().zip(pixels) {
+        *t += p.count + p.dropped;
+    }
+    targets
 }
 
 /// Integer counts from fractional ones by a running sum in index order (each count is the
@@ -200,6 +227,110 @@ pub(crate) mod tests {
             a.add(Color::splat(v));
         }
         a
+    }
+
+    /// The plan as first written (session 10), kept to check that the leaner one computes the
+    /// same counts.
+    fn reference_plan(
+        pixels: &[PixelAccum],
+        w: usize,
+        h: usize,
+        budget: u64,
+        params: &AdaptiveParams,
+    ) -> Vec<u64> {
+        let n = pixels.len();
+        let raw: Vec<Option<f64>> = pixels
+            .iter()
+            .map(|p| relative_variance(p, params.floor))
+            .collect();
+        let worst = raw.iter().flatten().fold(0.0f64, |m, &v| m.max(v));
+        let v: Vec<f64> = raw.iter().map(|r| r.unwrap_or(worst)).collect();
+        let mut score = vec![0.0f64; n];
+        for y in 0..h {
+            for x in 0..w {
+                let (mut s, mut k) = (0.0, 0.0);
+                for yy in y.saturating_sub(1)..(y + 2).min(h) {
+                    for xx in x.saturating_sub(1)..(x + 2).min(w) {
+                        s += v[yy * w + xx];
+                        k += 1.0;
+                    }
+                }
+                score[y * w + x] = libm::sqrt(s / k);
+            }
+        }
+        let have: Vec<f64> = pixels
+            .iter()
+            .map(|p| (p.count + p.dropped) as f64)
+            .collect();
+        let total = have.iter().sum::<f64>() + budget as f64;
+        let score_sum: f64 = score.iter().sum();
+        let uniform = if score_sum > 0.0 && score_sum.is_finite() {
+            params.uniform.clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        let even = total * uniform / n as f64;
+        let lack: Vec<f64> = (0..n)
+            .map(|i| {
+                let share = if uniform < 1.0 {
+                    total * (1.0 - uniform) * score[i] / score_sum
+                } else {
+                    0.0
+                };
+                (even + share - have[i]).max(0.0)
+            })
+            .collect();
+        let lack_sum: f64 = lack.iter().sum();
+        let want: Vec<f64> = if lack_sum > 0.0 {
+            lack.iter().map(|l| budget as f64 * l / lack_sum).collect()
+        } else {
+            vec![budget as f64 / n as f64; n]
+        };
+        round_to_budget(&want, budget)
+    }
+
+    /// The plan equals the reference on random images: sizes down to one pixel wide or high,
+    /// pixels with no, one or many samples, dropped samples, dark and bright values, floors
+    /// down to 0 (where a black pixel's estimate is 0 / 0) and uniform shares 0 to 1. It has
+    /// power: adding the 3x3 neighbourhood in another order fails it (checked by hand).
+    #[test]
+    fn the_plan_equals_the_reference() {
+        let mut rng = 0x1234_5678_9abc_def0u64;
+        let mut next = move || {
+            rng = crate::sampling::owen::mix64(rng.wrapping_add(0x9e37_79b9_7f4a_7c15));
+            rng
+        };
+        let mut nonzero = 0;
+        for t in 0..400 {
+            let (w, h) = (1 + (next() % 23) as usize, 1 + (next() % 17) as usize);
+            let bright = [0.0, 0.05, 1.0, 300.0][t % 4];
+            let pixels: Vec<PixelAccum> = (0..w * h)
+                .map(|_| {
+                    let k = [0, 1, 2, 3, 8][(next() % 5) as usize];
+                    let vals: Vec<f32> = (0..k)
+                        .map(|_| (next() >> 40) as f32 / (1u64 << 24) as f32 * bright)
+                        .collect();
+                    let mut p = pixel(&vals);
+                    p.dropped = next() % 3 / 2;
+                    p
+                })
+                .collect();
+            let params = AdaptiveParams {
+                floor: [0.0, 1e-4, 0.01][t % 3],
+                uniform: [0.0, 0.25, 1.0][(t / 3) % 3],
+                warmup: 2,
+            };
+            let budget = next() % 300;
+            let got = plan_pass(&pixels, w as u32, h as u32, budget, &params);
+            let want = reference_plan(&pixels, w, h, budget, &params);
+            assert_eq!(got, want, "{w}x{h}, {params:?}, budget {budget}");
+            nonzero += got.iter().filter(|&&c| c > 0).count();
+            let targets = pass_targets(&pixels, w as u32, h as u32, budget, &params);
+            for ((t, p), c) in targets.iter().zip(&pixels).zip(&got) {
+                assert_eq!(*t, p.count + p.dropped + c);
+            }
+        }
+        assert!(nonzero > 1000, "{nonzero}");
     }
 
     #[test]
