@@ -161,6 +161,19 @@ mod tests {
     use super::super::owen::mix64;
     use super::*;
 
+    /// Draws the next 1D (`one_d`) or 2D value from both samplers and requires the same bits.
+    fn same_draw(a: &mut ZSobolSampler, b: &mut CachedZSobol<'_>, one_d: bool) {
+        if one_d {
+            assert_eq!(a.next_1d().to_bits(), b.next_1d().to_bits());
+        } else {
+            let (va, vb) = (a.next_2d(), b.next_2d());
+            assert_eq!(
+                (va.x.to_bits(), va.y.to_bits()),
+                (vb.x.to_bits(), vb.y.to_bits())
+            );
+        }
+    }
+
     /// Every draw equals the plain sampler's, across pixels' sample runs that cross epochs, skip
     /// dimensions, and go past the cached range.
     #[test]
@@ -185,15 +198,7 @@ mod tests {
                         a.start_dimension(dim);
                         b.start_dimension(dim);
                     }
-                    if h & 0x100 == 0 {
-                        assert_eq!(a.next_1d().to_bits(), b.next_1d().to_bits());
-                    } else {
-                        let (va, vb) = (a.next_2d(), b.next_2d());
-                        assert_eq!(
-                            (va.x.to_bits(), va.y.to_bits()),
-                            (vb.x.to_bits(), vb.y.to_bits())
-                        );
-                    }
+                    same_draw(&mut a, &mut b, h & 0x100 == 0);
                     draws += 1;
                 }
             }
@@ -225,15 +230,7 @@ mod tests {
                 let mut a = ZSobolSampler::new(seed, x, y, i, k);
                 let mut b = px.sampler(i);
                 for step in 0..12u32 {
-                    if step % 3 == 2 {
-                        assert_eq!(a.next_1d().to_bits(), b.next_1d().to_bits());
-                    } else {
-                        let (va, vb) = (a.next_2d(), b.next_2d());
-                        assert_eq!(
-                            (va.x.to_bits(), va.y.to_bits()),
-                            (vb.x.to_bits(), vb.y.to_bits())
-                        );
-                    }
+                    same_draw(&mut a, &mut b, step % 3 == 2);
                     draws += 1;
                 }
             }
