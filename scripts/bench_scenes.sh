@@ -9,6 +9,7 @@
 # llvm_ad_rgb, scripts/install_llvm.sh. Set VARIANTS=scalar_rgb to skip the LLVM variant,
 # SAMPLERS=zsobol to measure only Tessera's zsobol curve, and SEEDS=N to make every curve (both
 # renderers) the wave-by-wave mean of N seeds (N times the time; MAX_SECONDS applies per seed).
+# REPEATS=N renders every curve (both renderers) N times and keeps each wave's least time.
 # ADAPTIVE=1 adds Tessera's adaptive-sampling curves (`--adaptive`), ADAPTIVE=only measures only those.
 # For a build tuned to this CPU, as Mitsuba's LLVM variant's kernels are (same image bits):
 #   RUSTFLAGS="-C target-cpu=native" cargo build --profile dist -p tessera --target-dir target/native
@@ -25,6 +26,7 @@ PYTHON="${PYTHON:-python3}"
 VARIANTS="${VARIANTS:-scalar_rgb,llvm_ad_rgb}"
 SAMPLERS="${SAMPLERS:-independent,zsobol}"
 SEEDS="${SEEDS:-1}"
+REPEATS="${REPEATS:-1}"
 TESSERA="${TESSERA:-target/dist/tessera}"
 ADAPTIVE_FLAG=()
 case "${ADAPTIVE:-}" in
@@ -35,10 +37,10 @@ mkdir -p "$OUT"
 for NAME in cbox veach_mis; do
     REF="scenes/refs/${NAME}_128x128_mitsuba.exr"
     "$TESSERA" bench "scenes/$NAME.xml" -D res=128 -D rfilter=box --reference "$REF" \
-        --integrators path_mis --sampler "$SAMPLERS" --seeds "$SEEDS" --threads "$THREADS" --max-seconds "$MAX" \
-        ${ADAPTIVE_FLAG[@]+"${ADAPTIVE_FLAG[@]}"} -o "$OUT/$NAME.csv"
+        --integrators path_mis --sampler "$SAMPLERS" --seeds "$SEEDS" --repeats "$REPEATS" --threads "$THREADS" \
+        --max-seconds "$MAX" ${ADAPTIVE_FLAG[@]+"${ADAPTIVE_FLAG[@]}"} -o "$OUT/$NAME.csv"
     "$PYTHON" scripts/mitsuba_bench.py "scenes/$NAME.xml" -D res=128 -D rfilter=box \
-        --reference "$REF" --variant "$VARIANTS" --seeds "$SEEDS" --threads "$THREADS" --max-seconds "$MAX" \
+        --reference "$REF" --variant "$VARIANTS" --seeds "$SEEDS" --repeats "$REPEATS" --threads "$THREADS" --max-seconds "$MAX" \
         -o "$OUT/$NAME.csv"
     "$TESSERA" bench --plot-only "$OUT/$NAME.csv" --plot "$OUT/$NAME.png" \
         --title "$NAME.xml, 128x128, max_depth 8, $THREADS threads"

@@ -363,3 +363,60 @@ fn seeds_average_the_errors_of_each_seeds_images() {
     let o = bench("0");
     assert_bad_input(&tmp, &o, "--seeds must be at least 1", &before);
 }
+
+/// `--repeats 3` renders each curve three times and reports the same images (so the same errors,
+/// bit for bit, as one run) with each wave's least time; `--repeats 0` is a usage error.
+#[test]
+fn repeats_keep_the_images_and_the_least_times() {
+    let tmp = Tmp::new("repeats");
+    let l = small_cbox();
+    let reference = write_reference(&tmp.0, &l);
+    let csv = tmp.0.join("r.csv");
+    let bench = |repeats: &str| {
+        let o = bench_small(
+            &reference,
+            &[
+                os("--integrators"),
+                os("path_mis"),
+                os("--sampler"),
+                os("zsobol"),
+                os("--max-spp"),
+                os("4"),
+                os("--repeats"),
+                os(repeats),
+                os("-o"),
+                csv.as_os_str(),
+            ],
+        );
+        let rows = if o.status.code() == Some(0) {
+            read_csv(&csv).unwrap()
+        } else {
+            Vec::new()
+        };
+        (o, rows)
+    };
+    let (o, once) = bench("1");
+    assert_eq!(o.status.code(), Some(0), "{o:?}");
+    let (o, thrice) = bench("3");
+    assert_eq!(o.status.code(), Some(0), "{o:?}");
+    // Three runs of every wave were made (one line each on stderr).
+    let err = String::from_utf8_lossy(&o.stderr);
+    for run in 1..=3 {
+        assert_eq!(
+            err.matches(&format!("run {run}):")).count(),
+            3,
+            "three waves per run: {err}"
+        );
+    }
+    assert_eq!(thrice.iter().map(|r| r.spp).collect::<Vec<_>>(), [1, 2, 4]);
+    for (a, b) in once.iter().zip(&thrice) {
+        assert_eq!(a.errors, b.errors, "the same images");
+        assert!(b.seconds > 0.0 && b.seconds.is_finite());
+        let rate = b.spp as f64 * 144.0 / b.seconds;
+        assert!((b.samples_per_second - rate).abs() <= 1e-9 * rate, "{b:?}");
+    }
+    std::fs::remove_file(&csv).unwrap();
+    let before = tmp.entries();
+    let (o, _) = bench("0");
+    assert_bad_input(&tmp, &o, "--repeats must be at least 1", &before);
+}

@@ -3,6 +3,7 @@
 //! `scripts/mitsuba_bench.py`.
 use crate::bench::mean::mean_curve;
 use crate::bench::plot::write_plot;
+use crate::bench::repeat::fastest_curve;
 use crate::bench::{curves, read_csv, run_waves, time_to_target, write_csv, Row, WaveLimits};
 use crate::image_io::{read_image, Format};
 use crate::render::RenderOptions;
@@ -44,6 +45,11 @@ pub struct BenchArgs {
     /// better than one seed; `--max-seconds` applies to each seed's run.
     #[arg(long, default_value_t = 1)]
     pub seeds: u64,
+    /// Render each seed's curve this many times and keep each wave's least time (the images
+    /// must be the same every time): on a shared machine, the fastest run estimates the time
+    /// the work takes better than one run, most of all in the first, short waves.
+    #[arg(long, default_value_t = 1)]
+    pub repeats: u64,
     /// Longest path (-1 = unbounded), overriding the scene file.
     #[arg(long, allow_hyphen_values = true)]
     pub max_depth: Option<i64>,
@@ -138,6 +144,9 @@ pub fn run(args: &BenchArgs) -> i32 {
     }
     if args.seeds == 0 {
         return usage("--seeds must be at least 1");
+    }
+    if args.repeats == 0 {
+        return usage("--repeats must be at least 1");
     }
     if args.tile_size == 0 || args.tile_size > 4096 {
         return usage(format!(
@@ -236,22 +245,27 @@ pub fn run(args: &BenchArgs) -> i32 {
                 seed,
                 ..opts.clone()
             };
-            let seed_note = if args.seeds > 1 {
-                format!(" seed {seed}")
-            } else {
-                String::new()
-            };
-            let (r, _) = run_waves(
-                &loaded.scene,
-                &loaded.integrator,
-                n,
-                &seeded,
-                &reference,
-                limits,
-                adaptive,
-                &mut |row| {
-                    if !args.quiet {
-                        eprintln!(
+            let mut repeats = Vec::new();
+            for rep in 0..args.repeats {
+                let mut seed_note = if args.seeds > 1 {
+                    format!(" seed {seed}")
+                } else {
+                    String::new()
+                };
+                if args.repeats > 1 {
+                    seed_note.push_str(&format!(" run {}", rep + 1));
+                }
+                let (r, _) = run_waves(
+                    &loaded.scene,
+                    &loaded.integrator,
+                    n,
+                    &seeded,
+                    &reference,
+                    limits,
+                    adaptive,
+                    &mut |row| {
+                        if !args.quiet {
+                            eprintln!(
                             "{n} ({sampler}{seed_note}): {:>7} spp {:>9.3} s {:>7.3} M samples/s  relMSE {:.4e}  RMSE {:.4e}  MAE {:.4e}",
                             row.spp,
                             row.seconds,
@@ -260,10 +274,18 @@ pub fn run(args: &BenchArgs) -> i32 {
                             row.errors.rmse,
                             row.errors.mae
                         );
-                    }
-                },
-            );
-            runs.push(r);
+                        }
+                    },
+                );
+                repeats.push(r);
+            }
+            match fastest_curve(&repeats) {
+                Ok(r) => runs.push(r),
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return 1;
+                }
+            }
         }
         match mean_curve(&runs) {
             Some(r) => rows.extend(r),
