@@ -10,8 +10,11 @@
 //! the relative MSE that `tessera bench` reports.
 //!
 //! A pass ([`plan_pass`]):
-//! 1. estimates `v_i` of every pixel from its accumulator (the unbiased sample variance; a pixel
-//!    with fewer than two accepted samples counts as the noisiest pixel of the image);
+//! 1. estimates `v_i` of every pixel from its accumulator (the unbiased sample variance); a pixel
+//!    holding one accepted sample, which has no variance of its own, from the spread of the
+//!    values of the pixels around it ([`neighbourhood_variance`]), so that the first adaptive
+//!    pass can follow a single warm-up sample per pixel; a pixel with no estimate counts as the
+//!    noisiest pixel of the image;
 //! 2. averages it over the pixel's 3x3 neighbourhood: a few samples of one pixel can miss what
 //!    its neighbours saw (a small bright light's edge), and the mean of nine estimates is far
 //!    less noisy than one;
@@ -46,7 +49,9 @@ pub struct AdaptiveParams {
     pub floor: f64,
     /// Share of all samples spread evenly over the pixels, in `[0, 1]` (default 0.25).
     pub uniform: f64,
-    /// Samples every pixel takes before the first adaptive pass (at least 2; default 2).
+    /// Samples every pixel takes before the first adaptive pass (at least 1; default 1: a
+    /// pixel holding one sample is judged by its neighbourhood, see
+    /// [`neighbourhood_variance`]).
     pub warmup: u64,
 }
 
@@ -55,7 +60,7 @@ impl Default for AdaptiveParams {
         AdaptiveParams {
             floor: 0.01,
             uniform: 0.25,
-            warmup: 2,
+            warmup: 1,
         }
     }
 }
@@ -71,6 +76,48 @@ pub fn relative_variance(acc: &PixelAccum, floor: f64) -> Option<f64> {
     for c in 0..3 {
         let mean = acc.sum[c] / n;
         let var = ((acc.sum_sq[c] - acc.sum[c] * mean) / (n - 1.0)).max(0.0);
+        v += var / (mean * mean + floor);
+    }
+    Some(v / 3.0)
+}
+
+/// The per-sample relative variance of a pixel that holds one sample, estimated from its 3x3
+/// neighbourhood: the pixels there that hold samples (itself included) taken as samples of one
+/// distribution, their means' sample variance over `mean^2 + floor`, averaged over the
+/// channels. `None` with fewer than two such pixels. Next to a bright edge this counts the
+/// edge as noise, which it is at one sample per pixel: which side a pixel's sample falls on is
+/// what its next samples average out.
+pub fn neighbourhood_variance(
+    pixels: &[PixelAccum],
+    w: usize,
+    h: usize,
+    i: usize,
+    floor: f64,
+) -> Option<f64> {
+    let (x, y) = (i % w, i / w);
+    let (mut k, mut sum, mut sum_sq) = (0.0f64, [0.0f64; 3], [0.0f64; 3]);
+    for yy in y.saturating_sub(1)..(y + 2).min(h) {
+        for xx in x.saturating_sub(1)..(x + 2).min(w) {
+            let p = &pixels[yy * w + xx];
+            if p.count == 0 {
+                continue;
+            }
+            let n = p.count as f64;
+            for c in 0..3 {
+                let m = p.sum[c] / n;
+                sum[c] += m;
+                sum_sq[c] += m * m;
+            }
+            k += 1.0;
+        }
+    }
+    if k < 2.0 {
+        return None;
+    }
+    let mut v = 0.0;
+    for c in 0..3 {
+        let mean = sum[c] / k;
+        let var = ((sum_sq[c] - sum[c] * mean) / (k - 1.0)).max(0.0);
         v += var / (mean * mean + floor);
     }
     Some(v / 3.0)
@@ -103,7 +150,14 @@ pub fn plan_pass(
     // every sum runs in pixel order, as the module notes say.
     let raw: Vec<Option<f64>> = pixels
         .iter()
-        .map(|p| relative_variance(p, params.floor))
+        .enumerate()
+        .map(|(i, p)| {
+            if p.count == 1 {
+                neighbourhood_variance(pixels, w, h, i, params.floor)
+            } else {
+                relative_variance(p, params.floor)
+            }
+        })
         .collect();
     let worst = raw.iter().flatten().fold(0.0f64, |m, &v| m.max(v));
     let mut v: Vec<f64> = raw.iter().map(|r| r.unwrap_or(worst)).collect();
@@ -239,9 +293,11 @@ pub(crate) mod tests {
         params: &AdaptiveParams,
     ) -> Vec<u64> {
         let n = pixels.len();
-        let raw: Vec<Option<f64>> = pixels
-            .iter()
-            .map(|p| relative_variance(p, params.floor))
+        let raw: Vec<Option<f64>> = (0..n)
+            .map(|i| match pixels[i].count {
+                1 => neighbourhood_variance(pixels, w, h, i, params.floor),
+                _ => relative_variance(&pixels[i], params.floor),
+            })
             .collect();
         let worst = raw.iter().flatten().fold(0.0f64, |m, &v| m.max(v));
         let v: Vec<f64> = raw.iter().map(|r| r.unwrap_or(worst)).collect();
@@ -331,6 +387,64 @@ pub(crate) mod tests {
             }
         }
         assert!(nonzero > 1000, "{nonzero}");
+    }
+
+    /// A one-sample pixel's estimate is the spread of the values around it (its own and its
+    /// neighbours' that hold samples, clipped at the image's border); fewer than two such values
+    /// give none.
+    #[test]
+    fn neighbourhood_variance_of_known_values() {
+        // 3x3: the centre and its left neighbour hold 2, the rest 0; one pixel holds nothing.
+        let mut px: Vec<PixelAccum> = (0..9).map(|_| pixel(&[0.0])).collect();
+        px[4] = pixel(&[2.0]);
+        px[3] = pixel(&[2.0]);
+        px[8] = PixelAccum::default();
+        // Centre: values 2, 2 and six zeros: mean 0.5, unbiased variance (2 * 1.5^2 + 6 * 0.5^2) / 7.
+        let v = neighbourhood_variance(&px, 3, 3, 4, 0.01).unwrap();
+        let want = (2.0 * 2.25 + 6.0 * 0.25) / 7.0 / (0.25 + 0.01);
+        assert!((v - want).abs() < 1e-12, "{v} {want}");
+        // Top-left corner: its 2x2 block holds 0, 0, 2, 2: mean 1, variance 4 / 3.
+        let v = neighbourhood_variance(&px, 3, 3, 0, 0.01).unwrap();
+        assert!((v - 4.0 / 3.0 / 1.01).abs() < 1e-12, "{v}");
+        // A pixel whose neighbours hold nothing.
+        let lone: Vec<PixelAccum> = (0..4)
+            .map(|i| {
+                if i == 0 {
+                    pixel(&[1.0])
+                } else {
+                    PixelAccum::default()
+                }
+            })
+            .collect();
+        assert_eq!(neighbourhood_variance(&lone, 2, 2, 0, 0.01), None);
+        // Means, not single values, of neighbours that hold several samples.
+        let mut px: Vec<PixelAccum> = (0..4).map(|_| pixel(&[1.0])).collect();
+        px[3] = pixel(&[0.0, 2.0, 1.0]);
+        assert_eq!(neighbourhood_variance(&px, 2, 2, 0, 0.01), Some(0.0));
+    }
+
+    /// After one sample per pixel the first pass follows the image's edges: an image that is
+    /// dark on the left and bright on the right gives the columns beside the edge more samples
+    /// than the columns far from it, which get no more than the even share.
+    #[test]
+    fn the_first_pass_from_one_sample_follows_the_edges() {
+        let (w, h) = (16usize, 8usize);
+        let px: Vec<PixelAccum> = (0..w * h)
+            .map(|i| pixel(&[if i % w < 8 { 0.0 } else { 10.0 }]))
+            .collect();
+        let budget = (w * h) as u64;
+        let c = plan_pass(&px, w as u32, h as u32, budget, &AdaptiveParams::default());
+        assert_eq!(c.iter().sum::<u64>(), budget);
+        let column = |x: usize| (0..h).map(|y| c[y * w + x]).sum::<u64>();
+        for x in [0, 1, 2, 3, 4, 5, 11, 12, 13, 14, 15] {
+            assert!(column(x) <= h as u64, "column {x}: {}", column(x));
+        }
+        // The edge lies between columns 7 and 8; the dark side's relative variance is the
+        // larger (the same spread over a smaller mean), and smoothing reaches one column further.
+        for x in 6..9 {
+            assert!(column(x) >= 4 * h as u64, "column {x}: {}", column(x));
+        }
+        assert!(column(9) > h as u64, "column 9: {}", column(9));
     }
 
     #[test]

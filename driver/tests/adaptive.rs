@@ -132,7 +132,7 @@ fn interrupted_and_resumed_gives_the_same_bits() {
     };
     let path = std::env::temp_dir().join(format!("tessera-adaptive-{}.ckpt", std::process::id()));
     let mut stopped_inside_a_pass = 0;
-    // Stopped at the first tile of the warm-up, then of the passes to means of 4, 8 and 16 (64
+    // Stopped at the first tile of the warm-up, then of the passes to means of 2, 4 and 8 (64
     // tiles each: the workers see the stop before they finish the pass).
     for stop_after in 0..4u64 {
         let mut fb = Framebuffer::new(w, h);

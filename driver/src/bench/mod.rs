@@ -122,7 +122,7 @@ pub fn run_waves(
         };
         let start = Instant::now();
         match adaptive {
-            Some(a) if done >= a.warmup.max(2) => {
+            Some(a) if done >= a.warmup.max(1) => {
                 let pixels = w as u64 * h as u64;
                 let targets = pass_targets(&fb.pixels, w, h, pixels * (next - done), a);
                 render_into_targets(

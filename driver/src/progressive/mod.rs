@@ -310,7 +310,7 @@ fn adaptive_passes(
 ) -> Result<(Ending, u64), String> {
     let target = plan.target.unwrap_or(u64::MAX);
     // Samples every pixel takes before the first adaptive pass (never past the target).
-    let first = params.warmup.max(2).min(target);
+    let first = params.warmup.max(1).min(target);
     let pixels = (fb.pixels.len() as u64).max(1);
     let mut last_write = start;
     let mut done = 0u64;
@@ -340,7 +340,7 @@ fn adaptive_passes(
         } else if warming {
             (low, first)
         } else {
-            let mut end = params.warmup.max(2);
+            let mut end = params.warmup.max(1);
             while end <= mean {
                 end = end.saturating_mul(2);
             }
