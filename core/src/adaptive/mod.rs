@@ -31,8 +31,11 @@
 //! pixel whose first samples happened to be quiet gets fewer later samples. The uniform share,
 //! the smoothing and the growing totals keep that effect small; see the README's measurements.
 use crate::film::PixelAccum;
+
+mod variance;
 use alloc::vec;
 use alloc::vec::Vec;
+pub use variance::{neighbourhood_variance, relative_variance};
 
 /// How many times the mean sample count an adaptive render's `zsobol` pixel blocks hold
 /// (`tessera render --adaptive` sets the sampler up for this many times the scene's sample
@@ -63,64 +66,6 @@ impl Default for AdaptiveParams {
             warmup: 1,
         }
     }
-}
-
-/// The per-sample relative variance of one pixel (see the module notes), or `None` with fewer
-/// than two accepted samples.
-pub fn relative_variance(acc: &PixelAccum, floor: f64) -> Option<f64> {
-    if acc.count < 2 {
-        return None;
-    }
-    let n = acc.count as f64;
-    let mut v = 0.0;
-    for c in 0..3 {
-        let mean = acc.sum[c] / n;
-        let var = ((acc.sum_sq[c] - acc.sum[c] * mean) / (n - 1.0)).max(0.0);
-        v += var / (mean * mean + floor);
-    }
-    Some(v / 3.0)
-}
-
-/// The per-sample relative variance of a pixel that holds one sample, estimated from its 3x3
-/// neighbourhood: the pixels there that hold samples (itself included) taken as samples of one
-/// distribution, their means' sample variance over `mean^2 + floor`, averaged over the
-/// channels. `None` with fewer than two such pixels. Next to a bright edge this counts the
-/// edge as noise, which it is at one sample per pixel: which side a pixel's sample falls on is
-/// what its next samples average out.
-pub fn neighbourhood_variance(
-    pixels: &[PixelAccum],
-    w: usize,
-    h: usize,
-    i: usize,
-    floor: f64,
-) -> Option<f64> {
-    let (x, y) = (i % w, i / w);
-    let (mut k, mut sum, mut sum_sq) = (0.0f64, [0.0f64; 3], [0.0f64; 3]);
-    for yy in y.saturating_sub(1)..(y + 2).min(h) {
-        for xx in x.saturating_sub(1)..(x + 2).min(w) {
-            let p = &pixels[yy * w + xx];
-            if p.count == 0 {
-                continue;
-            }
-            let n = p.count as f64;
-            for c in 0..3 {
-                let m = p.sum[c] / n;
-                sum[c] += m;
-                sum_sq[c] += m * m;
-            }
-            k += 1.0;
-        }
-    }
-    if k < 2.0 {
-        return None;
-    }
-    let mut v = 0.0;
-    for c in 0..3 {
-        let mean = sum[c] / k;
-        let var = ((sum_sq[c] - sum[c] * mean) / (k - 1.0)).max(0.0);
-        v += var / (mean * mean + floor);
-    }
-    Some(v / 3.0)
 }
 
 /// How many samples each pixel of a `width x height` image (row-major `pixels`) takes in the
@@ -389,40 +334,6 @@ pub(crate) mod tests {
         assert!(nonzero > 1000, "{nonzero}");
     }
 
-    /// A one-sample pixel's estimate is the spread of the values around it (its own and its
-    /// neighbours' that hold samples, clipped at the image's border); fewer than two such values
-    /// give none.
-    #[test]
-    fn neighbourhood_variance_of_known_values() {
-        // 3x3: the centre and its left neighbour hold 2, the rest 0; one pixel holds nothing.
-        let mut px: Vec<PixelAccum> = (0..9).map(|_| pixel(&[0.0])).collect();
-        px[4] = pixel(&[2.0]);
-        px[3] = pixel(&[2.0]);
-        px[8] = PixelAccum::default();
-        // Centre: values 2, 2 and six zeros: mean 0.5, unbiased variance (2 * 1.5^2 + 6 * 0.5^2) / 7.
-        let v = neighbourhood_variance(&px, 3, 3, 4, 0.01).unwrap();
-        let want = (2.0 * 2.25 + 6.0 * 0.25) / 7.0 / (0.25 + 0.01);
-        assert!((v - want).abs() < 1e-12, "{v} {want}");
-        // Top-left corner: its 2x2 block holds 0, 0, 2, 2: mean 1, variance 4 / 3.
-        let v = neighbourhood_variance(&px, 3, 3, 0, 0.01).unwrap();
-        assert!((v - 4.0 / 3.0 / 1.01).abs() < 1e-12, "{v}");
-        // A pixel whose neighbours hold nothing.
-        let lone: Vec<PixelAccum> = (0..4)
-            .map(|i| {
-                if i == 0 {
-                    pixel(&[1.0])
-                } else {
-                    PixelAccum::default()
-                }
-            })
-            .collect();
-        assert_eq!(neighbourhood_variance(&lone, 2, 2, 0, 0.01), None);
-        // Means, not single values, of neighbours that hold several samples.
-        let mut px: Vec<PixelAccum> = (0..4).map(|_| pixel(&[1.0])).collect();
-        px[3] = pixel(&[0.0, 2.0, 1.0]);
-        assert_eq!(neighbourhood_variance(&px, 2, 2, 0, 0.01), Some(0.0));
-    }
-
     /// After one sample per pixel the first pass follows the image's edges: an image that is
     /// dark on the left and bright on the right gives the columns beside the edge more samples
     /// than the columns far from it, which get no more than the even share.
@@ -445,15 +356,6 @@ pub(crate) mod tests {
             assert!(column(x) >= 4 * h as u64, "column {x}: {}", column(x));
         }
         assert!(column(9) > h as u64, "column 9: {}", column(9));
-    }
-
-    #[test]
-    fn relative_variance_of_known_samples() {
-        // Samples 0 and 2: mean 1, unbiased variance 2, relative variance 2 / (1 + 0.01).
-        let v = relative_variance(&pixel(&[0.0, 2.0]), 0.01).unwrap();
-        assert!((v - 2.0 / 1.01).abs() < 1e-12, "{v}");
-        assert_eq!(relative_variance(&pixel(&[3.0]), 0.01), None);
-        assert_eq!(relative_variance(&pixel(&[0.5, 0.5, 0.5]), 0.01), Some(0.0));
     }
 
     #[test]
