@@ -40,10 +40,11 @@ pub fn mean_curve(curves: &[Vec<Row>]) -> Option<Vec<Row>> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    fn row(spp: u64, seconds: f64, rmse: f64, relmse: f64, mae: f64) -> Row {
+    /// A row of curve `path (zsobol)`, 2 threads, 100 pixels.
+    pub(crate) fn row(spp: u64, seconds: f64, rmse: f64, relmse: f64, mae: f64) -> Row {
         Row {
             integrator: "path".into(),
             sampler: "zsobol".into(),

@@ -56,23 +56,11 @@ pub fn fastest_curve(runs: &[Vec<Row>]) -> Result<Vec<Row>, String> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::Errors;
     use super::*;
 
+    /// A row whose errors all follow from `relmse`.
     fn row(spp: u64, seconds: f64, relmse: f64) -> Row {
-        Row {
-            integrator: "path".into(),
-            sampler: "zsobol".into(),
-            spp,
-            threads: 2,
-            seconds,
-            samples_per_second: 100.0 * spp as f64 / seconds,
-            errors: Errors {
-                rmse: relmse.sqrt(),
-                relmse,
-                mae: relmse / 2.0,
-            },
-        }
+        super::super::mean::tests::row(spp, seconds, relmse.sqrt(), relmse, relmse / 2.0)
     }
 
     /// Each wave keeps its own least time (from any run), the errors of all runs (which agree),
