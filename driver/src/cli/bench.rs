@@ -245,41 +245,10 @@ pub fn run(args: &BenchArgs) -> i32 {
                 seed,
                 ..opts.clone()
             };
-            let mut repeats = Vec::new();
-            for rep in 0..args.repeats {
-                let mut seed_note = if args.seeds > 1 {
-                    format!(" seed {seed}")
-                } else {
-                    String::new()
-                };
-                if args.repeats > 1 {
-                    seed_note.push_str(&format!(" run {}", rep + 1));
-                }
-                let (r, _) = run_waves(
-                    &loaded.scene,
-                    &loaded.integrator,
-                    n,
-                    &seeded,
-                    &reference,
-                    limits,
-                    adaptive,
-                    &mut |row| {
-                        if !args.quiet {
-                            eprintln!(
-                            "{n} ({sampler}{seed_note}): {:>7} spp {:>9.3} s {:>7.3} M samples/s  relMSE {:.4e}  RMSE {:.4e}  MAE {:.4e}",
-                            row.spp,
-                            row.seconds,
-                            row.samples_per_second / 1e6,
-                            row.errors.relmse,
-                            row.errors.rmse,
-                            row.errors.mae
-                        );
-                        }
-                    },
-                );
-                repeats.push(r);
-            }
-            match fastest_curve(&repeats) {
+            let label = format!("{n} ({sampler}");
+            match fastest_of_repeats(
+                args, &loaded, n, &label, &seeded, &reference, limits, adaptive,
+            ) {
                 Ok(r) => runs.push(r),
                 Err(e) => {
                     eprintln!("error: {e}");
@@ -312,6 +281,56 @@ pub fn run(args: &BenchArgs) -> i32 {
         }
     }
     code
+}
+
+/// One seed's curve: `args.repeats` runs of the waves, each wave keeping its least time
+/// ([`fastest_curve`]); a line per wave unless `--quiet`. `label` is the line's prefix, e.g.
+/// `path_mis (zsobol` (the seed and run are added, then the closing parenthesis).
+#[allow(clippy::too_many_arguments)]
+fn fastest_of_repeats(
+    args: &BenchArgs,
+    loaded: &crate::scene::LoadedScene,
+    integrator: &str,
+    label: &str,
+    opts: &RenderOptions,
+    reference: &crate::image_io::RgbImage,
+    limits: WaveLimits,
+    adaptive: Option<&AdaptiveParams>,
+) -> Result<Vec<Row>, String> {
+    let mut runs = Vec::new();
+    for rep in 0..args.repeats {
+        let mut note = String::new();
+        if args.seeds > 1 {
+            note.push_str(&format!(" seed {}", opts.seed));
+        }
+        if args.repeats > 1 {
+            note.push_str(&format!(" run {}", rep + 1));
+        }
+        let (r, _) = run_waves(
+            &loaded.scene,
+            &loaded.integrator,
+            integrator,
+            opts,
+            reference,
+            limits,
+            adaptive,
+            &mut |row| {
+                if !args.quiet {
+                    eprintln!(
+                        "{label}{note}): {:>7} spp {:>9.3} s {:>7.3} M samples/s  relMSE {:.4e}  RMSE {:.4e}  MAE {:.4e}",
+                        row.spp,
+                        row.seconds,
+                        row.samples_per_second / 1e6,
+                        row.errors.relmse,
+                        row.errors.rmse,
+                        row.errors.mae
+                    );
+                }
+            },
+        );
+        runs.push(r);
+    }
+    fastest_curve(&runs)
 }
 
 fn plot_only(args: &BenchArgs, csv: &Path) -> i32 {
