@@ -1,0 +1,464 @@
+//! A yardstick, not renderer code: how fast could the Cornell box go if the path loop carried
+//! nothing the box does not need, and what would running eight paths in SIMD lanes add to that?
+//!
+//! `cargo bench -p tessera-benches --bench lean_path [-- RES SPP]` (defaults 128 and 64) loads
+//! `scenes/cbox.xml` (box filter) and renders it three ways, one thread each, best of five
+//! alternating rounds:
+//! - `tessera`: the renderer itself (`tessera::render::render`, `path` integrator, the
+//!   `independent` sampler);
+//! - `lean x1`: a path tracer written for this scene class only (every BSDF diffuse, every
+//!   shape a triangle mesh, one mesh area light), with the same estimator: next-event
+//!   estimation and BSDF sampling joined by the power heuristic, Russian roulette from depth 5
+//!   with Mitsuba's survival probability, max_depth 8. It uses Tessera's own BVH and ray casts
+//!   (`Scene::intersect_hit`, `Scene::occluded`), so only the work around them differs: flat
+//!   per-primitive tables instead of hit records, no BSDF or emitter dispatch, a small hash
+//!   generator instead of a sampler, fixed ray offsets (1e-4) instead of error bounds;
+//! - `lean x8`: the same loop over eight paths at a time in structure-of-arrays lanes (a lane
+//!   whose path ends starts the next sample), the arithmetic written as loops over the lanes for
+//!   the compiler to vectorise; ray casts stay one ray at a time.
+//!
+//! Each image's relMSE against `scenes/refs/cbox_RESxRES_mitsuba.exr` is printed beside its
+//! speed, so a lean loop that got fast by being wrong would show it. Build with `RUSTFLAGS="-C
+//! target-cpu=native"` to let the lanes use AVX2 or AVX-512 throughout.
+// Lane code indexes several structure-of-arrays fields by the same lane and channel.
+#![allow(clippy::needless_range_loop)]
+use glam::{Vec2, Vec3};
+use std::path::Path;
+use std::time::Instant;
+use tessera::render::{render, RenderOptions};
+use tessera::scene::load_scene;
+use tessera_core::bsdf::Bsdf;
+use tessera_core::emitter::Emitter;
+use tessera_core::geometry::{Prim, ShapeKind};
+use tessera_core::integrator::Integrator;
+use tessera_core::math::Ray;
+use tessera_core::scene::Scene;
+use tessera_core::texture::Texture;
+
+const MAX_DEPTH: u32 = 8;
+const RR_DEPTH: u32 = 5;
+const OFFSET: f32 = 1e-4;
+const INV_PI: f32 = std::f32::consts::FRAC_1_PI;
+
+/// The scene as flat tables indexed by primitive (BVH order), plus the light's triangles.
+struct Tables {
+    normal: Vec<[f32; 3]>,
+    albedo: Vec<[f32; 3]>,
+    emission: Vec<[f32; 3]>,
+    light: Vec<LightTriangle>,
+    light_area: f32,
+    radiance: [f32; 3],
+}
+
+/// One triangle of the light.
+struct LightTriangle {
+    corner: [f32; 3],
+    edge1: [f32; 3],
+    edge2: [f32; 3],
+    normal: [f32; 3],
+    /// Area of this and the earlier triangles over the light's area.
+    cdf: f32,
+}
+
+fn albedo_of(b: &Bsdf) -> Result<[f32; 3], String> {
+    match b {
+        Bsdf::Diffuse(d) => match &d.reflectance {
+            Texture::Constant(c) => Ok(c.to_array()),
+            _ => Err("a textured reflectance".into()),
+        },
+        Bsdf::TwoSided(t) => albedo_of(&t.front),
+        _ => Err("a BSDF other than diffuse".into()),
+    }
+}
+
+fn corners(m: &tessera_core::geometry::Mesh, face: usize) -> [Vec3; 3] {
+    m.indices[face].map(|i| m.positions[i as usize])
+}
+
+impl Tables {
+    fn new(scene: &Scene) -> Result<Self, String> {
+        let mut t = Tables {
+            normal: vec![],
+            albedo: vec![],
+            emission: vec![],
+            light: vec![],
+            light_area: 0.0,
+            radiance: [0.0; 3],
+        };
+        for p in &scene.prims {
+            let Prim::Triangle { shape, face } = p else {
+                return Err("a shape that is not a mesh".into());
+            };
+            let s = &scene.shapes[*shape as usize];
+            let ShapeKind::Mesh(m) = &s.kind else {
+                return Err("a shape that is not a mesh".into());
+            };
+            let [a, b, c] = corners(m, *face as usize);
+            t.normal.push((b - a).cross(c - a).normalize().to_array());
+            t.albedo.push(albedo_of(&scene.bsdfs[s.bsdf as usize])?);
+            t.emission.push(match s.emitter {
+                Some(e) => match &scene.emitters[e as usize] {
+                    Emitter::Area(a) => a.radiance.to_array(),
+                    _ => return Err("an emitter other than area".into()),
+                },
+                None => [0.0; 3],
+            });
+        }
+        let [Emitter::Area(light)] = scene.emitters.as_slice() else {
+            return Err("not exactly one area light".into());
+        };
+        t.radiance = light.radiance.to_array();
+        let ShapeKind::Mesh(m) = &scene.shapes[light.shape as usize].kind else {
+            return Err("a light that is not a mesh".into());
+        };
+        for face in 0..m.indices.len() {
+            let [a, b, c] = corners(m, face);
+            let cross = (b - a).cross(c - a);
+            t.light_area += 0.5 * cross.length();
+            let n = cross.normalize().to_array();
+            let (e1, e2) = ((b - a).to_array(), (c - a).to_array());
+            t.light.push(LightTriangle {
+                corner: a.to_array(),
+                edge1: e1,
+                edge2: e2,
+                normal: n,
+                cdf: t.light_area,
+            });
+        }
+        for l in &mut t.light {
+            l.cdf /= t.light_area;
+        }
+        Ok(t)
+    }
+}
+
+/// PCG's output hash of a 32-bit state.
+#[inline(always)]
+fn hash(x: u32) -> u32 {
+    let s = x.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+    let w = ((s >> ((s >> 28) + 4)) ^ s).wrapping_mul(277_803_737);
+    (w >> 22) ^ w
+}
+
+/// The top 24 bits of `h` as a float in [0, 1).
+#[inline(always)]
+fn unit(h: u32) -> f32 {
+    (h >> 8) as f32 * (1.0 / 16_777_216.0)
+}
+
+/// `(sin, cos)` of `2 pi u` for `u` in [0, 1): Taylor polynomials of the half angle (|h| <= pi / 2,
+/// error below 1e-6), doubled. Branch-free, so it vectorises.
+#[inline(always)]
+fn sincos_turns(u: f32) -> (f32, f32) {
+    let h = (u - (u + 0.5).floor()) * std::f32::consts::PI;
+    let h2 = h * h;
+    let s =
+        h * (1.0 + h2 * (-1.0 / 6.0 + h2 * (1.0 / 120.0 + h2 * (-1.0 / 5040.0 + h2 / 362_880.0))));
+    let c = 1.0
+        + h2 * (-0.5
+            + h2 * (1.0 / 24.0 + h2 * (-1.0 / 720.0 + h2 * (1.0 / 40_320.0 - h2 / 3_628_800.0))));
+    (2.0 * s * c, c * c - s * s)
+}
+
+/// Per-lane path state, structure of arrays.
+struct Lanes<const N: usize> {
+    o: [[f32; N]; 3],
+    d: [[f32; N]; 3],
+    throughput: [[f32; N]; 3],
+    radiance: [[f32; N]; 3],
+    prev_pdf: [f32; N],
+    depth: [u32; N],
+    rng: [u32; N],
+    alive: [bool; N],
+    pixel: [u32; N],
+}
+
+struct Lean<'a> {
+    scene: &'a Scene,
+    t: Tables,
+    width: u32,
+    spp: u32,
+}
+
+impl Lean<'_> {
+    fn camera_ray(&self, pixel: u32, sample: u32) -> (Ray, u32) {
+        let r1 = hash(pixel.wrapping_mul(0x9e37_79b9) ^ sample.wrapping_mul(0x85eb_ca6b));
+        let r2 = hash(r1);
+        let pos = Vec2::new(
+            (pixel % self.width) as f32 + unit(r1),
+            (pixel / self.width) as f32 + unit(r2),
+        );
+        (self.scene.camera.generate_ray(pos), r2)
+    }
+
+    /// Renders every pixel's `spp` samples `N` paths at a time; returns the pixel sums.
+    #[inline(never)]
+    fn render<const N: usize>(&self, pixels: u32) -> Vec<[f32; 3]> {
+        let mut film = vec![[0f32; 3]; pixels as usize];
+        let total = pixels * self.spp;
+        let mut next = 0u32;
+        let mut l = Lanes::<N> {
+            o: [[0.0; N]; 3],
+            d: [[0.0; N]; 3],
+            throughput: [[0.0; N]; 3],
+            radiance: [[0.0; N]; 3],
+            prev_pdf: [0.0; N],
+            depth: [0; N],
+            rng: [0; N],
+            alive: [false; N],
+            pixel: [0; N],
+        };
+        let t = &self.t;
+        loop {
+            // Lanes whose path ended start the next sample.
+            for i in 0..N {
+                if !l.alive[i] && next < total {
+                    let (pixel, sample) = (next / self.spp, next % self.spp);
+                    next += 1;
+                    let (ray, rng) = self.camera_ray(pixel, sample);
+                    for k in 0..3 {
+                        l.o[k][i] = ray.o[k];
+                        l.d[k][i] = ray.d[k];
+                        l.throughput[k][i] = 1.0;
+                        l.radiance[k][i] = 0.0;
+                    }
+                    (l.prev_pdf[i], l.depth[i], l.rng[i]) = (0.0, 0, rng);
+                    (l.alive[i], l.pixel[i]) = (true, pixel);
+                }
+            }
+            if !l.alive.iter().any(|&a| a) {
+                break;
+            }
+            // Closest hits, one ray at a time, and the hit primitives' table rows.
+            let mut dist = [0f32; N];
+            let mut hit = [false; N];
+            let mut n = [[0f32; N]; 3];
+            let mut albedo = [[0f32; N]; 3];
+            let mut emission = [[0f32; N]; 3];
+            for i in 0..N {
+                if !l.alive[i] {
+                    continue;
+                }
+                let ray = Ray {
+                    o: Vec3::new(l.o[0][i], l.o[1][i], l.o[2][i]),
+                    d: Vec3::new(l.d[0][i], l.d[1][i], l.d[2][i]),
+                    t_max: f32::INFINITY,
+                };
+                if let Some(h) = self.scene.intersect_hit(&ray) {
+                    let p = h.prim as usize;
+                    (hit[i], dist[i]) = (true, h.t);
+                    for k in 0..3 {
+                        n[k][i] = t.normal[p][k];
+                        albedo[k][i] = t.albedo[p][k];
+                        emission[k][i] = t.emission[p][k];
+                    }
+                }
+            }
+            let mut u = [[0f32; N]; 6];
+            for i in 0..N {
+                let mut r = l.rng[i];
+                for uk in u.iter_mut() {
+                    r = hash(r);
+                    uk[i] = unit(r);
+                }
+                l.rng[i] = r;
+            }
+            // Emission found by the ray, and one emitter sample.
+            let mut p = [[0f32; N]; 3];
+            let mut to_light = [[0f32; N]; 3];
+            let mut light_dist = [0f32; N];
+            let mut light_value = [[0f32; N]; 3];
+            let mut go_on = [false; N];
+            for i in 0..N {
+                let live = l.alive[i] && hit[i];
+                for k in 0..3 {
+                    p[k][i] = l.o[k][i] + l.d[k][i] * dist[i];
+                }
+                let dn = n[0][i] * l.d[0][i] + n[1][i] * l.d[1][i] + n[2][i] * l.d[2][i];
+                let cos_at_light = -dn;
+                let flip = if dn > 0.0 { -1.0 } else { 1.0 };
+                for nk in n.iter_mut() {
+                    nk[i] *= flip;
+                }
+                let emits = live
+                    && emission[0][i] + emission[1][i] + emission[2][i] > 0.0
+                    && cos_at_light > 0.0;
+                let light_pdf = dist[i] * dist[i] / (cos_at_light * t.light_area);
+                let w = if l.depth[i] == 0 {
+                    1.0
+                } else {
+                    let b = l.prev_pdf[i] * l.prev_pdf[i];
+                    b / (b + light_pdf * light_pdf)
+                };
+                for k in 0..3 {
+                    let add = l.throughput[k][i] * emission[k][i] * w;
+                    l.radiance[k][i] += if emits { add } else { 0.0 };
+                }
+                go_on[i] = live && l.depth[i] + 1 < MAX_DEPTH;
+                let tri = if t.light.len() > 1 && u[0][i] >= t.light[0].cdf {
+                    &t.light[1]
+                } else {
+                    &t.light[0]
+                };
+                let su = u[1][i].sqrt();
+                let (b1, b2) = (1.0 - su, u[2][i] * su);
+                let mut wo = [0f32; 3];
+                for (k, w) in wo.iter_mut().enumerate() {
+                    *w = tri.corner[k] + tri.edge1[k] * b1 + tri.edge2[k] * b2 - p[k][i];
+                }
+                let d2 = wo[0] * wo[0] + wo[1] * wo[1] + wo[2] * wo[2];
+                let d = d2.sqrt();
+                for (k, w) in wo.iter_mut().enumerate() {
+                    *w /= d;
+                    to_light[k][i] = *w;
+                }
+                let cos_l =
+                    -(tri.normal[0] * wo[0] + tri.normal[1] * wo[1] + tri.normal[2] * wo[2]);
+                let cos_s = n[0][i] * wo[0] + n[1][i] * wo[1] + n[2][i] * wo[2];
+                let light_pdf = d2 / (cos_l * t.light_area);
+                let bsdf_pdf = cos_s * INV_PI;
+                let w = light_pdf * light_pdf / (light_pdf * light_pdf + bsdf_pdf * bsdf_pdf);
+                let ok = go_on[i] && cos_l > 0.0 && cos_s > 0.0;
+                light_dist[i] = if ok { d * (1.0 - OFFSET) } else { -1.0 };
+                for k in 0..3 {
+                    light_value[k][i] =
+                        l.throughput[k][i] * albedo[k][i] * INV_PI * cos_s * t.radiance[k] * w
+                            / light_pdf;
+                }
+            }
+            // Shadow rays, one at a time.
+            for i in 0..N {
+                if light_dist[i] > 0.0 {
+                    let o = Vec3::new(p[0][i], p[1][i], p[2][i])
+                        + Vec3::new(n[0][i], n[1][i], n[2][i]) * OFFSET;
+                    let d = Vec3::new(to_light[0][i], to_light[1][i], to_light[2][i]);
+                    if !self.scene.occluded(&Ray {
+                        o,
+                        d,
+                        t_max: light_dist[i],
+                    }) {
+                        for k in 0..3 {
+                            l.radiance[k][i] += light_value[k][i];
+                        }
+                    }
+                }
+            }
+            // Cosine-weighted bounce (Duff et al.'s frame), then Russian roulette.
+            for i in 0..N {
+                let r = u[3][i].sqrt();
+                let (s, c) = sincos_turns(u[4][i]);
+                let lz = (1.0 - u[3][i]).max(0.0).sqrt();
+                let (lx, ly) = (r * c, r * s);
+                let (nx, ny, nz) = (n[0][i], n[1][i], n[2][i]);
+                let sign = if nz >= 0.0 { 1.0 } else { -1.0 };
+                let a = -1.0 / (sign + nz);
+                let b = nx * ny * a;
+                let tan1 = [1.0 + sign * nx * nx * a, sign * b, -sign * nx];
+                let tan2 = [b, sign + ny * ny * a, -ny];
+                for k in 0..3 {
+                    l.o[k][i] = p[k][i] + n[k][i] * OFFSET;
+                    l.d[k][i] = tan1[k] * lx + tan2[k] * ly + n[k][i] * lz;
+                    l.throughput[k][i] *= albedo[k][i];
+                }
+                l.prev_pdf[i] = lz * INV_PI;
+                l.depth[i] += 1;
+                let mut keep = go_on[i] && lz > 0.0;
+                if l.depth[i] >= RR_DEPTH {
+                    let q = l.throughput[0][i]
+                        .max(l.throughput[1][i])
+                        .max(l.throughput[2][i])
+                        .min(0.95);
+                    keep &= u[5][i] < q;
+                    for k in 0..3 {
+                        l.throughput[k][i] /= q;
+                    }
+                }
+                hit[i] = keep;
+            }
+            // Ended paths go to the film.
+            for i in 0..N {
+                if l.alive[i] && !hit[i] {
+                    for k in 0..3 {
+                        film[l.pixel[i] as usize][k] += l.radiance[k][i];
+                    }
+                    l.alive[i] = false;
+                }
+            }
+        }
+        film
+    }
+}
+
+fn main() {
+    let args: Vec<u32> = std::env::args()
+        .skip(1)
+        .filter_map(|a| a.parse().ok())
+        .collect();
+    let (res, spp) = (
+        args.first().copied().unwrap_or(128),
+        args.get(1).copied().unwrap_or(64),
+    );
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let defines =
+        [("res", res.to_string()), ("rfilter", "box".to_string())].map(|(k, v)| (k.to_string(), v));
+    let mut loaded = load_scene(&root.join("scenes/cbox.xml"), &defines).expect("cbox loads");
+    loaded
+        .set_sampler(Some("independent"), u64::from(spp))
+        .expect("sampler");
+    let reference = tessera::image_io::read_image(
+        &root.join(format!("scenes/refs/cbox_{res}x{res}_mitsuba.exr")),
+    )
+    .ok();
+    let scene = &loaded.scene;
+    let lean = Lean {
+        scene,
+        t: Tables::new(scene).expect("a diffuse, triangle-only scene with one mesh light"),
+        width: res,
+        spp,
+    };
+    let integrator: &Integrator = &loaded.integrator;
+    let opts = RenderOptions {
+        samples: 0..u64::from(spp),
+        ..RenderOptions::default()
+    };
+    let pixels = res * res;
+    let names = ["tessera", "lean x1", "lean x8"];
+    let mut best = [f64::INFINITY; 3];
+    let mut images: [Vec<[f32; 3]>; 3] = Default::default();
+    for _round in 0..5 {
+        for (j, best) in best.iter_mut().enumerate() {
+            let start = Instant::now();
+            let img = match j {
+                0 => render(scene, integrator, &opts, &mut |_, _| {}).rgb(),
+                1 => lean.render::<1>(pixels),
+                _ => lean.render::<8>(pixels),
+            };
+            *best = best.min(start.elapsed().as_secs_f64());
+            images[j] = img;
+        }
+    }
+    for img in &mut images[1..] {
+        for p in img.iter_mut() {
+            p.iter_mut().for_each(|v| *v /= spp as f32);
+        }
+    }
+    println!("cbox {res}x{res}, {spp} spp, 1 thread, best of 5");
+    for j in 0..3 {
+        let rate = f64::from(pixels * spp) / best[j] / 1e6;
+        let err = reference
+            .as_ref()
+            .map_or(String::from("no reference"), |r| {
+                format!(
+                    "relMSE {:.3e}",
+                    tessera::bench::errors(&images[j], &r.data).relmse
+                )
+            });
+        println!(
+            "  {:<8} {:7.3} s {:6.3} M samples/s ({:.2}x tessera)  {err}",
+            names[j],
+            best[j],
+            rate,
+            best[0] / best[j]
+        );
+    }
+}
