@@ -2,7 +2,7 @@
 //! nothing the box does not need, and what would running eight paths in SIMD lanes add to that?
 //!
 //! `cargo bench -p tessera-benches --bench lean_path [-- RES SPP]` (defaults 128 and 64) loads
-//! `scenes/cbox.xml` (box filter) and renders it three ways, one thread each, best of five
+//! `scenes/cbox.xml` (box filter) and renders it five ways, one thread each, best of five
 //! alternating rounds:
 //! - `tessera`: the renderer itself (`tessera::render::render`, `path` integrator, the
 //!   `independent` sampler);
@@ -15,7 +15,10 @@
 //!   generator instead of a sampler, fixed ray offsets (1e-4) instead of error bounds;
 //! - `lean x8`: the same loop over eight paths at a time in structure-of-arrays lanes (a lane
 //!   whose path ends starts the next sample), the arithmetic written as loops over the lanes for
-//!   the compiler to vectorise; ray casts stay one ray at a time.
+//!   the compiler to vectorise; ray casts stay one ray at a time;
+//! - `tessera zsobol` and `lean x1 zsobol`: the same with the `zsobol` sampler (the lean loop
+//!   draws from Tessera's `ZSobolPixel` at the renderer's dimensions; it makes a sample's sampler
+//!   afresh at every bounce, which the renderer does once, so its sampler cost is a little high).
 //!
 //! Each image's relMSE against `scenes/refs/cbox_RESxRES_mitsuba.exr` is printed beside its
 //! speed, so a lean loop that got fast by being wrong would show it. Build with `RUSTFLAGS="-C
@@ -32,6 +35,8 @@ use tessera_core::emitter::Emitter;
 use tessera_core::geometry::{Prim, ShapeKind};
 use tessera_core::integrator::Integrator;
 use tessera_core::math::Ray;
+use tessera_core::sampling::zsobol::log2_spp_for;
+use tessera_core::sampling::{dimension_of, Sampler, SamplerKind, Stage, ZSobolPixel};
 use tessera_core::scene::Scene;
 use tessera_core::texture::Texture;
 
@@ -160,6 +165,67 @@ fn sincos_turns(u: f32) -> (f32, f32) {
     (2.0 * s * c, c * c - s * s)
 }
 
+/// Where a lane's random numbers come from: the camera's film offset and six values per
+/// bounce (light triangle, point on it, direction, roulette).
+trait Draws<const N: usize> {
+    /// Starts sample `sample` of `pixel` in `lane`; returns the offset within the pixel.
+    fn start(&mut self, lane: usize, pixel: u32, sample: u32) -> Vec2;
+    /// The six values of bounce `depth` of `lane`'s path.
+    fn bounce(&mut self, lane: usize, depth: u32) -> [f32; 6];
+}
+
+/// A hash generator per lane (what the lean loop is timed with).
+struct HashDraws<const N: usize>([u32; N]);
+
+impl<const N: usize> Draws<N> for HashDraws<N> {
+    #[inline(always)]
+    fn start(&mut self, lane: usize, pixel: u32, sample: u32) -> Vec2 {
+        let r1 = hash(pixel.wrapping_mul(0x9e37_79b9) ^ sample.wrapping_mul(0x85eb_ca6b));
+        let r2 = hash(r1);
+        self.0[lane] = r2;
+        Vec2::new(unit(r1), unit(r2))
+    }
+    #[inline(always)]
+    fn bounce(&mut self, lane: usize, _depth: u32) -> [f32; 6] {
+        let mut r = self.0[lane];
+        let u = [0; 6].map(|_| {
+            r = hash(r);
+            unit(r)
+        });
+        self.0[lane] = r;
+        u
+    }
+}
+
+/// Tessera's zsobol sampler with its per-pixel cache, at the renderer's dimensions.
+struct ZSobolDraws<const N: usize> {
+    pixels: Vec<ZSobolPixel>,
+    index: [u64; N],
+    width: u32,
+    log2_spp: u32,
+}
+
+impl<const N: usize> Draws<N> for ZSobolDraws<N> {
+    #[inline(always)]
+    fn start(&mut self, lane: usize, pixel: u32, sample: u32) -> Vec2 {
+        let (x, y) = (pixel % self.width, pixel / self.width);
+        self.pixels[lane].move_to(0, x, y, self.log2_spp);
+        self.index[lane] = u64::from(sample);
+        self.pixels[lane].sampler(u64::from(sample)).next_2d()
+    }
+    #[inline(always)]
+    fn bounce(&mut self, lane: usize, depth: u32) -> [f32; 6] {
+        let mut s = self.pixels[lane].sampler(self.index[lane]);
+        s.start_dimension(dimension_of(depth, Stage::Light));
+        let (a, b) = (s.next_1d(), s.next_2d());
+        s.start_dimension(dimension_of(depth, Stage::Bsdf));
+        s.skip_1d();
+        let c = s.next_2d();
+        s.start_dimension(dimension_of(depth, Stage::Roulette));
+        [a, b.x, b.y, c.x, c.y, s.next_1d()]
+    }
+}
+
 /// Per-lane path state, structure of arrays.
 struct Lanes<const N: usize> {
     o: [[f32; N]; 3],
@@ -168,7 +234,6 @@ struct Lanes<const N: usize> {
     radiance: [[f32; N]; 3],
     prev_pdf: [f32; N],
     depth: [u32; N],
-    rng: [u32; N],
     alive: [bool; N],
     pixel: [u32; N],
 }
@@ -181,19 +246,14 @@ struct Lean<'a> {
 }
 
 impl Lean<'_> {
-    fn camera_ray(&self, pixel: u32, sample: u32) -> (Ray, u32) {
-        let r1 = hash(pixel.wrapping_mul(0x9e37_79b9) ^ sample.wrapping_mul(0x85eb_ca6b));
-        let r2 = hash(r1);
-        let pos = Vec2::new(
-            (pixel % self.width) as f32 + unit(r1),
-            (pixel / self.width) as f32 + unit(r2),
-        );
-        (self.scene.camera.generate_ray(pos), r2)
+    fn camera_ray(&self, pixel: u32, offset: Vec2) -> Ray {
+        let corner = Vec2::new((pixel % self.width) as f32, (pixel / self.width) as f32);
+        self.scene.camera.generate_ray(corner + offset)
     }
 
     /// Renders every pixel's `spp` samples `N` paths at a time; returns the pixel sums.
     #[inline(never)]
-    fn render<const N: usize>(&self, pixels: u32) -> Vec<[f32; 3]> {
+    fn render<const N: usize>(&self, pixels: u32, draws: &mut impl Draws<N>) -> Vec<[f32; 3]> {
         let mut film = vec![[0f32; 3]; pixels as usize];
         let total = pixels * self.spp;
         let mut next = 0u32;
@@ -204,7 +264,6 @@ impl Lean<'_> {
             radiance: [[0.0; N]; 3],
             prev_pdf: [0.0; N],
             depth: [0; N],
-            rng: [0; N],
             alive: [false; N],
             pixel: [0; N],
         };
@@ -215,14 +274,14 @@ impl Lean<'_> {
                 if !l.alive[i] && next < total {
                     let (pixel, sample) = (next / self.spp, next % self.spp);
                     next += 1;
-                    let (ray, rng) = self.camera_ray(pixel, sample);
+                    let ray = self.camera_ray(pixel, draws.start(i, pixel, sample));
                     for k in 0..3 {
                         l.o[k][i] = ray.o[k];
                         l.d[k][i] = ray.d[k];
                         l.throughput[k][i] = 1.0;
                         l.radiance[k][i] = 0.0;
                     }
-                    (l.prev_pdf[i], l.depth[i], l.rng[i]) = (0.0, 0, rng);
+                    (l.prev_pdf[i], l.depth[i]) = (0.0, 0);
                     (l.alive[i], l.pixel[i]) = (true, pixel);
                 }
             }
@@ -256,12 +315,12 @@ impl Lean<'_> {
             }
             let mut u = [[0f32; N]; 6];
             for i in 0..N {
-                let mut r = l.rng[i];
-                for uk in u.iter_mut() {
-                    r = hash(r);
-                    uk[i] = unit(r);
+                if l.alive[i] {
+                    let v = draws.bounce(i, l.depth[i]);
+                    for (uk, v) in u.iter_mut().zip(v) {
+                        uk[i] = v;
+                    }
                 }
-                l.rng[i] = r;
             }
             // Emission found by the ray, and one emitter sample.
             let mut p = [[0f32; N]; 3];
@@ -410,6 +469,8 @@ fn main() {
     )
     .ok();
     let scene = &loaded.scene;
+    let mut zsobol_scene = scene.clone();
+    zsobol_scene.sampler = SamplerKind::from_name("zsobol", u64::from(spp)).expect("zsobol");
     let lean = Lean {
         scene,
         t: Tables::new(scene).expect("a diffuse, triangle-only scene with one mesh light"),
@@ -422,28 +483,43 @@ fn main() {
         ..RenderOptions::default()
     };
     let pixels = res * res;
-    let names = ["tessera", "lean x1", "lean x8"];
-    let mut best = [f64::INFINITY; 3];
-    let mut images: [Vec<[f32; 3]>; 3] = Default::default();
+    let names = [
+        "tessera",
+        "lean x1",
+        "lean x8",
+        "tessera zsobol",
+        "lean x1 zsobol",
+    ];
+    let mut best = [f64::INFINITY; 5];
+    let mut images: [Vec<[f32; 3]>; 5] = Default::default();
+    let zsobol = |lanes: usize| ZSobolDraws {
+        pixels: vec![ZSobolPixel::new(0, 0, 0, 0); lanes],
+        index: [0; 1],
+        width: res,
+        log2_spp: log2_spp_for(u64::from(spp)),
+    };
     for _round in 0..5 {
         for (j, best) in best.iter_mut().enumerate() {
             let start = Instant::now();
             let img = match j {
                 0 => render(scene, integrator, &opts, &mut |_, _| {}).rgb(),
-                1 => lean.render::<1>(pixels),
-                _ => lean.render::<8>(pixels),
+                1 => lean.render::<1>(pixels, &mut HashDraws([0; 1])),
+                2 => lean.render::<8>(pixels, &mut HashDraws([0; 8])),
+                3 => render(&zsobol_scene, integrator, &opts, &mut |_, _| {}).rgb(),
+                _ => lean.render::<1>(pixels, &mut zsobol(1)),
             };
             *best = best.min(start.elapsed().as_secs_f64());
             images[j] = img;
         }
     }
-    for img in &mut images[1..] {
+    for j in [1, 2, 4] {
+        let img = &mut images[j];
         for p in img.iter_mut() {
             p.iter_mut().for_each(|v| *v /= spp as f32);
         }
     }
     println!("cbox {res}x{res}, {spp} spp, 1 thread, best of 5");
-    for j in 0..3 {
+    for j in 0..5 {
         let rate = f64::from(pixels * spp) / best[j] / 1e6;
         let err = reference
             .as_ref()
@@ -454,7 +530,7 @@ fn main() {
                 )
             });
         println!(
-            "  {:<8} {:7.3} s {:6.3} M samples/s ({:.2}x tessera)  {err}",
+            "  {:<15} {:7.3} s {:6.3} M samples/s ({:.2}x tessera)  {err}",
             names[j],
             best[j],
             rate,
