@@ -492,9 +492,9 @@ fn main() {
     ];
     let mut best = [f64::INFINITY; 5];
     let mut images: [Vec<[f32; 3]>; 5] = Default::default();
-    let zsobol = |lanes: usize| ZSobolDraws {
-        pixels: vec![ZSobolPixel::new(0, 0, 0, 0); lanes],
-        index: [0; 1],
+    let zsobol = || ZSobolDraws::<1> {
+        pixels: vec![ZSobolPixel::new(0, 0, 0, 0)],
+        index: [0],
         width: res,
         log2_spp: log2_spp_for(u64::from(spp)),
     };
@@ -506,7 +506,7 @@ fn main() {
                 1 => lean.render::<1>(pixels, &mut HashDraws([0; 1])),
                 2 => lean.render::<8>(pixels, &mut HashDraws([0; 8])),
                 3 => render(&zsobol_scene, integrator, &opts, &mut |_, _| {}).rgb(),
-                _ => lean.render::<1>(pixels, &mut zsobol(1)),
+                _ => lean.render::<1>(pixels, &mut zsobol()),
             };
             *best = best.min(start.elapsed().as_secs_f64());
             images[j] = img;
