@@ -35,7 +35,7 @@ use tessera_core::emitter::Emitter;
 use tessera_core::geometry::{Prim, ShapeKind};
 use tessera_core::integrator::Integrator;
 use tessera_core::math::Ray;
-use tessera_core::sampling::zsobol::log2_spp_for;
+use tessera_core::sampling::zsobol::{log2_spp_for, to_unit};
 use tessera_core::sampling::{dimension_of, Sampler, SamplerKind, Stage, ZSobolPixel};
 use tessera_core::scene::Scene;
 use tessera_core::texture::Texture;
@@ -145,16 +145,11 @@ fn hash(x: u32) -> u32 {
     (w >> 22) ^ w
 }
 
-/// The top 24 bits of `h` as a float in [0, 1).
-#[inline(always)]
-fn unit(h: u32) -> f32 {
-    (h >> 8) as f32 * (1.0 / 16_777_216.0)
-}
-
 /// `(sin, cos)` of `2 pi u` for `u` in [0, 1): Taylor polynomials of the half angle (|h| <= pi / 2,
-/// error below 1e-6), doubled. Branch-free, so it vectorises.
+/// error below 1e-6), doubled. Branch-free, so it vectorises, which the renderer's
+/// `math::sincos_turns` (it calls `libm::sincosf`) does not.
 #[inline(always)]
-fn sincos_turns(u: f32) -> (f32, f32) {
+fn sincos_turns_poly(u: f32) -> (f32, f32) {
     let h = (u - (u + 0.5).floor()) * std::f32::consts::PI;
     let h2 = h * h;
     let s =
@@ -183,14 +178,14 @@ impl<const N: usize> Draws<N> for HashDraws<N> {
         let r1 = hash(pixel.wrapping_mul(0x9e37_79b9) ^ sample.wrapping_mul(0x85eb_ca6b));
         let r2 = hash(r1);
         self.0[lane] = r2;
-        Vec2::new(unit(r1), unit(r2))
+        Vec2::new(to_unit(r1), to_unit(r2))
     }
     #[inline(always)]
     fn bounce(&mut self, lane: usize, _depth: u32) -> [f32; 6] {
         let mut r = self.0[lane];
         let u = [0; 6].map(|_| {
             r = hash(r);
-            unit(r)
+            to_unit(r)
         });
         self.0[lane] = r;
         u
@@ -405,7 +400,7 @@ impl Lean<'_> {
             // Cosine-weighted bounce (Duff et al.'s frame), then Russian roulette.
             for i in 0..N {
                 let r = u[3][i].sqrt();
-                let (s, c) = sincos_turns(u[4][i]);
+                let (s, c) = sincos_turns_poly(u[4][i]);
                 let lz = (1.0 - u[3][i]).max(0.0).sqrt();
                 let (lx, ly) = (r * c, r * s);
                 let (nx, ny, nz) = (n[0][i], n[1][i], n[2][i]);
