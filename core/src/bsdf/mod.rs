@@ -158,15 +158,29 @@ impl Bsdf {
     #[inline]
     pub fn sample_inputs(&self) -> (bool, bool) {
         match self {
+            Bsdf::TwoSided(t) => {
+                let (f, b) = (t.front.own_inputs(), t.back.own_inputs());
+                (f.0 || b.0, f.1 || b.1)
+            }
+            b => b.own_inputs(),
+        }
+    }
+    /// [`Bsdf::sample_inputs`] without recursion, so a two-sided model's sides inline (a
+    /// two-sided model nested in a side answers through the out-of-line call).
+    #[inline(always)]
+    fn own_inputs(&self) -> (bool, bool) {
+        match self {
             Bsdf::Diffuse(_) | Bsdf::RoughConductor(_) | Bsdf::BlinnPhongMetal(_) => (false, true),
             Bsdf::Conductor(_) | Bsdf::Mirror(_) => (false, false),
             Bsdf::Dielectric(_) | Bsdf::ThinDielectric(_) => (true, false),
-            Bsdf::TwoSided(t) => {
-                let (f, b) = (t.front.sample_inputs(), t.back.sample_inputs());
-                (f.0 || b.0, f.1 || b.1)
-            }
+            Bsdf::TwoSided(_) => self.nested_inputs(),
             _ => (true, true),
         }
+    }
+    /// The recursive case, out of line so the common ones inline.
+    #[inline(never)]
+    fn nested_inputs(&self) -> (bool, bool) {
+        self.sample_inputs()
     }
     /// Draws `(u1, u2)` for [`Bsdf::sample`] from the sampler's next three dimensions; inputs
     /// the BSDF ignores are skipped, not drawn, and given as 0.5.

@@ -87,6 +87,7 @@ impl ZSobolPixel {
         CachedZSobol {
             sample: s,
             pixel: self,
+            last_2d: NO_DRAW,
         }
     }
 }
@@ -96,7 +97,15 @@ impl ZSobolPixel {
 pub struct CachedZSobol<'a> {
     sample: ZSobolSampler,
     pixel: &'a mut ZSobolPixel,
+    /// The dimension and permuted index of this sample's last unpaired 2D draw: a paired draw
+    /// whose partner it is reads the index from here instead of completing the partner's draw
+    /// again (the camera's offset and each BSDF direction are drawn just before the emitter
+    /// position they pair with).
+    last_2d: (u32, u32),
 }
+
+/// `last_2d` before any 2D draw: dimension `u32::MAX` is never a partner.
+const NO_DRAW: (u32, u32) = (u32::MAX, 0);
 
 impl CachedZSobol<'_> {
     #[inline(always)]
@@ -137,10 +146,18 @@ impl Sampler for CachedZSobol<'_> {
         self.sample.start_dimension(dim.wrapping_add(2));
         let (a, b) = match paired_dimension(dim) {
             Some(partner) => {
-                let q = self.pixel_draw(partner);
-                value_2d_paired_of(d, self.sample.finish_draw(q).index)
+                let index = if self.last_2d.0 == partner {
+                    self.last_2d.1
+                } else {
+                    let q = self.pixel_draw(partner);
+                    self.sample.finish_draw(q).index
+                };
+                value_2d_paired_of(d, index)
             }
-            None => value_2d_of(d),
+            None => {
+                self.last_2d = (dim, d.index);
+                value_2d_of(d)
+            }
         };
         Vec2::new(to_unit(a), to_unit(b))
     }
@@ -245,6 +262,52 @@ mod tests {
         let mut s = stale.sampler(1);
         s.pixel.filled = filled;
         assert_ne!(s.next_2d(), ZSobolSampler::new(1, 6, 9, 1, 4).next_2d());
+    }
+
+    /// Draws in a path's order (camera offset, then per bounce the emitter choice and position,
+    /// the BSDF component and direction, the roulette), where each emitter position reads the
+    /// index its partner's draw left behind, equal the plain sampler's; so do the same draws when
+    /// the partner was skipped (a BSDF that ignores its direction) and the index is computed
+    /// afresh. Control: the paired values differ from an unpaired draw at the same dimension,
+    /// so reading a wrong index would show.
+    #[test]
+    fn paired_draws_reuse_their_partners_index() {
+        use super::super::layout::{dimension_of, Stage};
+        let mut paired = 0;
+        for (seed, k) in [(0u64, 0u32), (1, 3), (2, 6), (5, 10)] {
+            let mut px = ZSobolPixel::new(seed, 13, 7, k);
+            for i in 0..(1u64 << k).min(16) + 2 {
+                for skip_direction in [false, true] {
+                    let mut a = ZSobolSampler::new(seed, 13, 7, i, k);
+                    let mut b = px.sampler(i);
+                    same_draw(&mut a, &mut b, false);
+                    for depth in 0..8 {
+                        for s in [&mut a as &mut dyn Sampler, &mut b] {
+                            s.start_dimension(dimension_of(depth, Stage::Light));
+                        }
+                        same_draw(&mut a, &mut b, true);
+                        let dim = a.dimension();
+                        assert!(paired_dimension(dim).is_some());
+                        let unpaired = a.value_2d(dim);
+                        let want = a.next_2d();
+                        assert_eq!(b.next_2d(), want);
+                        assert_ne!(to_unit(unpaired.0), want.x);
+                        paired += 1;
+                        same_draw(&mut a, &mut b, true);
+                        if skip_direction {
+                            a.skip_1d();
+                            a.skip_1d();
+                            b.skip_1d();
+                            b.skip_1d();
+                        } else {
+                            same_draw(&mut a, &mut b, false);
+                        }
+                        same_draw(&mut a, &mut b, true);
+                    }
+                }
+            }
+        }
+        assert!(paired > 500, "{paired}");
     }
 
     /// `skip_1d` leaves both samplers where `next_1d` would: the draws after it are equal
