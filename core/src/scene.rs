@@ -1,7 +1,7 @@
 //! The flat, read-only scene: shapes, primitives under a BVH, BSDFs, emitters, camera.
 use crate::accel::tri4::Ray4;
 use crate::accel::{AnyLeaves, BuildParams, Bvh8, ClosestLeaves, TriBlocks};
-use crate::bsdf::Bsdf;
+use crate::bsdf::{Bsdf, BsdfTraits};
 use crate::camera::{Filter, Perspective};
 use crate::emitter::{Behind, Emitter, EmitterCtx, LightBound};
 use crate::geometry::{Disk, Hit, Interaction, Prim, Shape, ShapeKind, TriRay};
@@ -82,6 +82,9 @@ pub struct Scene {
     pub bvh: Bvh8,
     /// Materials.
     pub bsdfs: Vec<Bsdf>,
+    /// What each BSDF's sampling reads and whether it has smooth components, by BSDF index
+    /// (computed when the scene is built, as `features` is).
+    bsdf_traits: Vec<BsdfTraits>,
     /// Lights.
     pub emitters: Vec<Emitter>,
     /// Indices of the emitters at infinity (seen by rays that escape the scene).
@@ -231,6 +234,7 @@ impl Scene {
             has_spheres: prims.iter().any(|pr| matches!(pr, Prim::Sphere { .. })),
             has_disks: prims.iter().any(|pr| matches!(pr, Prim::Disk { .. })),
         };
+        let bsdf_traits = p.bsdfs.iter().map(BsdfTraits::of).collect();
         Ok(Scene {
             shapes: p.shapes,
             disks: p.disks,
@@ -238,6 +242,7 @@ impl Scene {
             blocks,
             bvh,
             bsdfs: p.bsdfs,
+            bsdf_traits,
             emitters: p.emitters,
             environments,
             selection,
@@ -272,6 +277,12 @@ impl Scene {
         let (selection, bounds) = selection_for(how, &self.emitters, &self.emitter_ctx());
         self.selection = selection;
         self.light_bounds = bounds;
+    }
+
+    /// [`BsdfTraits::of`] BSDF `i`, as computed when the scene was built.
+    #[inline]
+    pub fn bsdf_traits(&self, i: u32) -> BsdfTraits {
+        self.bsdf_traits[i as usize]
     }
 
     /// Each light as vertex selection sees it; empty where the scene-wide choice applies.

@@ -114,3 +114,31 @@ fn control_used_inputs_change_the_sample() {
     // One-sided: about half the directions (from below) give no sample at all.
     assert!(changes(&diffuse, &mut rng, false, true) > TRIALS / 4);
 }
+
+/// The path loop reads a vertex's BSDF traits from the scene's table (filled when the scene is
+/// built) instead of asking the BSDF: the table answers what the BSDF itself does, entry by
+/// entry, in scenes whose materials differ (one of each kind in `materials.xml`).
+#[test]
+fn scene_bsdf_traits_are_each_bsdfs_own() {
+    use tessera_core::bsdf::BsdfTraits;
+    for name in ["materials.xml", "veach_mis.xml", "cbox.xml"] {
+        let s = tessera_tests::load_file(name, &[("res", "16")]).scene;
+        let mut kinds = std::collections::HashSet::new();
+        for (i, b) in s.bsdfs.iter().enumerate() {
+            let t = s.bsdf_traits(i as u32);
+            assert_eq!(t, BsdfTraits::of(b), "{name}: bsdf {i}");
+            assert_eq!(
+                (t.uses_u1, t.uses_u2),
+                b.sample_inputs(),
+                "{name}: bsdf {i}"
+            );
+            assert_eq!(t.has_smooth, b.has_smooth(), "{name}: bsdf {i}");
+            kinds.insert((t.uses_u1, t.uses_u2, t.has_smooth));
+        }
+        // Control: materials.xml's table is not one entry repeated, so a shifted or constant
+        // table would fail above.
+        if name == "materials.xml" {
+            assert!(kinds.len() >= 3, "{name}: only {} kinds", kinds.len());
+        }
+    }
+}

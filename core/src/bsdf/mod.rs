@@ -22,6 +22,7 @@ mod roughconductor;
 mod roughdielectric;
 mod roughplastic;
 mod thindielectric;
+mod traits;
 mod twosided;
 mod wakame_microfacet;
 
@@ -38,6 +39,7 @@ pub use roughconductor::RoughConductor;
 pub use roughdielectric::RoughDielectric;
 pub use roughplastic::RoughPlastic;
 pub use thindielectric::ThinDielectric;
+pub use traits::BsdfTraits;
 pub use twosided::TwoSided;
 pub use wakame_microfacet::WakameMicrofacet;
 
@@ -187,20 +189,7 @@ impl Bsdf {
     #[inline]
     pub fn draw_sample_inputs<S: Sampler>(&self, sampler: &mut S) -> (f32, Vec2) {
         let (uses_u1, uses_u2) = self.sample_inputs();
-        let u1 = if uses_u1 {
-            sampler.next_1d()
-        } else {
-            sampler.skip_1d();
-            0.5
-        };
-        let u2 = if uses_u2 {
-            sampler.next_2d()
-        } else {
-            sampler.skip_1d();
-            sampler.skip_1d();
-            Vec2::splat(0.5)
-        };
-        (u1, u2)
+        traits::draw_inputs(uses_u1, uses_u2, sampler)
     }
     /// Whether any component is smooth (non-delta): emitter sampling is useful.
     #[inline]

@@ -72,10 +72,12 @@ impl DirectIntegrator {
             probe.end(PathEnd::Escaped);
             return result;
         };
-        let bsdf = &scene.bsdfs[scene.shapes[si.shape as usize].bsdf as usize];
+        let bsdf_index = scene.shapes[si.shape as usize].bsdf;
+        let bsdf = &scene.bsdfs[bsdf_index as usize];
+        let traits = scene.bsdf_traits(bsdf_index);
         let wi = si.frame.to_local(si.wi);
         let (ne, nb) = (self.emitter_samples as f32, self.bsdf_samples as f32);
-        let nee = scene.features.has_emitters && bsdf.has_smooth();
+        let nee = scene.features.has_emitters && traits.has_smooth;
         let sel = if nee && self.emitter_samples > 0 {
             VertexSelection::new(scene.light_bounds(), &si, bsdf, wi)
         } else {
@@ -107,7 +109,7 @@ impl DirectIntegrator {
         }
         for j in 0..self.bsdf_samples {
             sampler.start_stage(j, Stage::Bsdf);
-            let (u1, u2) = bsdf.draw_sample_inputs(sampler);
+            let (u1, u2) = traits.draw_sample_inputs(sampler);
             let Some(bs) = bsdf.sample(wi, u1, u2, si.uv) else {
                 probe.bsdf_sample(None, Vec3::ZERO, Color::ZERO);
                 continue;
@@ -118,7 +120,7 @@ impl DirectIntegrator {
             probe.ray(RayKind::Continuation);
             probe.hit(scene, next.as_ref(), d);
             // Emitter sampling only runs on smooth BSDFs and cannot produce a delta direction.
-            let mis = self.emitter_samples > 0 && !bs.delta && bsdf.has_smooth();
+            let mis = self.emitter_samples > 0 && !bs.delta && traits.has_smooth;
             emission_along(
                 scene,
                 si.p,

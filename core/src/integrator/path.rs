@@ -189,8 +189,9 @@ impl PathIntegrator {
                 break;
             }
             let bsdf = &scene.bsdfs[shape.bsdf as usize];
+            let traits = scene.bsdf_traits(shape.bsdf);
             let wi = si.frame.to_local(si.wi);
-            let nee = self.strategy != Strategy::Bsdf && features.has_emitters && bsdf.has_smooth();
+            let nee = self.strategy != Strategy::Bsdf && features.has_emitters && traits.has_smooth;
             let sel = if nee {
                 VertexSelection::new(scene.light_bounds(), &si, bsdf, wi)
             } else {
@@ -222,7 +223,7 @@ impl PathIntegrator {
                 break;
             }
             sampler.start_stage(depth, Stage::Bsdf);
-            let (u1, u2) = bsdf.draw_sample_inputs(sampler);
+            let (u1, u2) = traits.draw_sample_inputs(sampler);
             let Some(bs) = bsdf.sample(wi, u1, u2, si.uv) else {
                 probe.bsdf_sample(None, Vec3::ZERO, throughput);
                 probe.end(PathEnd::BsdfSampleFailed);
