@@ -1,0 +1,363 @@
+//! Embree 3 through a hand-written FFI, for the comparison benches (`embree`, `embree_small`):
+//! only the few calls they use, with the structs of `embree3/rtcore_ray.h` and
+//! `rtcore_common.h` (3.13, built with `RTC_MAX_INSTANCE_LEVEL_COUNT 1` and `RTC_MIN_WIDTH 0` as
+//! Debian's is). Tessera itself never links Embree.
+#![allow(unsafe_code)]
+use std::ffi::{c_char, c_void};
+use tessera_core::math::Ray;
+
+#[repr(C)]
+struct RtcIntersectContext {
+    flags: u32,
+    filter: Option<extern "C" fn(*const c_void)>,
+    inst_id: [u32; 1],
+}
+
+#[repr(C, align(16))]
+#[derive(Clone, Copy)]
+struct RtcRay {
+    org: [f32; 3],
+    tnear: f32,
+    dir: [f32; 3],
+    time: f32,
+    tfar: f32,
+    mask: u32,
+    id: u32,
+    flags: u32,
+}
+
+#[repr(C, align(16))]
+#[derive(Clone, Copy)]
+struct RtcHit {
+    ng: [f32; 3],
+    u: f32,
+    v: f32,
+    prim_id: u32,
+    geom_id: u32,
+    inst_id: [u32; 1],
+}
+
+#[repr(C)]
+#[derive(Clone, Copy)]
+struct RtcRayHit {
+    ray: RtcRay,
+    hit: RtcHit,
+}
+
+const INVALID_ID: u32 = u32::MAX;
+const GEOMETRY_TYPE_TRIANGLE: u32 = 0;
+const BUFFER_TYPE_INDEX: u32 = 0;
+const BUFFER_TYPE_VERTEX: u32 = 1;
+const FORMAT_UINT3: u32 = 0x5003;
+const FORMAT_FLOAT3: u32 = 0x9003;
+
+#[link(name = "embree3")]
+extern "C" {
+    fn rtcNewDevice(config: *const c_char) -> *mut c_void;
+    fn rtcReleaseDevice(device: *mut c_void);
+    fn rtcGetDeviceError(device: *mut c_void) -> u32;
+    fn rtcNewScene(device: *mut c_void) -> *mut c_void;
+    fn rtcReleaseScene(scene: *mut c_void);
+    fn rtcNewGeometry(device: *mut c_void, kind: u32) -> *mut c_void;
+    fn rtcSetSharedGeometryBuffer(
+        geometry: *mut c_void,
+        kind: u32,
+        slot: u32,
+        format: u32,
+        ptr: *const c_void,
+        byte_offset: usize,
+        byte_stride: usize,
+        item_count: usize,
+    );
+    fn rtcCommitGeometry(geometry: *mut c_void);
+    fn rtcAttachGeometry(scene: *mut c_void, geometry: *mut c_void) -> u32;
+    fn rtcReleaseGeometry(geometry: *mut c_void);
+    fn rtcCommitScene(scene: *mut c_void);
+    fn rtcIntersect1(scene: *mut c_void, ctx: *mut RtcIntersectContext, rayhit: *mut RtcRayHit);
+    fn rtcOccluded1(scene: *mut c_void, ctx: *mut RtcIntersectContext, ray: *mut RtcRay);
+    fn rtcIntersect8(
+        valid: *const i32,
+        scene: *mut c_void,
+        ctx: *mut RtcIntersectContext,
+        rayhit: *mut RtcRayHitN<8>,
+    );
+    fn rtcOccluded8(
+        valid: *const i32,
+        scene: *mut c_void,
+        ctx: *mut RtcIntersectContext,
+        ray: *mut RtcRayN<8>,
+    );
+    fn rtcIntersect16(
+        valid: *const i32,
+        scene: *mut c_void,
+        ctx: *mut RtcIntersectContext,
+        rayhit: *mut RtcRayHitN<16>,
+    );
+    fn rtcOccluded16(
+        valid: *const i32,
+        scene: *mut c_void,
+        ctx: *mut RtcIntersectContext,
+        ray: *mut RtcRayN<16>,
+    );
+}
+
+/// `RTCRay8` / `RTCRay16`: a packet of rays, one array per field (64-byte aligned, as the
+/// header's `RTC_ALIGN(64)` for the 16-wide one; the 8-wide one needs 32).
+#[repr(C, align(64))]
+#[derive(Clone, Copy)]
+pub struct RtcRayN<const N: usize> {
+    org: [[f32; N]; 3],
+    tnear: [f32; N],
+    dir: [[f32; N]; 3],
+    time: [f32; N],
+    tfar: [f32; N],
+    mask: [u32; N],
+    id: [u32; N],
+    flags: [u32; N],
+}
+
+/// `RTCHit8` / `RTCHit16`.
+#[repr(C, align(64))]
+#[derive(Clone, Copy)]
+struct RtcHitN<const N: usize> {
+    ng: [[f32; N]; 3],
+    u: [f32; N],
+    v: [f32; N],
+    prim_id: [u32; N],
+    geom_id: [u32; N],
+    inst_id: [[u32; N]; 1],
+}
+
+/// `RTCRayHit8` / `RTCRayHit16`.
+#[repr(C, align(64))]
+#[derive(Clone, Copy)]
+pub struct RtcRayHitN<const N: usize> {
+    ray: RtcRayN<N>,
+    hit: RtcHitN<N>,
+}
+
+/// The valid mask of a packet: -1 for every lane in use.
+#[repr(C, align(64))]
+struct Valid<const N: usize>([i32; N]);
+
+impl<const N: usize> RtcRayN<N> {
+    /// A packet of `rays` (at most `N`; the lanes beyond are masked off by the caller's valid
+    /// mask).
+    fn of(rays: &[Ray]) -> Self {
+        let mut p = RtcRayN {
+            org: [[0.0; N]; 3],
+            tnear: [0.0; N],
+            dir: [[0.0; N]; 3],
+            time: [0.0; N],
+            tfar: [0.0; N],
+            mask: [u32::MAX; N],
+            id: [0; N],
+            flags: [0; N],
+        };
+        for (i, r) in rays.iter().enumerate() {
+            for a in 0..3 {
+                p.org[a][i] = r.o[a];
+                p.dir[a][i] = r.d[a];
+            }
+            p.tfar[i] = r.t_max;
+        }
+        p
+    }
+}
+
+fn valid<const N: usize>(n: usize) -> Valid<N> {
+    let mut v = Valid([0; N]);
+    v.0[..n].fill(-1);
+    v
+}
+
+/// An Embree device and scene over one triangle mesh whose buffers it shares (kept alive here).
+pub struct Embree {
+    device: *mut c_void,
+    scene: *mut c_void,
+    _vertices: Vec<f32>,
+    _indices: Vec<u32>,
+}
+
+impl Embree {
+    pub fn new(positions: &[[f32; 3]], indices: &[[u32; 3]]) -> Embree {
+        // Embree reads vertex buffers 16 bytes at a time: one float of padding at the end.
+        let mut vertices: Vec<f32> = positions.iter().flatten().copied().collect();
+        vertices.push(0.0);
+        let idx: Vec<u32> = indices.iter().flatten().copied().collect();
+        // SAFETY: the config is a NUL-terminated string; every handle passed on is the non-null
+        // one Embree returned (checked); the shared buffers point into `vertices` and `idx`, whose
+        // heap storage lives (unmoved) in the returned struct as long as the scene.
+        unsafe {
+            let device = rtcNewDevice(c"threads=1".as_ptr());
+            assert!(!device.is_null(), "rtcNewDevice failed");
+            let scene = rtcNewScene(device);
+            let geom = rtcNewGeometry(device, GEOMETRY_TYPE_TRIANGLE);
+            assert!(
+                !scene.is_null() && !geom.is_null(),
+                "Embree scene or geometry"
+            );
+            rtcSetSharedGeometryBuffer(
+                geom,
+                BUFFER_TYPE_VERTEX,
+                0,
+                FORMAT_FLOAT3,
+                vertices.as_ptr().cast(),
+                0,
+                12,
+                positions.len(),
+            );
+            rtcSetSharedGeometryBuffer(
+                geom,
+                BUFFER_TYPE_INDEX,
+                0,
+                FORMAT_UINT3,
+                idx.as_ptr().cast(),
+                0,
+                12,
+                indices.len(),
+            );
+            rtcCommitGeometry(geom);
+            rtcAttachGeometry(scene, geom);
+            rtcReleaseGeometry(geom);
+            rtcCommitScene(scene);
+            assert_eq!(rtcGetDeviceError(device), 0, "Embree error");
+            Embree {
+                device,
+                scene,
+                _vertices: vertices,
+                _indices: idx,
+            }
+        }
+    }
+
+    fn ray(r: &Ray) -> RtcRay {
+        RtcRay {
+            org: r.o.to_array(),
+            tnear: 0.0,
+            dir: r.d.to_array(),
+            time: 0.0,
+            tfar: r.t_max,
+            mask: u32::MAX,
+            id: 0,
+            flags: 0,
+        }
+    }
+
+    fn context() -> RtcIntersectContext {
+        // As `rtcInitIntersectContext` (an inline function in the header).
+        RtcIntersectContext {
+            flags: 0,
+            filter: None,
+            inst_id: [INVALID_ID],
+        }
+    }
+
+    /// Closest hit: `(t, primitive)`.
+    pub fn intersect(&self, r: &Ray) -> Option<(f32, u32)> {
+        let mut rh = RtcRayHit {
+            ray: Self::ray(r),
+            hit: RtcHit {
+                ng: [0.0; 3],
+                u: 0.0,
+                v: 0.0,
+                prim_id: INVALID_ID,
+                geom_id: INVALID_ID,
+                inst_id: [INVALID_ID],
+            },
+        };
+        let mut ctx = Self::context();
+        // SAFETY: `self.scene` is a committed scene; `ctx` and `rh` are valid, aligned locals.
+        unsafe { rtcIntersect1(self.scene, &mut ctx, &mut rh) };
+        (rh.hit.geom_id != INVALID_ID).then_some((rh.ray.tfar, rh.hit.prim_id))
+    }
+
+    pub fn occluded(&self, r: &Ray) -> bool {
+        let mut ray = Self::ray(r);
+        let mut ctx = Self::context();
+        // SAFETY: as in `intersect`.
+        unsafe { rtcOccluded1(self.scene, &mut ctx, &mut ray) };
+        ray.tfar == f32::NEG_INFINITY
+    }
+}
+
+impl Embree {
+    /// Closest hits of up to 8 rays in one `rtcIntersect8` call: how many hit something.
+    pub fn intersect8(&self, rays: &[Ray]) -> usize {
+        let mut rh = RtcRayHitN::<8> {
+            ray: RtcRayN::of(rays),
+            hit: RtcHitN {
+                ng: [[0.0; 8]; 3],
+                u: [0.0; 8],
+                v: [0.0; 8],
+                prim_id: [INVALID_ID; 8],
+                geom_id: [INVALID_ID; 8],
+                inst_id: [[INVALID_ID; 8]],
+            },
+        };
+        let (v, mut ctx) = (valid::<8>(rays.len()), Self::context());
+        // SAFETY: `self.scene` is a committed scene; the mask, context and packet are valid,
+        // suitably aligned locals with the header's layouts.
+        unsafe { rtcIntersect8(v.0.as_ptr(), self.scene, &mut ctx, &mut rh) };
+        rh.hit.geom_id[..rays.len()]
+            .iter()
+            .filter(|&&g| g != INVALID_ID)
+            .count()
+    }
+
+    /// Closest hits of up to 16 rays in one `rtcIntersect16` call.
+    pub fn intersect16(&self, rays: &[Ray]) -> usize {
+        let mut rh = RtcRayHitN::<16> {
+            ray: RtcRayN::of(rays),
+            hit: RtcHitN {
+                ng: [[0.0; 16]; 3],
+                u: [0.0; 16],
+                v: [0.0; 16],
+                prim_id: [INVALID_ID; 16],
+                geom_id: [INVALID_ID; 16],
+                inst_id: [[INVALID_ID; 16]],
+            },
+        };
+        let (v, mut ctx) = (valid::<16>(rays.len()), Self::context());
+        // SAFETY: as in `intersect8`.
+        unsafe { rtcIntersect16(v.0.as_ptr(), self.scene, &mut ctx, &mut rh) };
+        rh.hit.geom_id[..rays.len()]
+            .iter()
+            .filter(|&&g| g != INVALID_ID)
+            .count()
+    }
+
+    /// Any-hit tests of up to 8 rays in one `rtcOccluded8` call: how many are blocked.
+    pub fn occluded8(&self, rays: &[Ray]) -> usize {
+        let mut r = RtcRayN::<8>::of(rays);
+        let (v, mut ctx) = (valid::<8>(rays.len()), Self::context());
+        // SAFETY: as in `intersect8`.
+        unsafe { rtcOccluded8(v.0.as_ptr(), self.scene, &mut ctx, &mut r) };
+        r.tfar[..rays.len()]
+            .iter()
+            .filter(|&&t| t == f32::NEG_INFINITY)
+            .count()
+    }
+
+    /// Any-hit tests of up to 16 rays in one `rtcOccluded16` call.
+    pub fn occluded16(&self, rays: &[Ray]) -> usize {
+        let mut r = RtcRayN::<16>::of(rays);
+        let (v, mut ctx) = (valid::<16>(rays.len()), Self::context());
+        // SAFETY: as in `intersect8`.
+        unsafe { rtcOccluded16(v.0.as_ptr(), self.scene, &mut ctx, &mut r) };
+        r.tfar[..rays.len()]
+            .iter()
+            .filter(|&&t| t == f32::NEG_INFINITY)
+            .count()
+    }
+}
+
+impl Drop for Embree {
+    fn drop(&mut self) {
+        // SAFETY: the handles came from Embree and are released once.
+        unsafe {
+            rtcReleaseScene(self.scene);
+            rtcReleaseDevice(self.device);
+        }
+    }
+}
