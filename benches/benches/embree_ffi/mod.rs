@@ -281,74 +281,68 @@ impl Embree {
     }
 }
 
+/// `rtcIntersect8` / `rtcIntersect16`.
+type IntersectN<const N: usize> =
+    unsafe extern "C" fn(*const i32, *mut c_void, *mut RtcIntersectContext, *mut RtcRayHitN<N>);
+/// `rtcOccluded8` / `rtcOccluded16`.
+type OccludedN<const N: usize> =
+    unsafe extern "C" fn(*const i32, *mut c_void, *mut RtcIntersectContext, *mut RtcRayN<N>);
+
 impl Embree {
-    /// Closest hits of up to 8 rays in one `rtcIntersect8` call: how many hit something.
-    pub fn intersect8(&self, rays: &[Ray]) -> usize {
-        let mut rh = RtcRayHitN::<8> {
+    /// Closest hits of up to `N` rays in one packet call `f`: how many hit something.
+    fn intersect_packet<const N: usize>(&self, rays: &[Ray], f: IntersectN<N>) -> usize {
+        let mut rh = RtcRayHitN::<N> {
             ray: RtcRayN::of(rays),
             hit: RtcHitN {
-                ng: [[0.0; 8]; 3],
-                u: [0.0; 8],
-                v: [0.0; 8],
-                prim_id: [INVALID_ID; 8],
-                geom_id: [INVALID_ID; 8],
-                inst_id: [[INVALID_ID; 8]],
+                ng: [[0.0; N]; 3],
+                u: [0.0; N],
+                v: [0.0; N],
+                prim_id: [INVALID_ID; N],
+                geom_id: [INVALID_ID; N],
+                inst_id: [[INVALID_ID; N]],
             },
         };
-        let (v, mut ctx) = (valid::<8>(rays.len()), Self::context());
-        // SAFETY: `self.scene` is a committed scene; the mask, context and packet are valid,
-        // suitably aligned locals with the header's layouts.
-        unsafe { rtcIntersect8(v.0.as_ptr(), self.scene, &mut ctx, &mut rh) };
+        let (v, mut ctx) = (valid::<N>(rays.len()), Self::context());
+        // SAFETY: `f` is Embree's packet call of width `N`; `self.scene` is a committed scene;
+        // the mask, context and packet are valid, suitably aligned locals with the header's
+        // layouts.
+        unsafe { f(v.0.as_ptr(), self.scene, &mut ctx, &mut rh) };
         rh.hit.geom_id[..rays.len()]
             .iter()
             .filter(|&&g| g != INVALID_ID)
             .count()
+    }
+
+    /// Any-hit tests of up to `N` rays in one packet call `f`: how many are blocked.
+    fn occluded_packet<const N: usize>(&self, rays: &[Ray], f: OccludedN<N>) -> usize {
+        let mut r = RtcRayN::<N>::of(rays);
+        let (v, mut ctx) = (valid::<N>(rays.len()), Self::context());
+        // SAFETY: as in `intersect_packet`.
+        unsafe { f(v.0.as_ptr(), self.scene, &mut ctx, &mut r) };
+        r.tfar[..rays.len()]
+            .iter()
+            .filter(|&&t| t == f32::NEG_INFINITY)
+            .count()
+    }
+
+    /// Closest hits of up to 8 rays in one `rtcIntersect8` call.
+    pub fn intersect8(&self, rays: &[Ray]) -> usize {
+        self.intersect_packet::<8>(rays, rtcIntersect8)
     }
 
     /// Closest hits of up to 16 rays in one `rtcIntersect16` call.
     pub fn intersect16(&self, rays: &[Ray]) -> usize {
-        let mut rh = RtcRayHitN::<16> {
-            ray: RtcRayN::of(rays),
-            hit: RtcHitN {
-                ng: [[0.0; 16]; 3],
-                u: [0.0; 16],
-                v: [0.0; 16],
-                prim_id: [INVALID_ID; 16],
-                geom_id: [INVALID_ID; 16],
-                inst_id: [[INVALID_ID; 16]],
-            },
-        };
-        let (v, mut ctx) = (valid::<16>(rays.len()), Self::context());
-        // SAFETY: as in `intersect8`.
-        unsafe { rtcIntersect16(v.0.as_ptr(), self.scene, &mut ctx, &mut rh) };
-        rh.hit.geom_id[..rays.len()]
-            .iter()
-            .filter(|&&g| g != INVALID_ID)
-            .count()
+        self.intersect_packet::<16>(rays, rtcIntersect16)
     }
 
-    /// Any-hit tests of up to 8 rays in one `rtcOccluded8` call: how many are blocked.
+    /// Any-hit tests of up to 8 rays in one `rtcOccluded8` call.
     pub fn occluded8(&self, rays: &[Ray]) -> usize {
-        let mut r = RtcRayN::<8>::of(rays);
-        let (v, mut ctx) = (valid::<8>(rays.len()), Self::context());
-        // SAFETY: as in `intersect8`.
-        unsafe { rtcOccluded8(v.0.as_ptr(), self.scene, &mut ctx, &mut r) };
-        r.tfar[..rays.len()]
-            .iter()
-            .filter(|&&t| t == f32::NEG_INFINITY)
-            .count()
+        self.occluded_packet::<8>(rays, rtcOccluded8)
     }
 
     /// Any-hit tests of up to 16 rays in one `rtcOccluded16` call.
     pub fn occluded16(&self, rays: &[Ray]) -> usize {
-        let mut r = RtcRayN::<16>::of(rays);
-        let (v, mut ctx) = (valid::<16>(rays.len()), Self::context());
-        // SAFETY: as in `intersect8`.
-        unsafe { rtcOccluded16(v.0.as_ptr(), self.scene, &mut ctx, &mut r) };
-        r.tfar[..rays.len()]
-            .iter()
-            .filter(|&&t| t == f32::NEG_INFINITY)
-            .count()
+        self.occluded_packet::<16>(rays, rtcOccluded16)
     }
 }
 
