@@ -2,7 +2,7 @@
 //! nothing the box does not need, and what would running eight paths in SIMD lanes add to that?
 //!
 //! `cargo bench -p tessera-benches --bench lean_path [-- RES SPP]` (defaults 128 and 64) loads
-//! `scenes/cbox.xml` (box filter) and renders it five ways, one thread each, best of five
+//! `scenes/cbox.xml` (box filter) and renders it six ways, one thread each, best of five
 //! alternating rounds:
 //! - `tessera`: the renderer itself (`tessera::render::render`, `path` integrator, the
 //!   `independent` sampler);
@@ -17,8 +17,13 @@
 //!   whose path ends starts the next sample), the arithmetic written as loops over the lanes for
 //!   the compiler to vectorise; ray casts stay one ray at a time;
 //! - `tessera zsobol` and `lean x1 zsobol`: the same with the `zsobol` sampler (the lean loop
-//!   draws from Tessera's `ZSobolPixel` at the renderer's dimensions; it makes a sample's sampler
-//!   afresh at every bounce, which the renderer does once, so its sampler cost is a little high).
+//!   draws from Tessera's `ZSobolPixel` at the renderer's dimensions, keeping a pixel's cache
+//!   while it takes the pixel's samples, as the renderer's workers do);
+//! - `lean x1 zsobol robust`: the lean loop with the renderer's robustness instead of fixed
+//!   offsets: hit points and light points interpolated from the triangle's corners with their
+//!   error bounds, and every ray origin and shadow-ray end moved off its surface by
+//!   `offset_ray_origin`, as `Interaction::spawn_ray` and `spawn_ray_to` do: an estimate of what
+//!   a loop specialised to this scene class could gain while keeping the renderer's guarantees.
 //!
 //! Each image's relMSE against `scenes/refs/cbox_RESxRES_mitsuba.exr` is printed beside its
 //! speed, so a lean loop that got fast by being wrong would show it. Build with `RUSTFLAGS="-C
@@ -34,7 +39,7 @@ use tessera_core::bsdf::Bsdf;
 use tessera_core::emitter::Emitter;
 use tessera_core::geometry::{Prim, ShapeKind};
 use tessera_core::integrator::Integrator;
-use tessera_core::math::Ray;
+use tessera_core::math::{gamma, offset_ray_origin, Ray};
 use tessera_core::sampling::zsobol::{log2_spp_for, to_unit};
 use tessera_core::sampling::{dimension_of, Sampler, SamplerKind, Stage, ZSobolPixel};
 use tessera_core::scene::Scene;
@@ -43,11 +48,16 @@ use tessera_core::texture::Texture;
 const MAX_DEPTH: u32 = 8;
 const RR_DEPTH: u32 = 5;
 const OFFSET: f32 = 1e-4;
+/// The renderer's shadow segments stop this fraction short of the light (as
+/// `Interaction::spawn_ray_to`).
+const SHADOW_EPSILON: f32 = 1e-4;
 const INV_PI: f32 = std::f32::consts::FRAC_1_PI;
 
 /// The scene as flat tables indexed by primitive (BVH order), plus the light's triangles.
 struct Tables {
     normal: Vec<[f32; 3]>,
+    /// Corners of each primitive (for the robust variant's hit points and error bounds).
+    corners: Vec<[Vec3; 3]>,
     albedo: Vec<[f32; 3]>,
     emission: Vec<[f32; 3]>,
     light: Vec<LightTriangle>,
@@ -57,6 +67,8 @@ struct Tables {
 
 /// One triangle of the light.
 struct LightTriangle {
+    /// The three corners (for the robust variant's light points and error bounds).
+    corners: [Vec3; 3],
     corner: [f32; 3],
     edge1: [f32; 3],
     edge2: [f32; 3],
@@ -84,6 +96,7 @@ impl Tables {
     fn new(scene: &Scene) -> Result<Self, String> {
         let mut t = Tables {
             normal: vec![],
+            corners: vec![],
             albedo: vec![],
             emission: vec![],
             light: vec![],
@@ -100,6 +113,7 @@ impl Tables {
             };
             let [a, b, c] = corners(m, *face as usize);
             t.normal.push((b - a).cross(c - a).normalize().to_array());
+            t.corners.push([a, b, c]);
             t.albedo.push(albedo_of(&scene.bsdfs[s.bsdf as usize])?);
             t.emission.push(match s.emitter {
                 Some(e) => match &scene.emitters[e as usize] {
@@ -123,6 +137,7 @@ impl Tables {
             let n = cross.normalize().to_array();
             let (e1, e2) = ((b - a).to_array(), (c - a).to_array());
             t.light.push(LightTriangle {
+                corners: [a, b, c],
                 corner: a.to_array(),
                 edge1: e1,
                 edge2: e2,
@@ -135,6 +150,15 @@ impl Tables {
         }
         Ok(t)
     }
+}
+
+/// A point at barycentrics `(b1, b2)` and its error bound, computed as the renderer's meshes do.
+#[inline(always)]
+fn interpolate(p0: Vec3, p1: Vec3, p2: Vec3, b: Vec2) -> (Vec3, Vec3) {
+    let b0 = 1.0 - b.x - b.y;
+    let p = p0 * b0 + p1 * b.x + p2 * b.y;
+    let err = ((p0 * b0).abs() + (p1 * b.x).abs() + (p2 * b.y).abs()) * gamma(7);
+    (p, err)
 }
 
 /// PCG's output hash of a 32-bit state.
@@ -195,6 +219,9 @@ impl<const N: usize> Draws<N> for HashDraws<N> {
 /// Tessera's zsobol sampler with its per-pixel cache, at the renderer's dimensions.
 struct ZSobolDraws<const N: usize> {
     pixels: Vec<ZSobolPixel>,
+    /// The pixel each lane's cache serves (`u32::MAX` before the first), so that a lane moves
+    /// its cache only when its pixel changes, as the renderer's workers do.
+    current: [u32; N],
     index: [u64; N],
     width: u32,
     log2_spp: u32,
@@ -203,8 +230,11 @@ struct ZSobolDraws<const N: usize> {
 impl<const N: usize> Draws<N> for ZSobolDraws<N> {
     #[inline(always)]
     fn start(&mut self, lane: usize, pixel: u32, sample: u32) -> Vec2 {
-        let (x, y) = (pixel % self.width, pixel / self.width);
-        self.pixels[lane].move_to(0, x, y, self.log2_spp);
+        if self.current[lane] != pixel {
+            let (x, y) = (pixel % self.width, pixel / self.width);
+            self.pixels[lane].move_to(0, x, y, self.log2_spp);
+            self.current[lane] = pixel;
+        }
         self.index[lane] = u64::from(sample);
         self.pixels[lane].sampler(u64::from(sample)).next_2d()
     }
@@ -248,7 +278,11 @@ impl Lean<'_> {
 
     /// Renders every pixel's `spp` samples `N` paths at a time; returns the pixel sums.
     #[inline(never)]
-    fn render<const N: usize>(&self, pixels: u32, draws: &mut impl Draws<N>) -> Vec<[f32; 3]> {
+    fn render<const N: usize, const ROBUST: bool>(
+        &self,
+        pixels: u32,
+        draws: &mut impl Draws<N>,
+    ) -> Vec<[f32; 3]> {
         let mut film = vec![[0f32; 3]; pixels as usize];
         let total = pixels * self.spp;
         let mut next = 0u32;
@@ -285,6 +319,8 @@ impl Lean<'_> {
             }
             // Closest hits, one ray at a time, and the hit primitives' table rows.
             let mut dist = [0f32; N];
+            let mut prim = [0usize; N];
+            let mut bary = [Vec2::ZERO; N];
             let mut hit = [false; N];
             let mut n = [[0f32; N]; 3];
             let mut albedo = [[0f32; N]; 3];
@@ -301,6 +337,7 @@ impl Lean<'_> {
                 if let Some(h) = self.scene.intersect_hit(&ray) {
                     let p = h.prim as usize;
                     (hit[i], dist[i]) = (true, h.t);
+                    (prim[i], bary[i]) = (p, h.uv);
                     for k in 0..3 {
                         n[k][i] = t.normal[p][k];
                         albedo[k][i] = t.albedo[p][k];
@@ -319,14 +356,26 @@ impl Lean<'_> {
             }
             // Emission found by the ray, and one emitter sample.
             let mut p = [[0f32; N]; 3];
-            let mut to_light = [[0f32; N]; 3];
-            let mut light_dist = [0f32; N];
+            let mut p_err = [Vec3::ZERO; N];
+            let mut shadow_o = [Vec3::ZERO; N];
+            let mut shadow_d = [Vec3::ZERO; N];
+            let mut shadow_t = [0f32; N];
             let mut light_value = [[0f32; N]; 3];
             let mut go_on = [false; N];
             for i in 0..N {
                 let live = l.alive[i] && hit[i];
-                for k in 0..3 {
-                    p[k][i] = l.o[k][i] + l.d[k][i] * dist[i];
+                if ROBUST && live {
+                    // The renderer's hit point: barycentric interpolation and its error bound.
+                    let [a, b, c] = t.corners[prim[i]];
+                    let (q, e) = interpolate(a, b, c, bary[i]);
+                    for k in 0..3 {
+                        p[k][i] = q[k];
+                    }
+                    p_err[i] = e;
+                } else {
+                    for k in 0..3 {
+                        p[k][i] = l.o[k][i] + l.d[k][i] * dist[i];
+                    }
                 }
                 let dn = n[0][i] * l.d[0][i] + n[1][i] * l.d[1][i] + n[2][i] * l.d[2][i];
                 let cos_at_light = -dn;
@@ -357,14 +406,23 @@ impl Lean<'_> {
                 let su = u[1][i].sqrt();
                 let (b1, b2) = (1.0 - su, u[2][i] * su);
                 let mut wo = [0f32; 3];
+                let (lp, lp_err) = if ROBUST {
+                    let [a, b, c] = tri.corners;
+                    interpolate(a, b, c, Vec2::new(b1, b2))
+                } else {
+                    let mut q = Vec3::ZERO;
+                    for k in 0..3 {
+                        q[k] = tri.corner[k] + tri.edge1[k] * b1 + tri.edge2[k] * b2;
+                    }
+                    (q, Vec3::ZERO)
+                };
                 for (k, w) in wo.iter_mut().enumerate() {
-                    *w = tri.corner[k] + tri.edge1[k] * b1 + tri.edge2[k] * b2 - p[k][i];
+                    *w = lp[k] - p[k][i];
                 }
                 let d2 = wo[0] * wo[0] + wo[1] * wo[1] + wo[2] * wo[2];
                 let d = d2.sqrt();
-                for (k, w) in wo.iter_mut().enumerate() {
+                for w in wo.iter_mut() {
                     *w /= d;
-                    to_light[k][i] = *w;
                 }
                 let cos_l =
                     -(tri.normal[0] * wo[0] + tri.normal[1] * wo[1] + tri.normal[2] * wo[2]);
@@ -373,7 +431,21 @@ impl Lean<'_> {
                 let bsdf_pdf = cos_s * INV_PI;
                 let w = light_pdf * light_pdf / (light_pdf * light_pdf + bsdf_pdf * bsdf_pdf);
                 let ok = go_on[i] && cos_l > 0.0 && cos_s > 0.0;
-                light_dist[i] = if ok { d * (1.0 - OFFSET) } else { -1.0 };
+                let pi = Vec3::new(p[0][i], p[1][i], p[2][i]);
+                let ni = Vec3::new(n[0][i], n[1][i], n[2][i]);
+                if !ok {
+                    shadow_t[i] = -1.0;
+                } else if ROBUST {
+                    // The renderer's shadow segment: both ends offset by their error bounds.
+                    let tn = Vec3::from(tri.normal);
+                    let target = offset_ray_origin(lp, lp_err, tn, pi - lp);
+                    let o = offset_ray_origin(pi, p_err[i], ni, target - pi);
+                    (shadow_o[i], shadow_d[i], shadow_t[i]) = (o, target - o, 1.0 - SHADOW_EPSILON);
+                } else {
+                    shadow_o[i] = pi + ni * OFFSET;
+                    shadow_d[i] = Vec3::from(wo);
+                    shadow_t[i] = d * (1.0 - OFFSET);
+                }
                 for k in 0..3 {
                     light_value[k][i] =
                         l.throughput[k][i] * albedo[k][i] * INV_PI * cos_s * t.radiance[k] * w
@@ -382,18 +454,14 @@ impl Lean<'_> {
             }
             // Shadow rays, one at a time.
             for i in 0..N {
-                if light_dist[i] > 0.0 {
-                    let o = Vec3::new(p[0][i], p[1][i], p[2][i])
-                        + Vec3::new(n[0][i], n[1][i], n[2][i]) * OFFSET;
-                    let d = Vec3::new(to_light[0][i], to_light[1][i], to_light[2][i]);
-                    if !self.scene.occluded(&Ray {
-                        o,
-                        d,
-                        t_max: light_dist[i],
-                    }) {
-                        for k in 0..3 {
-                            l.radiance[k][i] += light_value[k][i];
-                        }
+                let shadow = Ray {
+                    o: shadow_o[i],
+                    d: shadow_d[i],
+                    t_max: shadow_t[i],
+                };
+                if shadow_t[i] > 0.0 && !self.scene.occluded(&shadow) {
+                    for k in 0..3 {
+                        l.radiance[k][i] += light_value[k][i];
                     }
                 }
             }
@@ -413,6 +481,15 @@ impl Lean<'_> {
                     l.o[k][i] = p[k][i] + n[k][i] * OFFSET;
                     l.d[k][i] = tan1[k] * lx + tan2[k] * ly + n[k][i] * lz;
                     l.throughput[k][i] *= albedo[k][i];
+                }
+                if ROBUST {
+                    let d = Vec3::new(l.d[0][i], l.d[1][i], l.d[2][i]);
+                    let pi = Vec3::new(p[0][i], p[1][i], p[2][i]);
+                    let ni = Vec3::new(n[0][i], n[1][i], n[2][i]);
+                    let o = offset_ray_origin(pi, p_err[i], ni, d);
+                    for k in 0..3 {
+                        l.o[k][i] = o[k];
+                    }
                 }
                 l.prev_pdf[i] = lz * INV_PI;
                 l.depth[i] += 1;
@@ -484,11 +561,13 @@ fn main() {
         "lean x8",
         "tessera zsobol",
         "lean x1 zsobol",
+        "lean x1 zsobol robust",
     ];
-    let mut best = [f64::INFINITY; 5];
-    let mut images: [Vec<[f32; 3]>; 5] = Default::default();
+    let mut best = [f64::INFINITY; 6];
+    let mut images: [Vec<[f32; 3]>; 6] = Default::default();
     let zsobol = || ZSobolDraws::<1> {
         pixels: vec![ZSobolPixel::new(0, 0, 0, 0)],
+        current: [u32::MAX],
         index: [0],
         width: res,
         log2_spp: log2_spp_for(u64::from(spp)),
@@ -498,23 +577,24 @@ fn main() {
             let start = Instant::now();
             let img = match j {
                 0 => render(scene, integrator, &opts, &mut |_, _| {}).rgb(),
-                1 => lean.render::<1>(pixels, &mut HashDraws([0; 1])),
-                2 => lean.render::<8>(pixels, &mut HashDraws([0; 8])),
+                1 => lean.render::<1, false>(pixels, &mut HashDraws([0; 1])),
+                2 => lean.render::<8, false>(pixels, &mut HashDraws([0; 8])),
                 3 => render(&zsobol_scene, integrator, &opts, &mut |_, _| {}).rgb(),
-                _ => lean.render::<1>(pixels, &mut zsobol()),
+                4 => lean.render::<1, false>(pixels, &mut zsobol()),
+                _ => lean.render::<1, true>(pixels, &mut zsobol()),
             };
             *best = best.min(start.elapsed().as_secs_f64());
             images[j] = img;
         }
     }
-    for j in [1, 2, 4] {
+    for j in [1, 2, 4, 5] {
         let img = &mut images[j];
         for p in img.iter_mut() {
             p.iter_mut().for_each(|v| *v /= spp as f32);
         }
     }
     println!("cbox {res}x{res}, {spp} spp, 1 thread, best of 5");
-    for j in 0..5 {
+    for j in 0..6 {
         let rate = f64::from(pixels * spp) / best[j] / 1e6;
         let err = reference
             .as_ref()
@@ -525,7 +605,7 @@ fn main() {
                 )
             });
         println!(
-            "  {:<15} {:7.3} s {:6.3} M samples/s ({:.2}x tessera)  {err}",
+            "  {:<22} {:7.3} s {:6.3} M samples/s ({:.2}x tessera)  {err}",
             names[j],
             best[j],
             rate,
