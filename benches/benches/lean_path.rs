@@ -37,9 +37,9 @@ use tessera::render::{render, RenderOptions};
 use tessera::scene::load_scene;
 use tessera_core::bsdf::Bsdf;
 use tessera_core::emitter::Emitter;
-use tessera_core::geometry::{Prim, ShapeKind};
+use tessera_core::geometry::{interpolate_point, Prim, ShapeKind, SHADOW_EPSILON};
 use tessera_core::integrator::Integrator;
-use tessera_core::math::{gamma, offset_ray_origin, Ray};
+use tessera_core::math::{offset_ray_origin, Ray};
 use tessera_core::sampling::zsobol::{log2_spp_for, to_unit};
 use tessera_core::sampling::{dimension_of, Sampler, SamplerKind, Stage, ZSobolPixel};
 use tessera_core::scene::Scene;
@@ -48,9 +48,6 @@ use tessera_core::texture::Texture;
 const MAX_DEPTH: u32 = 8;
 const RR_DEPTH: u32 = 5;
 const OFFSET: f32 = 1e-4;
-/// The renderer's shadow segments stop this fraction short of the light (as
-/// `Interaction::spawn_ray_to`).
-const SHADOW_EPSILON: f32 = 1e-4;
 const INV_PI: f32 = std::f32::consts::FRAC_1_PI;
 
 /// The scene as flat tables indexed by primitive (BVH order), plus the light's triangles.
@@ -150,15 +147,6 @@ impl Tables {
         }
         Ok(t)
     }
-}
-
-/// A point at barycentrics `(b1, b2)` and its error bound, computed as the renderer's meshes do.
-#[inline(always)]
-fn interpolate(p0: Vec3, p1: Vec3, p2: Vec3, b: Vec2) -> (Vec3, Vec3) {
-    let b0 = 1.0 - b.x - b.y;
-    let p = p0 * b0 + p1 * b.x + p2 * b.y;
-    let err = ((p0 * b0).abs() + (p1 * b.x).abs() + (p2 * b.y).abs()) * gamma(7);
-    (p, err)
 }
 
 /// PCG's output hash of a 32-bit state.
@@ -367,7 +355,7 @@ impl Lean<'_> {
                 if ROBUST && live {
                     // The renderer's hit point: barycentric interpolation and its error bound.
                     let [a, b, c] = t.corners[prim[i]];
-                    let (q, e) = interpolate(a, b, c, bary[i]);
+                    let (q, e) = interpolate_point(a, b, c, bary[i].x, bary[i].y);
                     for k in 0..3 {
                         p[k][i] = q[k];
                     }
@@ -408,7 +396,7 @@ impl Lean<'_> {
                 let mut wo = [0f32; 3];
                 let (lp, lp_err) = if ROBUST {
                     let [a, b, c] = tri.corners;
-                    interpolate(a, b, c, Vec2::new(b1, b2))
+                    interpolate_point(a, b, c, b1, b2)
                 } else {
                     let mut q = Vec3::ZERO;
                     for k in 0..3 {

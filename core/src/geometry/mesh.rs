@@ -228,7 +228,7 @@ impl Mesh {
 /// The point at barycentrics `(b1, b2)` and its error bound (pbrt-v4's bound for the
 /// interpolation).
 #[inline]
-fn interpolate_point(p0: Vec3, p1: Vec3, p2: Vec3, b1: f32, b2: f32) -> (Vec3, Vec3) {
+pub fn interpolate_point(p0: Vec3, p1: Vec3, p2: Vec3, b1: f32, b2: f32) -> (Vec3, Vec3) {
     let b0 = 1.0 - b1 - b2;
     let p = p0 * b0 + p1 * b1 + p2 * b2;
     let err = ((p0 * b0).abs() + (p1 * b1).abs() + (p2 * b2).abs()) * gamma(7);

@@ -8,8 +8,8 @@ mod sphere;
 mod triangle;
 
 pub use disk::Disk;
-pub use interaction::Interaction;
-pub use mesh::{Mesh, TriangleHit};
+pub use interaction::{Interaction, SHADOW_EPSILON};
+pub use mesh::{interpolate_point, Mesh, TriangleHit};
 pub use prim::{Hit, Prim};
 pub use shape::{area_to_solid_angle, PositionSample, SampleToward, Shape, ShapeKind};
 pub use sphere::{ConeSample, Sphere};
