@@ -466,18 +466,19 @@ impl Lean<'_> {
                 let tan1 = [1.0 + sign * nx * nx * a, sign * b, -sign * nx];
                 let tan2 = [b, sign + ny * ny * a, -ny];
                 for k in 0..3 {
-                    l.o[k][i] = p[k][i] + n[k][i] * OFFSET;
                     l.d[k][i] = tan1[k] * lx + tan2[k] * ly + n[k][i] * lz;
                     l.throughput[k][i] *= albedo[k][i];
                 }
-                if ROBUST {
+                let pi = Vec3::new(p[0][i], p[1][i], p[2][i]);
+                let ni = Vec3::new(n[0][i], n[1][i], n[2][i]);
+                let o = if ROBUST {
                     let d = Vec3::new(l.d[0][i], l.d[1][i], l.d[2][i]);
-                    let pi = Vec3::new(p[0][i], p[1][i], p[2][i]);
-                    let ni = Vec3::new(n[0][i], n[1][i], n[2][i]);
-                    let o = offset_ray_origin(pi, p_err[i], ni, d);
-                    for k in 0..3 {
-                        l.o[k][i] = o[k];
-                    }
+                    offset_ray_origin(pi, p_err[i], ni, d)
+                } else {
+                    pi + ni * OFFSET
+                };
+                for k in 0..3 {
+                    l.o[k][i] = o[k];
                 }
                 l.prev_pdf[i] = lz * INV_PI;
                 l.depth[i] += 1;
