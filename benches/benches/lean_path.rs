@@ -2,7 +2,7 @@
 //! nothing the box does not need, and what would running eight paths in SIMD lanes add to that?
 //!
 //! `cargo bench -p tessera-benches --bench lean_path [-- RES SPP]` (defaults 128 and 64) loads
-//! `scenes/cbox.xml` (box filter) and renders it six ways, one thread each, best of five
+//! `scenes/cbox.xml` (box filter) and renders it eight ways, one thread each, best of five
 //! alternating rounds:
 //! - `tessera`: the renderer itself (`tessera::render::render`, `path` integrator, the
 //!   `independent` sampler);
@@ -16,6 +16,9 @@
 //! - `lean x8`: the same loop over eight paths at a time in structure-of-arrays lanes (a lane
 //!   whose path ends starts the next sample), the arithmetic written as loops over the lanes for
 //!   the compiler to vectorise; ray casts stay one ray at a time;
+//! - `lean x2` and `lean x4` (printed last): the same loop over two and four paths, which
+//!   interleaves their stages. Each path is one chain of dependent work; chains side by side
+//!   would let the processor overlap them, if waiting on one chain were what limits it;
 //! - `tessera zsobol` and `lean x1 zsobol`: the same with the `zsobol` sampler (the lean loop
 //!   draws from Tessera's `ZSobolPixel` at the renderer's dimensions, keeping a pixel's cache
 //!   while it takes the pixel's samples, as the renderer's workers do);
@@ -551,9 +554,11 @@ fn main() {
         "tessera zsobol",
         "lean x1 zsobol",
         "lean x1 zsobol robust",
+        "lean x2",
+        "lean x4",
     ];
-    let mut best = [f64::INFINITY; 6];
-    let mut images: [Vec<[f32; 3]>; 6] = Default::default();
+    let mut best = [f64::INFINITY; 8];
+    let mut images: [Vec<[f32; 3]>; 8] = Default::default();
     let zsobol = || ZSobolDraws::<1> {
         pixels: vec![ZSobolPixel::new(0, 0, 0, 0)],
         current: [u32::MAX],
@@ -570,20 +575,22 @@ fn main() {
                 2 => lean.render::<8, false>(pixels, &mut HashDraws([0; 8])),
                 3 => render(&zsobol_scene, integrator, &opts, &mut |_, _| {}).rgb(),
                 4 => lean.render::<1, false>(pixels, &mut zsobol()),
-                _ => lean.render::<1, true>(pixels, &mut zsobol()),
+                5 => lean.render::<1, true>(pixels, &mut zsobol()),
+                6 => lean.render::<2, false>(pixels, &mut HashDraws([0; 2])),
+                _ => lean.render::<4, false>(pixels, &mut HashDraws([0; 4])),
             };
             *best = best.min(start.elapsed().as_secs_f64());
             images[j] = img;
         }
     }
-    for j in [1, 2, 4, 5] {
+    for j in [1, 2, 4, 5, 6, 7] {
         let img = &mut images[j];
         for p in img.iter_mut() {
             p.iter_mut().for_each(|v| *v /= spp as f32);
         }
     }
     println!("cbox {res}x{res}, {spp} spp, 1 thread, best of 5");
-    for j in 0..6 {
+    for j in 0..8 {
         let rate = f64::from(pixels * spp) / best[j] / 1e6;
         let err = reference
             .as_ref()
