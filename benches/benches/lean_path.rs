@@ -583,8 +583,12 @@ fn main() {
             images[j] = img;
         }
     }
-    for j in [1, 2, 4, 5, 6, 7] {
-        let img = &mut images[j];
+    // The lean loops return pixel sums; the renderer returns means.
+    for (img, _) in images
+        .iter_mut()
+        .zip(names)
+        .filter(|(_, n)| n.starts_with("lean"))
+    {
         for p in img.iter_mut() {
             p.iter_mut().for_each(|v| *v /= spp as f32);
         }
