@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Error against time, Tessera against Mitsuba 3, on the benchmark scenes at 128x128 (box filter,
 # the scene files' max_depth 8): writes docs/bench/NAME.csv (Tessera's rows, then Mitsuba's)
-# and docs/bench/NAME.png, and prints each curve's time to relMSE 0.01.
+# and docs/bench/NAME.png, and prints each curve's time to relMSE 0.01, 1e-3, 3e-4 and 1e-4
+# (TARGETS=a,b,.. to choose) with its ratio to Mitsuba's (llvm_ad_rgb, if measured).
 #
 #   scripts/bench_scenes.sh [THREADS [MAX_SECONDS [OUTDIR]]]      (defaults: 2, 60, docs/bench)
 #
@@ -42,6 +43,13 @@ for NAME in cbox veach_mis; do
     "$PYTHON" scripts/mitsuba_bench.py "scenes/$NAME.xml" -D res=128 -D rfilter=box \
         --reference "$REF" --variant "$VARIANTS" --seeds "$SEEDS" --repeats "$REPEATS" --threads "$THREADS" --max-seconds "$MAX" \
         -o "$OUT/$NAME.csv"
+    # Each curve's time to the README's error levels, and its ratio to Mitsuba's fastest
+    # variant measured (llvm_ad_rgb when it is among VARIANTS, else the first).
+    case ",$VARIANTS," in
+        *,llvm_ad_rgb,*) PEER="mitsuba-llvm_ad_rgb:path" ;;
+        *) PEER="mitsuba-${VARIANTS%%,*}:path" ;;
+    esac
     "$TESSERA" bench --plot-only "$OUT/$NAME.csv" --plot "$OUT/$NAME.png" \
-        --title "$NAME.xml, 128x128, max_depth 8, $THREADS threads"
+        --title "$NAME.xml, 128x128, max_depth 8, $THREADS threads" \
+        --target-relmse "${TARGETS:-0.01,0.001,0.0003,0.0001}" --ratio-to "$PEER"
 done

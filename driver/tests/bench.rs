@@ -420,3 +420,75 @@ fn repeats_keep_the_images_and_the_least_times() {
     let (o, _) = bench("0");
     assert_bad_input(&tmp, &o, "--repeats must be at least 1", &before);
 }
+
+/// `--target-relmse` takes a list and `--ratio-to` prints each curve's time as a ratio to the
+/// named curve's (exact between waves, a bound where the peer stops short); a name that fits no
+/// curve, or several, is a one-line usage error that writes no plot.
+#[test]
+fn ratio_to_prints_ratios_and_bounds_for_each_target() {
+    let tmp = Tmp::new("ratio");
+    let csv = tmp.0.join("r.csv");
+    // Tessera: relMSE 0.02 at 1 s, 0.005 at 4 s (0.01 at 2 s), 0.0005 at 16 s (0.001 at
+    // 4 * 4^(ln 5 / ln 10) = 10.54 s). The peer: 0.02 at 2 s, 0.005 at 8 s (0.01 at 4 s), and it stops there.
+    let report = format!(
+        "{CSV_HEADER}\n\
+         path_mis,zsobol,1,2,1,1,0,0.02,0\n\
+         path_mis,zsobol,4,2,4,1,0,0.005,0\n\
+         path_mis,zsobol,16,2,16,1,0,0.0005,0\n\
+         mitsuba-llvm_ad_rgb:path,independent,1,2,2,1,0,0.02,0\n\
+         mitsuba-llvm_ad_rgb:path,independent,4,2,8,1,0,0.005,0\n"
+    );
+    std::fs::write(&csv, report).unwrap();
+    let png = tmp.0.join("p.png");
+    let plot_only = |extra: &[&str]| {
+        let mut a = vec![
+            os("bench"),
+            os("--plot-only"),
+            csv.as_os_str(),
+            os("--plot"),
+            png.as_os_str(),
+        ];
+        a.extend(extra.iter().map(|s| os(s)));
+        run(&a)
+    };
+    let o = plot_only(&[
+        "--target-relmse",
+        "0.01,0.001,0.0001",
+        "--ratio-to",
+        "mitsuba",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{o:?}");
+    let out = String::from_utf8_lossy(&o.stdout);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(
+        lines,
+        [
+            "path_mis (zsobol) (2 threads): time to relMSE 0.01: 2.000 s (0.50x mitsuba)",
+            "mitsuba-llvm_ad_rgb:path (2 threads): time to relMSE 0.01: 4.000 s",
+            // The peer needs more than its last 8 s: at most 10.54 / 8.
+            "path_mis (zsobol) (2 threads): time to relMSE 0.001: 10.541 s (<= 1.32x mitsuba)",
+            "mitsuba-llvm_ad_rgb:path (2 threads): time to relMSE 0.001: not reached \
+             (best relMSE 5.000e-3 at 8.000 s)",
+            // Neither reaches 1e-4: no bound either way.
+            "path_mis (zsobol) (2 threads): time to relMSE 0.0001: not reached \
+             (best relMSE 5.000e-4 at 16.000 s) (ratio to mitsuba unknown)",
+            "mitsuba-llvm_ad_rgb:path (2 threads): time to relMSE 0.0001: not reached \
+             (best relMSE 5.000e-3 at 8.000 s)",
+        ],
+        "{out}"
+    );
+    assert!(png.exists());
+    std::fs::remove_file(&png).unwrap();
+    let before = tmp.entries();
+    let o = plot_only(&["--ratio-to", "Mitsuba"]);
+    assert_bad_input(&tmp, &o, "--ratio-to Mitsuba: no such curve", &before);
+    let o = plot_only(&["--ratio-to", ""]);
+    assert_bad_input(&tmp, &o, "names several curves", &before);
+    let o = plot_only(&["--target-relmse", "0.01,0"]);
+    assert_bad_input(
+        &tmp,
+        &o,
+        "--target-relmse must be positive, found 0",
+        &before,
+    );
+}

@@ -13,6 +13,7 @@
 //! `scripts/mitsuba_bench.py` appends rows of the same form (integrator `mitsuba:NAME`).
 pub mod mean;
 pub mod plot;
+pub mod ratio;
 pub mod repeat;
 pub(crate) mod text;
 

@@ -3,6 +3,7 @@
 //! `scripts/mitsuba_bench.py`.
 use crate::bench::mean::mean_curve;
 use crate::bench::plot::write_plot;
+use crate::bench::ratio::{ratio, Ratio};
 use crate::bench::repeat::fastest_curve;
 use crate::bench::{curves, read_csv, run_waves, time_to_target, write_csv, Row, WaveLimits};
 use crate::image_io::{read_image, Format};
@@ -58,9 +59,15 @@ pub struct BenchArgs {
     /// less idle at each wave's end (the image bits do not depend on it).
     #[arg(long, default_value_t = 16)]
     pub tile_size: u32,
-    /// The relMSE whose time to reach is printed per integrator.
-    #[arg(long, default_value_t = 0.01)]
-    pub target_relmse: f64,
+    /// The relMSEs whose time to reach is printed per curve, comma separated (the plot marks
+    /// the first).
+    #[arg(long, value_delimiter = ',', default_value = "0.01")]
+    pub target_relmse: Vec<f64>,
+    /// Also print each curve's time to target as a ratio to this curve's (its label as printed,
+    /// e.g. `mitsuba-llvm_ad_rgb:path`, or the start of one label): `0.77x`, or a bound (`<=`,
+    /// `>=`) where one of the two stopped short of the target or reached it at its first wave.
+    #[arg(long)]
+    pub ratio_to: Option<String>,
     /// Override a scene `<default>`: -D name=value.
     #[arg(short = 'D', value_parser = super::parse_define)]
     pub defines: Vec<(String, String)>,
@@ -101,15 +108,57 @@ fn file_name(p: &Path) -> String {
     )
 }
 
-/// Prints each curve's time to reach the target relMSE.
-fn print_times(rows: &[Row], target: f64) {
-    for (name, c) in curves(rows) {
-        let threads = c.first().map_or(0, |r| r.threads);
-        println!(
-            "{name} ({threads} threads): time to relMSE {target}: {}",
-            time_to_target(&c, target)
-        );
+/// The curve `--ratio-to` names: the one whose label is `name`, else the only one whose label
+/// starts with it.
+fn peer_curve<'a>(all: &'a [(String, Vec<Row>)], name: &str) -> Result<&'a [Row], String> {
+    if let Some((_, c)) = all.iter().find(|(label, _)| label == name) {
+        return Ok(c);
     }
+    let starts: Vec<_> = all.iter().filter(|(l, _)| l.starts_with(name)).collect();
+    match starts.as_slice() {
+        [(_, c)] => Ok(c),
+        [] => Err(format!(
+            "--ratio-to {name}: no such curve (curves: {})",
+            all.iter()
+                .map(|(l, _)| l.as_str())
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
+        _ => Err(format!(
+            "--ratio-to {name}: names several curves ({})",
+            starts
+                .iter()
+                .map(|(l, _)| l.as_str())
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
+    }
+}
+
+/// Prints each curve's time to reach each target relMSE, and with `ratio_to` its ratio to that
+/// curve's.
+fn print_times(rows: &[Row], targets: &[f64], ratio_to: Option<&str>) -> Result<(), String> {
+    let all = curves(rows);
+    let peer = ratio_to.map(|n| peer_curve(&all, n)).transpose()?;
+    for &target in targets {
+        for (name, c) in &all {
+            let threads = c.first().map_or(0, |r| r.threads);
+            let mut line = format!(
+                "{name} ({threads} threads): time to relMSE {target}: {}",
+                time_to_target(c, target)
+            );
+            if let (Some(p), Some(pn)) = (peer, ratio_to) {
+                if !std::ptr::eq(p, c.as_slice()) {
+                    line.push_str(&match ratio(c, p, target) {
+                        Ratio::Unknown => format!(" (ratio to {pn} unknown)"),
+                        r => format!(" ({r} {pn})"),
+                    });
+                }
+            }
+            println!("{line}");
+        }
+    }
+    Ok(())
 }
 
 /// Runs the command; returns the exit code.
@@ -119,11 +168,12 @@ pub fn run(args: &BenchArgs) -> i32 {
             return usage(format!("{}: the plot must be a .png file", p.display()));
         }
     }
-    if !(args.target_relmse > 0.0 && args.target_relmse.is_finite()) {
-        return usage(format!(
-            "--target-relmse must be positive, found {}",
-            args.target_relmse
-        ));
+    if let Some(t) = args
+        .target_relmse
+        .iter()
+        .find(|t| !(**t > 0.0 && t.is_finite()))
+    {
+        return usage(format!("--target-relmse must be positive, found {t}"));
     }
     if let Some(csv) = &args.plot_only {
         return plot_only(args, csv);
@@ -264,8 +314,12 @@ pub fn run(args: &BenchArgs) -> i32 {
             }
         }
     }
-    print_times(&rows, args.target_relmse);
+    // A bad --ratio-to is found only now, when the curves exist; the measurements are still
+    // written, and the exit code says the command was misused.
     let mut code = 0;
+    if let Err(e) = print_times(&rows, &args.target_relmse, args.ratio_to.as_deref()) {
+        code = usage(e);
+    }
     if let Err(e) = write_csv(output, &rows) {
         eprintln!("error: {e}");
         code = 1;
@@ -275,7 +329,7 @@ pub fn run(args: &BenchArgs) -> i32 {
             .title
             .clone()
             .unwrap_or_else(|| format!("{} ({w}x{h}, {threads} threads)", file_name(scene_path)));
-        if let Err(e) = write_plot(p, &rows, &title, Some(args.target_relmse)) {
+        if let Err(e) = write_plot(p, &rows, &title, args.target_relmse.first().copied()) {
             eprintln!("error: {e}");
             code = 1;
         }
@@ -341,9 +395,11 @@ fn plot_only(args: &BenchArgs, csv: &Path) -> i32 {
         Ok(r) => r,
         Err(e) => return usage(e),
     };
-    print_times(&rows, args.target_relmse);
+    if let Err(e) = print_times(&rows, &args.target_relmse, args.ratio_to.as_deref()) {
+        return usage(e);
+    }
     let title = args.title.clone().unwrap_or_else(|| file_name(csv));
-    match write_plot(png, &rows, &title, Some(args.target_relmse)) {
+    match write_plot(png, &rows, &title, args.target_relmse.first().copied()) {
         Ok(()) => 0,
         Err(e) => {
             eprintln!("error: {e}");
