@@ -324,25 +324,29 @@ impl std::fmt::Display for TimeToTarget {
     }
 }
 
+/// A row of a curve named `x` with only its time and relMSE set (for unit tests of what reads
+/// curves).
+#[cfg(test)]
+pub(crate) fn test_row(seconds: f64, relmse: f64) -> Row {
+    Row {
+        integrator: "x".into(),
+        sampler: "independent".into(),
+        spp: 1,
+        threads: 1,
+        seconds,
+        samples_per_second: 1.0,
+        errors: Errors {
+            rmse: 0.0,
+            relmse,
+            mae: 0.0,
+        },
+    }
+}
+
 #[cfg(test)]
 mod tests {
+    use super::test_row as row;
     use super::*;
-
-    fn row(seconds: f64, relmse: f64) -> Row {
-        Row {
-            integrator: "x".into(),
-            sampler: "independent".into(),
-            spp: 1,
-            threads: 1,
-            seconds,
-            samples_per_second: 1.0,
-            errors: Errors {
-                rmse: 0.0,
-                relmse,
-                mae: 0.0,
-            },
-        }
-    }
 
     #[test]
     fn errors_of_a_known_pair() {

@@ -62,25 +62,11 @@ impl std::fmt::Display for Ratio {
 
 #[cfg(test)]
 mod tests {
+    use super::super::test_row;
     use super::*;
 
     fn curve(points: &[(f64, f64)]) -> Vec<Row> {
-        points
-            .iter()
-            .map(|&(seconds, relmse)| Row {
-                integrator: "x".into(),
-                sampler: "independent".into(),
-                spp: 1,
-                threads: 1,
-                seconds,
-                samples_per_second: 1.0,
-                errors: super::super::Errors {
-                    rmse: 0.0,
-                    relmse,
-                    mae: 0.0,
-                },
-            })
-            .collect()
+        points.iter().map(|&(s, e)| test_row(s, e)).collect()
     }
 
     #[test]
