@@ -9,6 +9,8 @@
 //! surface, a continuation ray (uniform over the hemisphere the hit was seen from, closest hit)
 //! and a shadow segment to a uniform point on the light (any hit), both with Tessera's own ray
 //! offsets; the packets take consecutive rays, so they are as incoherent as the path loop's.
+//! Embree one ray at a time also runs in its robust mode (`embreeR1`, `RTC_SCENE_FLAG_ROBUST`: a
+//! watertight triangle test and conservative node tests, the guarantees Tessera's casts give).
 //! Rays per second of one thread, best of 5 alternating rounds; the hit counts of all casts must
 //! agree (it panics otherwise).
 //!
@@ -17,7 +19,7 @@
 //! (`scripts/install_embree.sh`).
 mod embree_ffi;
 
-use embree_ffi::Embree;
+use embree_ffi::{Embree, Mode};
 use glam::Vec3;
 use std::path::Path;
 use std::time::Instant;
@@ -102,6 +104,7 @@ fn main() {
     } = triangles(&scene);
     assert!(!light.is_empty(), "the scene needs a triangle area light");
     let embree = Embree::new(&pos, &idx);
+    let robust = Embree::with_mode(&pos, &idx, Mode::Robust);
     let b = scene.bounds();
     let (lo, size) = (b.min, b.max - b.min);
     let mut rng = Rng(11);
@@ -128,12 +131,21 @@ fn main() {
         bounce.len()
     );
     println!(
-        "{:>10} {:>9} {:>9} {:>9} {:>9} {:>8} {:>8} {:>8}",
-        "rays", "tessera", "embree1", "embree8", "embree16", "t/e1", "t/e8", "t/e16"
+        "{:>10} {:>9} {:>9} {:>9} {:>9} {:>9} {:>8} {:>8} {:>8} {:>8}",
+        "rays",
+        "tessera",
+        "embree1",
+        "embree8",
+        "embree16",
+        "embreeR1",
+        "t/e1",
+        "t/e8",
+        "t/e16",
+        "t/eR1"
     );
     for (kind, rays, any) in [("bounce", &bounce, false), ("shadow", &shadow, true)] {
-        let mut best = [0.0f64; 4];
-        let mut hits = [0usize; 4];
+        let mut best = [0.0f64; 5];
+        let mut hits = [0usize; 5];
         for _ in 0..5 {
             let r = if any {
                 [
@@ -141,6 +153,7 @@ fn main() {
                     rate(rays, 1, 1, |c| usize::from(embree.occluded(&c[0]))),
                     rate(rays, 8, 1, |c| embree.occluded8(c)),
                     rate(rays, 16, 1, |c| embree.occluded16(c)),
+                    rate(rays, 1, 1, |c| usize::from(robust.occluded(&c[0]))),
                 ]
             } else {
                 [
@@ -152,6 +165,9 @@ fn main() {
                     }),
                     rate(rays, 8, 1, |c| embree.intersect8(c)),
                     rate(rays, 16, 1, |c| embree.intersect16(c)),
+                    rate(rays, 1, 1, |c| {
+                        usize::from(robust.intersect(&c[0]).is_some())
+                    }),
                 ]
             };
             for (k, (s, h)) in r.into_iter().enumerate() {
@@ -170,14 +186,17 @@ fn main() {
             );
         }
         println!(
-            "{kind:>10} {:>9.2} {:>9.2} {:>9.2} {:>9.2} {:>8.2} {:>8.2} {:>8.2}   hits {:?}",
+            "{kind:>10} {:>9.2} {:>9.2} {:>9.2} {:>9.2} {:>9.2} {:>8.2} {:>8.2} {:>8.2} {:>8.2}   \
+             hits {:?}",
             best[0] / 1e6,
             best[1] / 1e6,
             best[2] / 1e6,
             best[3] / 1e6,
+            best[4] / 1e6,
             best[0] / best[1],
             best[0] / best[2],
             best[0] / best[3],
+            best[0] / best[4],
             hits
         );
     }

@@ -50,6 +50,15 @@ const BUFFER_TYPE_INDEX: u32 = 0;
 const BUFFER_TYPE_VERTEX: u32 = 1;
 const FORMAT_UINT3: u32 = 0x5003;
 const FORMAT_FLOAT3: u32 = 0x9003;
+/// `RTC_SCENE_FLAG_ROBUST`: "avoid optimizations that reduce arithmetic accuracy". Embree 3 then
+/// builds its indexed triangle leaves and runs the watertight Pluecker test with conservative
+/// node tests: the guarantees Tessera's casts always give.
+const SCENE_FLAG_ROBUST: u32 = 1 << 2;
+/// The ray's start. Tessera's rays cover `t` in `(0, t_max)`; Embree's test accepts
+/// `t >= tnear`, and in robust mode it reports a ray that starts exactly on a surface (an origin
+/// with a zero coordinate on a wall at zero, whose offset is zero) as hitting it at `t = 0`.
+/// The least positive float excludes `t = 0` as Tessera does, and nothing else.
+const TNEAR: f32 = f32::MIN_POSITIVE;
 
 #[link(name = "embree3")]
 extern "C" {
@@ -73,6 +82,7 @@ extern "C" {
     fn rtcAttachGeometry(scene: *mut c_void, geometry: *mut c_void) -> u32;
     fn rtcReleaseGeometry(geometry: *mut c_void);
     fn rtcCommitScene(scene: *mut c_void);
+    fn rtcSetSceneFlags(scene: *mut c_void, flags: u32);
     fn rtcIntersect1(scene: *mut c_void, ctx: *mut RtcIntersectContext, rayhit: *mut RtcRayHit);
     fn rtcOccluded1(scene: *mut c_void, ctx: *mut RtcIntersectContext, ray: *mut RtcRay);
     fn rtcIntersect8(
@@ -146,7 +156,7 @@ impl<const N: usize> RtcRayN<N> {
     fn of(rays: &[Ray]) -> Self {
         let mut p = RtcRayN {
             org: [[0.0; N]; 3],
-            tnear: [0.0; N],
+            tnear: [TNEAR; N],
             dir: [[0.0; N]; 3],
             time: [0.0; N],
             tfar: [0.0; N],
@@ -179,8 +189,23 @@ pub struct Embree {
     _indices: Vec<u32>,
 }
 
+/// Which of Embree's two modes a scene is built in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mode {
+    /// The default flags: its fastest triangle test (not watertight).
+    Fast,
+    /// `RTC_SCENE_FLAG_ROBUST`: a watertight triangle test, as Tessera's.
+    Robust,
+}
+
 impl Embree {
+    /// A scene of one triangle mesh in the default (fast) mode.
     pub fn new(positions: &[[f32; 3]], indices: &[[u32; 3]]) -> Embree {
+        Self::with_mode(positions, indices, Mode::Fast)
+    }
+
+    /// A scene of one triangle mesh in `mode`.
+    pub fn with_mode(positions: &[[f32; 3]], indices: &[[u32; 3]], mode: Mode) -> Embree {
         // Embree reads vertex buffers 16 bytes at a time: one float of padding at the end.
         let mut vertices: Vec<f32> = positions.iter().flatten().copied().collect();
         vertices.push(0.0);
@@ -192,6 +217,9 @@ impl Embree {
             let device = rtcNewDevice(c"threads=1".as_ptr());
             assert!(!device.is_null(), "rtcNewDevice failed");
             let scene = rtcNewScene(device);
+            if mode == Mode::Robust && !scene.is_null() {
+                rtcSetSceneFlags(scene, SCENE_FLAG_ROBUST);
+            }
             let geom = rtcNewGeometry(device, GEOMETRY_TYPE_TRIANGLE);
             assert!(
                 !scene.is_null() && !geom.is_null(),
@@ -234,7 +262,7 @@ impl Embree {
     fn ray(r: &Ray) -> RtcRay {
         RtcRay {
             org: r.o.to_array(),
-            tnear: 0.0,
+            tnear: TNEAR,
             dir: r.d.to_array(),
             time: 0.0,
             tfar: r.t_max,
