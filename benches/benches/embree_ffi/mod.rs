@@ -51,8 +51,8 @@ const BUFFER_TYPE_VERTEX: u32 = 1;
 const FORMAT_UINT3: u32 = 0x5003;
 const FORMAT_FLOAT3: u32 = 0x9003;
 /// `RTC_SCENE_FLAG_ROBUST`: "avoid optimizations that reduce arithmetic accuracy". Embree 3 then
-/// builds its indexed triangle leaves and runs the watertight Pluecker test with conservative
-/// node tests: the guarantees Tessera's casts always give.
+/// stores each leaf's triangle corners (`Triangle4v`, as Tessera's blocks do) and runs the
+/// watertight Pluecker test with conservative node tests: the guarantees Tessera's casts give.
 const SCENE_FLAG_ROBUST: u32 = 1 << 2;
 /// The ray's start. Tessera's rays cover `t` in `(0, t_max)`; Embree's test accepts
 /// `t >= tnear`, and in robust mode it reports a ray that starts exactly on a surface (an origin
@@ -217,14 +217,14 @@ impl Embree {
             let device = rtcNewDevice(c"threads=1".as_ptr());
             assert!(!device.is_null(), "rtcNewDevice failed");
             let scene = rtcNewScene(device);
-            if mode == Mode::Robust && !scene.is_null() {
-                rtcSetSceneFlags(scene, SCENE_FLAG_ROBUST);
-            }
             let geom = rtcNewGeometry(device, GEOMETRY_TYPE_TRIANGLE);
             assert!(
                 !scene.is_null() && !geom.is_null(),
                 "Embree scene or geometry"
             );
+            if mode == Mode::Robust {
+                rtcSetSceneFlags(scene, SCENE_FLAG_ROBUST);
+            }
             rtcSetSharedGeometryBuffer(
                 geom,
                 BUFFER_TYPE_VERTEX,
