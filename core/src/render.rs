@@ -114,6 +114,7 @@ pub fn render_samples_cached<P: Probe>(
                 }
                 none => none.insert(ZSobolPixel::new(seed, x, y, log2_spp)),
             };
+            pixel.set_run(samples.clone());
             for index in samples {
                 add(trace(scene, integrator, x, y, pixel.sampler(index), probe));
             }

@@ -8,6 +8,7 @@ pub mod owen;
 pub mod sobol;
 pub mod warp;
 pub mod zsobol;
+mod zsobol_lanes;
 mod zsobol_pixel;
 
 pub use discrete::Discrete1D;

@@ -81,13 +81,27 @@ const fn tables(columns: [u32; 32], reversed: bool) -> [[u32; 256]; 4] {
 }
 
 static DIM1: [[u32; 256]; 4] = tables(COLUMNS[0], false);
-static DIM1_REVERSED: [[u32; 256]; 4] = tables(COLUMNS[0], true);
-static DIM2_REVERSED: [[u32; 256]; 4] = tables(COLUMNS[1], true);
-static DIM3_REVERSED: [[u32; 256]; 4] = tables(COLUMNS[2], true);
+
+/// Dimensions 2 (low word) and 3 (high word), bit-reversed, in one table: a paired draw needs
+/// both, and one pass of four lookups finds them.
+static DIM23_REVERSED: [[u64; 256]; 4] = {
+    let (a, b) = (tables(COLUMNS[1], true), tables(COLUMNS[2], true));
+    let mut t = [[0u64; 256]; 4];
+    let mut k = 0;
+    while k < 4 {
+        let mut v = 0;
+        while v < 256 {
+            t[k][v] = a[k][v] as u64 | (b[k][v] as u64) << 32;
+            v += 1;
+        }
+        k += 1;
+    }
+    t
+};
 
 /// The XOR of a table's entries for the four bytes of `i`.
 #[inline(always)]
-fn lookup(t: &[[u32; 256]; 4], i: u32) -> u32 {
+fn lookup<T: Copy + core::ops::BitXor<Output = T>>(t: &[[T; 256]; 4], i: u32) -> T {
     t[0][(i & 0xff) as usize]
         ^ t[1][((i >> 8) & 0xff) as usize]
         ^ t[2][((i >> 16) & 0xff) as usize]
@@ -106,22 +120,40 @@ pub fn sobol_dim1(i: u32) -> u32 {
     lookup(&DIM1, i)
 }
 
-/// Dimension 1 of point `i` with its bits reversed (what Owen scrambling works on).
-#[inline]
+/// Dimension 1 of point `i` with its bits reversed (what Owen scrambling works on). Column `k`
+/// of the matrix holds the binomial coefficients `C(k, j)` mod 2, which are odd exactly when
+/// the binary digits of `j` are among those of `k` (Lucas' theorem); so reversed bit `j` is the
+/// parity of the bits of `i` at the positions `k` whose digits include `j`'s, which five
+/// shift-and-XOR steps fold together (one per binary digit of a position). Shifts instead of
+/// table lookups, so that eight lanes of it vectorise ([`super::zsobol_lanes`]).
+#[inline(always)]
 pub fn sobol_dim1_reversed(i: u32) -> u32 {
-    lookup(&DIM1_REVERSED, i)
+    let mut y = i;
+    y ^= (y >> 1) & 0x5555_5555;
+    y ^= (y >> 2) & 0x3333_3333;
+    y ^= (y >> 4) & 0x0f0f_0f0f;
+    y ^= (y >> 8) & 0x00ff_00ff;
+    y ^= (y >> 16) & 0x0000_ffff;
+    y
+}
+
+/// Dimensions 2 and 3 of point `i`, bit-reversed.
+#[inline(always)]
+pub fn sobol_dim23_reversed(i: u32) -> (u32, u32) {
+    let both = lookup(&DIM23_REVERSED, i);
+    (both as u32, (both >> 32) as u32)
 }
 
 /// Dimension 2 of point `i` with its bits reversed.
 #[inline]
 pub fn sobol_dim2_reversed(i: u32) -> u32 {
-    lookup(&DIM2_REVERSED, i)
+    sobol_dim23_reversed(i).0
 }
 
 /// Dimension 3 of point `i` with its bits reversed.
 #[inline]
 pub fn sobol_dim3_reversed(i: u32) -> u32 {
-    lookup(&DIM3_REVERSED, i)
+    sobol_dim23_reversed(i).1
 }
 
 /// Dimension `dim` (0 to 3) of point `i` by the plain matrix-vector product (the tables'

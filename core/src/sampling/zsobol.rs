@@ -28,8 +28,7 @@
 //! Paired draws. A 2D draw that the layout pairs with an earlier one ([`paired_dimension`]:
 //! the point on the emitter at bounce 0 with the camera's offset, the point on the emitter at
 //! bounce `d + 1` with the BSDF direction of bounce `d`) does not permute the index with its
-//! own scramble: it takes Sobol dimensions 2 and 3 ([`sobol_dim2_reversed`],
-//! [`sobol_dim3_reversed`]) of its partner's permuted index, Owen-scrambled with its own seeds. A pixel's points of the couple are then one 4D
+//! own scramble: it takes Sobol dimensions 2 and 3 ([`sobol_dim23_reversed`](super::sobol::sobol_dim23_reversed)) of its partner's permuted index, Owen-scrambled with its own seeds. A pixel's points of the couple are then one 4D
 //! (3, m, 4)-net (Sobol dimensions 0 to 3) instead of two 2D nets joined at random, which
 //! stratifies what the couple integrates together (the light over the pixel, the light found
 //! through a bounce). The paired 2D points alone form a (2, m, 2)-net (t = 1 for most m).
@@ -50,7 +49,7 @@
 //! for a fixed `K`, rendering samples `0..a` then `a..b` equals rendering `0..b`.
 use super::layout::paired_dimension;
 use super::owen::{mix64, reversed_lk, SAMPLE_SEED_MUL};
-use super::sobol::{sobol_dim1_reversed, sobol_dim2_reversed, sobol_dim3_reversed};
+use super::sobol::{sobol_dim1_reversed, sobol_dim23_reversed};
 use super::Sampler;
 use glam::Vec2;
 
@@ -103,6 +102,8 @@ pub struct ZSobolSampler {
     pixel_mul: u64,
     /// Hash of the seed and the epoch.
     key: u64,
+    /// The epoch `s >> K`.
+    epoch: u64,
     /// The next dimension.
     dimension: u32,
 }
@@ -147,8 +148,28 @@ impl ZSobolSampler {
             sample_reversed: ((within as u32).checked_shl(32 - k).unwrap_or(0)).reverse_bits(),
             pixel_mul: pixel.wrapping_mul(SAMPLE_SEED_MUL),
             key: mix64(seed ^ mix64(epoch ^ 0x6a09_e667_f3bc_c909)),
+            epoch,
             dimension: 0,
         }
+    }
+
+    /// The sampler of sample `index` of the same pixel, seed and `K`, when it lies in this
+    /// sample's epoch (the same block): equal to `ZSobolSampler::new` for it, with only the
+    /// sample's own bits recomputed. `None` for a sample of another epoch.
+    #[inline]
+    pub fn sibling(&self, index: u64) -> Option<ZSobolSampler> {
+        let k = self.log2_spp;
+        if index >> k != self.epoch {
+            return None;
+        }
+        let mask = (1u64 << k) - 1;
+        let within = index & mask;
+        Some(ZSobolSampler {
+            morton_index: (self.morton_index & !mask) | within,
+            sample_reversed: ((within as u32).checked_shl(32 - k).unwrap_or(0)).reverse_bits(),
+            dimension: 0,
+            ..self.clone()
+        })
     }
 
     /// The Morton index (before any permutation).
@@ -267,7 +288,8 @@ pub fn value_2d_of(d: DimensionDraw) -> (u32, u32) {
 /// partner's permuted index `index`, Owen-scrambled with this draw's own seeds.
 #[inline(always)]
 pub fn value_2d_paired_of(d: DimensionDraw, index: u32) -> (u32, u32) {
-    scramble_pair(sobol_dim2_reversed(index), sobol_dim3_reversed(index), d)
+    let (x, y) = sobol_dim23_reversed(index);
+    scramble_pair(x, y, d)
 }
 
 /// Owen-scrambles two bit-reversed Sobol coordinates with `d`'s seeds and un-reverses them.

@@ -9,13 +9,17 @@
 //! cleared, and the dimensions' hashes, which depend on the seed and epoch alone, are kept
 //! from pixel to pixel. That matters when each pixel takes one sample at a time (the first
 //! waves of a benchmark, adaptive passes), where the table's set-up and the hashes were about a
-//! third of a pixel's sampler work. Values are exactly those of [`ZSobolSampler`] (tested
-//! below): caching changes no bit.
+//! third of a pixel's sampler work. When the caller says which samples of the pixel it takes
+//! next ([`ZSobolPixel::set_run`]), samples of a run draw eight at a time
+//! ([`super::zsobol_lanes`]). Values are exactly those of [`ZSobolSampler`] (tested below and
+//! there): caching changes no bit.
 use super::layout::paired_dimension;
 use super::zsobol::{
-    to_unit, value_1d_of, value_2d_of, value_2d_paired_of, PixelDraw, ZSobolSampler,
+    to_unit, value_1d_of, value_2d_of, value_2d_paired_of, PixelDraw, ZSobolSampler, MAX_LOG2_SPP,
 };
+use super::zsobol_lanes::{Group, LANES, MIN_LOG2_SPP};
 use super::Sampler;
+use core::ops::Range;
 use glam::Vec2;
 
 /// Dimensions whose pixel parts are kept (the camera's 2 and 8 bounces of 7 fit with room);
@@ -40,7 +44,15 @@ pub struct ZSobolPixel {
     hashes: [u64; CACHED_DIMENSIONS],
     /// Bit `d` set when `hashes[d]` holds dimension `d`'s hash.
     hashed: u64,
+    /// The samples the caller is about to take ([`ZSobolPixel::set_run`]; empty by default).
+    run: Range<u64>,
+    /// The eight-sample group being drawn ([`super::zsobol_lanes`]).
+    group: Group,
 }
+
+/// A sample draws from its eight-sample group only when the run takes at least this many of
+/// the group's samples; otherwise filling eight lanes would cost more than the draws it saves.
+pub const MIN_GROUP_SAMPLES: u64 = 4;
 
 impl ZSobolPixel {
     /// The cache for pixel `(x, y)` under `seed` with pixel blocks of `2^log2_spp` samples
@@ -57,7 +69,18 @@ impl ZSobolPixel {
             hash_block: None,
             hashes: [0; CACHED_DIMENSIONS],
             hashed: 0,
+            run: 0..0,
+            group: Group::default(),
         }
+    }
+
+    /// Tells the cache that the samples `run` of the pixel are taken next, in order: samples in
+    /// it then draw their values eight at a time ([`super::zsobol_lanes`]) where the run takes
+    /// at least [`MIN_GROUP_SAMPLES`] of a group. The values stay exactly the same; this only
+    /// decides how they are computed. [`ZSobolPixel::move_to`] forgets the run.
+    #[inline]
+    pub fn set_run(&mut self, run: Range<u64>) {
+        self.run = run;
     }
 
     /// Serves pixel `(x, y)` under `seed` with blocks of `2^log2_spp` samples from now on, as
@@ -68,6 +91,8 @@ impl ZSobolPixel {
         (self.seed, self.x, self.y, self.log2_spp) = (seed, x, y, log2_spp);
         self.block = None;
         self.filled = 0;
+        self.run = 0..0;
+        self.group.clear();
     }
 
     /// The sampler of sample `index` of the pixel: the values of
@@ -75,20 +100,48 @@ impl ZSobolPixel {
     /// beyond the pixel's block) starts the table afresh.
     #[inline]
     pub fn sampler(&mut self, index: u64) -> CachedZSobol<'_> {
-        let s = ZSobolSampler::new(self.seed, self.x, self.y, index, self.log2_spp);
-        if !self.block.as_ref().is_some_and(|b| b.same_block(&s)) {
-            self.block = Some(s.clone());
-            self.filled = 0;
-        }
-        if !self.hash_block.as_ref().is_some_and(|b| b.same_key(&s)) {
-            self.hash_block = Some(s.clone());
-            self.hashed = 0;
-        }
+        // A sample of the current block shares all but its own bits with the block's sample
+        // (and then the block's key, which the hashes already belong to).
+        let s = match self.block.as_ref().and_then(|b| b.sibling(index)) {
+            Some(s) => s,
+            None => {
+                let s = ZSobolSampler::new(self.seed, self.x, self.y, index, self.log2_spp);
+                if !self.block.as_ref().is_some_and(|b| b.same_block(&s)) {
+                    self.block = Some(s.clone());
+                    self.filled = 0;
+                    self.group.clear();
+                }
+                if !self.hash_block.as_ref().is_some_and(|b| b.same_key(&s)) {
+                    self.hash_block = Some(s.clone());
+                    self.hashed = 0;
+                }
+                s
+            }
+        };
+        let lane = self.lane_of(index);
         CachedZSobol {
             sample: s,
             pixel: self,
             last_2d: NO_DRAW,
+            lane,
         }
+    }
+
+    /// Sample `index`'s lane in its eight-sample group, selecting the group, when the run takes
+    /// enough of the group (and the block holds whole groups); `None` to draw alone.
+    #[inline]
+    fn lane_of(&mut self, index: u64) -> Option<usize> {
+        let k = self.log2_spp.min(MAX_LOG2_SPP);
+        if k < MIN_LOG2_SPP || !self.run.contains(&index) {
+            return None;
+        }
+        let base = index & !(LANES as u64 - 1);
+        let taken = self.run.end.min(base + LANES as u64) - self.run.start.max(base);
+        if taken < MIN_GROUP_SAMPLES {
+            return None;
+        }
+        self.group.select(base, k);
+        Some((index - base) as usize)
     }
 }
 
@@ -102,12 +155,20 @@ pub struct CachedZSobol<'a> {
     /// again (the camera's offset and each BSDF direction are drawn just before the emitter
     /// position they pair with).
     last_2d: (u32, u32),
+    /// This sample's lane in the pixel's eight-sample group, when it draws from the group.
+    lane: Option<usize>,
 }
 
 /// `last_2d` before any 2D draw: dimension `u32::MAX` is never a partner.
 const NO_DRAW: (u32, u32) = (u32::MAX, 0);
 
 impl CachedZSobol<'_> {
+    /// This sample's lane in its eight-sample group, if it draws from one (for tests).
+    #[cfg(test)]
+    pub(super) fn lane(&self) -> Option<usize> {
+        self.lane
+    }
+
     #[inline(always)]
     fn pixel_draw(&mut self, dim: u32) -> PixelDraw {
         let d = dim as usize;
@@ -132,6 +193,17 @@ impl Sampler for CachedZSobol<'_> {
     #[inline(always)]
     fn next_1d(&mut self) -> f32 {
         let dim = self.sample.dimension();
+        if let Some(lane) = self.lane {
+            let d = dim as usize;
+            if d < CACHED_DIMENSIONS {
+                if !self.pixel.group.has_1d(d) {
+                    let p = self.pixel_draw(dim);
+                    self.pixel.group.fill_1d(d, &p);
+                }
+                self.sample.start_dimension(dim.wrapping_add(1));
+                return self.pixel.group.get_1d(d, lane);
+            }
+        }
         let p = self.pixel_draw(dim);
         let d = self.sample.finish_draw(p);
         self.sample.start_dimension(dim.wrapping_add(1));
@@ -141,6 +213,25 @@ impl Sampler for CachedZSobol<'_> {
     #[inline(always)]
     fn next_2d(&mut self) -> Vec2 {
         let dim = self.sample.dimension();
+        if let Some(lane) = self.lane {
+            let d = dim as usize;
+            // A paired dimension's partner is an earlier one, so cached too.
+            if d < CACHED_DIMENSIONS {
+                if !self.pixel.group.has_2d(d) {
+                    let p = self.pixel_draw(dim);
+                    match paired_dimension(dim) {
+                        Some(partner) => {
+                            let q = self.pixel_draw(partner);
+                            self.pixel.group.fill_2d_paired(d, &p, partner as usize, &q);
+                        }
+                        None => self.pixel.group.fill_2d(d, &p),
+                    }
+                }
+                self.sample.start_dimension(dim.wrapping_add(2));
+                let (x, y) = self.pixel.group.get_2d(d, lane);
+                return Vec2::new(x, y);
+            }
+        }
         let p = self.pixel_draw(dim);
         let d = self.sample.finish_draw(p);
         self.sample.start_dimension(dim.wrapping_add(2));
@@ -338,7 +429,7 @@ mod tests {
         let _ = px.sampler(0).next_2d();
         let stale = px.table[0];
         assert_ne!(stale, ZSobolSampler::new(1, 6, 9, 1, 4).pixel_draw(0));
-        px.x = 6;
+        px.move_to(1, 6, 9, 4);
         let got = px.sampler(1).next_2d();
         assert_eq!(got, ZSobolSampler::new(1, 6, 9, 1, 4).next_2d());
     }
