@@ -21,7 +21,7 @@
 //!   would let the processor overlap them, if waiting on one chain were what limits it;
 //! - `tessera zsobol` and `lean x1 zsobol`: the same with the `zsobol` sampler (the lean loop
 //!   draws from Tessera's `ZSobolPixel` at the renderer's dimensions, keeping a pixel's cache
-//!   while it takes the pixel's samples, as the renderer's workers do);
+//!   while it takes the pixel's samples and telling it their run, as the renderer's workers do);
 //! - `lean x1 zsobol robust`: the lean loop with the renderer's robustness instead of fixed
 //!   offsets: hit points and light points interpolated from the triangle's corners with their
 //!   error bounds, and every ray origin and shadow-ray end moved off its surface by
@@ -216,6 +216,8 @@ struct ZSobolDraws<const N: usize> {
     index: [u64; N],
     width: u32,
     log2_spp: u32,
+    /// Samples per pixel: each pixel's run `0..spp`, told to its cache as the renderer does.
+    spp: u64,
 }
 
 impl<const N: usize> Draws<N> for ZSobolDraws<N> {
@@ -224,6 +226,7 @@ impl<const N: usize> Draws<N> for ZSobolDraws<N> {
         if self.current[lane] != pixel {
             let (x, y) = (pixel % self.width, pixel / self.width);
             self.pixels[lane].move_to(0, x, y, self.log2_spp);
+            self.pixels[lane].set_run(0..self.spp);
             self.current[lane] = pixel;
         }
         self.index[lane] = u64::from(sample);
@@ -565,6 +568,7 @@ fn main() {
         index: [0],
         width: res,
         log2_spp: log2_spp_for(u64::from(spp)),
+        spp: u64::from(spp),
     };
     for _round in 0..5 {
         for (j, best) in best.iter_mut().enumerate() {
