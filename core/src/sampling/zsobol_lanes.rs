@@ -13,11 +13,12 @@
 //!
 //! Values. Lane `l` holds exactly what [`ZSobolSampler::new`](super::ZSobolSampler::new) for
 //! sample `base + l` draws (the same integer operations in the same order, then the same
-//! [`to_unit`]; tested below). Groups need `K >= 3` (a pixel block of at
+//! [`to_unit`]: the lanes call the one-sample value functions; tested below). Groups need `K >= 3` (a pixel block of at
 //! least 8 samples), so a group never straddles two blocks or epochs.
 use super::owen::reversed_lk;
-use super::sobol::{sobol_dim1_reversed, sobol_dim23_reversed};
-use super::zsobol::{to_unit, PixelDraw};
+use super::zsobol::{
+    to_unit, value_1d_of, value_2d_of, value_2d_paired_of, DimensionDraw, PixelDraw,
+};
 use super::zsobol_pixel::CACHED_DIMENSIONS;
 
 /// Samples in a group.
@@ -52,42 +53,50 @@ pub fn indices(p: &PixelDraw, bits: &[u32; LANES], k: u32) -> [u32; LANES] {
     out
 }
 
-/// 1D values of the lanes from their indices (the value of
-/// [`value_1d_of`](super::zsobol::value_1d_of)).
+/// 1D values of the lanes from their indices ([`value_1d_of`] lane by lane).
 #[inline]
 pub fn values_1d(index: &[u32; LANES], seed_x: u32) -> [f32; LANES] {
     let mut out = [0.0f32; LANES];
     for l in 0..LANES {
-        out[l] = to_unit(reversed_lk(index[l], seed_x).reverse_bits());
+        out[l] = to_unit(value_1d_of(draw(index[l], seed_x, 0)));
     }
     out
 }
 
-/// Unpaired 2D values of the lanes from their indices (those of
-/// [`value_2d_of`](super::zsobol::value_2d_of)): Sobol dimensions 0 and 1, Owen-scrambled.
+/// Unpaired 2D values of the lanes from their indices ([`value_2d_of`] lane by lane): Sobol
+/// dimensions 0 and 1, Owen-scrambled.
 #[inline]
 pub fn values_2d(index: &[u32; LANES], p: &PixelDraw) -> ([f32; LANES], [f32; LANES]) {
     let (mut x, mut y) = ([0.0f32; LANES], [0.0f32; LANES]);
     for l in 0..LANES {
-        let i = index[l];
-        x[l] = to_unit(reversed_lk(i, p.seed_x).reverse_bits());
-        y[l] = to_unit(reversed_lk(sobol_dim1_reversed(i), p.seed_y).reverse_bits());
+        let (a, b) = value_2d_of(draw(index[l], p.seed_x, p.seed_y));
+        (x[l], y[l]) = (to_unit(a), to_unit(b));
     }
     (x, y)
 }
 
-/// Paired 2D values of the lanes from their partners' indices (those of
-/// [`value_2d_paired_of`](super::zsobol::value_2d_paired_of)): Sobol dimensions 2 and 3 of the
-/// partner's index, Owen-scrambled with this dimension's seeds.
+/// Paired 2D values of the lanes from their partners' indices ([`value_2d_paired_of`] lane by
+/// lane): Sobol dimensions 2 and 3 of the partner's index, Owen-scrambled with this dimension's
+/// seeds.
 #[inline]
 pub fn values_2d_paired(partner: &[u32; LANES], p: &PixelDraw) -> ([f32; LANES], [f32; LANES]) {
     let (mut x, mut y) = ([0.0f32; LANES], [0.0f32; LANES]);
     for l in 0..LANES {
-        let (a, b) = sobol_dim23_reversed(partner[l]);
-        x[l] = to_unit(reversed_lk(a, p.seed_x).reverse_bits());
-        y[l] = to_unit(reversed_lk(b, p.seed_y).reverse_bits());
+        // The paired value reads only the seeds of its own draw.
+        let (a, b) = value_2d_paired_of(draw(0, p.seed_x, p.seed_y), partner[l]);
+        (x[l], y[l]) = (to_unit(a), to_unit(b));
     }
     (x, y)
+}
+
+/// A draw of one lane.
+#[inline(always)]
+fn draw(index: u32, seed_x: u32, seed_y: u32) -> DimensionDraw {
+    DimensionDraw {
+        index,
+        seed_x,
+        seed_y,
+    }
 }
 
 /// A group's draws, kept while the group's samples are taken: per dimension (below
