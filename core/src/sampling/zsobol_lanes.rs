@@ -12,9 +12,9 @@
 //! group to reach a dimension fills the eight lanes; the others read theirs.
 //!
 //! Values. Lane `l` holds exactly what [`ZSobolSampler::new`](super::ZSobolSampler::new) for
-//! sample `base + l` draws (the same integer operations in the same order, then the same
-//! [`to_unit`]: the lanes call the one-sample value functions; tested below). Groups need `K >= 3` (a pixel block of at
-//! least 8 samples), so a group never straddles two blocks or epochs.
+//! sample `base + l` draws: the lanes call the one-sample value functions, and the test below
+//! compares them with the plain sampler. Groups need `K >= 3` (a pixel block of at least 8
+//! samples), so a group never straddles two blocks or epochs.
 use super::owen::reversed_lk;
 use super::zsobol::{
     to_unit, value_1d_of, value_2d_of, value_2d_paired_of, DimensionDraw, PixelDraw,
