@@ -28,7 +28,9 @@
 //! Paired draws. A 2D draw that the layout pairs with an earlier one ([`paired_dimension`]:
 //! the point on the emitter at bounce 0 with the camera's offset, the point on the emitter at
 //! bounce `d + 1` with the BSDF direction of bounce `d`) does not permute the index with its
-//! own scramble: it takes Sobol dimensions 2 and 3 ([`sobol_dim23_reversed`](super::sobol::sobol_dim23_reversed)) of its partner's permuted index, Owen-scrambled with its own seeds. A pixel's points of the couple are then one 4D
+//! own scramble: it takes Sobol dimensions 2 and 3
+//! ([`sobol_dim23_reversed`](super::sobol::sobol_dim23_reversed)) of its partner's permuted
+//! index, Owen-scrambled with its own seeds. A pixel's points of the couple are then one 4D
 //! (3, m, 4)-net (Sobol dimensions 0 to 3) instead of two 2D nets joined at random, which
 //! stratifies what the couple integrates together (the light over the pixel, the light found
 //! through a bounce). The paired 2D points alone form a (2, m, 2)-net (t = 1 for most m).
@@ -85,6 +87,13 @@ pub fn log2_spp_for(spp: u64) -> u32 {
 #[inline]
 pub fn to_unit(v: u32) -> f32 {
     (v >> 8) as f32 * (1.0 / 16_777_216.0)
+}
+
+/// The sample bits a draw scrambles: `within` (sample index modulo `2^k`, `k <= 32`) as the top
+/// `k` bits of a word, bit-reversed.
+#[inline]
+pub fn sample_reversed(within: u32, k: u32) -> u32 {
+    within.checked_shl(32 - k).unwrap_or(0).reverse_bits()
 }
 
 /// One sample's view of the Morton-ordered, Owen-scrambled Sobol sequence.
@@ -145,7 +154,7 @@ impl ZSobolSampler {
             morton_index: (pixel << k) | within,
             log2_spp: k,
             pixel_reversed: (pixel as u32).reverse_bits(),
-            sample_reversed: ((within as u32).checked_shl(32 - k).unwrap_or(0)).reverse_bits(),
+            sample_reversed: sample_reversed(within as u32, k),
             pixel_mul: pixel.wrapping_mul(SAMPLE_SEED_MUL),
             key: mix64(seed ^ mix64(epoch ^ 0x6a09_e667_f3bc_c909)),
             epoch,
@@ -166,7 +175,7 @@ impl ZSobolSampler {
         let within = index & mask;
         Some(ZSobolSampler {
             morton_index: (self.morton_index & !mask) | within,
-            sample_reversed: ((within as u32).checked_shl(32 - k).unwrap_or(0)).reverse_bits(),
+            sample_reversed: sample_reversed(within as u32, k),
             dimension: 0,
             ..self.clone()
         })

@@ -17,7 +17,8 @@
 //! samples), so a group never straddles two blocks or epochs.
 use super::owen::reversed_lk;
 use super::zsobol::{
-    to_unit, value_1d_of, value_2d_of, value_2d_paired_of, DimensionDraw, PixelDraw,
+    sample_reversed, to_unit, value_1d_of, value_2d_of, value_2d_paired_of, DimensionDraw,
+    PixelDraw,
 };
 use super::zsobol_pixel::CACHED_DIMENSIONS;
 
@@ -33,13 +34,8 @@ pub const MIN_LOG2_SPP: u32 = 3;
 #[inline]
 pub fn sample_bits(base: u64, k: u32) -> [u32; LANES] {
     debug_assert!((MIN_LOG2_SPP..=32).contains(&k));
-    let mut out = [0u32; LANES];
-    for (l, o) in out.iter_mut().enumerate() {
-        let within = (base + l as u64) as u32;
-        // `k >= 3`, so the shift is below 32; the bits above `k` fall off the top.
-        *o = (within << (32 - k)).reverse_bits();
-    }
-    out
+    // The bits above `k` fall off the top of the shifted word.
+    core::array::from_fn(|l| sample_reversed((base + l as u64) as u32, k))
 }
 
 /// The permuted sequence index of each lane for the dimension whose pixel part is `p`
