@@ -570,8 +570,16 @@ fn main() {
         log2_spp: log2_spp_for(u64::from(spp)),
         spp: u64::from(spp),
     };
-    for _round in 0..5 {
+    // `LEAN_ONLY=J` (for callgrind and cachegrind): one round of variant J alone (0-7, in the
+    // order of `names`).
+    let only: Option<usize> = std::env::var("LEAN_ONLY")
+        .ok()
+        .map(|j| j.parse().expect("LEAN_ONLY is a variant index"));
+    for _round in 0..if only.is_some() { 1 } else { 5 } {
         for (j, best) in best.iter_mut().enumerate() {
+            if only.is_some_and(|o| o != j) {
+                continue;
+            }
             let start = Instant::now();
             let img = match j {
                 0 => render(scene, integrator, &opts, &mut |_, _| {}).rgb(),
@@ -598,7 +606,7 @@ fn main() {
         }
     }
     println!("cbox {res}x{res}, {spp} spp, 1 thread, best of 5");
-    for j in 0..8 {
+    for j in (0..8).filter(|&j| only.is_none_or(|o| o == j)) {
         let rate = f64::from(pixels * spp) / best[j] / 1e6;
         let err = reference
             .as_ref()
