@@ -2,8 +2,8 @@
 //! nothing the box does not need, and what would running eight paths in SIMD lanes add to that?
 //!
 //! `cargo bench -p tessera-benches --bench lean_path [-- RES SPP]` (defaults 128 and 64) loads
-//! `scenes/cbox.xml` (box filter) and renders it eight ways, one thread each, best of five
-//! alternating rounds:
+//! `scenes/cbox.xml` (box filter) and renders it nine ways, one thread each, best of five
+//! alternating rounds (`LEAN_ONLY=J` renders only the J-th, once, for callgrind and cachegrind):
 //! - `tessera`: the renderer itself (`tessera::render::render`, `path` integrator, the
 //!   `independent` sampler);
 //! - `lean x1`: a path tracer written for this scene class only (every BSDF diffuse, every
@@ -27,6 +27,11 @@
 //!   error bounds, and every ray origin and shadow-ray end moved off its surface by
 //!   `offset_ray_origin`, as `Interaction::spawn_ray` and `spawn_ray_to` do: an estimate of what
 //!   a loop specialised to this scene class could gain while keeping the renderer's guarantees.
+//! - `lean x8 zsobol in step` (printed last; `lean_path/in_step.rs`): the robust zsobol loop over
+//!   the eight samples of an aligned group at a time, all at the same bounce, as a wavefront
+//!   renderer's lanes: each stage a loop over eight lanes for the compiler to vectorise, the
+//!   casts one ray at a time. Same operations in the same order, so the same image as
+//!   `lean x1 zsobol robust`.
 //!
 //! Each image's relMSE against `scenes/refs/cbox_RESxRES_mitsuba.exr` is printed beside its
 //! speed, so a lean loop that got fast by being wrong would show it. Build with `RUSTFLAGS="-C
@@ -47,6 +52,9 @@ use tessera_core::sampling::zsobol::{log2_spp_for, to_unit};
 use tessera_core::sampling::{dimension_of, Sampler, SamplerKind, Stage, ZSobolPixel};
 use tessera_core::scene::Scene;
 use tessera_core::texture::Texture;
+
+#[path = "lean_path/in_step.rs"]
+mod in_step;
 
 const MAX_DEPTH: u32 = 8;
 const RR_DEPTH: u32 = 5;
@@ -559,9 +567,10 @@ fn main() {
         "lean x1 zsobol robust",
         "lean x2",
         "lean x4",
+        "lean x8 zsobol in step",
     ];
-    let mut best = [f64::INFINITY; 8];
-    let mut images: [Vec<[f32; 3]>; 8] = Default::default();
+    let mut best = [f64::INFINITY; 9];
+    let mut images: [Vec<[f32; 3]>; 9] = Default::default();
     let zsobol = || ZSobolDraws::<1> {
         pixels: vec![ZSobolPixel::new(0, 0, 0, 0)],
         current: [u32::MAX],
@@ -570,8 +579,7 @@ fn main() {
         log2_spp: log2_spp_for(u64::from(spp)),
         spp: u64::from(spp),
     };
-    // `LEAN_ONLY=J` (for callgrind and cachegrind): one round of variant J alone (0-7, in the
-    // order of `names`).
+    // `LEAN_ONLY=J`: one round of variant J alone (0-8, in the order of `names`).
     let only: Option<usize> = std::env::var("LEAN_ONLY")
         .ok()
         .map(|j| j.parse().expect("LEAN_ONLY is a variant index"));
@@ -589,7 +597,8 @@ fn main() {
                 4 => lean.render::<1, false>(pixels, &mut zsobol()),
                 5 => lean.render::<1, true>(pixels, &mut zsobol()),
                 6 => lean.render::<2, false>(pixels, &mut HashDraws([0; 2])),
-                _ => lean.render::<4, false>(pixels, &mut HashDraws([0; 4])),
+                7 => lean.render::<4, false>(pixels, &mut HashDraws([0; 4])),
+                _ => lean.render_in_step(pixels),
             };
             *best = best.min(start.elapsed().as_secs_f64());
             images[j] = img;
@@ -605,8 +614,19 @@ fn main() {
             p.iter_mut().for_each(|v| *v /= spp as f32);
         }
     }
+    if !images[5].is_empty() && !images[8].is_empty() {
+        let same = images[5]
+            .iter()
+            .flatten()
+            .map(|v| v.to_bits())
+            .eq(images[8].iter().flatten().map(|v| v.to_bits()));
+        assert!(
+            same,
+            "the in-step lanes changed the image of lean x1 zsobol robust"
+        );
+    }
     println!("cbox {res}x{res}, {spp} spp, 1 thread, best of 5");
-    for j in (0..8).filter(|&j| only.is_none_or(|o| o == j)) {
+    for j in (0..9).filter(|&j| only.is_none_or(|o| o == j)) {
         let rate = f64::from(pixels * spp) / best[j] / 1e6;
         let err = reference
             .as_ref()
