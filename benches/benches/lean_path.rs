@@ -183,6 +183,26 @@ fn sincos_turns_poly(u: f32) -> (f32, f32) {
     (2.0 * s * c, c * c - s * s)
 }
 
+/// A cosine-weighted direction about the unit normal `n` from `(u1, u2)` (disk point by radius
+/// and angle, frame after Duff et al.), and its cosine to `n`.
+#[inline(always)]
+fn cosine_bounce(n: [f32; 3], u1: f32, u2: f32) -> ([f32; 3], f32) {
+    let r = u1.sqrt();
+    let (s, c) = sincos_turns_poly(u2);
+    let lz = (1.0 - u1).max(0.0).sqrt();
+    let (lx, ly) = (r * c, r * s);
+    let [nx, ny, nz] = n;
+    let sign = if nz >= 0.0 { 1.0 } else { -1.0 };
+    let a = -1.0 / (sign + nz);
+    let b = nx * ny * a;
+    let tan1 = [1.0 + sign * nx * nx * a, sign * b, -sign * nx];
+    let tan2 = [b, sign + ny * ny * a, -ny];
+    (
+        [0, 1, 2].map(|k| tan1[k] * lx + tan2[k] * ly + n[k] * lz),
+        lz,
+    )
+}
+
 /// Where a lane's random numbers come from: the camera's film offset and six values per
 /// bounce (light triangle, point on it, direction, roulette).
 trait Draws<const N: usize> {
@@ -469,18 +489,9 @@ impl Lean<'_> {
             }
             // Cosine-weighted bounce (Duff et al.'s frame), then Russian roulette.
             for i in 0..N {
-                let r = u[3][i].sqrt();
-                let (s, c) = sincos_turns_poly(u[4][i]);
-                let lz = (1.0 - u[3][i]).max(0.0).sqrt();
-                let (lx, ly) = (r * c, r * s);
-                let (nx, ny, nz) = (n[0][i], n[1][i], n[2][i]);
-                let sign = if nz >= 0.0 { 1.0 } else { -1.0 };
-                let a = -1.0 / (sign + nz);
-                let b = nx * ny * a;
-                let tan1 = [1.0 + sign * nx * nx * a, sign * b, -sign * nx];
-                let tan2 = [b, sign + ny * ny * a, -ny];
+                let (dir, lz) = cosine_bounce([n[0][i], n[1][i], n[2][i]], u[3][i], u[4][i]);
                 for k in 0..3 {
-                    l.d[k][i] = tan1[k] * lx + tan2[k] * ly + n[k][i] * lz;
+                    l.d[k][i] = dir[k];
                     l.throughput[k][i] *= albedo[k][i];
                 }
                 let pi = Vec3::new(p[0][i], p[1][i], p[2][i]);

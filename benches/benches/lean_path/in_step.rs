@@ -7,7 +7,7 @@
 //! compiler to vectorise; only the ray casts stay one ray at a time. The arithmetic is the lean
 //! loop's, operation for operation, and a pixel's samples reach the film in the same order, so
 //! the image has the bits of `lean x1 zsobol robust` (the bench checks it when it renders both).
-use super::{sincos_turns_poly, Lean, INV_PI, MAX_DEPTH, RR_DEPTH};
+use super::{cosine_bounce, Lean, INV_PI, MAX_DEPTH, RR_DEPTH};
 use glam::Vec3;
 use tessera_core::geometry::{interpolate_point, SHADOW_EPSILON};
 use tessera_core::math::{offset_ray_origin, Ray};
@@ -200,18 +200,9 @@ impl Lean<'_> {
                     }
                     // Cosine-weighted bounce (Duff et al.'s frame), then Russian roulette.
                     for i in 0..L {
-                        let r = u[3][i].sqrt();
-                        let (s, c) = sincos_turns_poly(u[4][i]);
-                        let lz = (1.0 - u[3][i]).max(0.0).sqrt();
-                        let (lx, ly) = (r * c, r * s);
-                        let (nx, ny, nz) = (n[0][i], n[1][i], n[2][i]);
-                        let sign = if nz >= 0.0 { 1.0 } else { -1.0 };
-                        let a = -1.0 / (sign + nz);
-                        let b = nx * ny * a;
-                        let tan1 = [1.0 + sign * nx * nx * a, sign * b, -sign * nx];
-                        let tan2 = [b, sign + ny * ny * a, -ny];
+                        let (dir, lz) = cosine_bounce(get(&n, i).to_array(), u[3][i], u[4][i]);
                         for k in 0..3 {
-                            d[k][i] = tan1[k] * lx + tan2[k] * ly + n[k][i] * lz;
+                            d[k][i] = dir[k];
                             throughput[k][i] *= albedo[k][i];
                         }
                         let origin =
