@@ -262,15 +262,22 @@ impl<const N: usize> Draws<N> for ZSobolDraws<N> {
     }
     #[inline(always)]
     fn bounce(&mut self, lane: usize, depth: u32) -> [f32; 6] {
-        let mut s = self.pixels[lane].sampler(self.index[lane]);
-        s.start_dimension(dimension_of(depth, Stage::Light));
-        let (a, b) = (s.next_1d(), s.next_2d());
-        s.start_dimension(dimension_of(depth, Stage::Bsdf));
-        s.skip_1d();
-        let c = s.next_2d();
-        s.start_dimension(dimension_of(depth, Stage::Roulette));
-        [a, b.x, b.y, c.x, c.y, s.next_1d()]
+        bounce_draws(&mut self.pixels[lane].sampler(self.index[lane]), depth)
     }
+}
+
+/// The six values of bounce `depth` from a sample's sampler, at the renderer's dimensions for
+/// the stages (light choice and point, BSDF direction with its component choice skipped,
+/// roulette).
+#[inline(always)]
+fn bounce_draws(s: &mut impl Sampler, depth: u32) -> [f32; 6] {
+    s.start_dimension(dimension_of(depth, Stage::Light));
+    let (a, b) = (s.next_1d(), s.next_2d());
+    s.start_dimension(dimension_of(depth, Stage::Bsdf));
+    s.skip_1d();
+    let c = s.next_2d();
+    s.start_dimension(dimension_of(depth, Stage::Roulette));
+    [a, b.x, b.y, c.x, c.y, s.next_1d()]
 }
 
 /// Per-lane path state, structure of arrays.

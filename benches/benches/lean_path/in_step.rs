@@ -7,12 +7,12 @@
 //! compiler to vectorise; only the ray casts stay one ray at a time. The arithmetic is the lean
 //! loop's, operation for operation, and a pixel's samples reach the film in the same order, so
 //! the image has the bits of `lean x1 zsobol robust` (the bench checks it when it renders both).
-use super::{cosine_bounce, Lean, INV_PI, MAX_DEPTH, RR_DEPTH};
+use super::{bounce_draws, cosine_bounce, Lean, INV_PI, MAX_DEPTH, RR_DEPTH};
 use glam::Vec3;
 use tessera_core::geometry::{interpolate_point, SHADOW_EPSILON};
 use tessera_core::math::{offset_ray_origin, Ray};
 use tessera_core::sampling::zsobol::log2_spp_for;
-use tessera_core::sampling::{dimension_of, Sampler, Stage, ZSobolPixel};
+use tessera_core::sampling::{Sampler, ZSobolPixel};
 
 const L: usize = 8;
 
@@ -86,14 +86,7 @@ impl Lean<'_> {
                     // Draws: the group's first lane fills each dimension for all eight.
                     let mut u = [[0f32; L]; 6];
                     for i in 0..L {
-                        let mut s = zs.sampler(u64::from(base) + i as u64);
-                        s.start_dimension(dimension_of(depth, Stage::Light));
-                        let (a, b) = (s.next_1d(), s.next_2d());
-                        s.start_dimension(dimension_of(depth, Stage::Bsdf));
-                        s.skip_1d();
-                        let c = s.next_2d();
-                        s.start_dimension(dimension_of(depth, Stage::Roulette));
-                        let v = [a, b.x, b.y, c.x, c.y, s.next_1d()];
+                        let v = bounce_draws(&mut zs.sampler(u64::from(base) + i as u64), depth);
                         for k in 0..6 {
                             u[k][i] = v[k];
                         }
