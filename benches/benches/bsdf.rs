@@ -10,6 +10,7 @@ use std::time::Duration;
 use tessera::xml::Kind;
 use tessera_benches::Rng;
 use tessera_core::bsdf::Bsdf;
+use tessera_core::math::Norm;
 
 const CASES: [(&str, &str); 3] = [
     (
@@ -44,7 +45,7 @@ fn build(xml: &str) -> Bsdf {
 
 fn upper(rng: &mut Rng) -> Vec3 {
     let d = rng.dir();
-    Vec3::new(d.x, d.y, d.z.abs().max(1e-3)).normalize()
+    Vec3::new(d.x, d.y, d.z.abs().max(1e-3)).unit()
 }
 
 fn bsdfs(c: &mut Criterion) {

@@ -47,6 +47,7 @@ use tessera_core::bsdf::Bsdf;
 use tessera_core::emitter::Emitter;
 use tessera_core::geometry::{interpolate_point, Prim, ShapeKind, SHADOW_EPSILON};
 use tessera_core::integrator::Integrator;
+use tessera_core::math::Norm;
 use tessera_core::math::{offset_ray_origin, Ray};
 use tessera_core::sampling::zsobol::{log2_spp_for, to_unit};
 use tessera_core::sampling::{dimension_of, Sampler, SamplerKind, Stage, ZSobolPixel};
@@ -120,7 +121,7 @@ impl Tables {
                 return Err("a shape that is not a mesh".into());
             };
             let [a, b, c] = corners(m, *face as usize);
-            t.normal.push((b - a).cross(c - a).normalize().to_array());
+            t.normal.push((b - a).cross(c - a).unit().to_array());
             t.corners.push([a, b, c]);
             t.albedo.push(albedo_of(&scene.bsdfs[s.bsdf as usize])?);
             t.emission.push(match s.emitter {
@@ -141,8 +142,8 @@ impl Tables {
         for face in 0..m.indices.len() {
             let [a, b, c] = corners(m, face);
             let cross = (b - a).cross(c - a);
-            t.light_area += 0.5 * cross.length();
-            let n = cross.normalize().to_array();
+            t.light_area += 0.5 * cross.norm();
+            let n = cross.unit().to_array();
             let (e1, e2) = ((b - a).to_array(), (c - a).to_array());
             t.light.push(LightTriangle {
                 corners: [a, b, c],

@@ -10,6 +10,7 @@ use tessera_core::accel::{
 use tessera_core::bsdf::{Bsdf, Diffuse};
 use tessera_core::camera::{Filter, FovAxis, Perspective};
 use tessera_core::geometry::{intersect_triangle, Hit, Mesh, Shape, ShapeKind};
+use tessera_core::math::Norm;
 use tessera_core::math::{Aabb, Ray, Transform};
 use tessera_core::scene::{Scene, SceneParts};
 use tessera_core::texture::Texture;
@@ -94,7 +95,7 @@ pub fn bumpy_sphere(n: u32) -> (Vec<Vec3>, Vec<[u32; 3]>) {
         [9, 8, 1],
     ];
     let displace = |p: Vec3| {
-        let d = p.normalize();
+        let d = p.unit();
         let r = 1.0
             + 0.08 * (9.0 * d.x).sin() * (7.0 * d.y).sin() * (5.0 * d.z).sin()
             + 0.03 * (23.0 * d.x + 17.0 * d.z).sin();
@@ -167,7 +168,7 @@ pub fn camera_rays(side: u32) -> Vec<Ray> {
                 (x as f32 + 0.5) / side as f32 * 2.0 - 1.0,
                 1.0 - (y as f32 + 0.5) / side as f32 * 2.0,
             ) * half;
-            out.push(Ray::new(o, Vec3::new(p.x, p.y, -1.0).normalize()));
+            out.push(Ray::new(o, Vec3::new(p.x, p.y, -1.0).unit()));
         }
     }
     out

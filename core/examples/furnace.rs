@@ -14,7 +14,7 @@ use tessera_core::film::PixelAccum;
 use tessera_core::geometry::{Shape, ShapeKind, Sphere};
 use tessera_core::glam::{Mat4, Vec3, Vec4};
 use tessera_core::integrator::{Integrator, PathIntegrator};
-use tessera_core::math::Transform;
+use tessera_core::math::{Norm, Transform};
 use tessera_core::render::render_pixel;
 use tessera_core::scene::{LightSelection, Scene, SceneParts};
 use tessera_core::texture::Texture;
@@ -23,8 +23,8 @@ use tessera_core::Color;
 /// Camera-to-world of a camera at `origin` looking at `target` (Mitsuba's convention: the camera
 /// looks along its local +z, +y is up and +x points to the image's left).
 fn look_at(origin: Vec3, target: Vec3, up: Vec3) -> Transform {
-    let dir = (target - origin).normalize();
-    let left = up.cross(dir).normalize();
+    let dir = (target - origin).unit();
+    let left = up.cross(dir).unit();
     let new_up = dir.cross(left);
     let m = Mat4::from_cols(
         left.extend(0.0),

@@ -3,10 +3,13 @@
 //! Geometry, sampling, BSDFs, emitters, the camera and the per-sample `trace_path`
 //! ([`integrator::Integrator::li`]). Everything here is allocation-free per sample, has no global
 //! state and never panics on data: a non-finite sample is reported to the caller, who drops it.
-//! Math goes through `glam` with the `libm` backend, so every build computes the same bits.
+//! Math goes through `glam` with the `libm` backend, so every build computes the same bits;
+//! square roots, lengths and normalisations go through [`math::sqrt`] and [`math::Norm`] (the same
+//! bits as libm's and glam's, without libm's legacy-SSE assembly).
 #![no_std]
-// `unsafe` only in `accel::simd8`, `accel::tri4` and `accel::tri8` (SSE/AVX2 intrinsics, CPU
-// feature detection), which allow it and justify each block.
+// `unsafe` only in `accel::simd8`, `accel::tri4`, `accel::tri8` (SSE/AVX2 intrinsics, CPU
+// feature detection) and `math::sqrt` (the SSE square-root intrinsics), which allow it and
+// justify each block.
 #![deny(unsafe_code)]
 // `!(x > 0.0)` is this crate's way of rejecting NaN along with the values it names; clippy's
 // suggestion (`partial_cmp`) would hide that intent.

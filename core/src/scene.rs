@@ -5,6 +5,7 @@ use crate::bsdf::{Bsdf, BsdfTraits};
 use crate::camera::{Filter, Perspective};
 use crate::emitter::{Behind, Emitter, EmitterCtx, LightBound};
 use crate::geometry::{Disk, Hit, Interaction, Prim, Shape, ShapeKind, TriRay};
+use crate::math::Norm;
 use crate::math::{Aabb, Ray};
 use crate::sampling::Discrete1D;
 use alloc::vec::Vec;
@@ -212,7 +213,7 @@ impl Scene {
         } else {
             (
                 world.centroid(),
-                (world.extent().length() * 0.5).max(f32::MIN_POSITIVE),
+                (world.extent().norm() * 0.5).max(f32::MIN_POSITIVE),
             )
         };
         let ctx = EmitterCtx {

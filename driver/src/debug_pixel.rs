@@ -16,6 +16,7 @@ use tessera_core::film::PixelAccum;
 use tessera_core::geometry::ShapeKind;
 use tessera_core::glam::Vec3;
 use tessera_core::integrator::{Event, PathRecord, RayKind};
+use tessera_core::math::Norm;
 use tessera_core::render::render_sample_probed;
 use tessera_core::scene::Scene;
 
@@ -161,7 +162,7 @@ fn write_events(out: &mut String, scene: &Scene, rec: &PathRecord) {
                     bsdf_name(&scene.bsdfs[shape.bsdf as usize]),
                 )
             }
-            Event::Escaped(d) => writeln!(out, "  escaped along {}", v3(d.normalize())),
+            Event::Escaped(d) => writeln!(out, "  escaped along {}", v3(d.unit())),
             Event::Shadow { blocked } => writeln!(
                 out,
                 "{ind}shadow ray: {}",

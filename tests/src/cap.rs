@@ -6,12 +6,13 @@
 //! `1 - cos θ <= omc_box` around the axis, at any angular size, with cells of equal solid angle.
 use glam::{DVec3, Vec2, Vec3};
 use std::f64::consts::TAU;
+use tessera_core::math::Norm;
 
 /// An orthonormal frame `[s, t, a]` (f64) with `a` the given unit axis; built here, not with the
 /// core's `Frame`, so that the tests do not share the sampler's choice of tangents.
 pub fn frame_around(a: DVec3) -> [DVec3; 3] {
     let helper = if a.x.abs() < 0.6 { DVec3::X } else { DVec3::Y };
-    let s = helper.cross(a).normalize();
+    let s = helper.cross(a).unit();
     let t = a.cross(s);
     [s, t, a]
 }

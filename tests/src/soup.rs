@@ -7,6 +7,7 @@ use tessera_core::bsdf::{Bsdf, Diffuse};
 use tessera_core::camera::{Filter, FovAxis, Perspective};
 use tessera_core::geometry::{Disk, Mesh, Shape, ShapeKind, Sphere, TriRay};
 use tessera_core::glam::Vec3;
+use tessera_core::math::Norm;
 use tessera_core::math::{Ray, Transform};
 use tessera_core::scene::{Scene, SceneParts};
 use tessera_core::texture::Texture;
@@ -147,7 +148,7 @@ pub fn random_rays(rng: &mut SplitMix, n: usize) -> Vec<Ray> {
     (0..n)
         .map(|_| {
             let o = rng.v(50.0);
-            let mut ray = Ray::new(o, (rng.v(20.0) - o).normalize());
+            let mut ray = Ray::new(o, (rng.v(20.0) - o).unit());
             if rng.f() < 0.3 {
                 ray.t_max = rng.f() * 40.0;
             }

@@ -7,6 +7,7 @@
 //! off.
 use tessera::stats::{sidak_alpha, t_test_from_sums};
 use tessera_core::glam::{DMat4, DVec3};
+use tessera_core::math::Norm;
 use tessera_tests::analytic_scenes::{
     self as scenes, closed_sphere, over_diffuse_plane, sphere_light,
 };
@@ -193,10 +194,10 @@ fn control_rejects_a_wrong_reference() {
 fn lambert_irradiance(x: DVec3, n: DVec3, vertices: &[DVec3], l: f64) -> f64 {
     let mut sum = 0.0;
     for i in 0..vertices.len() {
-        let a = (vertices[i] - x).normalize();
-        let b = (vertices[(i + 1) % vertices.len()] - x).normalize();
+        let a = (vertices[i] - x).unit();
+        let b = (vertices[(i + 1) % vertices.len()] - x).unit();
         let theta = a.dot(b).clamp(-1.0, 1.0).acos();
-        sum += theta * n.dot(a.cross(b).normalize());
+        sum += theta * n.dot(a.cross(b).unit());
     }
     0.5 * l * sum.abs()
 }

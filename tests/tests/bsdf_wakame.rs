@@ -12,6 +12,7 @@ use tessera::stats::{
     sampled_albedo, sidak_alpha, t_test_mean, BsdfChi2, Moments, Pcg32, SphereChi2,
 };
 use tessera_core::bsdf::Bsdf;
+use tessera_core::math::Norm;
 use tessera_tests::bsdf::{assert_cases_rejected_on_their_line, build_bsdf_xml};
 
 /// Chi-square tests of `microfacet` sampling.
@@ -246,7 +247,7 @@ fn mirror_reflects_everything() {
             let s = m.sample(wi, rng.next_f32(), rng.next_vec2(), UV).unwrap();
             assert!(s.delta && s.pdf == 1.0 && s.eta == 1.0);
             assert_eq!(s.weight, Vec3::ONE);
-            assert!((s.wo - Vec3::new(-wi.x, -wi.y, wi.z)).length() < 1e-6);
+            assert!((s.wo - Vec3::new(-wi.x, -wi.y, wi.z)).norm() < 1e-6);
             assert_eq!(m.eval(wi, s.wo, UV), Vec3::ZERO);
             assert_eq!(m.pdf(wi, s.wo, UV), 0.0);
         }

@@ -4,6 +4,7 @@ use tessera_core::bsdf::{Bsdf, Diffuse};
 use tessera_core::camera::{Filter, FovAxis, Perspective};
 use tessera_core::geometry::{Disk, Mesh, Shape, ShapeKind, Sphere};
 use tessera_core::glam::{Mat4, Vec2, Vec3};
+use tessera_core::math::Norm;
 use tessera_core::math::{Ray, Transform};
 use tessera_core::scene::{Scene, SceneParts};
 use tessera_core::texture::Texture;
@@ -76,7 +77,7 @@ fn bvh_agrees_with_brute_force() {
         for _ in 0..4000 {
             let o = rng.v(50.0);
             let target = rng.v(20.0);
-            let mut ray = Ray::new(o, (target - o).normalize());
+            let mut ray = Ray::new(o, (target - o).unit());
             if rng.f() < 0.3 {
                 ray.t_max = rng.f() * 40.0;
             }

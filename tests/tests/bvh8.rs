@@ -15,6 +15,7 @@ use tessera_core::accel::tri4::Ray4;
 use tessera_core::accel::{AnyLeaves, Bvh, Bvh8, ClosestLeaves, Collapse, Leaves};
 use tessera_core::geometry::{Hit, TriRay};
 use tessera_core::glam::Vec3;
+use tessera_core::math::Norm;
 use tessera_core::math::{Aabb, Ray};
 
 use tessera_tests::rng::SplitMix as Rng;
@@ -70,7 +71,7 @@ fn agrees_on_a_bumpy_sphere() {
     let rays: Vec<Ray> = (0..4000)
         .map(|k| {
             let o = if k % 2 == 0 { rng.v(1.6) } else { rng.v(8.0) };
-            let d = (rng.v(2.0) - o * 0.3).normalize();
+            let d = (rng.v(2.0) - o * 0.3).unit();
             Ray::new(o, d)
         })
         .collect();

@@ -9,6 +9,7 @@
 //! `weight` is also checked against `eval_environment / pdf_environment` of its direction.
 
 use std::f64::consts::{PI, TAU};
+use tessera_core::math::Norm;
 
 use glam::{DMat3, DVec3, Vec2, Vec3};
 use tessera::stats::{sidak_alpha, Chi2Result, PlaneChi2, SphereChi2};
@@ -114,7 +115,7 @@ impl<'a> Sampler<'a> {
 
 /// A rotation (f64) by `deg` degrees about `axis`.
 fn rotation(axis: DVec3, deg: f64) -> DMat3 {
-    DMat3::from_axis_angle(axis.normalize(), deg.to_radians())
+    DMat3::from_axis_angle(axis.unit(), deg.to_radians())
 }
 
 /// `1 - cos θ` of a half angle in degrees, in f64.
@@ -284,7 +285,7 @@ fn structured_image(w: usize, h: usize) -> Vec<[f32; 3]> {
 /// Latitude-longitude coordinates (Mitsuba 3's: `u = atan2(x, -z) / 2π`, `v = acos(y) / π`) of
 /// a world direction, for a map rotated by `rot`; in f64.
 fn latlong(d: Vec3, rot: &DMat3) -> Vec2 {
-    let l = (rot.transpose() * d.as_dvec3()).normalize();
+    let l = (rot.transpose() * d.as_dvec3()).unit();
     let mut u = l.x.atan2(-l.z) / TAU;
     if u < 0.0 {
         u += 1.0;

@@ -12,6 +12,7 @@
 //! core's own pdf functions are what is under test otherwise.
 
 use std::f64::consts::TAU;
+use tessera_core::math::Norm;
 
 use glam::{DMat4, DVec3, Vec2, Vec3};
 use tessera::stats::{
@@ -183,13 +184,13 @@ fn t08_uniform_triangle() {
 /// `r`, and the pdf equal to `cone_pdf`.
 fn check_cone_sample(s: &Sphere, r: Vec3, p: Vec3, n: Vec3, pdf: f32, cone_pdf: f32) {
     let radius = f64::from(s.radius);
-    let dist = (p - s.center).as_dvec3().length();
+    let dist = (p - s.center).as_dvec3().norm();
     assert!(
         (dist - radius).abs() <= 1e-5 * radius,
         "sampled p = {p} is at distance {dist} from the centre, radius {radius}"
     );
     let nn = n.as_dvec3();
-    assert!((nn.length() - 1.0).abs() <= 1e-5, "normal {n} is not unit");
+    assert!((nn.norm() - 1.0).abs() <= 1e-5, "normal {n} is not unit");
     let outward = (p - s.center).as_dvec3() / dist;
     assert!(
         nn.dot(outward) >= 1.0 - 1e-5,
@@ -198,7 +199,7 @@ fn check_cone_sample(s: &Sphere, r: Vec3, p: Vec3, n: Vec3, pdf: f32, cone_pdf: 
     // The visible side: the normal faces r (up to round-off on the silhouette).
     let to_r = (r - p).as_dvec3();
     assert!(
-        nn.dot(to_r) >= -1e-4 * to_r.length(),
+        nn.dot(to_r) >= -1e-4 * to_r.norm(),
         "sampled p = {p} is on the far side of the sphere from {r}"
     );
     assert_eq!(pdf, cone_pdf, "sample_cone's pdf differs from cone_pdf");
@@ -220,11 +221,11 @@ fn t09_sphere_cone_far() {
         radius: 0.25,
     };
     // Axis with a negative z component (the other branch of the core's frame construction).
-    let axis = DVec3::new(-0.3, 0.45, -1.0).normalize();
+    let axis = DVec3::new(-0.3, 0.45, -1.0).unit();
     let r = (s.center.as_dvec3() - axis * 100.0 * f64::from(s.radius)).as_vec3();
-    let axis = (s.center - r).as_dvec3().normalize();
+    let axis = (s.center - r).as_dvec3().unit();
     let frame = frame_around(axis);
-    let dist = (s.center - r).as_dvec3().length();
+    let dist = (s.center - r).as_dvec3().norm();
     let omc_box = 1.1 * sphere_omc(f64::from(s.radius), dist);
     let cone_pdf = s.cone_pdf(r).expect("r is outside");
 
@@ -237,7 +238,7 @@ fn t09_sphere_cone_far() {
         |u| {
             let cs = s.sample_cone(r, u)?;
             check_cone_sample(&s, r, cs.p, cs.n, cs.pdf, cone_pdf);
-            Some(cap_coords((cs.p - r).normalize(), &frame, omc_box))
+            Some(cap_coords((cs.p - r).unit(), &frame, omc_box))
         },
         |p| {
             if hits_sphere(&s, r, cap_dir(p, &frame, omc_box)) {
@@ -261,9 +262,9 @@ fn t10_sphere_cone_near() {
         center: Vec3::new(0.3, -0.2, 0.5),
         radius: 0.8,
     };
-    let axis = DVec3::new(0.5, 0.8, 0.35).normalize();
+    let axis = DVec3::new(0.5, 0.8, 0.35).unit();
     let r = (s.center.as_dvec3() - axis * 1.5 * f64::from(s.radius)).as_vec3();
-    let axis = (s.center - r).as_dvec3().normalize();
+    let axis = (s.center - r).as_dvec3().unit();
     let frame = frame_around(axis);
     let cone_pdf = s.cone_pdf(r).expect("r is outside");
 
@@ -276,7 +277,7 @@ fn t10_sphere_cone_near() {
         |u| {
             let cs = s.sample_cone(r, u)?;
             check_cone_sample(&s, r, cs.p, cs.n, cs.pdf, cone_pdf);
-            let d = (cs.p - r).as_dvec3().normalize();
+            let d = (cs.p - r).as_dvec3().unit();
             Some(DVec3::new(d.dot(frame[0]), d.dot(frame[1]), d.dot(frame[2])).as_vec3())
         },
         |l| {
@@ -400,11 +401,11 @@ fn test_mesh() -> Mesh {
     let mut normals = Vec::new();
     let mut indices = Vec::new();
     for (i, t) in tris.iter().enumerate() {
-        let ng = (t[1] - t[0]).cross(t[2] - t[0]).normalize();
+        let ng = (t[1] - t[0]).cross(t[2] - t[0]).unit();
         for (k, &p) in t.iter().enumerate() {
             positions.push(p);
             let tilt = Vec3::new(0.3 * k as f32, -0.2, 0.25 * i as f32);
-            normals.push((ng + tilt).normalize());
+            normals.push((ng + tilt).unit());
         }
         let base = 3 * i as u32;
         indices.push([base, base + 1, base + 2]);
@@ -415,7 +416,7 @@ fn test_mesh() -> Mesh {
 /// Area of a triangle in f64.
 fn tri_area64(t: &[Vec3; 3]) -> f64 {
     let [a, b, c] = t.map(|v| v.as_dvec3());
-    0.5 * (b - a).cross(c - a).length()
+    0.5 * (b - a).cross(c - a).norm()
 }
 
 /// A triangle prepared for ray casts from a fixed origin (f64, independent of the core's
@@ -485,7 +486,7 @@ fn t11_mesh_directions() {
                 "sample_from pdf {pdf} vs pdf_from {want} at {}",
                 ps.p
             );
-            Some((ps.p - r).as_dvec3().normalize().as_vec3())
+            Some((ps.p - r).as_dvec3().unit().as_vec3())
         },
         |w| {
             // Sum over the triangles the ray meets (all of them: that is the density of the
@@ -573,7 +574,7 @@ fn t14_disk_ellipse_directions() {
     let (a, b, h) = (2.0f64, 0.8f64, 0.3f64);
     let x = ((a * a - b * b) * (1.0 + h * h / (b * b))).sqrt();
     let place = DMat4::from_translation(DVec3::new(0.3, -0.2, -1.5))
-        * DMat4::from_axis_angle(DVec3::new(1.0, 0.5, 0.0).normalize(), 0.6);
+        * DMat4::from_axis_angle(DVec3::new(1.0, 0.5, 0.0).unit(), 0.6);
     let m =
         (place * DMat4::from_scale(DVec3::new(a, b, 1.5)) * DMat4::from_rotation_z(0.7)).as_mat4();
     let r = place.transform_point3(DVec3::new(x, 0.0, h)).as_vec3();
@@ -593,9 +594,9 @@ fn t14_disk_ellipse_directions() {
     assert!(o_local.z > 0.1, "the reference point is above the disk");
 
     // The cone's axis: normal of the plane through the tips of three unit rim directions.
-    let rim = |t: f64| (m64.transform_point3(DVec3::new(t.cos(), t.sin(), 0.0)) - r64).normalize();
+    let rim = |t: f64| (m64.transform_point3(DVec3::new(t.cos(), t.sin(), 0.0)) - r64).unit();
     let (u0, u1, u2) = (rim(0.0), rim(TAU / 3.0), rim(2.0 * TAU / 3.0));
-    let mut axis = (u1 - u0).cross(u2 - u0).normalize();
+    let mut axis = (u1 - u0).cross(u2 - u0).unit();
     if axis.dot(u0) < 0.0 {
         axis = -axis;
     }
@@ -634,7 +635,7 @@ fn t14_disk_ellipse_directions() {
                 (pdf - want).abs() <= 1e-5 * want,
                 "sample_from pdf {pdf} vs pdf_from {want}"
             );
-            let d = (ps.p - r).as_dvec3().normalize();
+            let d = (ps.p - r).as_dvec3().unit();
             Some(DVec3::new(d.dot(frame[0]), d.dot(frame[1]), d.dot(frame[2])).as_vec3())
         },
         |l| {

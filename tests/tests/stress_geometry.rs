@@ -10,6 +10,7 @@
 use tessera::stats::sidak_alpha;
 use tessera_core::geometry::intersect_triangle;
 use tessera_core::glam::DVec3;
+use tessera_core::math::Norm;
 use tessera_core::math::Ray;
 use tessera_tests::stress::{assert_pixel_within, scratch_dir, Placement};
 use tessera_tests::{load_xml, render_loaded};
@@ -156,7 +157,7 @@ fn thin_and_large_triangles_are_hit() {
         let p = t.map(|v| v.as_vec3());
         // Origins a thousand sliver widths away: seen from farther, a 1e-6 sliver is thinner
         // than the rounding of coordinates relative to the origin, and no f32 test resolves it.
-        let size = if k == 0 { 1e-3 } else { (t[1] - t[0]).length() };
+        let size = if k == 0 { 1e-3 } else { (t[1] - t[0]).norm() };
         for i in 0..200 {
             let (u, v) = (
                 (i % 20) as f64 / 20.0 + 0.02,
@@ -178,10 +179,10 @@ fn thin_and_large_triangles_are_hit() {
                 let b = barycentric(t, q);
                 // Distances to the edges (b_i times the altitude onto edge i) must exceed the
                 // rounding of the origin-relative coordinates the test works in.
-                let area2 = (t[1] - t[0]).cross(t[2] - t[0]).length();
+                let area2 = (t[1] - t[0]).cross(t[2] - t[0]).norm();
                 let edges = [t[2] - t[1], t[0] - t[2], t[1] - t[0]];
                 let slack = 16.0 * f32::EPSILON as f64 * (target - od).abs().max_element();
-                if (0..3).any(|i| b[i] * area2 / edges[i].length() < slack) {
+                if (0..3).any(|i| b[i] * area2 / edges[i].norm() < slack) {
                     continue;
                 }
                 let hit = intersect_triangle(&Ray::new(o, d), f32::INFINITY, p[0], p[1], p[2]);

@@ -14,6 +14,7 @@
 use proptest::prelude::*;
 use tessera_core::geometry::{intersect_triangle, Interaction, Mesh, Sphere};
 use tessera_core::glam::{DVec3, Vec2, Vec3};
+use tessera_core::math::Norm;
 use tessera_core::math::{Frame, Ray};
 
 const EPS: f64 = f32::EPSILON as f64;
@@ -61,7 +62,7 @@ fn sphere_ref(s: &Sphere, ray: &Ray) -> Option<(f64, f64)> {
 
 /// Whether an f32 distance `t` agrees with the f64 one within `k` ulps of `size`, along `d`.
 fn agrees(t: f64, t_ref: f64, d: Vec3, size: f64, k: f64) -> bool {
-    (t - t_ref).abs() * d.as_dvec3().length() <= k * EPS * size
+    (t - t_ref).abs() * d.as_dvec3().norm() <= k * EPS * size
 }
 
 proptest! {
@@ -76,17 +77,17 @@ proptest! {
         let s = Sphere { center: c * scale + offset, radius: r as f32 * scale };
         let o = o * scale + offset;
         let d = ((c + aim * r as f32) * scale + offset - o) * 10f32.powf(dlen as f32);
-        prop_assume!(d.length() > 0.0 && d.is_finite());
+        prop_assume!(d.norm() > 0.0 && d.is_finite());
         let ray = Ray::new(o, d);
         let got = s.intersect(&ray, f32::INFINITY);
-        let size = (ray.o - s.center).length() as f64 + s.radius as f64 + s.center.abs().max_element() as f64;
+        let size = (ray.o - s.center).norm() as f64 + s.radius as f64 + s.center.abs().max_element() as f64;
         match (sphere_ref(&s, &ray), got) {
             (Some((t_ref, impact)), Some(t)) if impact < 0.9 => {
                 prop_assert!(agrees(t as f64, t_ref, d, size, 64.0), "t {t} vs f64 {t_ref}");
             }
             (Some((t_ref, impact)), None) if impact < 0.9 => {
                 // Only a root within the error bound of the origin may be dropped.
-                prop_assert!(t_ref * d.as_dvec3().length() <= 64.0 * EPS * size, "missed a hit at {t_ref}");
+                prop_assert!(t_ref * d.as_dvec3().norm() <= 64.0 * EPS * size, "missed a hit at {t_ref}");
             }
             (None, Some(t)) => prop_assert!(false, "hit at {t} where f64 finds none"),
             _ => {}
@@ -108,14 +109,14 @@ proptest! {
         let target = pd[0] * (1.0 - b.0 - b.1) + pd[1] * b.0 + pd[2] * b.1;
         let d = ((target - od) * 10f64.powf(dlen)).as_vec3();
         let n = (pd[1] - pd[0]).cross(pd[2] - pd[0]);
-        prop_assume!(n.length() > 1e-3 * (pd[1] - pd[0]).length_squared().max((pd[2] - pd[0]).length_squared()));
-        let n = n.normalize();
+        prop_assume!(n.norm() > 1e-3 * (pd[1] - pd[0]).length_squared().max((pd[2] - pd[0]).length_squared()));
+        let n = n.unit();
         let dd = d.as_dvec3();
-        let cos = n.dot(dd.normalize()).abs();
-        prop_assume!(cos > 1e-3 && d.is_finite() && d.length() > 0.0);
+        let cos = n.dot(dd.unit()).abs();
+        prop_assume!(cos > 1e-3 && d.is_finite() && d.norm() > 0.0);
         let t_ref = n.dot(pd[0] - od) / n.dot(dd);
-        let size = pd.iter().map(|v| (*v - od).length()).fold(0.0, f64::max) + offset.abs().max_element() as f64;
-        prop_assume!(t_ref * dd.length() > 1e-4 * size);
+        let size = pd.iter().map(|v| (*v - od).norm()).fold(0.0, f64::max) + offset.abs().max_element() as f64;
+        prop_assume!(t_ref * dd.norm() > 1e-4 * size);
         let got = intersect_triangle(&Ray::new(o, d), f32::INFINITY, p[0], p[1], p[2]);
         prop_assert!(got.is_some(), "missed a triangle hit at {t_ref}");
         let t = got.unwrap().0 as f64;
@@ -157,7 +158,7 @@ proptest! {
         let d = (c + aim * r as f32) * scale + offset - o;
         let Some(t) = s.intersect(&Ray::new(o, d), f32::INFINITY) else { return Ok(()) };
         let (pt, err) = s.project(o + d * t);
-        let n = (pt - s.center).normalize();
+        let n = (pt - s.center).unit();
         let si = interaction(pt, err, n, t);
         let ray = si.spawn_ray(w);
         let again = s.intersect(&ray, f32::INFINITY);
@@ -168,8 +169,8 @@ proptest! {
             // Inward, the far side must lie beyond the point's own rounding (a sphere smaller
             // than the grid of f32 coordinates where it sits cannot be resolved at all).
             let chord = 2.0 * s.radius as f64 * -cos;
-            prop_assume!(chord > 64.0 * err.length() as f64);
-            let dist = again.map(|t| t as f64 * w.as_dvec3().length());
+            prop_assume!(chord > 64.0 * err.norm() as f64);
+            let dist = again.map(|t| t as f64 * w.as_dvec3().norm());
             prop_assert!(dist.is_some_and(|x| x > 0.5 * chord), "inward ray hit at {dist:?}, chord {chord}");
         }
     }

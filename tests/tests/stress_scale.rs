@@ -17,6 +17,7 @@
 use std::f64::consts::PI;
 use tessera::stats::sidak_alpha;
 use tessera_core::glam::DVec3;
+use tessera_core::math::Norm;
 use tessera_core::math::Ray;
 use tessera_tests::stress::{assert_pixel_within, cbox_xml, scratch_dir, Placement};
 use tessera_tests::{load_xml, region_stats, render_loaded, worst_region};
@@ -309,7 +310,7 @@ fn closed_mesh(skip_face: Option<usize>) -> (std::path::PathBuf, Vec<[DVec3; 3]>
         let mut mid = std::collections::HashMap::new();
         let mut midpoint = |a: usize, b: usize, verts: &mut Vec<DVec3>| {
             *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
-                verts.push(((verts[a] + verts[b]) * 0.5).normalize());
+                verts.push(((verts[a] + verts[b]) * 0.5).unit());
                 verts.len() - 1
             })
         };
@@ -369,12 +370,12 @@ fn edge_misses(
     ];
     // From outside, only triangles whose whole neighbourhood faces the origin: a ray aimed at a
     // silhouette edge only grazes the mesh and may rightly miss it.
-    let normal = |t: &[DVec3; 3]| (t[1] - t[0]).cross(t[2] - t[0]).normalize();
+    let normal = |t: &[DVec3; 3]| (t[1] - t[0]).cross(t[2] - t[0]).unit();
     let faces_origin = |t: &[DVec3; 3], o: DVec3| {
         let c = (t[0] + t[1] + t[2]) / 3.0;
-        normal(t).dot((o - c).normalize()) > 0.1
+        normal(t).dot((o - c).unit()) > 0.1
     };
-    let inside = |o: DVec3| o.length() < 0.9;
+    let inside = |o: DVec3| o.norm() < 0.9;
     let (mut misses, mut tested) = (0, 0);
     for t in tris {
         let targets = [

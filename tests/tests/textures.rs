@@ -11,6 +11,7 @@
 //! in `bsdf_mitsuba_eval.rs`.
 
 use std::path::{Path, PathBuf};
+use tessera_core::math::Norm;
 
 use glam::{Vec2, Vec3};
 use tessera::scene::{load_bsdf_file, load_scene_str};
@@ -24,11 +25,11 @@ fn case_dir() -> PathBuf {
 }
 
 fn wi() -> Vec3 {
-    Vec3::new(0.3, 0.2, 0.9).normalize()
+    Vec3::new(0.3, 0.2, 0.9).unit()
 }
 
 fn wo() -> Vec3 {
-    Vec3::new(-0.2, 0.1, 0.95).normalize()
+    Vec3::new(-0.2, 0.1, 0.95).unit()
 }
 
 /// Mismatches of the material in `xml` against the table `csv`.

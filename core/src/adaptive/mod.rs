@@ -31,6 +31,7 @@
 //! pixel whose first samples happened to be quiet gets fewer later samples. The uniform share,
 //! the smoothing and the growing totals keep that effect small; see the README's measurements.
 use crate::film::PixelAccum;
+use crate::math::sqrt_f64;
 
 mod variance;
 use alloc::vec;
@@ -171,7 +172,7 @@ fn smooth_sqrt(v: &[f64], w: usize, h: usize) -> Vec<f64> {
                 }
                 s / k
             };
-            score[y * w + x] = libm::sqrt(mean);
+            score[y * w + x] = sqrt_f64(mean);
         }
     }
     score
@@ -256,7 +257,7 @@ pub(crate) mod tests {
                         k += 1.0;
                     }
                 }
-                score[y * w + x] = libm::sqrt(s / k);
+                score[y * w + x] = sqrt_f64(s / k);
             }
         }
         let have: Vec<f64> = pixels

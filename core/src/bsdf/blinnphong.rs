@@ -28,6 +28,7 @@
 use super::fresnel::schlick;
 use super::{Bsdf, BsdfSample};
 use crate::math::{sincos_turns, INV_TWO_PI};
+use crate::math::{sqrt, Norm};
 use crate::Color;
 use alloc::boxed::Box;
 use glam::{Vec2, Vec3};
@@ -58,7 +59,7 @@ impl Lobe {
         if wi.z <= 0.0 || wo.z <= 0.0 {
             return 0.0;
         }
-        let h = (wi + wo).normalize_or_zero();
+        let h = (wi + wo).unit_or_zero();
         let (nh, oh) = (h.z, wo.dot(h));
         if !(nh > 0.0 && oh > 0.0) {
             return 0.0;
@@ -80,7 +81,7 @@ impl Lobe {
         if wi.z <= 0.0 || wo.z <= 0.0 {
             return 0.0;
         }
-        let h = (wi + wo).normalize_or_zero();
+        let h = (wi + wo).unit_or_zero();
         let (nh, oh) = (h.z, wo.dot(h));
         if !(nh > 0.0 && oh > 0.0) {
             return 0.0;
@@ -101,14 +102,14 @@ impl Lobe {
             return None;
         }
         let cos_t = libm::powf(u.x, 1.0 / (self.shininess + 1.0));
-        let sin_t = libm::sqrtf((1.0 - cos_t * cos_t).max(0.0));
+        let sin_t = sqrt((1.0 - cos_t * cos_t).max(0.0));
         let (sin_p, cos_p) = sincos_turns(u.y);
         let h = Vec3::new(sin_t * cos_p, sin_t * sin_p, cos_t);
         let ih = wi.dot(h);
         if !(ih > 0.0) {
             return None;
         }
-        let wo = (2.0 * ih * h - wi).normalize_or_zero();
+        let wo = (2.0 * ih * h - wi).unit_or_zero();
         (wo.z > 0.0).then_some(wo)
     }
 }

@@ -1,6 +1,7 @@
 //! Fresnel equations and the mirror / refraction directions shared by the specular and
 //! microfacet models. All directions are unit vectors pointing away from the surface.
 use crate::math::safe_sqrt;
+use crate::math::sqrt;
 use crate::Color;
 use glam::Vec3;
 
@@ -47,7 +48,7 @@ pub fn fresnel_dielectric(cos_i: f32, eta: f32) -> DielectricFresnel {
             eta_ti,
         };
     }
-    let ct = libm::sqrtf(cos_t_sqr);
+    let ct = sqrt(cos_t_sqr);
     let rs = (ci - eta_it * ct) / (ci + eta_it * ct);
     let rp = (eta_it * ci - ct) / (eta_it * ci + ct);
     let f = (0.5 * (rs * rs + rp * rp)).clamp(0.0, 1.0);

@@ -6,7 +6,7 @@
 //! `distribution` = beckmann | ggx, `alpha` or `alpha_u` / `alpha_v`, `sample_visible`).
 //! Beckmann's Smith term uses the rational approximation of Walter et al. 2007, as Mitsuba 3 and
 //! the Wakame assignment do. All directions are in the local frame (+z = macro normal).
-use crate::math::{safe_sqrt, sincos_turns, PI};
+use crate::math::{safe_sqrt, sincos_turns, sqrt, sqrt_f64, Norm, PI};
 use glam::{Vec2, Vec3};
 
 /// Which normal distribution.
@@ -80,14 +80,14 @@ impl Microfacet {
         let tan2 = xy / (v.z * v.z);
         match self.kind {
             MicrofacetKind::Beckmann => {
-                let a = 1.0 / libm::sqrtf(tan2);
+                let a = 1.0 / sqrt(tan2);
                 if a >= 1.6 {
                     1.0
                 } else {
                     (3.535 * a + 2.181 * a * a) / (1.0 + 2.276 * a + 2.577 * a * a)
                 }
             }
-            MicrofacetKind::Ggx => 2.0 / (1.0 + libm::sqrtf(1.0 + tan2)),
+            MicrofacetKind::Ggx => 2.0 / (1.0 + sqrt(1.0 + tan2)),
         }
     }
 
@@ -159,34 +159,34 @@ impl Microfacet {
             MicrofacetKind::Ggx => safe_sqrt(u1 / (1.0 - u1)),
         };
         let (s, c) = sincos_turns(u.y);
-        Vec3::new(-r * c * self.alpha_u, -r * s * self.alpha_v, 1.0).normalize()
+        Vec3::new(-r * c * self.alpha_u, -r * s * self.alpha_v, 1.0).unit()
     }
 
     /// Visible GGX normals: uniform on the projected hemisphere of the stretched configuration
     /// (Heitz 2018).
     fn sample_visible_ggx(&self, wi: Vec3, u: Vec2) -> Vec3 {
-        let vh = Vec3::new(self.alpha_u * wi.x, self.alpha_v * wi.y, wi.z).normalize();
+        let vh = Vec3::new(self.alpha_u * wi.x, self.alpha_v * wi.y, wi.z).unit();
         let len2 = vh.x * vh.x + vh.y * vh.y;
         let t1 = if len2 > 0.0 {
-            Vec3::new(-vh.y, vh.x, 0.0) / libm::sqrtf(len2)
+            Vec3::new(-vh.y, vh.x, 0.0) / sqrt(len2)
         } else {
             Vec3::X
         };
         let t2 = vh.cross(t1);
-        let r = libm::sqrtf(u.x);
+        let r = sqrt(u.x);
         let (sp, cp) = sincos_turns(u.y);
         let p1 = r * cp;
         let s = 0.5 * (1.0 + vh.z);
         let p2 = (1.0 - s) * safe_sqrt(1.0 - p1 * p1) + s * r * sp;
         let nh = p1 * t1 + p2 * t2 + safe_sqrt(1.0 - p1 * p1 - p2 * p2) * vh;
-        Vec3::new(self.alpha_u * nh.x, self.alpha_v * nh.y, nh.z.max(1e-7)).normalize()
+        Vec3::new(self.alpha_u * nh.x, self.alpha_v * nh.y, nh.z.max(1e-7)).unit()
     }
 
     /// Visible Beckmann normals: the slope distribution of the visible normals for unit
     /// roughness is sampled in `x` by inverting its CDF (Newton-bisection on `erf`) and in `y`
     /// as a Gaussian, then rotated and stretched (Heitz and d'Eon 2014).
     fn sample_visible_beckmann(&self, wi: Vec3, u: Vec2) -> Vec3 {
-        let w = Vec3::new(self.alpha_u * wi.x, self.alpha_v * wi.y, wi.z).normalize();
+        let w = Vec3::new(self.alpha_u * wi.x, self.alpha_v * wi.y, wi.z).unit();
         let sin_t = safe_sqrt(1.0 - w.z * w.z);
         let (cos_phi, sin_phi) = if sin_t > 1e-7 {
             (w.x / sin_t, w.y / sin_t)
@@ -197,7 +197,7 @@ impl Microfacet {
         let (sx, sy) = (sx as f32, sy as f32);
         let x = (cos_phi * sx - sin_phi * sy) * self.alpha_u;
         let y = (sin_phi * sx + cos_phi * sy) * self.alpha_v;
-        Vec3::new(-x, -y, 1.0).normalize()
+        Vec3::new(-x, -y, 1.0).unit()
     }
 }
 
@@ -208,11 +208,11 @@ fn beckmann_visible_slope(cos_t: f64, u1: f64, u2: f64) -> (f64, f64) {
     let u1 = u1.clamp(1e-9, 1.0 - 1e-9);
     let u2 = u2.clamp(1e-9, 1.0 - 1e-9);
     if cos_t > 0.999_999 {
-        let r = libm::sqrt(-libm::log(1.0 - u1));
+        let r = sqrt_f64(-libm::log(1.0 - u1));
         let (s, c) = libm::sincos(2.0 * core::f64::consts::PI * u2);
         return (r * c, r * s);
     }
-    let sin_t = libm::sqrt((1.0 - cos_t * cos_t).max(0.0));
+    let sin_t = sqrt_f64((1.0 - cos_t * cos_t).max(0.0));
     let tan_t = sin_t / cos_t;
     let cot_t = 1.0 / tan_t;
     // The CDF of the x slope is (1 + erf(x) + tan_t exp(-x^2) / sqrt(pi)) / norm on
@@ -268,7 +268,7 @@ pub fn erfinv(x: f64) -> f64 {
             p = c + p * w;
         }
     } else {
-        w = libm::sqrt(w) - 3.0;
+        w = sqrt_f64(w) - 3.0;
         p = -2.002_142_57e-04;
         for c in [
             1.009_505_58e-04,

@@ -13,6 +13,7 @@
 use super::fresnel::{fresnel_dielectric, reflect, refract};
 use super::microfacet::{Microfacet, MicrofacetKind};
 use crate::math::safe_sqrt;
+use crate::math::{sqrt, Norm};
 use crate::sampling::warp::square_to_uniform_disk_concentric;
 use crate::texture::Texture;
 use alloc::boxed::Box;
@@ -123,7 +124,7 @@ pub fn rough_tables(kind: MicrofacetKind, alpha: f32, eta: f32) -> (Box<[f32; TA
     let mut internal = 0.0f64;
     for (i, t) in table.iter_mut().enumerate() {
         let mu = (i as f32 / (TABLE_RES - 1) as f32).max(1e-6);
-        let wi = Vec3::new(libm::sqrtf(1.0 - mu * mu), 0.0, mu);
+        let wi = Vec3::new(sqrt(1.0 - mu * mu), 0.0, mu);
         *t = visible_integral(&distr, wi, &rule_ext, |m| {
             let fr = fresnel_dielectric(wi.dot(m), eta);
             let wt = refract(wi, m, fr.cos_t, fr.eta_ti);
@@ -187,8 +188,8 @@ impl UnitRule {
 fn visible_integral(distr: &Microfacet, wi: Vec3, rule: &UnitRule, f: impl Fn(Vec3) -> f32) -> f64 {
     let (disk, rule) = (&rule.disk, &rule.nodes[..]);
     let a = distr.alpha_u;
-    let cos_t = wi.z / Vec3::new(a * wi.x, 0.0, wi.z).length();
-    let normal = |sx: f32, sy: f32| Vec3::new(-sx * a, -sy * a, 1.0).normalize();
+    let cos_t = wi.z / Vec3::new(a * wi.x, 0.0, wi.z).norm();
+    let normal = |sx: f32, sy: f32| Vec3::new(-sx * a, -sy * a, 1.0).unit();
     let mut sum = 0.0;
     match distr.kind {
         MicrofacetKind::Beckmann => {
@@ -225,7 +226,7 @@ impl BeckmannVisible {
     const INV_SQRT_PI: f32 = 0.564_189_6;
 
     fn new(cos_t: f32) -> Self {
-        let tan_t = libm::sqrtf((1.0 - cos_t * cos_t).max(0.0)) / cos_t;
+        let tan_t = sqrt((1.0 - cos_t * cos_t).max(0.0)) / cos_t;
         let cot = 1.0 / tan_t;
         let max = libm::erff(cot);
         let norm = 1.0 + max + Self::INV_SQRT_PI * tan_t * libm::expf(-cot * cot);
@@ -235,7 +236,7 @@ impl BeckmannVisible {
     /// The x slope for the first sample coordinate (the y slope is `erfinv(2 u_y - 1)`).
     fn slope_x(&self, u: f32) -> f32 {
         let u = u.clamp(1e-6, 1.0 - 1e-6);
-        let mut x = self.max - (self.max + 1.0) * libm::erff(libm::sqrtf(-libm::logf(u)));
+        let mut x = self.max - (self.max + 1.0) * libm::erff(sqrt(-libm::logf(u)));
         let target = u * self.norm;
         for _ in 0..3 {
             let s = erfinv(x);

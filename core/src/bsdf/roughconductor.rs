@@ -17,6 +17,7 @@ use super::conductor::conductor_fresnel;
 use super::fresnel::reflect;
 use super::microfacet::Microfacet;
 use super::BsdfSample;
+use crate::math::Norm;
 use crate::texture::Texture;
 use crate::Color;
 use glam::{Vec2, Vec3};
@@ -42,7 +43,7 @@ impl RoughConductor {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return None;
         }
-        let h = (wi + wo).normalize();
+        let h = (wi + wo).unit();
         (h.is_finite() && wi.dot(h) > 0.0 && wo.dot(h) > 0.0).then_some(h)
     }
 
@@ -105,7 +106,7 @@ impl RoughConductor {
         };
         let weight = self.fresnel(cos_im, uv) * g;
         (pdf.is_finite() && pdf > 0.0 && g > 0.0).then_some(BsdfSample {
-            wo: wo.normalize(),
+            wo: wo.unit(),
             weight,
             pdf,
             delta: false,
@@ -138,13 +139,13 @@ mod tests {
                 k: Texture::Constant(Color::ONE),
                 specular_reflectance: Texture::Constant(Color::ONE),
             };
-            let wi = Vec3::new(0.3, -0.2, 0.9).normalize();
+            let wi = Vec3::new(0.3, -0.2, 0.9).unit();
             for wo in [
-                Vec3::new(-0.3, 0.2, 0.9).normalize(),
-                Vec3::new(0.5, 0.5, 0.4).normalize(),
-                Vec3::new(-0.8, 0.1, 0.2).normalize(),
+                Vec3::new(-0.3, 0.2, 0.9).unit(),
+                Vec3::new(0.5, 0.5, 0.4).unit(),
+                Vec3::new(-0.8, 0.1, 0.2).unit(),
             ] {
-                let h = (wi + wo).normalize();
+                let h = (wi + wo).unit();
                 let g = c.distribution.g(wi, wo, h);
                 let f = c.eval(wi, wo, Vec2::ZERO);
                 let want = c.lobe(wi, wo) * g;

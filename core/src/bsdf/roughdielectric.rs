@@ -34,6 +34,7 @@
 use super::fresnel::{fresnel_dielectric, reflect, refract};
 use super::microfacet::Microfacet;
 use super::BsdfSample;
+use crate::math::{sqrt, Norm};
 use crate::texture::Texture;
 use crate::Color;
 use glam::{Vec2, Vec3};
@@ -86,7 +87,7 @@ impl RoughDielectric {
         }
         let reflect = ci * co > 0.0;
         let eta = if ci > 0.0 { self.eta } else { 1.0 / self.eta };
-        let mut m = (wi + wo * if reflect { 1.0 } else { eta }).normalize();
+        let mut m = (wi + wo * if reflect { 1.0 } else { eta }).unit();
         if !m.is_finite() {
             return None;
         }
@@ -107,7 +108,7 @@ impl RoughDielectric {
     fn sampling_distribution(&self, cos_i: f32) -> Microfacet {
         let mut d = self.distribution;
         if !d.sample_visible {
-            let s = 1.2 - 0.2 * libm::sqrtf(cos_i.abs());
+            let s = 1.2 - 0.2 * sqrt(cos_i.abs());
             d.alpha_u *= s;
             d.alpha_v *= s;
         }
@@ -187,7 +188,7 @@ impl RoughDielectric {
             md.d(m) / sd.d(m) * md.g(wi, wo, m) * cos_im.abs() / (ci.abs() * m.z)
         };
         (pdf.is_finite() && pdf > 0.0 && g > 0.0 && g.is_finite()).then_some(BsdfSample {
-            wo: wo.normalize(),
+            wo: wo.unit(),
             weight: tint * g,
             pdf,
             delta: false,

@@ -25,6 +25,7 @@ use super::plastic_common::{
     TABLE_RES,
 };
 use super::BsdfSample;
+use crate::math::Norm;
 use crate::math::INV_PI;
 use crate::sampling::warp::cosine_hemisphere_pdf;
 use crate::texture::Texture;
@@ -96,7 +97,7 @@ impl RoughPlastic {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return Color::ZERO;
         }
-        let h = (wi + wo).normalize();
+        let h = (wi + wo).unit();
         let d = self.distr.d(h);
         let f = fresnel_dielectric(wi.dot(h), self.eta).f;
         let g = self.distr.g(wi, wo, h);
@@ -124,7 +125,7 @@ impl RoughPlastic {
         let Some(ps) = coating_probability(1.0 - self.transmittance(wi.z), self.spec_weight) else {
             return 0.0;
         };
-        let h = (wi + wo).normalize();
+        let h = (wi + wo).unit();
         let spec = if self.distr.sample_visible {
             self.distr.d(h) * self.distr.g1(wi, h) / (4.0 * wi.z)
         } else {

@@ -15,6 +15,7 @@
 use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetKind};
 use super::BsdfSample;
+use crate::math::Norm;
 use crate::math::INV_PI;
 use crate::sampling::warp::cosine_hemisphere_pdf;
 use crate::Color;
@@ -56,7 +57,7 @@ impl WakameMicrofacet {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return Color::ZERO;
         }
-        let h = (wi + wo).normalize();
+        let h = (wi + wo).unit();
         let spec =
             self.distr.d(h) * fresnel_dielectric(h.dot(wi), self.eta).f * self.distr.g(wi, wo, h)
                 / (4.0 * wi.z * wo.z);
@@ -74,7 +75,7 @@ impl WakameMicrofacet {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return 0.0;
         }
-        let h = (wi + wo).normalize();
+        let h = (wi + wo).unit();
         let spec = self.distr.d(h) * h.z / (4.0 * h.dot(wo));
         let p = self.ks * spec + (1.0 - self.ks) * cosine_hemisphere_pdf(wo);
         if p.is_finite() {

@@ -5,6 +5,7 @@
 //! (transform, usually a lookat; the camera looks along local +z with +y up and local +x to the
 //! image's left), `near_clip` (float, default 0.01), `far_clip` (float, default 10000). The film
 //! (`width`, `height`) and filter live in `<film>`; Nori puts width/height on the camera.
+use crate::math::{sqrt, Norm};
 use crate::math::{Ray, Transform};
 use glam::{Vec2, Vec3};
 
@@ -70,7 +71,7 @@ impl Perspective {
         };
         let tan_x = match axis {
             FovAxis::Y => t * w / h,
-            FovAxis::Diagonal => t * w / libm::sqrtf(w * w + h * h),
+            FovAxis::Diagonal => t * w / sqrt(w * w + h * h),
             _ => t,
         };
         Perspective {
@@ -91,8 +92,8 @@ impl Perspective {
         let y = (1.0 - 2.0 * pos.y / self.height as f32) * self.tan_y;
         let local = Vec3::new(x, y, 1.0);
         // Distance along the unit direction to the clip planes z = near and z = far.
-        let len = local.length();
-        let d = self.to_world.vector(local / len).normalize();
+        let len = local.norm();
+        let d = self.to_world.vector(local / len).unit();
         let o = self.to_world.point(Vec3::ZERO);
         let (near_t, far_t) = (self.near * len, self.far * len);
         Ray {

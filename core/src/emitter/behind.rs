@@ -21,6 +21,7 @@
 //! normal, which may lean anywhere), as are curved meshes (the margin would swallow the test).
 //! Spheres and disks are not covered.
 use crate::geometry::{Shape, ShapeKind};
+use crate::math::Norm;
 use glam::{DVec3, Vec3};
 
 /// Relative bound on the rounding errors of the test and of light sampling (see the header).
@@ -62,7 +63,7 @@ impl Behind {
             let [p0, p1, p2] = m.vertices(i).map(|p| p.as_dvec3());
             sum += (p1 - p0).cross(p2 - p0);
         }
-        let normal = (sum * flip).try_normalize()?;
+        let normal = (sum * flip).try_unit()?;
         let used: alloc::vec::Vec<DVec3> = m
             .indices
             .iter()
@@ -75,13 +76,13 @@ impl Behind {
         let mut extent = 0.0f64;
         for &p in &used {
             dev = dev.max((normal.dot(p) - offset).abs());
-            radius = radius.max((p - center).length());
+            radius = radius.max((p - center).norm());
             extent = extent.max(p.abs().max_element());
         }
         let mut tilt = 0.0f64;
         for i in 0..m.indices.len() {
             let n = m.face_normal(i).as_dvec3() * flip;
-            tilt = tilt.max((n - normal).length());
+            tilt = tilt.max((n - normal).norm());
         }
         if !(tilt <= MAX_TILT) {
             return None;
@@ -112,7 +113,7 @@ impl Behind {
         if !(s < 0.0) {
             return false;
         }
-        let reach = (r - self.center).length() + self.radius;
+        let reach = (r - self.center).norm() + self.radius;
         let margin = self.dev + self.tilt * reach + ROUNDING * (reach + r.abs().max_element());
         s < -margin
     }

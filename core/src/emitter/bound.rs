@@ -10,6 +10,7 @@
 use super::{luminance, Emitter, EmitterCtx};
 use crate::geometry::ShapeKind;
 use crate::math::PI;
+use crate::math::{sqrt, Norm};
 use glam::Vec3;
 
 /// A light as light selection sees it.
@@ -118,7 +119,7 @@ impl LightBound {
                         center /= area;
                         // Flat when the area-weighted normal is as long as the area: every
                         // face points the same way.
-                        let len = normal.length();
+                        let len = normal.norm();
                         if len >= area * 0.9999 {
                             LightBound::Flat {
                                 center,
@@ -171,7 +172,7 @@ impl LightBound {
                 from_point(p, center, r2, lum, |_, dist2| {
                     // 2 pi (1 - cos theta_max), without cancellation for small spheres.
                     let sin2 = r2 / dist2;
-                    lum * (2.0 * PI * sin2 / (1.0 + libm::sqrtf(1.0 - sin2)))
+                    lum * (2.0 * PI * sin2 / (1.0 + sqrt(1.0 - sin2)))
                 })
             }
             LightBound::Flat {
@@ -223,7 +224,7 @@ fn from_point(
         };
     }
     // One division, not one per component: the estimate only steers.
-    let w = d * (1.0 / libm::sqrtf(dist2));
+    let w = d * (1.0 / sqrt(dist2));
     LightEstimate {
         irradiance: irradiance(w, dist2),
         toward: Some(w),

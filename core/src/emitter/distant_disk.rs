@@ -13,6 +13,7 @@
 //! radiance of the cap falling on the disk of the scene's bounding sphere).
 use super::EmitterSample;
 use crate::geometry::Interaction;
+use crate::math::Norm;
 use crate::math::PI;
 use crate::sampling::warp::square_to_uniform_cone_omc;
 use crate::Color;
@@ -55,7 +56,7 @@ impl DistantDisk {
         if self.omc_max >= 2.0 {
             return true;
         }
-        let l = (self.to_local * d).normalize_or_zero();
+        let l = (self.to_local * d).unit_or_zero();
         // 1 - cos(theta) without cancellation near the axis.
         let omc = if l.z >= 0.0 {
             (l.x * l.x + l.y * l.y) / (1.0 + l.z)
@@ -93,7 +94,7 @@ impl DistantDisk {
     /// A direction uniform over the disk's cap.
     pub fn sample(&self, _it: &Interaction, u: Vec2) -> Option<EmitterSample> {
         let local = square_to_uniform_cone_omc(u, self.omc_max);
-        let wo = (self.to_world * local).normalize_or_zero();
+        let wo = (self.to_world * local).unit_or_zero();
         if wo == Vec3::ZERO {
             return None;
         }

@@ -26,6 +26,7 @@
 //! the map counts as `pi r^2` times its integral of luminance over the sphere.
 use super::{luminance, EmitterSample};
 use crate::geometry::Interaction;
+use crate::math::{sqrt, Norm};
 use crate::math::{INV_PI, INV_TWO_PI, PI};
 use crate::sampling::Distribution2D;
 use crate::Color;
@@ -202,7 +203,7 @@ impl EnvMap {
     /// Radiance arriving along the escaping unit direction `d`.
     #[inline]
     pub fn eval(&self, d: Vec3) -> Color {
-        let l = (self.to_local * d).normalize_or_zero();
+        let l = (self.to_local * d).unit_or_zero();
         if l == Vec3::ZERO {
             return Color::ZERO;
         }
@@ -216,8 +217,8 @@ impl EnvMap {
         if self.dist.is_none() {
             return 0.0;
         }
-        let l = (self.to_local * d).normalize_or_zero();
-        let sin_t = libm::sqrtf(l.x * l.x + l.z * l.z);
+        let l = (self.to_local * d).unit_or_zero();
+        let sin_t = sqrt(l.x * l.x + l.z * l.z);
         if !(sin_t > 0.0) {
             return 0.0;
         }
@@ -244,7 +245,7 @@ impl EnvMap {
         }
         let (sin_p, cos_p) = (libm::sinf(phi), libm::cosf(phi));
         let local = Vec3::new(sin_p * sin_t, cos_t, -cos_p * sin_t);
-        let wo = (self.to_world * local).normalize_or_zero();
+        let wo = (self.to_world * local).unit_or_zero();
         let pdf = self.pdf_uv(s, v) / (2.0 * PI * PI * sin_t);
         let le = self.lookup(s, v);
         if wo == Vec3::ZERO || le == Color::ZERO || !(pdf > 0.0) || !pdf.is_finite() {
@@ -267,7 +268,7 @@ fn sample_linear(u: f32, a: f32, b: f32) -> f32 {
     if a == b {
         return u;
     }
-    let den = a + libm::sqrtf(((1.0 - u) * a * a + u * b * b).max(0.0));
+    let den = a + sqrt(((1.0 - u) * a * a + u * b * b).max(0.0));
     if !(den > 0.0) {
         return 0.0;
     }

@@ -4,6 +4,7 @@
 //! (point, default 0,0,0) or `to_world` (its translation is the position).
 use super::EmitterSample;
 use crate::geometry::Interaction;
+use crate::math::sqrt;
 use crate::Color;
 use glam::Vec3;
 
@@ -24,7 +25,7 @@ impl PointLight {
         if !(dist2 > 0.0) {
             return None;
         }
-        let wo = d / libm::sqrtf(dist2);
+        let wo = d / sqrt(dist2);
         Some(EmitterSample {
             wo,
             target: Some(self.position),

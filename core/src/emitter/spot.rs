@@ -12,6 +12,7 @@
 //! between the two, 0 for `theta >= cutoff`.
 use super::EmitterSample;
 use crate::geometry::Interaction;
+use crate::math::{sqrt, Norm};
 use crate::math::{Transform, PI};
 use crate::Color;
 use glam::{Mat3, Vec3};
@@ -73,8 +74,8 @@ impl SpotLight {
         if !(dist2 > 0.0) {
             return None;
         }
-        let wo = d / libm::sqrtf(dist2);
-        let local = (self.to_local * -wo).normalize_or_zero();
+        let wo = d / sqrt(dist2);
+        let local = (self.to_local * -wo).unit_or_zero();
         let falloff = self.falloff(local);
         if !(falloff > 0.0) {
             return None;

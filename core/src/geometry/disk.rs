@@ -2,6 +2,7 @@
 //!
 //! Scene parameters (`<shape type="disk">`): `to_world` (transform, default identity; any
 //! invertible affine map, so an ellipse is fine), `flip_normals` (boolean, default false).
+use crate::math::Norm;
 use crate::math::{gamma, Ray, Transform, PI};
 use crate::sampling::warp::square_to_uniform_disk_concentric;
 use glam::{Vec2, Vec3};
@@ -22,8 +23,8 @@ impl Disk {
     pub fn new(to_world: Transform) -> Option<Self> {
         let ex = to_world.vector(Vec3::X);
         let ey = to_world.vector(Vec3::Y);
-        let area = PI * ex.cross(ey).length();
-        let normal = to_world.normal(Vec3::Z).normalize();
+        let area = PI * ex.cross(ey).norm();
+        let normal = to_world.normal(Vec3::Z).unit();
         (area > 0.0 && area.is_finite() && normal.is_finite()).then_some(Disk {
             to_world,
             normal,

@@ -2,6 +2,7 @@
 //!
 //! Built by the driver from `obj`, `ply`, `rectangle` and `cube` shapes (see the driver's loaders
 //! for their scene parameters). Positions and normals are already transformed to world space.
+use crate::math::Norm;
 use crate::math::{gamma, Frame};
 use crate::sampling::{warp::square_to_uniform_triangle, Discrete1D};
 use alloc::vec::Vec;
@@ -73,7 +74,7 @@ impl Mesh {
         m.face_normals = (0..m.indices.len())
             .map(|i| {
                 let [a, b, c] = m.vertices(i);
-                (b - a).cross(c - a).normalize_or_zero()
+                (b - a).cross(c - a).unit_or_zero()
             })
             .collect();
         m.inv_area = 1.0 / m.area();
@@ -100,7 +101,7 @@ impl Mesh {
     /// Area of triangle `i`.
     pub fn triangle_area(&self, i: usize) -> f32 {
         let [a, b, c] = self.vertices(i);
-        0.5 * (b - a).cross(c - a).length()
+        0.5 * (b - a).cross(c - a).norm()
     }
     /// Total area.
     pub fn area(&self) -> f32 {
@@ -187,7 +188,7 @@ impl Mesh {
         }
         let b0 = 1.0 - b1 - b2;
         let n = self.normals[i0] * b0 + self.normals[i1] * b1 + self.normals[i2] * b2;
-        let n = n.normalize_or_zero();
+        let n = n.unit_or_zero();
         if n == Vec3::ZERO {
             ng
         } else {

@@ -4,6 +4,7 @@
 //! or referenced `<bsdf>` (default: `diffuse` with reflectance 0.5, as in Mitsuba 3), an optional
 //! nested `<emitter type="area">`.
 use super::{Disk, Hit, Interaction, Mesh, Prim, Sphere};
+use crate::math::{sqrt, Norm};
 use crate::math::{Frame, Ray};
 use glam::{Vec2, Vec3};
 
@@ -87,7 +88,7 @@ impl Shape {
             (ShapeKind::Sphere(s), _) => {
                 let (p, err) = s.project(ray.at(hit.t));
                 let n = (p - s.center) / s.radius;
-                let n = n.normalize_or(Vec3::Z);
+                let n = n.unit_or(Vec3::Z);
                 let uv = Vec2::new(
                     (libm::atan2f(n.y, n.x) * crate::math::INV_TWO_PI + 1.0) % 1.0,
                     libm::acosf(n.z.clamp(-1.0, 1.0)) * crate::math::INV_PI,
@@ -99,7 +100,7 @@ impl Shape {
                 let disk = &disks[*d as usize];
                 let (p, err) = disk.point(hit.uv);
                 let uv = Vec2::new(
-                    hit.uv.length(),
+                    hit.uv.norm(),
                     (libm::atan2f(hit.uv.y, hit.uv.x) * crate::math::INV_TWO_PI + 1.0) % 1.0,
                 );
                 // Radial, as Mitsuba 3's disk (u is the radius).
@@ -134,7 +135,7 @@ impl Shape {
             frame,
             uv,
             shape: hit_shape(prim),
-            wi: (-ray.d).normalize(),
+            wi: (-ray.d).unit(),
         }
     }
 
@@ -190,7 +191,7 @@ impl Shape {
                     },
                     pdf: cs.pdf,
                     d,
-                    dist: d.length(),
+                    dist: d.norm(),
                 });
             }
         }
@@ -198,7 +199,7 @@ impl Shape {
         // area_to_solid_angle, keeping the distance.
         let d = ps.p - r;
         let dist2 = d.length_squared();
-        let dist = libm::sqrtf(dist2);
+        let dist = sqrt(dist2);
         let cos = ps.ng.dot(d).abs() / dist;
         let pdf = if cos > 0.0 && dist2 > 0.0 {
             self.inv_area(disks) * dist2 / cos
@@ -234,7 +235,7 @@ impl Shape {
 pub fn area_to_solid_angle(r: Vec3, p: Vec3, n: Vec3, pdf_area: f32) -> f32 {
     let d = p - r;
     let dist2 = d.length_squared();
-    let cos = n.dot(d).abs() / libm::sqrtf(dist2);
+    let cos = n.dot(d).abs() / sqrt(dist2);
     if cos > 0.0 && dist2 > 0.0 {
         pdf_area * dist2 / cos
     } else {

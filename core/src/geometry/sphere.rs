@@ -6,6 +6,7 @@
 //! unless flipped.
 use crate::math::sincos_turns;
 use crate::math::{gamma, safe_sqrt, Frame, Ray, PI};
+use crate::math::{sqrt, Norm};
 use glam::{Vec2, Vec3};
 
 /// A sphere in world space.
@@ -42,7 +43,7 @@ impl Sphere {
     /// and rejects roots smaller than their own error bound (the origin sits on this sphere).
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<f32> {
-        let len = ray.d.length();
+        let len = ray.d.norm();
         if !(len > 0.0) {
             return None;
         }
@@ -56,7 +57,7 @@ impl Sphere {
             return None;
         }
         let c = f.length_squared() - r2;
-        let q = b + libm::copysignf(libm::sqrtf(disc), b);
+        let q = b + libm::copysignf(sqrt(disc), b);
         if q == 0.0 {
             return None;
         }
@@ -64,7 +65,7 @@ impl Sphere {
         if t0 > t1 {
             core::mem::swap(&mut t0, &mut t1);
         }
-        let t_err = gamma(8) * (f.length_squared() + r2) / q.abs() + gamma(4) * f.length();
+        let t_err = gamma(8) * (f.length_squared() + r2) / q.abs() + gamma(4) * f.norm();
         let t_max_n = t_max * len;
         for t in [t0, t1] {
             if t > t_err && t < t_max_n {
@@ -78,7 +79,7 @@ impl Sphere {
     #[inline]
     pub fn project(&self, p: Vec3) -> (Vec3, Vec3) {
         let v = p - self.center;
-        let len = v.length();
+        let len = v.norm();
         let v = if len > 0.0 {
             v * (self.radius / len)
         } else {
@@ -120,7 +121,7 @@ impl Sphere {
         let omc = u.x * cone.omc;
         let cos_t = 1.0 - omc;
         let ratio = (u.x * (2.0 - omc) * cone.inv_one_plus_cos).min(1.0);
-        let inv_dist = 1.0 / libm::sqrtf(dist2);
+        let inv_dist = 1.0 / sqrt(dist2);
         let sin_max = self.radius * inv_dist;
         let cos_a = (ratio * sin_max + cos_t * safe_sqrt(1.0 - ratio)).min(1.0);
         let sin_a = safe_sqrt(1.0 - cos_a * cos_a);
@@ -129,7 +130,7 @@ impl Sphere {
         // The outward normal leans back toward `r` by alpha from the axis.
         let n = frame
             .to_world(Vec3::new(sin_a * c, sin_a * s, -cos_a))
-            .normalize_or(-frame.n);
+            .unit_or(-frame.n);
         let v = n * self.radius;
         // `n` is unit up to a few rounding steps per component, so `p` sits on the sphere within
         // the bound of [`Sphere::project`] (per-component relative error of `v`, then the sum).

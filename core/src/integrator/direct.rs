@@ -12,6 +12,7 @@ use super::light::{emission_along, sample_light};
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
 use super::select::VertexSelection;
 use super::Heuristic;
+use crate::math::Norm;
 use crate::math::Ray;
 use crate::sampling::{Sampler, Stage};
 use crate::scene::Scene;
@@ -57,7 +58,7 @@ impl DirectIntegrator {
             emission_along(
                 scene,
                 ray.o,
-                ray.d.normalize(),
+                ray.d.unit(),
                 hit.as_ref(),
                 false,
                 None,

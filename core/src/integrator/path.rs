@@ -21,6 +21,7 @@ use super::light::{emission_along, sample_light};
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
 use super::select::VertexSelection;
 use super::Heuristic;
+use crate::math::Norm;
 use crate::math::Ray;
 use crate::sampling::{Sampler, Stage};
 use crate::scene::Scene;
@@ -160,7 +161,7 @@ impl PathIntegrator {
             // path_ems gives light found after a vertex that sampled emitters weight zero.
             let weighted = !(self.strategy == Strategy::Emitter && prev.is_some_and(|p| p.nee));
             if visible && weighted && (hit.is_some() || features.has_environment) {
-                let d = ray.d.normalize();
+                let d = ray.d.unit();
                 let with_pdf = self.strategy == Strategy::Mis && prev.is_some_and(|p| p.nee);
                 let from = prev.map_or(ray.o, |p| p.p);
                 emission_along(

@@ -1,4 +1,5 @@
 //! Orthonormal frames: local shading coordinates with the normal on +z.
+use crate::math::sqrt;
 use glam::Vec3;
 
 /// An orthonormal basis `(s, t, n)`; local coordinates have `n` as +z.
@@ -45,7 +46,7 @@ impl Frame {
         if !(len2 > 1e-20 * dpdu.length_squared().max(1e-30)) || !len2.is_finite() {
             return None;
         }
-        Some(s / libm::sqrtf(len2))
+        Some(s / sqrt(len2))
     }
     /// World direction to local coordinates.
     #[inline]

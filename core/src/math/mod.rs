@@ -3,6 +3,7 @@ mod aabb;
 mod float;
 mod frame;
 mod ray;
+mod sqrt;
 mod transform;
 mod turns;
 
@@ -10,6 +11,7 @@ pub use aabb::Aabb;
 pub use float::{gamma, next_down, next_up, offset_ray_origin};
 pub use frame::Frame;
 pub use ray::Ray;
+pub use sqrt::{sqrt, sqrt_f64, Norm};
 pub use transform::Transform;
 pub use turns::sincos_turns;
 
@@ -25,5 +27,5 @@ pub const INV_FOUR_PI: f32 = 0.25 * core::f32::consts::FRAC_1_PI;
 /// `sqrt(max(x, 0))`: safe against tiny negative rounding errors.
 #[inline]
 pub fn safe_sqrt(x: f32) -> f32 {
-    libm::sqrtf(x.max(0.0))
+    sqrt(x.max(0.0))
 }

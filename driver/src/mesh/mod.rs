@@ -16,6 +16,7 @@ pub use ply::load_ply;
 use crate::error::InputError;
 use std::io::Read;
 use std::path::Path;
+use tessera_core::math::Norm;
 
 /// Largest mesh file accepted (4 GiB: a mistake, not a mesh, beyond this).
 pub const MAX_MESH_BYTES: u64 = 4 << 30;
@@ -101,21 +102,18 @@ impl MeshData {
         let mut acc = vec![Vec3::ZERO; self.positions.len()];
         for t in &self.indices {
             let p = t.map(|i| Vec3::from(self.positions[i as usize]));
-            let n = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
+            let n = (p[1] - p[0]).cross(p[2] - p[0]).unit_or_zero();
             if n == Vec3::ZERO {
                 continue;
             }
             for k in 0..3 {
-                let e1 = (p[(k + 1) % 3] - p[k]).normalize_or_zero();
-                let e2 = (p[(k + 2) % 3] - p[k]).normalize_or_zero();
+                let e1 = (p[(k + 1) % 3] - p[k]).unit_or_zero();
+                let e2 = (p[(k + 2) % 3] - p[k]).unit_or_zero();
                 let angle = e1.dot(e2).clamp(-1.0, 1.0).acos();
                 acc[t[k] as usize] += n * angle;
             }
         }
-        self.normals = acc
-            .iter()
-            .map(|n| n.normalize_or_zero().to_array())
-            .collect();
+        self.normals = acc.iter().map(|n| n.unit_or_zero().to_array()).collect();
     }
 }
 

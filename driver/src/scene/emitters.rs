@@ -19,6 +19,7 @@ use glam::{DMat3, DVec3, Mat3};
 use tessera_core::emitter::{
     AreaLight, ConstantEnv, DirectionalLight, DistantDisk, Emitter, EnvMap, PointLight, SpotLight,
 };
+use tessera_core::math::Norm;
 
 /// An area light on shape `shape`.
 pub fn build_area(obj: &Object, shape: u32) -> Result<Emitter> {
@@ -107,7 +108,7 @@ fn build_directional(obj: &Object) -> Result<Emitter> {
             (m.transform_vector3(DVec3::Z), "to_world")
         }
     };
-    let len = d.length();
+    let len = d.norm();
     let direction = (d / len).as_vec3();
     if !(len > 0.0) || !len.is_finite() || !direction.is_finite() {
         return Err(at_prop(

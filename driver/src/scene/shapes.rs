@@ -18,6 +18,7 @@ use crate::mesh::{self, MeshData, MtlBsdf};
 use crate::xml::{Kind, Object};
 use glam::{Vec2, Vec3};
 use tessera_core::geometry::{Disk, Mesh, ShapeKind, Sphere};
+use tessera_core::math::Norm;
 use tessera_core::math::Transform;
 
 /// A part of an OBJ mesh with its MTL material.
@@ -71,7 +72,7 @@ fn to_world_mesh(obj: &Object, data: MeshData, tf: &Transform, face_normals: boo
     let normals = data
         .normals
         .iter()
-        .map(|n| tf.normal(Vec3::from(*n)).normalize_or_zero())
+        .map(|n| tf.normal(Vec3::from(*n)).unit_or_zero())
         .collect();
     let uvs = data.uvs.iter().map(|u| Vec2::from(*u)).collect();
     Ok(Mesh::new(positions, normals, uvs, data.indices))
@@ -89,7 +90,7 @@ pub fn build_shape(obj: &Object) -> Result<ShapeParts<'_>> {
             let tf = transform(obj, "to_world")?;
             let c = tf.point(center);
             let axes =
-                [tf.vector(Vec3::X), tf.vector(Vec3::Y), tf.vector(Vec3::Z)].map(|a| a.length());
+                [tf.vector(Vec3::X), tf.vector(Vec3::Y), tf.vector(Vec3::Z)].map(|a| a.norm());
             let s = axes[0];
             if axes.iter().any(|a| (a - s).abs() > 1e-4 * s)
                 || (tf.vector(Vec3::X).dot(tf.vector(Vec3::Y))).abs() > 1e-4 * s * s

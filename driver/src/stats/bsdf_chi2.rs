@@ -28,6 +28,7 @@
 
 use std::collections::HashMap;
 use std::f64::consts::TAU;
+use tessera_core::math::Norm;
 
 use glam::{Vec2, Vec3};
 use tessera_core::bsdf::{Bsdf, BsdfSample};
@@ -111,7 +112,7 @@ impl BsdfChi2 {
                 failures += 1;
                 continue;
             };
-            let len = s.wo.length();
+            let len = s.wo.norm();
             if !s.wo.is_finite() || (len - 1.0).abs() > 1e-3 {
                 return Chi2Result::failure(format!(
                     "sample {k}: direction {} is not a unit vector",
@@ -257,7 +258,7 @@ mod tests {
 
     #[test]
     fn diffuse_passes_and_albedo_is_reflectance() {
-        let wi = Vec3::new(0.3, 0.2, 0.9).normalize();
+        let wi = Vec3::new(0.3, 0.2, 0.9).unit();
         let r = BsdfChi2::default().run(&diffuse(0.7), wi, Vec2::ZERO, 1);
         assert!(r.passes(0.01), "{r}");
         let (m, _) = sampled_albedo(&diffuse(0.7), wi, Vec2::ZERO, 1000, 2);
@@ -275,7 +276,7 @@ mod tests {
                 eta: 1.0,
             }
         };
-        let wi = Vec3::new(0.3, 0.2, 0.9).normalize();
+        let wi = Vec3::new(0.3, 0.2, 0.9).unit();
         let t = BsdfChi2::default();
         let ok = t.run_with(|_, _| Some(mirror(1.0)(wi)), |_| 0.0, |_| Vec3::ZERO, 1);
         assert!(ok.passes(0.01), "{ok}");

@@ -162,6 +162,7 @@ mod tests {
     use super::*;
     use crate::stats::SphereChi2;
     use std::path::Path;
+    use tessera_core::math::Norm;
 
     fn load(text: &str) -> Object {
         crate::xml::load_str(text, Path::new("chi2.xml"), &[]).expect("loads")
@@ -182,7 +183,7 @@ mod tests {
         assert_eq!((p.config.theta_bins, p.config.phi_bins), (10, 20));
         assert!((p.alpha - sidak_alpha(0.01, 6)).abs() < 1e-15);
         for (i, c) in p.cases.iter().enumerate() {
-            assert!((c.wi.length() - 1.0).abs() < 1e-5, "{c:?}");
+            assert!((c.wi.norm() - 1.0).abs() < 1e-5, "{c:?}");
             // bothSides mirrors every second direction below the surface.
             assert_eq!(c.wi.z < 0.0, i % 3 == 1, "{c:?}");
         }

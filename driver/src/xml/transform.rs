@@ -4,6 +4,7 @@
 //! multiplied on the left (`M = op * M`), as Mitsuba and Nori do.
 
 use glam::{DMat3, DMat4, DVec3};
+use tessera_core::math::Norm;
 
 use super::attrs::Attrs;
 use crate::error::InputError;
@@ -77,7 +78,7 @@ pub fn op_matrix(a: &Attrs) -> Result<DMat4> {
             if axis.length_squared() == 0.0 {
                 return Err(a.error("<rotate> has a zero rotation axis"));
             }
-            Ok(DMat4::from_axis_angle(axis.normalize(), angle.to_radians()))
+            Ok(DMat4::from_axis_angle(axis.unit(), angle.to_radians()))
         }
         "matrix" => {
             a.allow(&["value"])?;
@@ -100,7 +101,7 @@ pub fn op_matrix(a: &Attrs) -> Result<DMat4> {
             if dir.length_squared() == 0.0 {
                 return Err(a.error("<lookat> has the same origin and target"));
             }
-            let dir = dir.normalize();
+            let dir = dir.unit();
             let up = match a.get("up") {
                 Some(u) => DVec3::from_array(u.vec3(tag, false)?),
                 None => coordinate_system(dir),
@@ -111,7 +112,7 @@ pub fn op_matrix(a: &Attrs) -> Result<DMat4> {
                     "<lookat> has an \"up\" vector that is zero or parallel to the view direction",
                 ));
             }
-            let left = left.normalize();
+            let left = left.unit();
             let new_up = dir.cross(left);
             Ok(DMat4::from_cols(
                 left.extend(0.0),

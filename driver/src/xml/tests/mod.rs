@@ -2,6 +2,7 @@
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
+use tessera_core::math::Norm;
 
 use glam::{DMat4, DVec3, DVec4};
 
@@ -155,18 +156,18 @@ fn transform_order_and_ops() {
     assert!(close(m, r * t), "{m:?}");
     // Rotating (1,2,3) by 90 degrees about +y (right-handed) gives (3,2,-1).
     let o = m.transform_point3(DVec3::ZERO);
-    assert!((o - DVec3::new(3.0, 2.0, -1.0)).length() < 1e-12, "{o:?}");
+    assert!((o - DVec3::new(3.0, 2.0, -1.0)).norm() < 1e-12, "{o:?}");
 
     let b = sh.transform_opt("b").unwrap().unwrap();
     let p = b.transform_point3(DVec3::new(1.0, 1.0, 1.0));
-    assert!((p - DVec3::new(7.0, 2.0, 2.0)).length() < 1e-12, "{p:?}");
+    assert!((p - DVec3::new(7.0, 2.0, 2.0)).norm() < 1e-12, "{p:?}");
 
     let mm = sh.transform_opt("m").unwrap().unwrap();
     assert_eq!(mm.w_axis, DVec4::new(5.0, 6.0, 7.0, 1.0));
 
     let rr = sh.transform_opt("r").unwrap().unwrap();
     let x = rr.transform_vector3(DVec3::X);
-    assert!((x - DVec3::Y).length() < 1e-12, "{x:?}");
+    assert!((x - DVec3::Y).norm() < 1e-12, "{x:?}");
     assert_eq!(sh.transform_opt("e").unwrap(), Some(DMat4::IDENTITY));
 }
 
@@ -196,9 +197,9 @@ fn lookat_columns() {
     assert!(close(m, want), "{m:?}");
     // Without "up", some perpendicular up is chosen; the frame stays orthonormal.
     let m2 = sen.transform_opt("t2").unwrap().unwrap();
-    assert!((m2.z_axis.truncate() - DVec3::Z).length() < 1e-12);
+    assert!((m2.z_axis.truncate() - DVec3::Z).norm() < 1e-12);
     assert!(m2.x_axis.truncate().dot(DVec3::Z).abs() < 1e-12);
-    assert!((m2.x_axis.truncate().length() - 1.0).abs() < 1e-12);
+    assert!((m2.x_axis.truncate().norm() - 1.0).abs() < 1e-12);
     assert_eq!(m2.w_axis, DVec4::new(1.0, 2.0, 3.0, 1.0));
 }
 
