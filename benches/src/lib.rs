@@ -10,8 +10,7 @@ use tessera_core::accel::{
 use tessera_core::bsdf::{Bsdf, Diffuse};
 use tessera_core::camera::{Filter, FovAxis, Perspective};
 use tessera_core::geometry::{intersect_triangle, Hit, Mesh, Shape, ShapeKind};
-use tessera_core::math::Norm;
-use tessera_core::math::{Aabb, Ray, Transform};
+use tessera_core::math::{Aabb, Norm, Ray, Transform};
 use tessera_core::scene::{Scene, SceneParts};
 use tessera_core::texture::Texture;
 

@@ -4,8 +4,7 @@ use tessera_core::bsdf::{Bsdf, Diffuse};
 use tessera_core::camera::{Filter, FovAxis, Perspective};
 use tessera_core::geometry::{Disk, Mesh, Shape, ShapeKind, Sphere};
 use tessera_core::glam::{Mat4, Vec2, Vec3};
-use tessera_core::math::Norm;
-use tessera_core::math::{Ray, Transform};
+use tessera_core::math::{Norm, Ray, Transform};
 use tessera_core::scene::{Scene, SceneParts};
 use tessera_core::texture::Texture;
 

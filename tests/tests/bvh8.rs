@@ -15,8 +15,7 @@ use tessera_core::accel::tri4::Ray4;
 use tessera_core::accel::{AnyLeaves, Bvh, Bvh8, ClosestLeaves, Collapse, Leaves};
 use tessera_core::geometry::{Hit, TriRay};
 use tessera_core::glam::Vec3;
-use tessera_core::math::Norm;
-use tessera_core::math::{Aabb, Ray};
+use tessera_core::math::{Aabb, Norm, Ray};
 
 use tessera_tests::rng::SplitMix as Rng;
 use tessera_tests::soup::{

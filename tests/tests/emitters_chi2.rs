@@ -9,13 +9,12 @@
 //! `weight` is also checked against `eval_environment / pdf_environment` of its direction.
 
 use std::f64::consts::{PI, TAU};
-use tessera_core::math::Norm;
+use tessera_core::math::{Frame, Norm};
 
 use glam::{DMat3, DVec3, Vec2, Vec3};
 use tessera::stats::{sidak_alpha, Chi2Result, PlaneChi2, SphereChi2};
 use tessera_core::emitter::{DistantDisk, Emitter, EmitterCtx, EnvMap};
 use tessera_core::geometry::Interaction;
-use tessera_core::math::Frame;
 use tessera_core::sampling::Distribution2D;
 use tessera_core::Color;
 use tessera_tests::cap::{cap_coords, cap_dir, frame_around};

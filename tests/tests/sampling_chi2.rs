@@ -12,7 +12,7 @@
 //! core's own pdf functions are what is under test otherwise.
 
 use std::f64::consts::TAU;
-use tessera_core::math::Norm;
+use tessera_core::math::{Norm, Ray, Transform};
 
 use glam::{DMat4, DVec3, Vec2, Vec3};
 use tessera::stats::{
@@ -20,7 +20,6 @@ use tessera::stats::{
 };
 use tessera_core::camera::{Filter, GaussianFilter};
 use tessera_core::geometry::{Disk, Mesh, Shape, ShapeKind, Sphere};
-use tessera_core::math::{Ray, Transform};
 use tessera_core::sampling::{warp, Discrete1D};
 use tessera_tests::cap::{cap_coords, cap_dir, frame_around};
 

@@ -10,8 +10,7 @@
 use tessera::stats::sidak_alpha;
 use tessera_core::geometry::intersect_triangle;
 use tessera_core::glam::DVec3;
-use tessera_core::math::Norm;
-use tessera_core::math::Ray;
+use tessera_core::math::{Norm, Ray};
 use tessera_tests::stress::{assert_pixel_within, scratch_dir, Placement};
 use tessera_tests::{load_xml, render_loaded};
 

@@ -14,8 +14,7 @@
 use proptest::prelude::*;
 use tessera_core::geometry::{intersect_triangle, Interaction, Mesh, Sphere};
 use tessera_core::glam::{DVec3, Vec2, Vec3};
-use tessera_core::math::Norm;
-use tessera_core::math::{Frame, Ray};
+use tessera_core::math::{Frame, Norm, Ray};
 
 const EPS: f64 = f32::EPSILON as f64;
 

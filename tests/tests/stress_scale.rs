@@ -17,8 +17,7 @@
 use std::f64::consts::PI;
 use tessera::stats::sidak_alpha;
 use tessera_core::glam::DVec3;
-use tessera_core::math::Norm;
-use tessera_core::math::Ray;
+use tessera_core::math::{Norm, Ray};
 use tessera_tests::stress::{assert_pixel_within, cbox_xml, scratch_dir, Placement};
 use tessera_tests::{load_xml, region_stats, render_loaded, worst_region};
 

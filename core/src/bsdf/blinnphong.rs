@@ -27,8 +27,7 @@
 //! component of the base keeps its discrete probability times 1/2.
 use super::fresnel::schlick;
 use super::{Bsdf, BsdfSample};
-use crate::math::{sincos_turns, INV_TWO_PI};
-use crate::math::{sqrt, Norm};
+use crate::math::{sincos_turns, sqrt, Norm, INV_TWO_PI};
 use crate::Color;
 use alloc::boxed::Box;
 use glam::{Vec2, Vec3};

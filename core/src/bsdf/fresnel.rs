@@ -1,7 +1,6 @@
 //! Fresnel equations and the mirror / refraction directions shared by the specular and
 //! microfacet models. All directions are unit vectors pointing away from the surface.
-use crate::math::safe_sqrt;
-use crate::math::sqrt;
+use crate::math::{safe_sqrt, sqrt};
 use crate::Color;
 use glam::Vec3;
 

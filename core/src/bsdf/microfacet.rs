@@ -6,7 +6,7 @@
 //! `distribution` = beckmann | ggx, `alpha` or `alpha_u` / `alpha_v`, `sample_visible`).
 //! Beckmann's Smith term uses the rational approximation of Walter et al. 2007, as Mitsuba 3 and
 //! the Wakame assignment do. All directions are in the local frame (+z = macro normal).
-use crate::math::{safe_sqrt, sincos_turns, sqrt, sqrt_f64, Norm, PI};
+use crate::math::{acos_f64, safe_sqrt, sincos_turns, sqrt, sqrt_f64, Norm, PI};
 use glam::{Vec2, Vec3};
 
 /// Which normal distribution.
@@ -219,7 +219,7 @@ fn beckmann_visible_slope(cos_t: f64, u1: f64, u2: f64) -> (f64, f64) {
     // (-inf, cot_t); solve cdf(x) = u1 in the variable b = erf(x) in (-1, erf(cot_t)).
     let norm = 1.0 / (1.0 + libm::erf(cot_t) + INV_SQRT_PI * tan_t * libm::exp(-cot_t * cot_t));
     let (mut lo, mut hi) = (-1.0f64, libm::erf(cot_t));
-    let theta = libm::acos(cos_t);
+    let theta = acos_f64(cos_t);
     let fit = 1.0 + theta * (-0.876 + theta * (0.4265 - 0.0594 * theta));
     let mut b = hi - (1.0 + hi) * libm::pow(1.0 - u1, fit);
     for _ in 0..64 {

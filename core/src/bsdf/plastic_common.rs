@@ -12,8 +12,7 @@
 //! `2 * mean_i(mu_i R(mu_i))`.
 use super::fresnel::{fresnel_dielectric, reflect, refract};
 use super::microfacet::{Microfacet, MicrofacetKind};
-use crate::math::safe_sqrt;
-use crate::math::{sqrt, Norm};
+use crate::math::{safe_sqrt, sqrt, Norm};
 use crate::sampling::warp::square_to_uniform_disk_concentric;
 use crate::texture::Texture;
 use alloc::boxed::Box;

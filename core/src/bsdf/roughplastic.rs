@@ -25,8 +25,7 @@ use super::plastic_common::{
     TABLE_RES,
 };
 use super::BsdfSample;
-use crate::math::Norm;
-use crate::math::INV_PI;
+use crate::math::{Norm, INV_PI};
 use crate::sampling::warp::cosine_hemisphere_pdf;
 use crate::texture::Texture;
 use crate::Color;

@@ -15,8 +15,7 @@
 use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetKind};
 use super::BsdfSample;
-use crate::math::Norm;
-use crate::math::INV_PI;
+use crate::math::{Norm, INV_PI};
 use crate::sampling::warp::cosine_hemisphere_pdf;
 use crate::Color;
 use glam::{Vec2, Vec3};

@@ -5,8 +5,7 @@
 //! (transform, usually a lookat; the camera looks along local +z with +y up and local +x to the
 //! image's left), `near_clip` (float, default 0.01), `far_clip` (float, default 10000). The film
 //! (`width`, `height`) and filter live in `<film>`; Nori puts width/height on the camera.
-use crate::math::{sqrt, Norm};
-use crate::math::{Ray, Transform};
+use crate::math::{sqrt, Norm, Ray, Transform};
 use glam::{Vec2, Vec3};
 
 /// Which image extent the field of view spans.

@@ -9,8 +9,7 @@
 //! choice whose probabilities are exact, so a poor estimate costs variance, never bias.
 use super::{luminance, Emitter, EmitterCtx};
 use crate::geometry::ShapeKind;
-use crate::math::PI;
-use crate::math::{sqrt, Norm};
+use crate::math::{sqrt, Norm, PI};
 use glam::Vec3;
 
 /// A light as light selection sees it.

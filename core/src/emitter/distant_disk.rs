@@ -13,8 +13,7 @@
 //! radiance of the cap falling on the disk of the scene's bounding sphere).
 use super::EmitterSample;
 use crate::geometry::Interaction;
-use crate::math::Norm;
-use crate::math::PI;
+use crate::math::{Norm, PI};
 use crate::sampling::warp::square_to_uniform_cone_omc;
 use crate::Color;
 use glam::{Mat3, Vec2, Vec3};

@@ -26,8 +26,7 @@
 //! the map counts as `pi r^2` times its integral of luminance over the sphere.
 use super::{luminance, EmitterSample};
 use crate::geometry::Interaction;
-use crate::math::{sqrt, Norm};
-use crate::math::{INV_PI, INV_TWO_PI, PI};
+use crate::math::{acos, sqrt, Norm, INV_PI, INV_TWO_PI, PI};
 use crate::sampling::Distribution2D;
 use crate::Color;
 use alloc::vec::Vec;
@@ -164,7 +163,7 @@ impl EnvMap {
         if s >= w {
             s -= w;
         }
-        let v = libm::acosf(l.y.clamp(-1.0, 1.0)) * INV_PI;
+        let v = acos(l.y.clamp(-1.0, 1.0)) * INV_PI;
         (s, v)
     }
 

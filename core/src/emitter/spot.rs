@@ -12,8 +12,7 @@
 //! between the two, 0 for `theta >= cutoff`.
 use super::EmitterSample;
 use crate::geometry::Interaction;
-use crate::math::{sqrt, Norm};
-use crate::math::{Transform, PI};
+use crate::math::{acos, sqrt, Norm, Transform, PI};
 use crate::Color;
 use glam::{Mat3, Vec3};
 
@@ -63,7 +62,7 @@ impl SpotLight {
         } else if cos_t >= self.cos_beam {
             1.0
         } else {
-            ((self.cutoff - libm::acosf(cos_t.min(1.0))) * self.inv_transition).clamp(0.0, 1.0)
+            ((self.cutoff - acos(cos_t.min(1.0))) * self.inv_transition).clamp(0.0, 1.0)
         }
     }
 

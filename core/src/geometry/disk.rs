@@ -2,8 +2,7 @@
 //!
 //! Scene parameters (`<shape type="disk">`): `to_world` (transform, default identity; any
 //! invertible affine map, so an ellipse is fine), `flip_normals` (boolean, default false).
-use crate::math::Norm;
-use crate::math::{gamma, Ray, Transform, PI};
+use crate::math::{gamma, Norm, Ray, Transform, PI};
 use crate::sampling::warp::square_to_uniform_disk_concentric;
 use glam::{Vec2, Vec3};
 

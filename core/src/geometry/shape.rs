@@ -4,8 +4,7 @@
 //! or referenced `<bsdf>` (default: `diffuse` with reflectance 0.5, as in Mitsuba 3), an optional
 //! nested `<emitter type="area">`.
 use super::{Disk, Hit, Interaction, Mesh, Prim, Sphere};
-use crate::math::{sqrt, Norm};
-use crate::math::{Frame, Ray};
+use crate::math::{acos, sqrt, Frame, Norm, Ray};
 use glam::{Vec2, Vec3};
 
 /// The geometry of a shape.
@@ -91,7 +90,7 @@ impl Shape {
                 let n = n.unit_or(Vec3::Z);
                 let uv = Vec2::new(
                     (libm::atan2f(n.y, n.x) * crate::math::INV_TWO_PI + 1.0) % 1.0,
-                    libm::acosf(n.z.clamp(-1.0, 1.0)) * crate::math::INV_PI,
+                    acos(n.z.clamp(-1.0, 1.0)) * crate::math::INV_PI,
                 );
                 // Along increasing longitude, as Mitsuba 3's sphere.
                 (p, err, n, n, uv, Vec3::new(-n.y, n.x, 0.0), None)

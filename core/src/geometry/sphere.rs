@@ -4,9 +4,7 @@
 //! default 1), `to_world` (transform: a uniform scale, rotation and translation of the unit sphere;
 //! combined with center/radius), `flip_normals` (boolean, default false). Normals point outward
 //! unless flipped.
-use crate::math::sincos_turns;
-use crate::math::{gamma, safe_sqrt, Frame, Ray, PI};
-use crate::math::{sqrt, Norm};
+use crate::math::{gamma, safe_sqrt, sincos_turns, sqrt, Frame, Norm, Ray, PI};
 use glam::{Vec2, Vec3};
 
 /// A sphere in world space.

@@ -11,7 +11,7 @@ pub use aabb::Aabb;
 pub use float::{gamma, next_down, next_up, offset_ray_origin};
 pub use frame::Frame;
 pub use ray::Ray;
-pub use sqrt::{sqrt, sqrt_f64, Norm};
+pub use sqrt::{acos, acos_f64, sqrt, sqrt_f64, Norm};
 pub use transform::Transform;
 pub use turns::sincos_turns;
 

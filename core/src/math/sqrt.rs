@@ -15,14 +15,20 @@
 //! and sums in the same order) on top of these. Clippy (`clippy.toml`) refuses glam's own
 //! versions and libm's square roots in the workspace.
 //!
-//! The two `unsafe` blocks are the intrinsic calls: `sqrtss` and `sqrtsd` are part of SSE and
-//! SSE2, which every x86_64 CPU has, and they touch no memory.
+//! libm's `acosf` and `acos` take libm's square root inside; [`acos`] and [`acos_f64`] clear the
+//! vector registers' upper halves (`vzeroupper`) before calling them in builds for AVX CPUs, so
+//! that square root finds nothing to merge.
+//!
+//! The `unsafe` blocks are the intrinsic calls: `sqrtss` and `sqrtsd` are part of SSE and SSE2,
+//! which every x86_64 CPU has, `vzeroupper` is compiled only for AVX CPUs, and none touches
+//! memory.
 #![allow(unsafe_code)]
 
 use glam::{DVec2, DVec3, Vec2, Vec3};
 
 /// Correctly rounded `sqrt(x)` (NaN for negative `x`), as one `sqrtss`/`vsqrtss` on x86_64.
 #[inline(always)]
+#[allow(clippy::disallowed_methods)] // off x86_64, libm's is the hardware instruction
 pub fn sqrt(x: f32) -> f32 {
     #[cfg(target_arch = "x86_64")]
     {
@@ -39,6 +45,7 @@ pub fn sqrt(x: f32) -> f32 {
 
 /// [`sqrt`] for `f64`: one `sqrtsd`/`vsqrtsd` on x86_64, `libm::sqrt` elsewhere.
 #[inline(always)]
+#[allow(clippy::disallowed_methods)] // off x86_64, libm's is the hardware instruction
 pub fn sqrt_f64(x: f64) -> f64 {
     #[cfg(target_arch = "x86_64")]
     {
@@ -50,6 +57,35 @@ pub fn sqrt_f64(x: f64) -> f64 {
     #[cfg(not(target_arch = "x86_64"))]
     {
         libm::sqrt(x)
+    }
+}
+
+/// `libm::acosf`, which takes libm's legacy-SSE square root inside for `|x| > 1/2`, with the
+/// vector registers' upper halves cleared first (`vzeroupper`) in builds for AVX CPUs, so that
+/// square root pays no transition penalty. Same bits as `libm::acosf`.
+#[inline]
+#[allow(clippy::disallowed_methods)] // the wrapper the lint points to
+pub fn acos(x: f32) -> f32 {
+    clear_upper_halves();
+    libm::acosf(x)
+}
+
+/// [`acos`] for `f64` (`libm::acos`).
+#[inline]
+#[allow(clippy::disallowed_methods)] // the wrapper the lint points to
+pub fn acos_f64(x: f64) -> f64 {
+    clear_upper_halves();
+    libm::acos(x)
+}
+
+/// `vzeroupper` when compiled for AVX (nothing otherwise: without AVX no upper half is dirty).
+#[inline(always)]
+fn clear_upper_halves() {
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+    // SAFETY: this code is compiled only for CPUs with AVX; `vzeroupper` only zeroes the upper
+    // halves of the vector registers, which the compiler treats as clobbered by it.
+    unsafe {
+        core::arch::x86_64::_mm256_zeroupper()
     }
 }
 

@@ -18,8 +18,7 @@ use crate::mesh::{self, MeshData, MtlBsdf};
 use crate::xml::{Kind, Object};
 use glam::{Vec2, Vec3};
 use tessera_core::geometry::{Disk, Mesh, ShapeKind, Sphere};
-use tessera_core::math::Norm;
-use tessera_core::math::Transform;
+use tessera_core::math::{Norm, Transform};
 
 /// A part of an OBJ mesh with its MTL material.
 pub struct MtlPart {
