@@ -49,10 +49,13 @@ pub fn sqrt(x: f32) -> f32 {
 pub fn sqrt_f64(x: f64) -> f64 {
     #[cfg(target_arch = "x86_64")]
     {
-        use core::arch::x86_64::{_mm_cvtsd_f64, _mm_set_sd, _mm_sqrt_pd};
+        use core::arch::x86_64::{_mm_cvtsd_f64, _mm_set_sd, _mm_sqrt_sd};
         // SAFETY: SSE2 is part of the x86_64 baseline; the intrinsics only move and compute
         // values in registers.
-        unsafe { _mm_cvtsd_f64(_mm_sqrt_pd(_mm_set_sd(x))) }
+        unsafe {
+            let v = _mm_set_sd(x);
+            _mm_cvtsd_f64(_mm_sqrt_sd(v, v))
+        }
     }
     #[cfg(not(target_arch = "x86_64"))]
     {
@@ -146,7 +149,8 @@ impl_norm!(DVec3, f64, sqrt_f64);
 mod tests {
     use super::*;
 
-    /// Every float class and a spread of bit patterns: the same bits as `libm::sqrtf`.
+    /// Every float class and a spread of bit patterns: the same bits as `libm::sqrtf` (and, for
+    /// `sqrt_f64`, `libm::sqrt`).
     #[test]
     #[allow(clippy::disallowed_methods)] // the comparison is the point
     fn sqrt_matches_libm_bit_for_bit() {
@@ -163,6 +167,21 @@ mod tests {
             );
         }
         assert!(sqrt(f32::NAN).is_nan());
+        let spread = (0..1u64 << 20).map(|i| f64::from_bits(i.wrapping_mul(0x9e37_79b9_7f4a_7c15)));
+        for x in spread.chain([
+            0.0,
+            -0.0,
+            f64::MIN_POSITIVE,
+            5e-324,
+            f64::MAX,
+            f64::INFINITY,
+        ]) {
+            let (a, b) = (sqrt_f64(x), libm::sqrt(x));
+            assert!(
+                a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()),
+                "{x:e}: {a} {b}"
+            );
+        }
     }
 
     /// The trait's vectors have glam's bits, including the zero, tiny and huge cases where
