@@ -27,7 +27,7 @@
 //! component of the base keeps its discrete probability times 1/2.
 use super::fresnel::schlick;
 use super::{Bsdf, BsdfSample};
-use crate::math::{sincos_turns, sqrt, Norm, INV_TWO_PI};
+use crate::math::{safe_sqrt, sincos_turns, Norm, INV_TWO_PI};
 use crate::Color;
 use alloc::boxed::Box;
 use glam::{Vec2, Vec3};
@@ -101,7 +101,7 @@ impl Lobe {
             return None;
         }
         let cos_t = libm::powf(u.x, 1.0 / (self.shininess + 1.0));
-        let sin_t = sqrt((1.0 - cos_t * cos_t).max(0.0));
+        let sin_t = safe_sqrt(1.0 - cos_t * cos_t);
         let (sin_p, cos_p) = sincos_turns(u.y);
         let h = Vec3::new(sin_t * cos_p, sin_t * sin_p, cos_t);
         let ih = wi.dot(h);

@@ -225,7 +225,7 @@ impl BeckmannVisible {
     const INV_SQRT_PI: f32 = 0.564_189_6;
 
     fn new(cos_t: f32) -> Self {
-        let tan_t = sqrt((1.0 - cos_t * cos_t).max(0.0)) / cos_t;
+        let tan_t = safe_sqrt(1.0 - cos_t * cos_t) / cos_t;
         let cot = 1.0 / tan_t;
         let max = libm::erff(cot);
         let norm = 1.0 + max + Self::INV_SQRT_PI * tan_t * libm::expf(-cot * cot);

@@ -26,7 +26,7 @@
 //! the map counts as `pi r^2` times its integral of luminance over the sphere.
 use super::{luminance, EmitterSample};
 use crate::geometry::Interaction;
-use crate::math::{acos, sqrt, Norm, INV_PI, INV_TWO_PI, PI};
+use crate::math::{acos, safe_sqrt, sqrt, Norm, INV_PI, INV_TWO_PI, PI};
 use crate::sampling::Distribution2D;
 use crate::Color;
 use alloc::vec::Vec;
@@ -267,7 +267,7 @@ fn sample_linear(u: f32, a: f32, b: f32) -> f32 {
     if a == b {
         return u;
     }
-    let den = a + sqrt(((1.0 - u) * a * a + u * b * b).max(0.0));
+    let den = a + safe_sqrt((1.0 - u) * a * a + u * b * b);
     if !(den > 0.0) {
         return 0.0;
     }
