@@ -110,6 +110,20 @@ pub fn test8_portable(a: &Tri4, b: &Tri4, r: &Ray4, t_max: f32) -> Lanes8 {
 #[target_feature(enable = "avx2")]
 #[inline]
 pub fn test8_avx2(a: &Tri4, b: &Tri4, r: &Ray4, t_max: f32) -> Lanes8 {
+    // SAFETY: this function is compiled with AVX2 enabled.
+    unsafe { test8_avx2_inline(a, b, r, t_max) }
+}
+
+/// [`test8_avx2`]'s body, always inlined, so the traversal loop compiled for AVX2
+/// ([`super::simd8::Avx2::run`]) holds it rather than a call (the compiler declined to inline
+/// the `#[target_feature]` function there: a call, and the result passed through memory).
+///
+/// # Safety
+/// The CPU must have AVX2. (Inlined into code compiled without AVX2, the intrinsics stay calls:
+/// correct, but slow; the traversal inlines it into AVX2 code.)
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+pub(super) unsafe fn test8_avx2_inline(a: &Tri4, b: &Tri4, r: &Ray4, t_max: f32) -> Lanes8 {
     use core::arch::x86_64::*;
     let [kx, ky, kz] = r.k;
     let mut out = Lanes8::default();
