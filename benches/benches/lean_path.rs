@@ -2,7 +2,7 @@
 //! nothing the box does not need, and what would running eight paths in SIMD lanes add to that?
 //!
 //! `cargo bench -p tessera-benches --bench lean_path [-- RES SPP]` (defaults 128 and 64) loads
-//! `scenes/cbox.xml` (box filter) and renders it nine ways, one thread each, best of five
+//! `scenes/cbox.xml` (box filter) and renders it ten ways (nine without AVX2), one thread each, best of five
 //! alternating rounds (`LEAN_ONLY=J` renders only the J-th, once, for callgrind and cachegrind):
 //! - `tessera`: the renderer itself (`tessera::render::render`, `path` integrator, the
 //!   `independent` sampler);
@@ -32,6 +32,10 @@
 //!   renderer's lanes: each stage a loop over eight lanes for the compiler to vectorise, the
 //!   casts one ray at a time. Same operations in the same order, so the same image as
 //!   `lean x1 zsobol robust`.
+//! - `lean x8 zsobol avx2` (printed last; `lean_path/in_step_avx2.rs`, only in builds with AVX2
+//!   enabled, such as `-C target-cpu=native`): the in-step loop with every stage between the casts
+//!   written by hand for eight lanes per AVX instruction (`lean_path/f8.rs`), same operations in
+//!   the same order, so again the image of `lean x1 zsobol robust` (checked).
 //!
 //! Each image's relMSE against `scenes/refs/cbox_RESxRES_mitsuba.exr` is printed beside its
 //! speed, so a lean loop that got fast by being wrong would show it. Build with `RUSTFLAGS="-C
@@ -53,8 +57,14 @@ use tessera_core::sampling::{dimension_of, Sampler, SamplerKind, Stage, ZSobolPi
 use tessera_core::scene::Scene;
 use tessera_core::texture::Texture;
 
+#[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+#[path = "lean_path/f8.rs"]
+mod f8;
 #[path = "lean_path/in_step.rs"]
 mod in_step;
+#[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+#[path = "lean_path/in_step_avx2.rs"]
+mod in_step_avx2;
 
 const MAX_DEPTH: u32 = 8;
 const RR_DEPTH: u32 = 5;
@@ -586,9 +596,10 @@ fn main() {
         "lean x2",
         "lean x4",
         "lean x8 zsobol in step",
+        "lean x8 zsobol avx2",
     ];
-    let mut best = [f64::INFINITY; 9];
-    let mut images: [Vec<[f32; 3]>; 9] = Default::default();
+    let mut best = [f64::INFINITY; 10];
+    let mut images: [Vec<[f32; 3]>; 10] = Default::default();
     let zsobol = || ZSobolDraws::<1> {
         pixels: vec![ZSobolPixel::new(0, 0, 0, 0)],
         current: [u32::MAX],
@@ -597,13 +608,17 @@ fn main() {
         log2_spp: log2_spp_for(u64::from(spp)),
         spp: u64::from(spp),
     };
-    // `LEAN_ONLY=J`: one round of variant J alone (0-8, in the order of `names`).
+    // `LEAN_ONLY=J`: one round of variant J alone (0-9, in the order of `names`).
     let only: Option<usize> = std::env::var("LEAN_ONLY")
         .ok()
         .map(|j| j.parse().expect("LEAN_ONLY is a variant index"));
     for _round in 0..if only.is_some() { 1 } else { 5 } {
         for (j, best) in best.iter_mut().enumerate() {
             if only.is_some_and(|o| o != j) {
+                continue;
+            }
+            let avx2 = cfg!(all(target_arch = "x86_64", target_feature = "avx2"));
+            if j == 9 && !avx2 {
                 continue;
             }
             let start = Instant::now();
@@ -616,7 +631,11 @@ fn main() {
                 5 => lean.render::<1, true>(pixels, &mut zsobol()),
                 6 => lean.render::<2, false>(pixels, &mut HashDraws([0; 2])),
                 7 => lean.render::<4, false>(pixels, &mut HashDraws([0; 4])),
-                _ => lean.render_in_step(pixels),
+                8 => lean.render_in_step(pixels),
+                #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+                _ => lean.render_in_step_avx2(pixels),
+                #[cfg(not(all(target_arch = "x86_64", target_feature = "avx2")))]
+                _ => unreachable!("skipped above"),
             };
             *best = best.min(start.elapsed().as_secs_f64());
             images[j] = img;
@@ -643,8 +662,19 @@ fn main() {
             "the in-step lanes changed the image of lean x1 zsobol robust"
         );
     }
+    if !images[5].is_empty() && !images[9].is_empty() {
+        let same = images[5]
+            .iter()
+            .flatten()
+            .map(|v| v.to_bits())
+            .eq(images[9].iter().flatten().map(|v| v.to_bits()));
+        assert!(
+            same,
+            "the AVX2 lanes changed the image of lean x1 zsobol robust"
+        );
+    }
     println!("cbox {res}x{res}, {spp} spp, 1 thread, best of 5");
-    for j in (0..9).filter(|&j| only.is_none_or(|o| o == j)) {
+    for j in (0..10).filter(|&j| only.is_none_or(|o| o == j) && !images[j].is_empty()) {
         let rate = f64::from(pixels * spp) / best[j] / 1e6;
         let err = reference
             .as_ref()
