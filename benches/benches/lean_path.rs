@@ -2,8 +2,9 @@
 //! nothing the box does not need, and what would running eight paths in SIMD lanes add to that?
 //!
 //! `cargo bench -p tessera-benches --bench lean_path [-- RES SPP]` (defaults 128 and 64) loads
-//! `scenes/cbox.xml` (box filter) and renders it ten ways (nine without AVX2), one thread each, best of five
-//! alternating rounds (`LEAN_ONLY=J` renders only the J-th, once, for callgrind and cachegrind):
+//! `scenes/cbox.xml` (box filter) and renders it ten ways (nine without AVX2), one thread each,
+//! best of five alternating rounds (`LEAN_ONLY=J` renders only the J-th, once, for callgrind and
+//! cachegrind):
 //! - `tessera`: the renderer itself (`tessera::render::render`, `path` integrator, the
 //!   `independent` sampler);
 //! - `lean x1`: a path tracer written for this scene class only (every BSDF diffuse, every
