@@ -9,6 +9,9 @@
 //! surface, a continuation ray (uniform over the hemisphere the hit was seen from, closest hit)
 //! and a shadow segment to a uniform point on the light (any hit), both with Tessera's own ray
 //! offsets; the packets take consecutive rays, so they are as incoherent as the path loop's.
+//! The `px` rows are the first vertex of one pixel's samples instead (16 jittered camera rays of
+//! a random pixel, then each hit's continuation ray and shadow segment), consecutive, so a
+//! packet holds one pixel's samples, as it would in a renderer that packs them that way.
 //! Embree one ray at a time also runs in its robust mode (`embreeR1`, `RTC_SCENE_FLAG_ROBUST`: a
 //! watertight triangle test and conservative node tests, the guarantees Tessera's casts give).
 //! Rays per second of one thread, best of 5 alternating rounds; the hit counts of all casts must
@@ -20,7 +23,7 @@
 mod embree_ffi;
 
 use embree_ffi::{Embree, Mode};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use std::path::Path;
 use std::time::Instant;
 use tessera::scene::load_scene;
@@ -124,6 +127,36 @@ fn main() {
         }
         shadow.push(si.spawn_ray_to(a + (e1 - a) * u + (e2 - a) * v));
     }
+    // A pixel's samples at the first vertex, as a renderer whose packets hold one pixel's
+    // samples casts them: 16 jittered camera rays of one pixel (pixels in random order), and from
+    // each one's hit a continuation ray and a shadow segment as above.
+    let (mut camera_px, mut bounce_px, mut shadow_px) = (vec![], vec![], vec![]);
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    while camera_px.len() < 1 << 16 {
+        let px = Vec2::new(
+            (rng.f() * w as f32).floor().min(w as f32 - 1.0),
+            (rng.f() * h as f32).floor().min(h as f32 - 1.0),
+        );
+        let group: Vec<Ray> = (0..16)
+            .map(|_| scene.camera.generate_ray(px + Vec2::new(rng.f(), rng.f())))
+            .collect();
+        let hits: Vec<_> = group.iter().filter_map(|r| scene.intersect(r)).collect();
+        if hits.len() < group.len() {
+            continue;
+        }
+        for (r, si) in group.into_iter().zip(hits) {
+            camera_px.push(r);
+            let side = si.ng.dot(si.wi).signum();
+            let d = rng.dir();
+            bounce_px.push(si.spawn_ray(if d.dot(si.ng) * side < 0.0 { -d } else { d }));
+            let [a, e1, e2] = light[(rng.f() * light.len() as f32) as usize % light.len()];
+            let (mut u, mut v) = (rng.f(), rng.f());
+            if u + v > 1.0 {
+                (u, v) = (1.0 - u, 1.0 - v);
+            }
+            shadow_px.push(si.spawn_ray_to(a + (e1 - a) * u + (e2 - a) * v));
+        }
+    }
     println!(
         "{}: {} triangles, {} rays of each kind; M rays/s, one thread, best of 5",
         path.display(),
@@ -143,7 +176,13 @@ fn main() {
         "t/e16",
         "t/eR1"
     );
-    for (kind, rays, any) in [("bounce", &bounce, false), ("shadow", &shadow, true)] {
+    for (kind, rays, any) in [
+        ("bounce", &bounce, false),
+        ("shadow", &shadow, true),
+        ("camera px", &camera_px, false),
+        ("bounce px", &bounce_px, false),
+        ("shadow px", &shadow_px, true),
+    ] {
         let mut best = [0.0f64; 5];
         let mut hits = [0usize; 5];
         for _ in 0..5 {
