@@ -29,7 +29,7 @@ use std::time::Instant;
 use tessera::scene::load_scene;
 use tessera_benches::Rng;
 use tessera_core::emitter::Emitter;
-use tessera_core::geometry::Prim;
+use tessera_core::geometry::{Interaction, Prim};
 use tessera_core::math::Ray;
 use tessera_core::scene::Scene;
 
@@ -93,6 +93,20 @@ fn triangles(scene: &Scene) -> Triangles {
     }
 }
 
+/// The rays a path vertex at `si` casts: a continuation ray, uniform over the hemisphere `si` was
+/// seen from, and a shadow segment to a uniform point on a uniformly chosen light triangle.
+fn vertex_rays(si: &Interaction, light: &[[Vec3; 3]], rng: &mut Rng) -> (Ray, Ray) {
+    let side = si.ng.dot(si.wi).signum();
+    let d = rng.dir();
+    let bounce = si.spawn_ray(if d.dot(si.ng) * side < 0.0 { -d } else { d });
+    let [a, e1, e2] = light[(rng.f() * light.len() as f32) as usize % light.len()];
+    let (mut u, mut v) = (rng.f(), rng.f());
+    if u + v > 1.0 {
+        (u, v) = (1.0 - u, 1.0 - v);
+    }
+    (bounce, si.spawn_ray_to(a + (e1 - a) * u + (e2 - a) * v))
+}
+
 fn main() {
     let arg = std::env::args().skip(1).find(|a| !a.starts_with('-'));
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
@@ -117,15 +131,9 @@ fn main() {
         let Some(si) = scene.intersect(&Ray::new(o, rng.dir())) else {
             continue;
         };
-        let side = si.ng.dot(si.wi).signum();
-        let d = rng.dir();
-        bounce.push(si.spawn_ray(if d.dot(si.ng) * side < 0.0 { -d } else { d }));
-        let [a, e1, e2] = light[(rng.f() * light.len() as f32) as usize % light.len()];
-        let (mut u, mut v) = (rng.f(), rng.f());
-        if u + v > 1.0 {
-            (u, v) = (1.0 - u, 1.0 - v);
-        }
-        shadow.push(si.spawn_ray_to(a + (e1 - a) * u + (e2 - a) * v));
+        let (b, s) = vertex_rays(&si, &light, &mut rng);
+        bounce.push(b);
+        shadow.push(s);
     }
     // A pixel's samples at the first vertex, as a renderer whose packets hold one pixel's
     // samples casts them: 16 jittered camera rays of one pixel (pixels in random order), and from
@@ -146,15 +154,9 @@ fn main() {
         }
         for (r, si) in group.into_iter().zip(hits) {
             camera_px.push(r);
-            let side = si.ng.dot(si.wi).signum();
-            let d = rng.dir();
-            bounce_px.push(si.spawn_ray(if d.dot(si.ng) * side < 0.0 { -d } else { d }));
-            let [a, e1, e2] = light[(rng.f() * light.len() as f32) as usize % light.len()];
-            let (mut u, mut v) = (rng.f(), rng.f());
-            if u + v > 1.0 {
-                (u, v) = (1.0 - u, 1.0 - v);
-            }
-            shadow_px.push(si.spawn_ray_to(a + (e1 - a) * u + (e2 - a) * v));
+            let (b, s) = vertex_rays(&si, &light, &mut rng);
+            bounce_px.push(b);
+            shadow_px.push(s);
         }
     }
     println!(
