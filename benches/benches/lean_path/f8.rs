@@ -56,27 +56,6 @@ impl F8 {
         F8(unsafe { _mm256_min_ps(self.0, other.0) })
     }
     #[inline(always)]
-    pub fn lt(self, o: F8) -> M8 {
-        M8(unsafe { _mm256_cmp_ps::<_CMP_LT_OQ>(self.0, o.0) })
-    }
-    #[inline(always)]
-    pub fn gt(self, o: F8) -> M8 {
-        M8(unsafe { _mm256_cmp_ps::<_CMP_GT_OQ>(self.0, o.0) })
-    }
-    #[inline(always)]
-    pub fn ge(self, o: F8) -> M8 {
-        M8(unsafe { _mm256_cmp_ps::<_CMP_GE_OQ>(self.0, o.0) })
-    }
-    #[inline(always)]
-    pub fn eq(self, o: F8) -> M8 {
-        M8(unsafe { _mm256_cmp_ps::<_CMP_EQ_OQ>(self.0, o.0) })
-    }
-    /// `self != o` and neither is NaN.
-    #[inline(always)]
-    pub fn ne_ordered(self, o: F8) -> M8 {
-        M8(unsafe { _mm256_cmp_ps::<_CMP_NEQ_OQ>(self.0, o.0) })
-    }
-    #[inline(always)]
     pub fn is_nan(self) -> M8 {
         M8(unsafe { _mm256_cmp_ps::<_CMP_UNORD_Q>(self.0, self.0) })
     }
@@ -117,6 +96,23 @@ impl M8 {
         F8(unsafe { _mm256_blendv_ps(b.0, a.0, self.0) })
     }
 }
+
+/// Ordered comparisons (false when either side is NaN, as scalar `<`, `>`, `>=`, `==`;
+/// `ne_ordered` is `!=` with neither side NaN).
+macro_rules! compare {
+    ($($f:ident => $pred:ident),*) => {
+        impl F8 {
+            $(
+                #[inline(always)]
+                pub fn $f(self, o: F8) -> M8 {
+                    M8(unsafe { _mm256_cmp_ps::<$pred>(self.0, o.0) })
+                }
+            )*
+        }
+    };
+}
+compare!(lt => _CMP_LT_OQ, gt => _CMP_GT_OQ, ge => _CMP_GE_OQ, eq => _CMP_EQ_OQ,
+    ne_ordered => _CMP_NEQ_OQ);
 
 macro_rules! binop {
     ($tr:ident, $f:ident, $intr:ident) => {

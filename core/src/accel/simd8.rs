@@ -297,8 +297,8 @@ impl Hit8 for Avx2 {
     fn tri8(self, a: &Tri4, b: &Tri4, ray: &Ray4, t_max: f32) -> Lanes8 {
         #[cfg(target_arch = "x86_64")]
         {
-            // SAFETY: `self` exists only when `detect` found AVX2 usable on this CPU, and this
-            // method is inlined only into code compiled with AVX2 ([`Avx2::run`]).
+            // SAFETY: `self` exists only when `detect` found AVX2 usable on this CPU (the body
+            // is fast where it inlines into AVX2 code, as in [`Avx2::run`]).
             unsafe { super::tri8::test8_avx2_inline(a, b, ray, t_max) }
         }
         #[cfg(not(target_arch = "x86_64"))]
