@@ -14,12 +14,19 @@
 //! packet holds one pixel's samples, as it would in a renderer that packs them that way.
 //! Embree one ray at a time also runs in its robust mode (`embreeR1`, `RTC_SCENE_FLAG_ROBUST`: a
 //! watertight triangle test and conservative node tests, the guarantees Tessera's casts give).
+//! `embreeM1` / `embreeM16` set Embree up as Mitsuba 3 does (`scripts/mitsuba_rays/run.sh` prints
+//! its settings): high build quality, and closest-hit calls marked coherent.
+//! With `--replay PREFIX`, two more rows cast the packets Mitsuba 3 itself cast, recorded by
+//! `RAYDUMP=PREFIX scripts/mitsuba_rays/run.sh SCENE.xml ...` (`mi closest`, `mi shadow`): the
+//! packet columns take Mitsuba's packets as they were (as many lanes as were active), the
+//! others their rays one at a time.
 //! Rays per second of one thread, best of 5 alternating rounds; the hit counts of all casts must
 //! agree (it panics otherwise).
 //!
-//! `cargo bench -p tessera-benches --features embree --bench embree_small [-- SCENE.xml]`
-//! (default `scenes/cbox.xml`; any scene of triangles only). Needs Embree 3
-//! (`scripts/install_embree.sh`).
+//! `cargo bench -p tessera-benches --features embree --bench embree_small [-- SCENE.xml]
+//! [--replay PREFIX]` (default `scenes/cbox.xml`; any scene of triangles only). Needs Embree 3
+//! (`scripts/install_embree.sh`); `--features embree-mitsuba` links the Embree in Mitsuba's wheel
+//! instead (see `benches/Cargo.toml`).
 mod embree_ffi;
 
 use embree_ffi::{Embree, Mode};
@@ -35,28 +42,67 @@ use tessera_core::scene::Scene;
 
 /// Rays cast per second by `cast`, which takes a chunk of rays and returns how many hit: best of
 /// `rounds` rounds of at least 0.2 s each; also the hit count of one pass.
-fn rate(
-    rays: &[Ray],
-    chunk: usize,
-    rounds: usize,
-    mut cast: impl FnMut(&[Ray]) -> usize,
-) -> (f64, usize) {
-    let hits: usize = rays.chunks(chunk).map(&mut cast).sum();
+fn rate(chunks: &[&[Ray]], rounds: usize, mut cast: impl FnMut(&[Ray]) -> usize) -> (f64, usize) {
+    let rays: usize = chunks.iter().map(|c| c.len()).sum();
+    let hits: usize = chunks.iter().map(|c| cast(c)).sum();
     let mut best = 0.0f64;
     for _ in 0..rounds {
         let start = Instant::now();
         let mut passes = 0usize;
         let mut found = 0usize;
         while passes == 0 || start.elapsed().as_secs_f64() < 0.2 {
-            for c in rays.chunks(chunk) {
+            for c in chunks {
                 found += cast(std::hint::black_box(c));
             }
             passes += 1;
         }
         std::hint::black_box(found);
-        best = best.max((passes * rays.len()) as f64 / start.elapsed().as_secs_f64());
+        best = best.max((passes * rays) as f64 / start.elapsed().as_secs_f64());
     }
     (best, hits)
+}
+
+/// Packets that Mitsuba 3 cast, as `scripts/mitsuba_rays/run.sh` records them (`RAYDUMP`): per
+/// 16-wide call, the valid mask (16 `i32`) and the `RTCRay16` before the call (12 fields of 16
+/// `f32`). Returns each packet's active lanes as rays, in order.
+fn recorded_packets(file: &Path) -> Vec<Vec<Ray>> {
+    let bytes = std::fs::read(file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+    const RECORD: usize = 4 * 16 * 13;
+    assert!(
+        bytes.len().is_multiple_of(RECORD),
+        "{}: not a whole number of packets",
+        file.display()
+    );
+    let word = |rec: &[u8], i: usize| f32::from_le_bytes(rec[4 * i..4 * i + 4].try_into().unwrap());
+    bytes
+        .chunks(RECORD)
+        .map(|rec| {
+            // Fields after the mask: org x/y/z, tnear, dir x/y/z, time, tfar, mask, id, flags.
+            let field = |f: usize, lane: usize| word(rec, 16 * (1 + f) + lane);
+            (0..16)
+                .filter(|&lane| word(rec, lane).to_bits() != 0)
+                .map(|lane| {
+                    let o = Vec3::new(field(0, lane), field(1, lane), field(2, lane));
+                    let d = Vec3::new(field(4, lane), field(5, lane), field(6, lane));
+                    assert!(field(3, lane) == 0.0, "a recorded ray with tnear > 0");
+                    Ray {
+                        o,
+                        d,
+                        t_max: field(8, lane),
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// A row of the table: its name, its rays, the packets they came in (when recorded), and
+/// whether they are any-hit queries.
+type RaySet<'a> = (&'static str, Vec<Ray>, Option<&'a Vec<Vec<Ray>>>, bool);
+
+/// Borrowed slices of `packets`, for [`rate`].
+fn view(packets: &[Vec<Ray>]) -> Vec<&[Ray]> {
+    packets.iter().map(Vec::as_slice).collect()
 }
 
 /// A scene's triangles for Embree: positions (three per triangle, unshared) and indices; and
@@ -108,7 +154,16 @@ fn vertex_rays(si: &Interaction, light: &[[Vec3; 3]], rng: &mut Rng) -> (Ray, Ra
 }
 
 fn main() {
-    let arg = std::env::args().skip(1).find(|a| !a.starts_with('-'));
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let replay = args
+        .iter()
+        .position(|a| a == "--replay")
+        .map(|i| args.get(i + 1).expect("--replay PREFIX").clone());
+    let arg = args
+        .iter()
+        .enumerate()
+        .find(|&(i, a)| !a.starts_with('-') && (i == 0 || args[i - 1] != "--replay"))
+        .map(|(_, a)| a.clone());
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let path = arg.map_or_else(|| root.join("scenes/cbox.xml"), Into::into);
     let scene = load_scene(&path, &[])
@@ -122,6 +177,7 @@ fn main() {
     assert!(!light.is_empty(), "the scene needs a triangle area light");
     let embree = Embree::new(&pos, &idx);
     let robust = Embree::with_mode(&pos, &idx, Mode::Robust);
+    let high = Embree::with_mode(&pos, &idx, Mode::Mitsuba);
     let b = scene.bounds();
     let (lo, size) = (b.min, b.max - b.min);
     let mut rng = Rng(11);
@@ -165,50 +221,92 @@ fn main() {
         idx.len(),
         bounce.len()
     );
-    println!(
-        "{:>10} {:>9} {:>9} {:>9} {:>9} {:>9} {:>8} {:>8} {:>8} {:>8}",
-        "rays",
+    // The casts, in the order of the columns: Tessera, then Embree's fast mode one ray at a time
+    // and in packets of 8 and 16, its robust mode one at a time, and Embree set up as Mitsuba 3 sets
+    // it up (high build quality, coherent closest-hit packets) one at a time and in packets of 16.
+    const CASTS: [&str; 7] = [
         "tessera",
         "embree1",
         "embree8",
         "embree16",
         "embreeR1",
-        "t/e1",
-        "t/e8",
-        "t/e16",
-        "t/eR1"
-    );
-    for (kind, rays, any) in [
-        ("bounce", &bounce, false),
-        ("shadow", &shadow, true),
-        ("camera px", &camera_px, false),
-        ("bounce px", &bounce_px, false),
-        ("shadow px", &shadow_px, true),
-    ] {
-        let mut best = [0.0f64; 5];
-        let mut hits = [0usize; 5];
+        "embreeM1",
+        "embreeM16",
+    ];
+    let mut header = format!("{:>10}", "rays");
+    for c in CASTS {
+        header += &format!(" {c:>9}");
+    }
+    for c in &CASTS[1..] {
+        header += &format!(" {:>8}", format!("t/{}", c.replace("embree", "e")));
+    }
+    println!("{header}");
+    // Mitsuba's own packets, when recorded: the packet columns then cast them as Mitsuba did
+    // (8 and 16 lanes take the recorded packets, as many lanes as were active).
+    let (mut closest_mi, mut shadow_mi) = (vec![], vec![]);
+    if let Some(prefix) = &replay {
+        closest_mi = recorded_packets(Path::new(&format!("{prefix}.intersect")));
+        shadow_mi = recorded_packets(Path::new(&format!("{prefix}.occluded")));
+        let lanes =
+            |p: &Vec<Vec<Ray>>| p.iter().map(Vec::len).sum::<usize>() as f64 / p.len() as f64;
+        println!(
+            "recorded: {} closest-hit packets ({:.1} lanes each), {} any-hit packets ({:.1} lanes each)",
+            closest_mi.len(),
+            lanes(&closest_mi),
+            shadow_mi.len(),
+            lanes(&shadow_mi)
+        );
+    }
+    let fixed =
+        |rays: &[Ray], n: usize| -> Vec<Vec<Ray>> { rays.chunks(n).map(<[Ray]>::to_vec).collect() };
+    let mut sets: Vec<RaySet> = vec![
+        ("bounce", bounce, None, false),
+        ("shadow", shadow, None, true),
+        ("camera px", camera_px, None, false),
+        ("bounce px", bounce_px, None, false),
+        ("shadow px", shadow_px, None, true),
+    ];
+    if replay.is_some() {
+        sets.push(("mi closest", closest_mi.concat(), Some(&closest_mi), false));
+        sets.push(("mi shadow", shadow_mi.concat(), Some(&shadow_mi), true));
+    }
+    for (kind, rays, recorded, any) in sets {
+        let singles = fixed(&rays, 1);
+        let (p8, p16) = match recorded {
+            Some(p) => (p.clone(), p.clone()),
+            None => (fixed(&rays, 8), fixed(&rays, 16)),
+        };
+        let (singles, p8, p16) = (view(&singles), view(&p8), view(&p16));
+        let mut best = [0.0f64; CASTS.len()];
+        let mut hits = [0usize; CASTS.len()];
         for _ in 0..5 {
             let r = if any {
                 [
-                    rate(rays, 1, 1, |c| usize::from(scene.occluded(&c[0]))),
-                    rate(rays, 1, 1, |c| usize::from(embree.occluded(&c[0]))),
-                    rate(rays, 8, 1, |c| embree.occluded8(c)),
-                    rate(rays, 16, 1, |c| embree.occluded16(c)),
-                    rate(rays, 1, 1, |c| usize::from(robust.occluded(&c[0]))),
+                    rate(&singles, 1, |c| usize::from(scene.occluded(&c[0]))),
+                    rate(&singles, 1, |c| usize::from(embree.occluded(&c[0]))),
+                    rate(&p8, 1, |c| c.chunks(8).map(|c| embree.occluded8(c)).sum()),
+                    rate(&p16, 1, |c| embree.occluded16(c)),
+                    rate(&singles, 1, |c| usize::from(robust.occluded(&c[0]))),
+                    rate(&singles, 1, |c| usize::from(high.occluded(&c[0]))),
+                    rate(&p16, 1, |c| high.occluded16(c)),
                 ]
             } else {
                 [
-                    rate(rays, 1, 1, |c| {
+                    rate(&singles, 1, |c| {
                         usize::from(scene.intersect_hit(&c[0]).is_some())
                     }),
-                    rate(rays, 1, 1, |c| {
+                    rate(&singles, 1, |c| {
                         usize::from(embree.intersect(&c[0]).is_some())
                     }),
-                    rate(rays, 8, 1, |c| embree.intersect8(c)),
-                    rate(rays, 16, 1, |c| embree.intersect16(c)),
-                    rate(rays, 1, 1, |c| {
+                    rate(&p8, 1, |c| c.chunks(8).map(|c| embree.intersect8(c)).sum()),
+                    rate(&p16, 1, |c| embree.intersect16(c)),
+                    rate(&singles, 1, |c| {
                         usize::from(robust.intersect(&c[0]).is_some())
                     }),
+                    rate(&singles, 1, |c| {
+                        usize::from(high.intersect(&c[0]).is_some())
+                    }),
+                    rate(&p16, 1, |c| high.intersect16(c)),
                 ]
             };
             for (k, (s, h)) in r.into_iter().enumerate() {
@@ -226,19 +324,13 @@ fn main() {
                 hits[0]
             );
         }
-        println!(
-            "{kind:>10} {:>9.2} {:>9.2} {:>9.2} {:>9.2} {:>9.2} {:>8.2} {:>8.2} {:>8.2} {:>8.2}   \
-             hits {:?}",
-            best[0] / 1e6,
-            best[1] / 1e6,
-            best[2] / 1e6,
-            best[3] / 1e6,
-            best[4] / 1e6,
-            best[0] / best[1],
-            best[0] / best[2],
-            best[0] / best[3],
-            best[0] / best[4],
-            hits
-        );
+        let mut row = format!("{kind:>10}");
+        for b in best {
+            row += &format!(" {:>9.2}", b / 1e6);
+        }
+        for b in &best[1..] {
+            row += &format!(" {:>8.2}", best[0] / b);
+        }
+        println!("{row}   hits {hits:?}");
     }
 }

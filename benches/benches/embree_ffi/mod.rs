@@ -54,6 +54,10 @@ const FORMAT_FLOAT3: u32 = 0x9003;
 /// stores each leaf's triangle corners (`Triangle4v`, as Tessera's blocks do) and runs the
 /// watertight Pluecker test with conservative node tests: the guarantees Tessera's casts give.
 const SCENE_FLAG_ROBUST: u32 = 1 << 2;
+/// `RTC_BUILD_QUALITY_HIGH`: a builder with spatial splits.
+const BUILD_QUALITY_HIGH: u32 = 2;
+/// `RTC_INTERSECT_CONTEXT_FLAG_COHERENT`: the rays of a packet are coherent.
+const CONTEXT_FLAG_COHERENT: u32 = 1;
 /// The ray's start. Tessera's rays cover `t` in `(0, t_max)`; Embree's test accepts
 /// `t >= tnear`, and in robust mode it reports a ray that starts exactly on a surface (an origin
 /// with a zero coordinate on a wall at zero, whose offset is zero) as hitting it at `t = 0`.
@@ -62,12 +66,40 @@ const TNEAR: f32 = f32::MIN_POSITIVE;
 
 #[link(name = "embree3")]
 extern "C" {
+    #[cfg_attr(
+        feature = "embree-mitsuba",
+        link_name = "_ZN7mitsuba12rtcNewDeviceEPKc"
+    )]
     fn rtcNewDevice(config: *const c_char) -> *mut c_void;
+    #[cfg_attr(
+        feature = "embree-mitsuba",
+        link_name = "_ZN7mitsuba16rtcReleaseDeviceEPNS_11RTCDeviceTyE"
+    )]
     fn rtcReleaseDevice(device: *mut c_void);
+    #[cfg_attr(
+        feature = "embree-mitsuba",
+        link_name = "_ZN7mitsuba17rtcGetDeviceErrorEPNS_11RTCDeviceTyE"
+    )]
     fn rtcGetDeviceError(device: *mut c_void) -> u32;
+    #[cfg_attr(
+        feature = "embree-mitsuba",
+        link_name = "_ZN7mitsuba11rtcNewSceneEPNS_11RTCDeviceTyE"
+    )]
     fn rtcNewScene(device: *mut c_void) -> *mut c_void;
+    #[cfg_attr(
+        feature = "embree-mitsuba",
+        link_name = "_ZN7mitsuba15rtcReleaseSceneEPNS_10RTCSceneTyE"
+    )]
     fn rtcReleaseScene(scene: *mut c_void);
+    #[cfg_attr(
+        feature = "embree-mitsuba",
+        link_name = "_ZN7mitsuba14rtcNewGeometryEPNS_11RTCDeviceTyENS_15RTCGeometryTypeE"
+    )]
     fn rtcNewGeometry(device: *mut c_void, kind: u32) -> *mut c_void;
+    #[cfg_attr(
+        feature = "embree-mitsuba",
+        link_name = "_ZN7mitsuba26rtcSetSharedGeometryBufferEPNS_13RTCGeometryTyENS_13RTCBufferTypeEjNS_9RTCFormatEPKvmmm"
+    )]
     fn rtcSetSharedGeometryBuffer(
         geometry: *mut c_void,
         kind: u32,
@@ -78,31 +110,80 @@ extern "C" {
         byte_stride: usize,
         item_count: usize,
     );
+    #[cfg_attr(
+        feature = "embree-mitsuba",
+        link_name = "_ZN7mitsuba17rtcCommitGeometryEPNS_13RTCGeometryTyE"
+    )]
     fn rtcCommitGeometry(geometry: *mut c_void);
+    #[cfg_attr(
+        feature = "embree-mitsuba",
+        link_name = "_ZN7mitsuba17rtcAttachGeometryEPNS_10RTCSceneTyEPNS_13RTCGeometryTyE"
+    )]
     fn rtcAttachGeometry(scene: *mut c_void, geometry: *mut c_void) -> u32;
+    #[cfg_attr(
+        feature = "embree-mitsuba",
+        link_name = "_ZN7mitsuba18rtcReleaseGeometryEPNS_13RTCGeometryTyE"
+    )]
     fn rtcReleaseGeometry(geometry: *mut c_void);
+    #[cfg_attr(
+        feature = "embree-mitsuba",
+        link_name = "_ZN7mitsuba14rtcCommitSceneEPNS_10RTCSceneTyE"
+    )]
     fn rtcCommitScene(scene: *mut c_void);
+    #[cfg_attr(
+        feature = "embree-mitsuba",
+        link_name = "_ZN7mitsuba16rtcSetSceneFlagsEPNS_10RTCSceneTyENS_13RTCSceneFlagsE"
+    )]
     fn rtcSetSceneFlags(scene: *mut c_void, flags: u32);
+    #[cfg_attr(
+        feature = "embree-mitsuba",
+        link_name = "_ZN7mitsuba23rtcSetSceneBuildQualityEPNS_10RTCSceneTyENS_15RTCBuildQualityE"
+    )]
+    fn rtcSetSceneBuildQuality(scene: *mut c_void, quality: u32);
+    #[cfg_attr(
+        feature = "embree-mitsuba",
+        link_name = "_ZN7mitsuba13rtcIntersect1EPNS_10RTCSceneTyEPNS_19RTCIntersectContextEPNS_9RTCRayHitE"
+    )]
     fn rtcIntersect1(scene: *mut c_void, ctx: *mut RtcIntersectContext, rayhit: *mut RtcRayHit);
+    #[cfg_attr(
+        feature = "embree-mitsuba",
+        link_name = "_ZN7mitsuba12rtcOccluded1EPNS_10RTCSceneTyEPNS_19RTCIntersectContextEPNS_6RTCRayE"
+    )]
     fn rtcOccluded1(scene: *mut c_void, ctx: *mut RtcIntersectContext, ray: *mut RtcRay);
+    #[cfg_attr(
+        feature = "embree-mitsuba",
+        link_name = "_ZN7mitsuba13rtcIntersect8EPKiPNS_10RTCSceneTyEPNS_19RTCIntersectContextEPNS_10RTCRayHit8E"
+    )]
     fn rtcIntersect8(
         valid: *const i32,
         scene: *mut c_void,
         ctx: *mut RtcIntersectContext,
         rayhit: *mut RtcRayHitN<8>,
     );
+    #[cfg_attr(
+        feature = "embree-mitsuba",
+        link_name = "_ZN7mitsuba12rtcOccluded8EPKiPNS_10RTCSceneTyEPNS_19RTCIntersectContextEPNS_7RTCRay8E"
+    )]
     fn rtcOccluded8(
         valid: *const i32,
         scene: *mut c_void,
         ctx: *mut RtcIntersectContext,
         ray: *mut RtcRayN<8>,
     );
+    #[cfg_attr(
+        feature = "embree-mitsuba",
+        link_name = "_ZN7mitsuba14rtcIntersect16EPKiPNS_10RTCSceneTyEPNS_19RTCIntersectContextEPNS_11RTCRayHit16E"
+    )]
     fn rtcIntersect16(
         valid: *const i32,
         scene: *mut c_void,
         ctx: *mut RtcIntersectContext,
         rayhit: *mut RtcRayHitN<16>,
     );
+    #[cfg_attr(
+        feature = "embree-mitsuba",
+        link_name = "_ZN7mitsuba13rtcOccluded16EPKiPNS_10RTCSceneTyEPNS_19RTCIntersectContextEPNS_8RTCRay16E"
+    )]
     fn rtcOccluded16(
         valid: *const i32,
         scene: *mut c_void,
@@ -187,6 +268,8 @@ pub struct Embree {
     scene: *mut c_void,
     _vertices: Vec<f32>,
     _indices: Vec<u32>,
+    /// The context flags of closest-hit calls.
+    closest_flags: u32,
 }
 
 /// Which of Embree's two modes a scene is built in.
@@ -196,6 +279,10 @@ pub enum Mode {
     Fast,
     /// `RTC_SCENE_FLAG_ROBUST`: a watertight triangle test, as Tessera's.
     Robust,
+    /// As Mitsuba 3 sets Embree up (`scripts/mitsuba_rays/run.sh` prints the settings): the
+    /// default flags, `RTC_BUILD_QUALITY_HIGH` (spatial splits), and closest-hit calls with
+    /// `RTC_INTERSECT_CONTEXT_FLAG_COHERENT` (any-hit calls without).
+    Mitsuba,
 }
 
 impl Embree {
@@ -224,6 +311,9 @@ impl Embree {
             );
             if mode == Mode::Robust {
                 rtcSetSceneFlags(scene, SCENE_FLAG_ROBUST);
+            }
+            if mode == Mode::Mitsuba {
+                rtcSetSceneBuildQuality(scene, BUILD_QUALITY_HIGH);
             }
             rtcSetSharedGeometryBuffer(
                 geom,
@@ -255,6 +345,11 @@ impl Embree {
                 scene,
                 _vertices: vertices,
                 _indices: idx,
+                closest_flags: if mode == Mode::Mitsuba {
+                    CONTEXT_FLAG_COHERENT
+                } else {
+                    0
+                },
             }
         }
     }
@@ -272,10 +367,10 @@ impl Embree {
         }
     }
 
-    fn context() -> RtcIntersectContext {
+    fn context(flags: u32) -> RtcIntersectContext {
         // As `rtcInitIntersectContext` (an inline function in the header).
         RtcIntersectContext {
-            flags: 0,
+            flags,
             filter: None,
             inst_id: [INVALID_ID],
         }
@@ -294,7 +389,7 @@ impl Embree {
                 inst_id: [INVALID_ID],
             },
         };
-        let mut ctx = Self::context();
+        let mut ctx = Self::context(self.closest_flags);
         // SAFETY: `self.scene` is a committed scene; `ctx` and `rh` are valid, aligned locals.
         unsafe { rtcIntersect1(self.scene, &mut ctx, &mut rh) };
         (rh.hit.geom_id != INVALID_ID).then_some((rh.ray.tfar, rh.hit.prim_id))
@@ -302,7 +397,7 @@ impl Embree {
 
     pub fn occluded(&self, r: &Ray) -> bool {
         let mut ray = Self::ray(r);
-        let mut ctx = Self::context();
+        let mut ctx = Self::context(0);
         // SAFETY: as in `intersect`.
         unsafe { rtcOccluded1(self.scene, &mut ctx, &mut ray) };
         ray.tfar == f32::NEG_INFINITY
@@ -330,7 +425,7 @@ impl Embree {
                 inst_id: [[INVALID_ID; N]],
             },
         };
-        let (v, mut ctx) = (valid::<N>(rays.len()), Self::context());
+        let (v, mut ctx) = (valid::<N>(rays.len()), Self::context(self.closest_flags));
         // SAFETY: `f` is Embree's packet call of width `N`; `self.scene` is a committed scene;
         // the mask, context and packet are valid, suitably aligned locals with the header's
         // layouts.
@@ -344,7 +439,7 @@ impl Embree {
     /// Any-hit tests of up to `N` rays in one packet call `f`: how many are blocked.
     fn occluded_packet<const N: usize>(&self, rays: &[Ray], f: OccludedN<N>) -> usize {
         let mut r = RtcRayN::<N>::of(rays);
-        let (v, mut ctx) = (valid::<N>(rays.len()), Self::context());
+        let (v, mut ctx) = (valid::<N>(rays.len()), Self::context(0));
         // SAFETY: as in `intersect_packet`.
         unsafe { f(v.0.as_ptr(), self.scene, &mut ctx, &mut r) };
         r.tfar[..rays.len()]
