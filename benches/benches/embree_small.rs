@@ -15,11 +15,12 @@
 //! Embree one ray at a time also runs in its robust mode (`embreeR1`, `RTC_SCENE_FLAG_ROBUST`: a
 //! watertight triangle test and conservative node tests, the guarantees Tessera's casts give).
 //! `embreeM1` / `embreeM16` set Embree up as Mitsuba 3 does (`scripts/mitsuba_rays/run.sh` prints
-//! its settings): high build quality, and closest-hit calls marked coherent.
+//! its settings): high build quality, and the camera rays' packets marked coherent.
 //! With `--replay PREFIX`, two more rows cast the packets Mitsuba 3 itself cast, recorded by
 //! `RAYDUMP=PREFIX scripts/mitsuba_rays/run.sh SCENE.xml ...` (`mi closest`, `mi shadow`): the
-//! packet columns take Mitsuba's packets as they were (as many lanes as were active), the
-//! others their rays one at a time.
+//! 16-wide columns cast Mitsuba's packets exactly as recorded (mask, idle lanes and, in
+//! `embreeM16`, the context flags), the 8-wide one each packet's active rays eight at a time,
+//! the others its rays one at a time.
 //! Rays per second of one thread, best of 5 alternating rounds; the hit counts of all casts must
 //! agree (it panics otherwise).
 //!
@@ -29,7 +30,7 @@
 //! instead (see `benches/Cargo.toml`).
 mod embree_ffi;
 
-use embree_ffi::{Embree, Mode};
+use embree_ffi::{Embree, Mode, RawPacket16};
 use glam::{Vec2, Vec3};
 use std::path::Path;
 use std::time::Instant;
@@ -40,11 +41,16 @@ use tessera_core::geometry::{Interaction, Prim};
 use tessera_core::math::Ray;
 use tessera_core::scene::Scene;
 
-/// Rays cast per second by `cast`, which takes a chunk of rays and returns how many hit: best of
-/// `rounds` rounds of at least 0.2 s each; also the hit count of one pass.
-fn rate(chunks: &[&[Ray]], rounds: usize, mut cast: impl FnMut(&[Ray]) -> usize) -> (f64, usize) {
-    let rays: usize = chunks.iter().map(|c| c.len()).sum();
-    let hits: usize = chunks.iter().map(|c| cast(c)).sum();
+/// Rays cast per second by `cast`, which takes a chunk (a few rays, or a packet) and returns
+/// how many hit: best of `rounds` rounds of at least 0.2 s each over `chunks`, which hold `rays`
+/// rays in all; also the hit count of one pass.
+fn rate<T>(
+    chunks: &[T],
+    rays: usize,
+    rounds: usize,
+    mut cast: impl FnMut(&T) -> usize,
+) -> (f64, usize) {
+    let hits: usize = chunks.iter().map(&mut cast).sum();
     let mut best = 0.0f64;
     for _ in 0..rounds {
         let start = Instant::now();
@@ -62,25 +68,38 @@ fn rate(chunks: &[&[Ray]], rounds: usize, mut cast: impl FnMut(&[Ray]) -> usize)
     (best, hits)
 }
 
+/// A packet for the 16-wide columns: consecutive rays, or a packet as a renderer recorded it.
+enum Packet16<'a> {
+    Rays(&'a [Ray]),
+    Recorded(&'a RawPacket16),
+}
+
 /// Packets that Mitsuba 3 cast, as `scripts/mitsuba_rays/run.sh` records them (`RAYDUMP`): per
-/// 16-wide call, the valid mask (16 `i32`) and the `RTCRay16` before the call (12 fields of 16
-/// `f32`). Returns each packet's active lanes as rays, in order.
-fn recorded_packets(file: &Path) -> Vec<Vec<Ray>> {
+/// 16-wide call, the valid mask (16 `i32`), the `RTCRay16` before the call (12 fields of 16
+/// words) and 16 words whose first is the call's context flags. Returns each packet's active
+/// lanes as rays, and the packet as recorded.
+fn recorded_packets(file: &Path) -> Vec<(Vec<Ray>, RawPacket16)> {
     let bytes = std::fs::read(file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
-    const RECORD: usize = 4 * 16 * 13;
+    const RECORD: usize = 4 * 16 * 14;
     assert!(
         bytes.len().is_multiple_of(RECORD),
         "{}: not a whole number of packets",
         file.display()
     );
-    let word = |rec: &[u8], i: usize| f32::from_le_bytes(rec[4 * i..4 * i + 4].try_into().unwrap());
     bytes
         .chunks(RECORD)
         .map(|rec| {
+            let words: Vec<u32> = rec
+                .chunks(4)
+                .map(|w| u32::from_le_bytes(w.try_into().unwrap()))
+                .collect();
+            let (valid, rest) = words.split_at(16);
+            let (ray, context) = rest.split_at(16 * 12);
+            let valid: [i32; 16] = core::array::from_fn(|i| valid[i] as i32);
             // Fields after the mask: org x/y/z, tnear, dir x/y/z, time, tfar, mask, id, flags.
-            let field = |f: usize, lane: usize| word(rec, 16 * (1 + f) + lane);
-            (0..16)
-                .filter(|&lane| word(rec, lane).to_bits() != 0)
+            let field = |f: usize, lane: usize| f32::from_bits(ray[16 * f + lane]);
+            let rays = (0..16)
+                .filter(|&lane| valid[lane] != 0)
                 .map(|lane| {
                     let o = Vec3::new(field(0, lane), field(1, lane), field(2, lane));
                     let d = Vec3::new(field(4, lane), field(5, lane), field(6, lane));
@@ -91,18 +110,39 @@ fn recorded_packets(file: &Path) -> Vec<Vec<Ray>> {
                         t_max: field(8, lane),
                     }
                 })
-                .collect()
+                .collect();
+            let raw = RawPacket16::from_words(&valid, ray.try_into().unwrap(), context[0]);
+            (rays, raw)
         })
         .collect()
 }
 
 /// A row of the table: its name, its rays, the packets they came in (when recorded), and
 /// whether they are any-hit queries.
-type RaySet<'a> = (&'static str, Vec<Ray>, Option<&'a Vec<Vec<Ray>>>, bool);
+type RaySet<'a> = (
+    &'static str,
+    Vec<Ray>,
+    Option<&'a [(Vec<Ray>, RawPacket16)]>,
+    bool,
+);
 
-/// Borrowed slices of `packets`, for [`rate`].
-fn view(packets: &[Vec<Ray>]) -> Vec<&[Ray]> {
-    packets.iter().map(Vec::as_slice).collect()
+/// Closest hits of a 16-wide packet: how many of its rays hit. `as_mitsuba`: mark the packet
+/// coherent where Mitsuba 3 does (`coherent`: camera rays; a recorded packet: its recorded flags).
+fn intersect16(e: &Embree, p: &Packet16, as_mitsuba: bool, coherent: bool) -> usize {
+    match p {
+        Packet16::Rays(r) if as_mitsuba && coherent => e.intersect16_coherent(r),
+        Packet16::Rays(r) => e.intersect16(r),
+        Packet16::Recorded(raw) => e.intersect16_raw(raw, as_mitsuba),
+    }
+}
+
+/// Any-hit tests of a 16-wide packet: how many of its rays are blocked (flags as in
+/// `intersect16`).
+fn occluded16(e: &Embree, p: &Packet16, as_mitsuba: bool) -> usize {
+    match p {
+        Packet16::Rays(r) => e.occluded16(r),
+        Packet16::Recorded(raw) => e.occluded16_raw(raw, as_mitsuba),
+    }
 }
 
 /// A scene's triangles for Embree: positions (three per triangle, unshared) and indices; and
@@ -247,8 +287,9 @@ fn main() {
     if let Some(prefix) = &replay {
         closest_mi = recorded_packets(Path::new(&format!("{prefix}.intersect")));
         shadow_mi = recorded_packets(Path::new(&format!("{prefix}.occluded")));
-        let lanes =
-            |p: &Vec<Vec<Ray>>| p.iter().map(Vec::len).sum::<usize>() as f64 / p.len() as f64;
+        let lanes = |p: &[(Vec<Ray>, RawPacket16)]| {
+            p.iter().map(|(r, _)| r.len()).sum::<usize>() as f64 / p.len() as f64
+        };
         println!(
             "recorded: {} closest-hit packets ({:.1} lanes each), {} any-hit packets ({:.1} lanes each)",
             closest_mi.len(),
@@ -257,8 +298,6 @@ fn main() {
             lanes(&shadow_mi)
         );
     }
-    let fixed =
-        |rays: &[Ray], n: usize| -> Vec<Vec<Ray>> { rays.chunks(n).map(<[Ray]>::to_vec).collect() };
     let mut sets: Vec<RaySet> = vec![
         ("bounce", bounce, None, false),
         ("shadow", shadow, None, true),
@@ -267,46 +306,59 @@ fn main() {
         ("shadow px", shadow_px, None, true),
     ];
     if replay.is_some() {
-        sets.push(("mi closest", closest_mi.concat(), Some(&closest_mi), false));
-        sets.push(("mi shadow", shadow_mi.concat(), Some(&shadow_mi), true));
+        let rays = |p: &[(Vec<Ray>, RawPacket16)]| -> Vec<Ray> {
+            p.iter().flat_map(|(r, _)| r.iter().copied()).collect()
+        };
+        sets.push(("mi closest", rays(&closest_mi), Some(&closest_mi), false));
+        sets.push(("mi shadow", rays(&shadow_mi), Some(&shadow_mi), true));
     }
     for (kind, rays, recorded, any) in sets {
-        let singles = fixed(&rays, 1);
-        let (p8, p16) = match recorded {
-            Some(p) => (p.clone(), p.clone()),
-            None => (fixed(&rays, 8), fixed(&rays, 16)),
+        let n = rays.len();
+        // Mitsuba 3 marks its camera rays' packets coherent, no others.
+        let camera = kind == "camera px";
+        let singles: Vec<&[Ray]> = rays.chunks(1).collect();
+        // Recorded rows: eight lanes take each recorded packet's active rays, eight at a time;
+        // sixteen lanes take the packet exactly as recorded (mask and idle lanes included).
+        let (p8, p16): (Vec<&[Ray]>, Vec<Packet16>) = match recorded {
+            Some(p) => (
+                p.iter().flat_map(|(r, _)| r.chunks(8)).collect(),
+                p.iter().map(|(_, raw)| Packet16::Recorded(raw)).collect(),
+            ),
+            None => (
+                rays.chunks(8).collect(),
+                rays.chunks(16).map(Packet16::Rays).collect(),
+            ),
         };
-        let (singles, p8, p16) = (view(&singles), view(&p8), view(&p16));
         let mut best = [0.0f64; CASTS.len()];
         let mut hits = [0usize; CASTS.len()];
         for _ in 0..5 {
             let r = if any {
                 [
-                    rate(&singles, 1, |c| usize::from(scene.occluded(&c[0]))),
-                    rate(&singles, 1, |c| usize::from(embree.occluded(&c[0]))),
-                    rate(&p8, 1, |c| c.chunks(8).map(|c| embree.occluded8(c)).sum()),
-                    rate(&p16, 1, |c| embree.occluded16(c)),
-                    rate(&singles, 1, |c| usize::from(robust.occluded(&c[0]))),
-                    rate(&singles, 1, |c| usize::from(high.occluded(&c[0]))),
-                    rate(&p16, 1, |c| high.occluded16(c)),
+                    rate(&singles, n, 1, |c| usize::from(scene.occluded(&c[0]))),
+                    rate(&singles, n, 1, |c| usize::from(embree.occluded(&c[0]))),
+                    rate(&p8, n, 1, |c| embree.occluded8(c)),
+                    rate(&p16, n, 1, |p| occluded16(&embree, p, false)),
+                    rate(&singles, n, 1, |c| usize::from(robust.occluded(&c[0]))),
+                    rate(&singles, n, 1, |c| usize::from(high.occluded(&c[0]))),
+                    rate(&p16, n, 1, |p| occluded16(&high, p, true)),
                 ]
             } else {
                 [
-                    rate(&singles, 1, |c| {
+                    rate(&singles, n, 1, |c| {
                         usize::from(scene.intersect_hit(&c[0]).is_some())
                     }),
-                    rate(&singles, 1, |c| {
+                    rate(&singles, n, 1, |c| {
                         usize::from(embree.intersect(&c[0]).is_some())
                     }),
-                    rate(&p8, 1, |c| c.chunks(8).map(|c| embree.intersect8(c)).sum()),
-                    rate(&p16, 1, |c| embree.intersect16(c)),
-                    rate(&singles, 1, |c| {
+                    rate(&p8, n, 1, |c| embree.intersect8(c)),
+                    rate(&p16, n, 1, |p| intersect16(&embree, p, false, false)),
+                    rate(&singles, n, 1, |c| {
                         usize::from(robust.intersect(&c[0]).is_some())
                     }),
-                    rate(&singles, 1, |c| {
+                    rate(&singles, n, 1, |c| {
                         usize::from(high.intersect(&c[0]).is_some())
                     }),
-                    rate(&p16, 1, |c| high.intersect16(c)),
+                    rate(&p16, n, 1, |p| intersect16(&high, p, true, camera)),
                 ]
             };
             for (k, (s, h)) in r.into_iter().enumerate() {

@@ -6,7 +6,8 @@
  * the real function, found with dlsym in the already loaded libembree3.so (MITSUBA_EMBREE).
  * With RAYDUMP=PREFIX set, every 16-wide call's valid mask and ray (before the call) are also
  * appended to PREFIX.intersect / PREFIX.occluded: 64 bytes of mask, then the 768 bytes of
- * RTCRay16 (org x/y/z, tnear, dir x/y/z, time, tfar, mask, id, flags; 16 lanes each).
+ * RTCRay16 (org x/y/z, tnear, dir x/y/z, time, tfar, mask, id, flags; 16 lanes each), then 64
+ * bytes whose first word is the call's context flags (1: RTC_INTERSECT_CONTEXT_FLAG_COHERENT).
  * The totals go to stderr at exit as lines starting with RAYCOUNT. */
 #define _GNU_SOURCE
 #include <dlfcn.h>
@@ -15,7 +16,7 @@
 #include <stdlib.h>
 #include <time.h>
 
-static atomic_long calls[2][17], lanes[2][17], nanos[2];
+static atomic_long calls[2][17], lanes[2][17], nanos[2], coherent[2];
 static FILE *dump[2];
 
 static void *embree(void) {
@@ -37,7 +38,7 @@ static long now(void) {
     return t.tv_sec * 1000000000L + t.tv_nsec;
 }
 
-static void record(int kind, const int *valid, const void *ray) {
+static void record(int kind, const int *valid, const void *ray, const void *ctx) {
     const char *prefix = getenv("RAYDUMP");
     if (!prefix) return;
     if (!dump[kind]) {
@@ -48,6 +49,8 @@ static void record(int kind, const int *valid, const void *ray) {
     }
     fwrite(valid, 4, 16, dump[kind]);
     fwrite(ray, 4, 16 * 12, dump[kind]);
+    unsigned context[16] = {*(const unsigned *)ctx};
+    fwrite(context, 4, 16, dump[kind]);
 }
 
 #define WRAP(N, NAME, KIND)                                                        \
@@ -56,10 +59,8 @@ static void record(int kind, const int *valid, const void *ray) {
         if (!real) real = dlsym(embree(), #NAME);                                  \
         long active = 0;                                                           \
         for (int i = 0; i < N; i++) active += valid[i] != 0;                       \
-        if (N == 16) record(KIND, valid, ray);                                     \
-        if (!atomic_load(&calls[KIND][N]))                                         \
-            fprintf(stderr, "RAYCOUNT %s width %d: context flags %u\n",           \
-                    KIND ? "occluded" : "intersect", N, *(const unsigned *)ctx);   \
+        if (N == 16) record(KIND, valid, ray, ctx);                                     \
+        atomic_fetch_add(&coherent[KIND], (*(const unsigned *)ctx & 1) != 0);     \
         atomic_fetch_add(&calls[KIND][N], 1);                                      \
         atomic_fetch_add(&lanes[KIND][N], active);                                 \
         long t0 = now();                                                           \
@@ -109,8 +110,8 @@ __attribute__((destructor)) static void report(void) {
                         k ? "occluded" : "intersect", n, calls[k][n], lanes[k][n]);
         }
         if (c)
-            fprintf(stderr, "RAYCOUNT %s: %ld calls, %ld rays, %.3f s in Embree\n",
-                    k ? "occluded" : "intersect", c, l, nanos[k] * 1e-9);
+            fprintf(stderr, "RAYCOUNT %s: %ld calls (%ld marked coherent), %ld rays, %.3f s in Embree\n",
+                    k ? "occluded" : "intersect", c, coherent[k], l, nanos[k] * 1e-9);
         if (dump[k]) fclose(dump[k]);
     }
 }

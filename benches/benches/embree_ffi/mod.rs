@@ -229,6 +229,7 @@ pub struct RtcRayHitN<const N: usize> {
 
 /// The valid mask of a packet: -1 for every lane in use.
 #[repr(C, align(64))]
+#[derive(Clone, Copy)]
 struct Valid<const N: usize>([i32; N]);
 
 impl<const N: usize> RtcRayN<N> {
@@ -268,8 +269,6 @@ pub struct Embree {
     scene: *mut c_void,
     _vertices: Vec<f32>,
     _indices: Vec<u32>,
-    /// The context flags of closest-hit calls.
-    closest_flags: u32,
 }
 
 /// Which of Embree's two modes a scene is built in.
@@ -279,9 +278,9 @@ pub enum Mode {
     Fast,
     /// `RTC_SCENE_FLAG_ROBUST`: a watertight triangle test, as Tessera's.
     Robust,
-    /// As Mitsuba 3 sets Embree up (`scripts/mitsuba_rays/run.sh` prints the settings): the
-    /// default flags, `RTC_BUILD_QUALITY_HIGH` (spatial splits), and closest-hit calls with
-    /// `RTC_INTERSECT_CONTEXT_FLAG_COHERENT` (any-hit calls without).
+    /// As Mitsuba 3 builds its scenes (`scripts/mitsuba_rays/run.sh` prints the settings): the
+    /// default flags and `RTC_BUILD_QUALITY_HIGH` (spatial splits). Mitsuba also marks its camera
+    /// rays' packets coherent: [`Embree::intersect16_coherent`].
     Mitsuba,
 }
 
@@ -345,11 +344,6 @@ impl Embree {
                 scene,
                 _vertices: vertices,
                 _indices: idx,
-                closest_flags: if mode == Mode::Mitsuba {
-                    CONTEXT_FLAG_COHERENT
-                } else {
-                    0
-                },
             }
         }
     }
@@ -389,7 +383,7 @@ impl Embree {
                 inst_id: [INVALID_ID],
             },
         };
-        let mut ctx = Self::context(self.closest_flags);
+        let mut ctx = Self::context(0);
         // SAFETY: `self.scene` is a committed scene; `ctx` and `rh` are valid, aligned locals.
         unsafe { rtcIntersect1(self.scene, &mut ctx, &mut rh) };
         (rh.hit.geom_id != INVALID_ID).then_some((rh.ray.tfar, rh.hit.prim_id))
@@ -413,7 +407,12 @@ type OccludedN<const N: usize> =
 
 impl Embree {
     /// Closest hits of up to `N` rays in one packet call `f`: how many hit something.
-    fn intersect_packet<const N: usize>(&self, rays: &[Ray], f: IntersectN<N>) -> usize {
+    fn intersect_packet<const N: usize>(
+        &self,
+        rays: &[Ray],
+        f: IntersectN<N>,
+        flags: u32,
+    ) -> usize {
         let mut rh = RtcRayHitN::<N> {
             ray: RtcRayN::of(rays),
             hit: RtcHitN {
@@ -425,7 +424,7 @@ impl Embree {
                 inst_id: [[INVALID_ID; N]],
             },
         };
-        let (v, mut ctx) = (valid::<N>(rays.len()), Self::context(self.closest_flags));
+        let (v, mut ctx) = (valid::<N>(rays.len()), Self::context(flags));
         // SAFETY: `f` is Embree's packet call of width `N`; `self.scene` is a committed scene;
         // the mask, context and packet are valid, suitably aligned locals with the header's
         // layouts.
@@ -450,12 +449,18 @@ impl Embree {
 
     /// Closest hits of up to 8 rays in one `rtcIntersect8` call.
     pub fn intersect8(&self, rays: &[Ray]) -> usize {
-        self.intersect_packet::<8>(rays, rtcIntersect8)
+        self.intersect_packet::<8>(rays, rtcIntersect8, 0)
     }
 
     /// Closest hits of up to 16 rays in one `rtcIntersect16` call.
     pub fn intersect16(&self, rays: &[Ray]) -> usize {
-        self.intersect_packet::<16>(rays, rtcIntersect16)
+        self.intersect_packet::<16>(rays, rtcIntersect16, 0)
+    }
+
+    /// The same, with the packet marked coherent (`RTC_INTERSECT_CONTEXT_FLAG_COHERENT`), as
+    /// Mitsuba 3 marks its camera rays.
+    pub fn intersect16_coherent(&self, rays: &[Ray]) -> usize {
+        self.intersect_packet::<16>(rays, rtcIntersect16, CONTEXT_FLAG_COHERENT)
     }
 
     /// Any-hit tests of up to 8 rays in one `rtcOccluded8` call.
@@ -476,5 +481,76 @@ impl Drop for Embree {
             rtcReleaseScene(self.scene);
             rtcReleaseDevice(self.device);
         }
+    }
+}
+
+/// A 16-wide packet exactly as a renderer handed it to Embree: the valid mask and the ray
+/// fields, lanes not in use included (they keep whatever the renderer left there).
+#[derive(Clone, Copy)]
+pub struct RawPacket16 {
+    valid: Valid<16>,
+    ray: RtcRayN<16>,
+    /// The context flags of the recorded call.
+    flags: u32,
+}
+
+impl RawPacket16 {
+    /// From the 16 mask words, the 12 x 16 ray words (org x/y/z, tnear, dir x/y/z, time, tfar,
+    /// mask, id, flags) and the call's context flags, as `scripts/mitsuba_rays/shim.c` records
+    /// them.
+    pub fn from_words(valid: &[i32; 16], ray: &[u32; 192], flags: u32) -> Self {
+        let lane = |f: usize| -> [u32; 16] { ray[16 * f..16 * f + 16].try_into().unwrap() };
+        let float = |f: usize| lane(f).map(f32::from_bits);
+        RawPacket16 {
+            valid: Valid(*valid),
+            ray: RtcRayN {
+                org: [float(0), float(1), float(2)],
+                tnear: float(3),
+                dir: [float(4), float(5), float(6)],
+                time: float(7),
+                tfar: float(8),
+                mask: lane(9),
+                id: lane(10),
+                flags: lane(11),
+            },
+            flags,
+        }
+    }
+}
+
+impl Embree {
+    /// Closest hits of a recorded packet, cast as recorded (with its recorded context flags when
+    /// `recorded_flags`, else none): how many active lanes hit.
+    pub fn intersect16_raw(&self, p: &RawPacket16, recorded_flags: bool) -> usize {
+        const N: usize = 16;
+        let mut rh = RtcRayHitN::<N> {
+            ray: p.ray,
+            hit: RtcHitN {
+                ng: [[0.0; N]; 3],
+                u: [0.0; N],
+                v: [0.0; N],
+                prim_id: [INVALID_ID; N],
+                geom_id: [INVALID_ID; N],
+                inst_id: [[INVALID_ID; N]],
+            },
+        };
+        let mut ctx = Self::context(if recorded_flags { p.flags } else { 0 });
+        // SAFETY: as in `intersect_packet`; the mask is the recorded one.
+        unsafe { rtcIntersect16(p.valid.0.as_ptr(), self.scene, &mut ctx, &mut rh) };
+        (0..N)
+            .filter(|&i| p.valid.0[i] != 0 && rh.hit.geom_id[i] != INVALID_ID)
+            .count()
+    }
+
+    /// Any-hit tests of a recorded packet, cast as recorded (flags as in `intersect16_raw`): how
+    /// many active lanes are blocked.
+    pub fn occluded16_raw(&self, p: &RawPacket16, recorded_flags: bool) -> usize {
+        let mut r = p.ray;
+        let mut ctx = Self::context(if recorded_flags { p.flags } else { 0 });
+        // SAFETY: as in `intersect_packet`; the mask is the recorded one.
+        unsafe { rtcOccluded16(p.valid.0.as_ptr(), self.scene, &mut ctx, &mut r) };
+        (0..16)
+            .filter(|&i| p.valid.0[i] != 0 && r.tfar[i] == f32::NEG_INFINITY)
+            .count()
     }
 }
