@@ -227,6 +227,23 @@ pub struct RtcRayHitN<const N: usize> {
     hit: RtcHitN<N>,
 }
 
+impl<const N: usize> RtcRayHitN<N> {
+    /// `ray` with no hit yet (every id invalid), for a closest-hit call.
+    fn unhit(ray: RtcRayN<N>) -> Self {
+        RtcRayHitN {
+            ray,
+            hit: RtcHitN {
+                ng: [[0.0; N]; 3],
+                u: [0.0; N],
+                v: [0.0; N],
+                prim_id: [INVALID_ID; N],
+                geom_id: [INVALID_ID; N],
+                inst_id: [[INVALID_ID; N]],
+            },
+        }
+    }
+}
+
 /// The valid mask of a packet: -1 for every lane in use.
 #[repr(C, align(64))]
 #[derive(Clone, Copy)]
@@ -413,17 +430,7 @@ impl Embree {
         f: IntersectN<N>,
         flags: u32,
     ) -> usize {
-        let mut rh = RtcRayHitN::<N> {
-            ray: RtcRayN::of(rays),
-            hit: RtcHitN {
-                ng: [[0.0; N]; 3],
-                u: [0.0; N],
-                v: [0.0; N],
-                prim_id: [INVALID_ID; N],
-                geom_id: [INVALID_ID; N],
-                inst_id: [[INVALID_ID; N]],
-            },
-        };
+        let mut rh = RtcRayHitN::<N>::unhit(RtcRayN::of(rays));
         let (v, mut ctx) = (valid::<N>(rays.len()), Self::context(flags));
         // SAFETY: `f` is Embree's packet call of width `N`; `self.scene` is a committed scene;
         // the mask, context and packet are valid, suitably aligned locals with the header's
@@ -522,22 +529,11 @@ impl Embree {
     /// Closest hits of a recorded packet, cast as recorded (with its recorded context flags when
     /// `recorded_flags`, else none): how many active lanes hit.
     pub fn intersect16_raw(&self, p: &RawPacket16, recorded_flags: bool) -> usize {
-        const N: usize = 16;
-        let mut rh = RtcRayHitN::<N> {
-            ray: p.ray,
-            hit: RtcHitN {
-                ng: [[0.0; N]; 3],
-                u: [0.0; N],
-                v: [0.0; N],
-                prim_id: [INVALID_ID; N],
-                geom_id: [INVALID_ID; N],
-                inst_id: [[INVALID_ID; N]],
-            },
-        };
+        let mut rh = RtcRayHitN::unhit(p.ray);
         let mut ctx = Self::context(if recorded_flags { p.flags } else { 0 });
         // SAFETY: as in `intersect_packet`; the mask is the recorded one.
         unsafe { rtcIntersect16(p.valid.0.as_ptr(), self.scene, &mut ctx, &mut rh) };
-        (0..N)
+        (0..16)
             .filter(|&i| p.valid.0[i] != 0 && rh.hit.geom_id[i] != INVALID_ID)
             .count()
     }
