@@ -96,23 +96,8 @@ fn recorded_packets(file: &Path) -> Vec<(Vec<Ray>, RawPacket16)> {
             let (valid, rest) = words.split_at(16);
             let (ray, context) = rest.split_at(16 * 12);
             let valid: [i32; 16] = core::array::from_fn(|i| valid[i] as i32);
-            // Fields after the mask: org x/y/z, tnear, dir x/y/z, time, tfar, mask, id, flags.
-            let field = |f: usize, lane: usize| f32::from_bits(ray[16 * f + lane]);
-            let rays = (0..16)
-                .filter(|&lane| valid[lane] != 0)
-                .map(|lane| {
-                    let o = Vec3::new(field(0, lane), field(1, lane), field(2, lane));
-                    let d = Vec3::new(field(4, lane), field(5, lane), field(6, lane));
-                    assert!(field(3, lane) == 0.0, "a recorded ray with tnear > 0");
-                    Ray {
-                        o,
-                        d,
-                        t_max: field(8, lane),
-                    }
-                })
-                .collect();
             let raw = RawPacket16::from_words(&valid, ray.try_into().unwrap(), context[0]);
-            (rays, raw)
+            (raw.rays(), raw)
         })
         .collect()
 }
@@ -217,7 +202,7 @@ fn main() {
     assert!(!light.is_empty(), "the scene needs a triangle area light");
     let embree = Embree::new(&pos, &idx);
     let robust = Embree::with_mode(&pos, &idx, Mode::Robust);
-    let high = Embree::with_mode(&pos, &idx, Mode::Mitsuba);
+    let mitsuba = Embree::with_mode(&pos, &idx, Mode::Mitsuba);
     let b = scene.bounds();
     let (lo, size) = (b.min, b.max - b.min);
     let mut rng = Rng(11);
@@ -263,7 +248,7 @@ fn main() {
     );
     // The casts, in the order of the columns: Tessera, then Embree's fast mode one ray at a time
     // and in packets of 8 and 16, its robust mode one at a time, and Embree set up as Mitsuba 3 sets
-    // it up (high build quality, coherent closest-hit packets) one at a time and in packets of 16.
+    // it up (high build quality, camera packets marked coherent) one at a time and in packets of 16.
     const CASTS: [&str; 7] = [
         "tessera",
         "embree1",
@@ -281,8 +266,7 @@ fn main() {
         header += &format!(" {:>8}", format!("t/{}", c.replace("embree", "e")));
     }
     println!("{header}");
-    // Mitsuba's own packets, when recorded: the packet columns then cast them as Mitsuba did
-    // (8 and 16 lanes take the recorded packets, as many lanes as were active).
+    // Mitsuba's own packets, when recorded (how each column casts them: below).
     let (mut closest_mi, mut shadow_mi) = (vec![], vec![]);
     if let Some(prefix) = &replay {
         closest_mi = recorded_packets(Path::new(&format!("{prefix}.intersect")));
@@ -339,8 +323,8 @@ fn main() {
                     rate(&p8, n, 1, |c| embree.occluded8(c)),
                     rate(&p16, n, 1, |p| occluded16(&embree, p, false)),
                     rate(&singles, n, 1, |c| usize::from(robust.occluded(&c[0]))),
-                    rate(&singles, n, 1, |c| usize::from(high.occluded(&c[0]))),
-                    rate(&p16, n, 1, |p| occluded16(&high, p, true)),
+                    rate(&singles, n, 1, |c| usize::from(mitsuba.occluded(&c[0]))),
+                    rate(&p16, n, 1, |p| occluded16(&mitsuba, p, true)),
                 ]
             } else {
                 [
@@ -356,9 +340,9 @@ fn main() {
                         usize::from(robust.intersect(&c[0]).is_some())
                     }),
                     rate(&singles, n, 1, |c| {
-                        usize::from(high.intersect(&c[0]).is_some())
+                        usize::from(mitsuba.intersect(&c[0]).is_some())
                     }),
-                    rate(&p16, n, 1, |p| intersect16(&high, p, true, camera)),
+                    rate(&p16, n, 1, |p| intersect16(&mitsuba, p, true, camera)),
                 ]
             };
             for (k, (s, h)) in r.into_iter().enumerate() {

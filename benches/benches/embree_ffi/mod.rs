@@ -3,6 +3,7 @@
 //! `rtcore_common.h` (3.13, built with `RTC_MAX_INSTANCE_LEVEL_COUNT 1` and `RTC_MIN_WIDTH 0` as
 //! Debian's is). Tessera itself never links Embree.
 #![allow(unsafe_code)]
+use glam::Vec3;
 use std::ffi::{c_char, c_void};
 use tessera_core::math::Ray;
 
@@ -502,6 +503,23 @@ pub struct RawPacket16 {
 }
 
 impl RawPacket16 {
+    /// The rays of the active lanes, in lane order (Tessera's rays start at `t > 0`, so the
+    /// recorded `tnear` must be 0).
+    pub fn rays(&self) -> Vec<Ray> {
+        let r = &self.ray;
+        (0..16)
+            .filter(|&i| self.valid.0[i] != 0)
+            .map(|i| {
+                assert!(r.tnear[i] == 0.0, "a recorded ray with tnear > 0");
+                Ray {
+                    o: Vec3::new(r.org[0][i], r.org[1][i], r.org[2][i]),
+                    d: Vec3::new(r.dir[0][i], r.dir[1][i], r.dir[2][i]),
+                    t_max: r.tfar[i],
+                }
+            })
+            .collect()
+    }
+
     /// From the 16 mask words, the 12 x 16 ray words (org x/y/z, tnear, dir x/y/z, time, tfar,
     /// mask, id, flags) and the call's context flags, as `scripts/mitsuba_rays/shim.c` records
     /// them.
