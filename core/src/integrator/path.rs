@@ -40,6 +40,24 @@ pub enum Strategy {
     Mis,
 }
 
+const BSDF: u8 = 0;
+const EMITTER: u8 = 1;
+const HALF: u8 = 2;
+const MIS: u8 = 3;
+
+impl Strategy {
+    /// The strategy numbered `n` (a const parameter of the path loop).
+    #[inline(always)]
+    const fn of(n: u8) -> Strategy {
+        match n {
+            BSDF => Strategy::Bsdf,
+            EMITTER => Strategy::Emitter,
+            HALF => Strategy::Half,
+            _ => Strategy::Mis,
+        }
+    }
+}
+
 /// A path tracer with Mitsuba 3's depth conventions.
 #[derive(Clone, Copy, Debug)]
 pub struct PathIntegrator {
@@ -83,12 +101,18 @@ impl PathIntegrator {
     /// Weight of light found by hitting an emitter; `light_pdf` gives the density with which
     /// emitter sampling at the previous vertex would have produced the same direction.
     #[inline]
-    fn hit_weight<P: Probe>(&self, prev: Option<Prev>, light_pdf: f32, probe: &mut P) -> f32 {
+    fn hit_weight<P: Probe>(
+        &self,
+        strategy: Strategy,
+        prev: Option<Prev>,
+        light_pdf: f32,
+        probe: &mut P,
+    ) -> f32 {
         let Some(prev) = prev else { return 1.0 };
         if !prev.nee {
             return 1.0;
         }
-        match self.strategy {
+        match strategy {
             Strategy::Bsdf => 1.0,
             Strategy::Emitter => 0.0,
             Strategy::Half => 0.5,
@@ -122,10 +146,29 @@ impl PathIntegrator {
     pub fn li_probed<S: Sampler, P: Probe>(
         &self,
         scene: &Scene,
+        ray: Ray,
+        sampler: &mut S,
+        probe: &mut P,
+    ) -> Color {
+        // One loop per strategy, so that the strategy's tests fold away in each.
+        match self.strategy {
+            Strategy::Bsdf => self.trace::<BSDF, S, P>(scene, ray, sampler, probe),
+            Strategy::Emitter => self.trace::<EMITTER, S, P>(scene, ray, sampler, probe),
+            Strategy::Half => self.trace::<HALF, S, P>(scene, ray, sampler, probe),
+            Strategy::Mis => self.trace::<MIS, S, P>(scene, ray, sampler, probe),
+        }
+    }
+
+    /// [`PathIntegrator::li_probed`] for the strategy numbered `ST` (see [`Strategy::of`]).
+    #[inline(always)]
+    fn trace<const ST: u8, S: Sampler, P: Probe>(
+        &self,
+        scene: &Scene,
         mut ray: Ray,
         sampler: &mut S,
         probe: &mut P,
     ) -> Color {
+        let strategy = Strategy::of(ST);
         let max_depth = self.max_depth.unwrap_or(u32::MAX);
         if max_depth == 0 {
             probe.end(PathEnd::MaxDepth);
@@ -158,10 +201,10 @@ impl PathIntegrator {
                 break;
             }
             // path_ems gives light found after a vertex that sampled emitters weight zero.
-            let weighted = !(self.strategy == Strategy::Emitter && prev.is_some_and(|p| p.nee));
+            let weighted = !(strategy == Strategy::Emitter && prev.is_some_and(|p| p.nee));
             if visible && weighted && (hit.is_some() || features.has_environment) {
                 let d = ray.d.unit();
-                let with_pdf = self.strategy == Strategy::Mis && prev.is_some_and(|p| p.nee);
+                let with_pdf = strategy == Strategy::Mis && prev.is_some_and(|p| p.nee);
                 let from = prev.map_or(ray.o, |p| p.p);
                 emission_along(
                     scene,
@@ -172,7 +215,7 @@ impl PathIntegrator {
                     prev.as_ref().and_then(|p| p.sel.as_ref()),
                     probe,
                     |probe, le, light_pdf| {
-                        let w = self.hit_weight(prev, light_pdf, probe);
+                        let w = self.hit_weight(strategy, prev, light_pdf, probe);
                         let c = throughput * le * w;
                         result += c;
                         probe.emission(le, w, c);
@@ -191,19 +234,19 @@ impl PathIntegrator {
             let bsdf = &scene.bsdfs[shape.bsdf as usize];
             let traits = scene.bsdf_traits(shape.bsdf);
             let wi = si.frame.to_local(si.wi);
-            let nee = self.strategy != Strategy::Bsdf && features.has_emitters && traits.has_smooth;
+            let nee = strategy != Strategy::Bsdf && features.has_emitters && traits.has_smooth;
             let sel = if nee {
                 VertexSelection::new(scene.light_bounds(), &si, bsdf, wi)
             } else {
                 None
             };
             if nee {
-                let want_pdf = self.strategy == Strategy::Mis;
+                let want_pdf = strategy == Strategy::Mis;
                 sampler.start_stage(depth, Stage::Light);
                 if let Some(ls) =
                     sample_light(scene, &si, bsdf, wi, sampler, want_pdf, sel.as_ref(), probe)
                 {
-                    let w = match (ls.delta, self.strategy) {
+                    let w = match (ls.delta, strategy) {
                         (true, _) | (_, Strategy::Emitter) => 1.0,
                         (_, Strategy::Half) => 0.5,
                         _ => {
@@ -230,7 +273,7 @@ impl PathIntegrator {
                 break;
             };
             let nee_next = nee && !bs.delta && features.has_hittable_emitters;
-            if last && self.strategy == Strategy::Emitter && nee_next {
+            if last && strategy == Strategy::Emitter && nee_next {
                 probe.bsdf_sample(Some(&bs), si.frame.to_world(bs.wo), throughput * bs.weight);
                 probe.end(PathEnd::NothingAhead);
                 break;

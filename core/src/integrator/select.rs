@@ -32,17 +32,30 @@ pub struct VertexSelection {
 impl VertexSelection {
     /// The selection at `si` (BSDF `bsdf`, local incident direction `wi`) from the lights'
     /// bounds; `None` without bounds (the scene's own choice then applies).
-    #[inline]
+    #[inline(always)]
     pub fn new(
         bounds: &[LightBound],
         si: &Interaction,
         bsdf: &Bsdf,
         wi: Vec3,
     ) -> Option<VertexSelection> {
-        let n = bounds.len();
-        if !(2..=MAX_VERTEX_LIGHTS).contains(&n) {
+        // Checked where the caller is, so that scenes without a choice to make (one light, or
+        // too many) pay neither a call nor the copy of an empty selection.
+        if !(2..=MAX_VERTEX_LIGHTS).contains(&bounds.len()) {
             return None;
         }
+        Some(Self::from_bounds(bounds, si, bsdf, wi))
+    }
+
+    /// [`VertexSelection::new`] for 2 to [`MAX_VERTEX_LIGHTS`] bounds.
+    #[inline(never)]
+    fn from_bounds(
+        bounds: &[LightBound],
+        si: &Interaction,
+        bsdf: &Bsdf,
+        wi: Vec3,
+    ) -> VertexSelection {
+        let n = bounds.len();
         // The BSDF toward `wo` (local), in luminance, up to a factor common to every light
         // (which cancels). A diffuse BSDF is its reflectance over pi times the cosine: the
         // cosine alone weighs. A rough conductor weighs by its lobe's shape alone (no Fresnel,
@@ -101,7 +114,7 @@ impl VertexSelection {
         }
         // The last light takes what rounding left: its probability is 1 minus the others'.
         s.pdf[n - 1] = 1.0 - s.cdf[n - 1];
-        Some(s)
+        s
     }
 
     /// The light `u` (in [0, 1)) picks, and its probability.
