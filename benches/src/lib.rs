@@ -185,13 +185,13 @@ pub fn random_rays(count: usize, seed: u64) -> Vec<Ray> {
         .collect()
 }
 
-/// Bytes per triangle of the ray-casting data: (BVH nodes with the sixteen-lane copy of a
-/// one-node scene, if any; triangle blocks; primitive references: shape and face).
+/// Bytes per triangle of the ray-casting data: (BVH nodes, triangle blocks,
+/// primitive references: shape and face).
 pub fn bytes_per_triangle(scene: &Scene) -> (f64, f64, f64) {
     let n = scene.prims.len().max(1) as f64;
     let m = scene.accel_memory();
     (
-        (m.nodes + m.flat) as f64 / n,
+        m.nodes as f64 / n,
         m.triangles as f64 / n,
         m.prims as f64 / n,
     )

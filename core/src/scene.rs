@@ -1,6 +1,6 @@
 //! The flat, read-only scene: shapes, primitives under a BVH, BSDFs, emitters, camera.
 use crate::accel::tri4::Ray4;
-use crate::accel::{AnyLeaves, Avx512, BuildParams, Bvh8, ClosestLeaves, Flat16, TriBlocks};
+use crate::accel::{AnyLeaves, BuildParams, Bvh8, ClosestLeaves, TriBlocks};
 use crate::bsdf::{Bsdf, BsdfTraits};
 use crate::camera::{Filter, Perspective};
 use crate::emitter::{Behind, Emitter, EmitterCtx, LightBound};
@@ -80,10 +80,6 @@ pub struct Scene {
     pub blocks: TriBlocks,
     /// The 8-wide hierarchy over `prims`; its leaves refer to their first block in `blocks`.
     pub bvh: Bvh8,
-    /// All triangles of a one-node scene for sixteen-lane tests (AVX-512 CPUs; `accel/flat16.rs`),
-    /// tried before the walk of `bvh`. Setting it to `None` leaves every cast to that walk, with
-    /// the same results.
-    pub flat: Option<Flat16>,
     /// Materials.
     pub bsdfs: Vec<Bsdf>,
     /// What each BSDF's sampling reads and whether it has smooth components, by BSDF index
@@ -229,7 +225,6 @@ impl Scene {
         let prims: Vec<Prim> = order.iter().map(|&i| prims[i as usize]).collect();
         let tris: Vec<[Vec3; 3]> = order.iter().map(|&i| tris[i as usize]).collect();
         let blocks = TriBlocks::build(&mut bvh, &tris);
-        let flat = Flat16::build(&bvh, &blocks, Avx512::detect());
         let features = SceneFeatures {
             has_emitters: !p.emitters.is_empty(),
             has_environment: !environments.is_empty(),
@@ -246,7 +241,6 @@ impl Scene {
             prims,
             blocks,
             bvh,
-            flat,
             bsdfs: p.bsdfs,
             bsdf_traits,
             emitters: p.emitters,
@@ -348,11 +342,8 @@ impl Scene {
 
     /// The closest hit along the ray, if any.
     pub fn intersect_hit(&self, ray: &Ray) -> Option<Hit> {
-        let r4 = Ray4::from_ray(ray);
-        if let Some(hit) = self.flat.as_ref().and_then(|f| f.closest(ray, &r4)) {
-            return hit;
-        }
         let mut best: Option<Hit> = None;
+        let r4 = Ray4::from_ray(ray);
         self.bvh.cast::<false>(
             ray,
             ClosestLeaves {
@@ -423,9 +414,6 @@ impl Scene {
     /// Whether anything blocks the ray within its extent (any hit, early exit).
     pub fn occluded(&self, ray: &Ray) -> bool {
         let r4 = Ray4::from_ray(ray);
-        if let Some(hit) = self.flat.as_ref().and_then(|f| f.any(ray, &r4)) {
-            return hit;
-        }
         let mut leaves = AnyLeaves {
             blocks: &self.blocks,
             ray: &r4,
@@ -442,7 +430,6 @@ impl Scene {
             nodes: self.bvh.memory_bytes(),
             triangles: self.blocks.memory_bytes(),
             prims: core::mem::size_of_val(self.prims.as_slice()),
-            flat: self.flat.as_ref().map_or(0, core::mem::size_of_val),
         }
     }
 }
@@ -457,9 +444,6 @@ pub struct AccelMemory {
     pub triangles: usize,
     /// Per primitive, which shape and face it is (for shading, and for spheres and disks).
     pub prims: usize,
-    /// The sixteen-lane copy of a one-node scene's triangles, when it has one (`Scene::flat`:
-    /// corners, primitive and leaf per lane, the root's boxes and a 1 KB lane table).
-    pub flat: usize,
 }
 
 /// The corners stored for a primitive that is not a triangle.
