@@ -132,6 +132,7 @@ fn interrupted_and_resumed_gives_the_same_bits() {
     };
     let path = std::env::temp_dir().join(format!("tessera-adaptive-{}.ckpt", std::process::id()));
     let mut stopped_inside_a_pass = 0;
+    let mut replanned_differs = 0;
     // Stopped at the first tile of the warm-up, then of the passes to means of 2, 4 and 8 (64
     // tiles each: the workers see the stop before they finish the pass).
     for stop_after in 0..4u64 {
@@ -165,15 +166,21 @@ fn interrupted_and_resumed_gives_the_same_bits() {
         assert_eq!(again.pixels, want.pixels, "stop after {stop_after}");
         if ck.pending.is_some() {
             stopped_inside_a_pass += 1;
-            assert_ne!(
-                resume(None).pixels,
-                want.pixels,
-                "control: replanned at stop {stop_after}"
-            );
+            // Control: replanning instead of finishing the pending pass changes the image. Not
+            // at every stop: a stop the workers see before any tile of the pass is done leaves
+            // the pixels as the plan found them, and replanning then gives the same plan (seen
+            // on a loaded machine), so it is counted, not asserted per stop.
+            if resume(None).pixels != want.pixels {
+                replanned_differs += 1;
+            }
         }
     }
     let _ = std::fs::remove_file(&path);
     assert!(stopped_inside_a_pass >= 2, "{stopped_inside_a_pass}");
+    assert!(
+        replanned_differs >= 1,
+        "control: replanning never changed the image ({stopped_inside_a_pass} stops in a pass)"
+    );
 }
 
 /// Mean relMSE against the scene's 64x64 Mitsuba reference over three seeds, adaptive and
