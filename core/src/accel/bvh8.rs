@@ -253,7 +253,10 @@ impl Bvh8 {
     }
 
     /// Picks the box test (one traversal loop is compiled per test) and the stack size.
-    #[inline]
+    /// Always inlined, so the caller builds the [`Walk`] the AVX2 function receives in place;
+    /// out of line, the leaves were copied into it with one 32-byte load of fields just stored
+    /// one by one, which the processor cannot forward (a stall per ray).
+    #[inline(always)]
     fn walk<const ANY: bool, const COUNT: bool>(
         &self,
         ray: &Ray,
@@ -374,6 +377,21 @@ impl Bvh8 {
                     if mask == 0 {
                         // One child hit (the common case deep down): no sorting.
                         cur = first;
+                        continue;
+                    }
+                    if mask & (mask - 1) == 0 {
+                        // Two children hit: go on with the nearer, push the other (on a tie the
+                        // lower lane goes first, as in the sort below), without the round trip
+                        // through the stack.
+                        let second = entry(mask.trailing_zeros() as usize);
+                        let (near, far) = if first.t_near <= second.t_near {
+                            (first, second)
+                        } else {
+                            (second, first)
+                        };
+                        stack[sp] = far;
+                        sp += 1;
+                        cur = near;
                         continue;
                     }
                     // Push the hit children sorted by entry distance, farthest deepest (equal
