@@ -108,15 +108,10 @@ impl Bvh8 {
     /// The binary build's leaf-size trade-off, for leaves of four-triangle blocks
     /// ([`super::tri4`]): a leaf of `n` primitives costs `ceil(n / 4)` block tests, one
     /// traversal step a quarter of one. Measured on the 4-wide BVH that preceded this one
-    /// (`BVH_PARAMS=leaf,cost,block cargo bench -p tessera-benches --bench bvh_compare`, then
-    /// named `BVH4_PARAMS`, and
-    /// callgrind / `--threads 1` renders of the Cornell box) and kept when the 8-wide BVH
-    /// replaced it, so the binary build and its primitive order stayed the same: with block
-    /// costs the SAH fills blocks, and memory fell from 71-75 bytes per triangle (4-wide nodes
-    /// and corners) to 49-51 (cost 1) or 55-57 (costs 0.25 and 0.5) for leaf limits 8 to 16;
-    /// costs 0.5 and 1 made the Cornell box (32 large, overlapping triangles) test more blocks
-    /// per ray and render 5-10% slower than leaves of at most 4 scalar tests; cost 0.25 renders
-    /// it 3-5% faster and casts bench rays as fast as 0.5.
+    /// (`BVH_PARAMS` in `--bench bvh_compare`, callgrind and renders of the Cornell box): with
+    /// block costs the SAH fills blocks (49-57 bytes per triangle instead of 71-75); costs 0.5
+    /// and 1 rendered the Cornell box 5-10% slower than leaves of at most 4 scalar tests, cost
+    /// 0.25 3-5% faster, and it casts bench rays as fast as 0.5.
     pub const PARAMS: BuildParams = BuildParams {
         max_leaf: 16,
         traversal_cost: 0.25,
