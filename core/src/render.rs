@@ -1,6 +1,7 @@
 //! The per-sample entry point: one camera sample of one pixel, replayable alone.
 use crate::film::PixelAccum;
-use crate::integrator::{Integrator, NoProbe, Probe};
+use crate::integrator::{Integrator, NoProbe, PathIntegrator, Probe, GROUP};
+use crate::math::Ray;
 use crate::sampling::{IndependentSampler, Sampler, SamplerKind, ZSobolPixel, ZSobolSampler};
 use crate::scene::Scene;
 use crate::Color;
@@ -32,6 +33,22 @@ pub fn render_sample_probed<P: Probe>(
     index: u64,
     probe: &mut P,
 ) -> Color {
+    if reuses(integrator) {
+        let mut c = Color::ZERO;
+        let mut cache = PixelCache::default();
+        render_samples_cached(
+            scene,
+            integrator,
+            seed,
+            x,
+            y,
+            index..index + 1,
+            &mut cache,
+            probe,
+            |v| c = v,
+        );
+        return c;
+    }
     match scene.sampler {
         SamplerKind::Independent => trace(
             scene,
@@ -96,6 +113,44 @@ pub fn render_samples_cached<P: Probe>(
     probe: &mut P,
     mut add: impl FnMut(Color),
 ) {
+    if reuses(integrator) {
+        // The pixel's values depend on its group's paths: trace the group, keep this pixel's.
+        let (pixels, n) = group_of(scene, x, y);
+        let me = pixels[..n].iter().position(|&p| p == (x, y)).unwrap_or(0);
+        let mut caches = GroupCache::default();
+        render_group_cached(
+            scene,
+            integrator,
+            seed,
+            &pixels[..n],
+            samples,
+            &mut caches,
+            probe,
+            |k, c| {
+                if k == me {
+                    add(c)
+                }
+            },
+        );
+        return;
+    }
+    render_samples_plain(scene, integrator, seed, x, y, samples, cache, probe, add);
+}
+
+/// [`render_samples_cached`] for an integrator that does not reuse.
+#[inline]
+#[allow(clippy::too_many_arguments)]
+fn render_samples_plain<P: Probe>(
+    scene: &Scene,
+    integrator: &Integrator,
+    seed: u64,
+    x: u32,
+    y: u32,
+    samples: Range<u64>,
+    cache: &mut PixelCache,
+    probe: &mut P,
+    mut add: impl FnMut(Color),
+) {
     match scene.sampler {
         SamplerKind::Independent => {
             for index in samples {
@@ -120,6 +175,136 @@ pub fn render_samples_cached<P: Probe>(
             }
         }
     }
+}
+
+/// Whether `integrator` shares light among the pixels of a group ([`GROUP`] pixels, 2x2): then
+/// a pixel's values depend on its group's paths, and render loops go group by group
+/// ([`group_of`], [`render_group_cached`]).
+#[inline]
+pub fn reuses(integrator: &Integrator) -> bool {
+    matches!(integrator, Integrator::Path(p) if p.reuses())
+}
+
+/// The pixels of the group that holds pixel `(x, y)`: the 2x2 block at even coordinates, clipped
+/// to the image, in row order; the second value is how many there are.
+pub fn group_of(scene: &Scene, x: u32, y: u32) -> ([(u32, u32); GROUP], usize) {
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let (x0, y0) = (x & !1, y & !1);
+    let mut pixels = [(x0, y0); GROUP];
+    let mut n = 0;
+    for (py, px) in [(y0, x0), (y0, x0 + 1), (y0 + 1, x0), (y0 + 1, x0 + 1)] {
+        if px < w && py < h {
+            pixels[n] = (px, py);
+            n += 1;
+        }
+    }
+    (pixels, n)
+}
+
+/// One sampler cache per pixel of a group.
+#[derive(Clone, Debug, Default)]
+pub struct GroupCache {
+    pixels: [PixelCache; GROUP],
+}
+
+/// Samples `samples` of every pixel of a group (`pixels`, as [`group_of`] gives them), sample by
+/// sample: `add(k, value)` gets pixel `k`'s value of each sample in index order. Each value is
+/// a pure function of the seed, the group, the pixel and the sample index; with an integrator
+/// that does not reuse, it is [`render_sample_probed`]'s.
+#[allow(clippy::too_many_arguments)]
+pub fn render_group_cached<P: Probe>(
+    scene: &Scene,
+    integrator: &Integrator,
+    seed: u64,
+    pixels: &[(u32, u32)],
+    samples: Range<u64>,
+    caches: &mut GroupCache,
+    probe: &mut P,
+    mut add: impl FnMut(usize, Color),
+) {
+    let Integrator::Path(path) = integrator else {
+        for (k, &(x, y)) in pixels.iter().enumerate() {
+            let cache = &mut caches.pixels[k];
+            render_samples_plain(
+                scene,
+                integrator,
+                seed,
+                x,
+                y,
+                samples.clone(),
+                cache,
+                probe,
+                |c| add(k, c),
+            );
+        }
+        return;
+    };
+    let n = pixels.len().min(GROUP);
+    let mut out = [Color::ZERO; GROUP];
+    match scene.sampler {
+        SamplerKind::Independent => {
+            for index in samples {
+                let mut samplers = core::array::from_fn::<_, GROUP, _>(|k| {
+                    let (x, y) = pixels[k.min(n - 1)];
+                    IndependentSampler::new(seed, x, y, index)
+                });
+                group_sample(scene, path, pixels, &mut samplers[..n], probe, &mut out);
+                for (k, &c) in out[..n].iter().enumerate() {
+                    add(k, c);
+                }
+            }
+        }
+        SamplerKind::ZSobol { log2_spp } => {
+            if samples.is_empty() {
+                return;
+            }
+            for k in 0..GROUP {
+                let (x, y) = pixels[k.min(n - 1)];
+                let pixel = match &mut caches.pixels[k].zsobol {
+                    Some(p) => {
+                        p.move_to(seed, x, y, log2_spp);
+                        p
+                    }
+                    none => none.insert(ZSobolPixel::new(seed, x, y, log2_spp)),
+                };
+                pixel.set_run(samples.clone());
+            }
+            for index in samples {
+                let [a, b, c, d] = &mut caches.pixels;
+                let mut samplers = [a, b, c, d].map(|p| match &mut p.zsobol {
+                    Some(z) => z.sampler(index),
+                    None => unreachable!("every pixel cache was set above"),
+                });
+                group_sample(scene, path, pixels, &mut samplers[..n], probe, &mut out);
+                for (k, &c) in out[..n].iter().enumerate() {
+                    add(k, c);
+                }
+            }
+        }
+    }
+}
+
+/// One sample of each pixel of a group: camera rays drawn from each pixel's sampler, then the
+/// group estimator.
+#[inline]
+fn group_sample<S: Sampler, P: Probe>(
+    scene: &Scene,
+    path: &PathIntegrator,
+    pixels: &[(u32, u32)],
+    samplers: &mut [S],
+    probe: &mut P,
+    out: &mut [Color; GROUP],
+) {
+    let mut rays = [Ray::new(glam::Vec3::ZERO, glam::Vec3::Z); GROUP];
+    for (k, s) in samplers.iter_mut().enumerate() {
+        let (x, y) = pixels[k];
+        let offset = scene.filter.sample(s.next_2d());
+        let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
+        rays[k] = scene.camera.generate_ray(pos);
+        probe.camera(pos, &rays[k]);
+    }
+    let n = samplers.len();
+    path.li_group(scene, &rays[..n], samplers, probe, &mut out[..n]);
 }
 
 /// One camera sample of pixel `(x, y)` drawn from `sampler`.

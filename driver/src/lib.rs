@@ -15,6 +15,7 @@ pub mod mesh;
 pub mod overlay;
 pub mod progressive;
 pub mod render;
+mod render_groups;
 pub mod render_stats;
 pub mod scene;
 pub mod split;

@@ -7,6 +7,7 @@
 //! `RenderOptions::pixels` restricts the render to a crop window or a tile set (see
 //! [`PixelSelection`]); the selected pixels get exactly the bits the whole render gives them and
 //! the others stay empty.
+use crate::render_groups::render_tile_groups;
 pub use crate::split::selection::PixelSelection;
 use crossbeam_channel::unbounded;
 use std::ops::Range;
@@ -14,7 +15,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use tessera_core::film::PixelAccum;
 use tessera_core::integrator::Integrator;
 use tessera_core::integrator::{Counters, NoProbe, Probe};
-use tessera_core::render::{render_samples_cached, PixelCache};
+use tessera_core::render::{render_samples_cached, reuses, GroupCache, PixelCache};
 use tessera_core::scene::Scene;
 
 /// How to render.
@@ -286,6 +287,7 @@ fn render_tiles<P: TileProbe>(
     let cursor = AtomicUsize::new(0);
     let (tx, rx) = unbounded::<(usize, Vec<PixelAccum>)>();
     let threads = opts.threads.max(1).min(list.len().max(1));
+    let reuse = reuses(integrator);
     std::thread::scope(|s| {
         let mut workers = Vec::with_capacity(threads);
         for _ in 0..threads {
@@ -294,6 +296,7 @@ fn render_tiles<P: TileProbe>(
             workers.push(s.spawn(move || {
                 let mut probe = P::default();
                 let mut cache = PixelCache::default();
+                let mut groups = GroupCache::default();
                 loop {
                     if stop.is_some_and(|f| f.load(Ordering::Relaxed)) {
                         break;
@@ -305,16 +308,35 @@ fn render_tiles<P: TileProbe>(
                         let row = y as usize * w as usize;
                         acc.extend_from_slice(&start[row + t.x0 as usize..row + t.x1 as usize]);
                     }
+                    let range = |a: &PixelAccum, x: u32, y: u32| {
+                        let own = a.count + a.dropped;
+                        match (targets, stop) {
+                            (Some(t), _) => own..t[y as usize * w as usize + x as usize],
+                            (None, Some(_)) => own..opts.samples.end,
+                            (None, None) => opts.samples.clone(),
+                        }
+                    };
+                    if reuse {
+                        render_tile_groups(
+                            scene,
+                            integrator,
+                            opts.seed,
+                            t,
+                            &mut acc,
+                            &range,
+                            &mut groups,
+                            &mut probe,
+                        );
+                        if tx.send((i, acc)).is_err() {
+                            break;
+                        }
+                        continue;
+                    }
                     let mut k = 0;
                     for y in t.y0..t.y1 {
                         for x in t.x0..t.x1 {
                             let a = &mut acc[k];
-                            let own = a.count + a.dropped;
-                            let samples = match (targets, stop) {
-                                (Some(t), _) => own..t[y as usize * w as usize + x as usize],
-                                (None, Some(_)) => own..opts.samples.end,
-                                (None, None) => opts.samples.clone(),
-                            };
+                            let samples = range(a, x, y);
                             render_samples_cached(
                                 scene,
                                 integrator,

@@ -200,4 +200,13 @@ impl Bsdf {
     pub fn has_delta(&self) -> bool {
         dispatch!(self, b => b.has_delta())
     }
+    /// Whether it is Lambertian on each side (`diffuse`, or `twosided` over two of them): the
+    /// light it reflects toward a direction depends only on which side that direction is on.
+    pub fn is_lambertian(&self) -> bool {
+        match self {
+            Bsdf::Diffuse(_) => true,
+            Bsdf::TwoSided(t) => t.front.is_lambertian() && t.back.is_lambertian(),
+            _ => false,
+        }
+    }
 }

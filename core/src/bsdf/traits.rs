@@ -14,6 +14,8 @@ pub struct BsdfTraits {
     pub uses_u2: bool,
     /// Some component is smooth (non-delta): emitter sampling can contribute.
     pub has_smooth: bool,
+    /// [`Bsdf::is_lambertian`]: path reuse may share the light it reflects.
+    pub lambertian: bool,
 }
 
 impl BsdfTraits {
@@ -24,6 +26,7 @@ impl BsdfTraits {
             uses_u1,
             uses_u2,
             has_smooth: bsdf.has_smooth(),
+            lambertian: bsdf.is_lambertian(),
         }
     }
 

@@ -3,8 +3,10 @@ mod direct;
 mod light;
 mod mis;
 mod path;
+mod path_state;
 mod probe;
 mod record;
+mod reuse;
 mod select;
 
 pub use direct::DirectIntegrator;
@@ -13,6 +15,7 @@ pub use mis::{balance_heuristic, power_heuristic, Heuristic};
 pub use path::{PathIntegrator, Strategy};
 pub use probe::{Counters, NoProbe, PathEnd, Probe, RayKind};
 pub use record::{Event, PathRecord};
+pub use reuse::GROUP;
 pub use select::{VertexSelection, MAX_VERTEX_LIGHTS, UNIFORM_SHARE};
 
 use crate::math::Ray;

@@ -18,9 +18,11 @@
 //! - `path_mis` / `path`: the same two strategies combined by the power heuristic (Tessera's own
 //!   parameter `heuristic`, string power|balance, default power).
 use super::light::{emission_along, sample_light};
+pub(super) use super::path_state::{PathState, Prefix, PREFIX, SUFFIX, WHOLE};
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
 use super::select::VertexSelection;
 use super::Heuristic;
+use crate::geometry::Interaction;
 use crate::math::{Norm, Ray};
 use crate::sampling::{Sampler, Stage};
 use crate::scene::Scene;
@@ -71,6 +73,8 @@ pub struct PathIntegrator {
     pub hide_emitters: bool,
     /// How `Strategy::Mis` weighs its two strategies.
     pub heuristic: Heuristic,
+    /// Whether render loops share light among the pixels of 2x2 groups ([`super::reuse`]).
+    pub reuse: bool,
 }
 
 impl Default for PathIntegrator {
@@ -81,13 +85,14 @@ impl Default for PathIntegrator {
             rr_depth: 5,
             hide_emitters: false,
             heuristic: Heuristic::Power,
+            reuse: false,
         }
     }
 }
 
 /// What the next vertex needs to know about how the path left the previous one.
 #[derive(Clone, Copy)]
-struct Prev {
+pub(super) struct Prev {
     p: Vec3,
     /// BSDF density of the sampled direction.
     pdf: f32,
@@ -151,22 +156,102 @@ impl PathIntegrator {
         probe: &mut P,
     ) -> Color {
         // One loop per strategy, so that the strategy's tests fold away in each.
+        self.run::<WHOLE, S, P>(
+            scene,
+            PathState::start(ray),
+            sampler,
+            probe,
+            &mut Prefix::default(),
+        )
+    }
+
+    /// The loop in mode `MODE` (see [`WHOLE`]) for this integrator's strategy.
+    #[inline(always)]
+    pub(super) fn run<const MODE: u8, S: Sampler, P: Probe>(
+        &self,
+        scene: &Scene,
+        state: PathState,
+        sampler: &mut S,
+        probe: &mut P,
+        prefix: &mut Prefix,
+    ) -> Color {
         match self.strategy {
-            Strategy::Bsdf => self.trace::<BSDF, S, P>(scene, ray, sampler, probe),
-            Strategy::Emitter => self.trace::<EMITTER, S, P>(scene, ray, sampler, probe),
-            Strategy::Half => self.trace::<HALF, S, P>(scene, ray, sampler, probe),
-            Strategy::Mis => self.trace::<MIS, S, P>(scene, ray, sampler, probe),
+            Strategy::Bsdf => self.trace::<BSDF, MODE, S, P>(scene, state, sampler, probe, prefix),
+            Strategy::Emitter => {
+                self.trace::<EMITTER, MODE, S, P>(scene, state, sampler, probe, prefix)
+            }
+            Strategy::Half => self.trace::<HALF, MODE, S, P>(scene, state, sampler, probe, prefix),
+            Strategy::Mis => self.trace::<MIS, MODE, S, P>(scene, state, sampler, probe, prefix),
         }
+    }
+
+    /// Casts `ray` (segment `depth` of the path) and adds the light it finds to `result`:
+    /// the hit, or `Err` when a hidden emitter ends the path.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn arrive<const ST: u8, P: Probe>(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        depth: u32,
+        prev: Option<Prev>,
+        throughput: Color,
+        result: &mut Color,
+        probe: &mut P,
+    ) -> Result<Option<Interaction>, ()> {
+        let strategy = Strategy::of(ST);
+        let features = &scene.features;
+        let visible = !(depth == 0 && self.hide_emitters);
+        let hit = probe.intersect(scene, ray);
+        probe.ray(if depth == 0 {
+            RayKind::Camera
+        } else {
+            RayKind::Continuation
+        });
+        probe.hit(scene, hit.as_ref(), ray.d);
+        // Mitsuba 3's hide_emitters: a camera ray that meets an emitter sees nothing at all.
+        if !visible
+            && hit
+                .as_ref()
+                .is_some_and(|si| scene.shapes[si.shape as usize].emitter.is_some())
+        {
+            probe.end(PathEnd::HiddenEmitter);
+            return Err(());
+        }
+        // path_ems gives light found after a vertex that sampled emitters weight zero.
+        let weighted = !(strategy == Strategy::Emitter && prev.is_some_and(|p| p.nee));
+        if visible && weighted && (hit.is_some() || features.has_environment) {
+            let d = ray.d.unit();
+            let with_pdf = strategy == Strategy::Mis && prev.is_some_and(|p| p.nee);
+            let from = prev.map_or(ray.o, |p| p.p);
+            emission_along(
+                scene,
+                from,
+                d,
+                hit.as_ref(),
+                with_pdf,
+                prev.as_ref().and_then(|p| p.sel.as_ref()),
+                probe,
+                |probe, le, light_pdf| {
+                    let w = self.hit_weight(strategy, prev, light_pdf, probe);
+                    let c = throughput * le * w;
+                    *result += c;
+                    probe.emission(le, w, c);
+                },
+            );
+        }
+        Ok(hit)
     }
 
     /// [`PathIntegrator::li_probed`] for the strategy numbered `ST` (see [`Strategy::of`]).
     #[inline(always)]
-    fn trace<const ST: u8, S: Sampler, P: Probe>(
+    fn trace<const ST: u8, const MODE: u8, S: Sampler, P: Probe>(
         &self,
         scene: &Scene,
-        mut ray: Ray,
+        state: PathState,
         sampler: &mut S,
         probe: &mut P,
+        prefix: &mut Prefix,
     ) -> Color {
         let strategy = Strategy::of(ST);
         let max_depth = self.max_depth.unwrap_or(u32::MAX);
@@ -176,56 +261,54 @@ impl PathIntegrator {
         }
         let features = &scene.features;
         let mut result = Color::ZERO;
-        let mut throughput = Color::ONE;
-        // Product of the relative indices crossed: radiance scaling at refractions is undone
-        // for Russian roulette, as in Mitsuba 3.
-        let mut eta = 1.0f32;
-        let mut depth = 0u32;
-        let mut prev: Option<Prev> = None;
+        let PathState {
+            mut ray,
+            mut throughput,
+            // Product of the relative indices crossed: radiance scaling at refractions is
+            // undone for Russian roulette, as in Mitsuba 3.
+            mut eta,
+            mut depth,
+            mut prev,
+            rr_scale,
+            mut pending,
+        } = state;
         loop {
-            let visible = !(depth == 0 && self.hide_emitters);
-            let hit = probe.intersect(scene, &ray);
-            probe.ray(if depth == 0 {
-                RayKind::Camera
-            } else {
-                RayKind::Continuation
-            });
-            probe.hit(scene, hit.as_ref(), ray.d);
-            // Mitsuba 3's hide_emitters: a camera ray that meets an emitter sees nothing at all.
-            if !visible
-                && hit
-                    .as_ref()
-                    .is_some_and(|si| scene.shapes[si.shape as usize].emitter.is_some())
-            {
-                probe.end(PathEnd::HiddenEmitter);
-                break;
-            }
-            // path_ems gives light found after a vertex that sampled emitters weight zero.
-            let weighted = !(strategy == Strategy::Emitter && prev.is_some_and(|p| p.nee));
-            if visible && weighted && (hit.is_some() || features.has_environment) {
-                let d = ray.d.unit();
-                let with_pdf = strategy == Strategy::Mis && prev.is_some_and(|p| p.nee);
-                let from = prev.map_or(ray.o, |p| p.p);
-                emission_along(
-                    scene,
-                    from,
-                    d,
-                    hit.as_ref(),
-                    with_pdf,
-                    prev.as_ref().and_then(|p| p.sel.as_ref()),
-                    probe,
-                    |probe, le, light_pdf| {
-                        let w = self.hit_weight(strategy, prev, light_pdf, probe);
-                        let c = throughput * le * w;
-                        result += c;
-                        probe.emission(le, w, c);
-                    },
-                );
-            }
+            let resumed = if MODE == SUFFIX { pending.take() } else { None };
+            let hit = match resumed {
+                Some(si) => Some(si),
+                None => {
+                    let hit = self.arrive::<ST, P>(
+                        scene,
+                        &ray,
+                        depth,
+                        prev,
+                        throughput,
+                        &mut result,
+                        probe,
+                    );
+                    match hit {
+                        Ok(hit) => hit,
+                        Err(()) => break,
+                    }
+                }
+            };
             let Some(si) = hit else {
                 probe.end(PathEnd::Escaped);
                 break;
             };
+            if MODE == PREFIX && depth == 1 {
+                let state = PathState {
+                    ray,
+                    throughput,
+                    eta,
+                    depth,
+                    prev,
+                    rr_scale: Color::ONE,
+                    pending: Some(si),
+                };
+                prefix.y = Some((si, state));
+                break;
+            }
             let shape = &scene.shapes[si.shape as usize];
             if depth + 1 >= max_depth {
                 probe.end(PathEnd::MaxDepth);
@@ -265,6 +348,9 @@ impl PathIntegrator {
                 probe.end(PathEnd::NothingAhead);
                 break;
             }
+            if MODE == PREFIX && depth == 0 && traits.has_smooth {
+                prefix.x = Some((si, shape.bsdf, wi));
+            }
             sampler.start_stage(depth, Stage::Bsdf);
             let (u1, u2) = traits.draw_sample_inputs(sampler);
             let Some(bs) = bsdf.sample(wi, u1, u2, si.uv) else {
@@ -277,6 +363,9 @@ impl PathIntegrator {
                 probe.bsdf_sample(Some(&bs), si.frame.to_world(bs.wo), throughput * bs.weight);
                 probe.end(PathEnd::NothingAhead);
                 break;
+            }
+            if MODE == PREFIX {
+                prefix.delta = bs.delta;
             }
             throughput *= bs.weight;
             eta *= bs.eta;
@@ -291,7 +380,12 @@ impl PathIntegrator {
             ray = si.spawn_ray(wo);
             depth += 1;
             if depth >= self.rr_depth {
-                let q = (throughput.max_element() * eta * eta).min(0.95);
+                let seen = if MODE == SUFFIX {
+                    throughput * rr_scale
+                } else {
+                    throughput
+                };
+                let q = (seen.max_element() * eta * eta).min(0.95);
                 // The roulette belongs to the bounce just taken.
                 sampler.start_stage(depth - 1, Stage::Roulette);
                 let survived = sampler.next_1d() < q;
@@ -304,7 +398,9 @@ impl PathIntegrator {
                     break;
                 }
             }
-            if throughput == Color::ZERO || !throughput.is_finite() {
+            // A prefix's second vertex is a sample for its neighbours too, whatever its weight.
+            let zero = throughput == Color::ZERO && !(MODE == PREFIX && depth == 1);
+            if zero || !throughput.is_finite() {
                 probe.end(PathEnd::ZeroThroughput);
                 break;
             }

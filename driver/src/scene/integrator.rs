@@ -2,7 +2,8 @@
 //!
 //! Path tracers, `path` = `path_mis` (MIS), `path_half`, `path_ems`, `path_mats`: `max_depth`
 //! (integer, default -1 = unbounded), `rr_depth` (integer >= 1, default 5), `hide_emitters`
-//! (boolean, false), and Tessera's own `heuristic` (string power|balance, default power).
+//! (boolean, false), and Tessera's own `heuristic` (string power|balance, default power) and
+//! `reuse` (boolean, false: share light among 2x2 pixel groups, `core/src/integrator/reuse.rs`).
 //! Direct lighting, `direct` (Mitsuba 3): `shading_samples` (integer, 1), `emitter_samples`,
 //! `bsdf_samples` (integers, default shading_samples), `hide_emitters`; `direct_ems`,
 //! `direct_mats`, `direct_mis` (Wakame: 1/0, 0/1, 1/1 samples with the balance heuristic) take
@@ -29,6 +30,8 @@ pub struct IntegratorSpec {
     pub rr_depth: u32,
     /// Hide emitters seen by the camera.
     pub hide_emitters: bool,
+    /// Share light among 2x2 pixel groups (path tracers' `reuse`).
+    pub reuse: bool,
     /// MIS heuristic, when the file names one.
     pub heuristic: Option<Heuristic>,
     /// Emitter samples (`direct`).
@@ -44,6 +47,7 @@ impl Default for IntegratorSpec {
             max_depth: None,
             rr_depth: 5,
             hide_emitters: false,
+            reuse: false,
             heuristic: None,
             emitter_samples: 1,
             bsdf_samples: 1,
@@ -61,6 +65,7 @@ impl IntegratorSpec {
                 rr_depth: self.rr_depth,
                 hide_emitters: self.hide_emitters,
                 heuristic: self.heuristic.unwrap_or(Heuristic::Power),
+                reuse: self.reuse,
             })
         };
         let direct = |e, b, h| {
@@ -136,6 +141,7 @@ pub fn read_integrator(obj: Option<&Object>) -> Result<IntegratorSpec> {
             ));
         }
         spec.rr_depth = rr_depth as u32;
+        spec.reuse = obj.boolean("reuse", false)?;
     }
     if spec.name == "direct" {
         let shading = count(obj, "shading_samples", 1)?;

@@ -47,8 +47,9 @@ impl LoadedScene {
         Ok(())
     }
 
-    /// Switches to another integrator by name (keeping the file's parameters that apply) and/or
-    /// another `max_depth` (-1 = unbounded).
+    /// Switches to another integrator by name (keeping the file's parameters that apply; a name
+    /// ending in `+reuse` turns on path reuse, any other name turns it off) and/or another
+    /// `max_depth` (-1 = unbounded).
     pub fn set_integrator(
         &mut self,
         name: Option<&str>,
@@ -56,7 +57,19 @@ impl LoadedScene {
     ) -> Result<(), String> {
         let mut spec = self.integrator_spec.clone();
         if let Some(n) = name {
-            spec.name = n.to_string();
+            // `NAME+reuse`: the path tracer NAME with path reuse; a name given without it
+            // turns reuse off, whatever the file said.
+            let (base, reuse) = match n.strip_suffix("+reuse") {
+                Some(base) => (base, true),
+                None => (n, false),
+            };
+            if reuse && !base.starts_with("path") {
+                return Err(format!(
+                    "\"+reuse\" needs a path tracer (path, path_mis, ...), found \"{base}\""
+                ));
+            }
+            spec.name = base.to_string();
+            spec.reuse = reuse;
         }
         if let Some(d) = max_depth {
             if d < -1 || d > u32::MAX as i64 {

@@ -1,0 +1,155 @@
+//! Path reuse across the pixels of a 2x2 group (after Bekaert, Sbert and Halton, "Accelerating
+//! path tracing by re-using paths", EGWR 2002): each pixel's first vertex `x` gathers the light
+//! reflected at every group member's second vertex `y`, not only at its own.
+//!
+//! Scene parameter (`<integrator type="path">`): `reuse` (boolean, default false). Used only where
+//! it can apply: `max_depth` of 3 or more (a second vertex that reflects light) and `rr_depth` of
+//! 2 or more (no roulette before the second vertex).
+//!
+//! The estimator. Each pixel `k` traces its path as usual up to its second vertex `y_k`, counting
+//! everything found on the way (emission at `x_k` and `y_k`, emitter sampling at `x_k`). Where
+//! `y_k` is Lambertian ([`crate::bsdf::Bsdf::is_lambertian`]) and was reached by a smooth bounce,
+//! the light it reflects, `L_k`, is the same toward every direction on the side `x_k` is on; the
+//! rest of the path estimates it once (throughput 1 from `y_k`, Russian roulette still seeing
+//! the whole path's throughput). Pixel `i` then adds, for each such `y_j` seen from its side,
+//!
+//! `f_i(x_i -> y_j) G(x_i, y_j) V(x_i, y_j) L_j / sum_m p_m(y_j)`,
+//!
+//! where `p_m(y)` is the area density with which pixel `m`'s BSDF sampling at `x_m` reaches `y`
+//! (its solid-angle density times `|cos| / dist^2`, times the visibility of `y` from `x_m`; zero
+//! for an `x_m` on the other side of `y`'s surface). This is the balance heuristic over the
+//! group's samplers, one sample from each, so each pixel's estimate stays unbiased; with no
+//! neighbour it is the usual `f G L / p_i`. Second vertices that are not Lambertian, or that a
+//! delta component reached, go on as ordinary paths for their own pixel. Emission at `y` keeps
+//! its own pixel's MIS weight and is not shared.
+//!
+//! The cost: up to twelve shadow rays per group (each pair of first and second vertices), four
+//! BSDF densities and evaluations per second vertex. Neighbouring pixels' noise becomes
+//! correlated; each pixel's error does not grow.
+use super::path::{PathIntegrator, PathState, Prefix, PREFIX, SUFFIX};
+use super::probe::{Probe, RayKind};
+use crate::geometry::Interaction;
+use crate::math::{offset_ray_origin, Ray};
+use crate::sampling::Sampler;
+use crate::scene::Scene;
+use crate::Color;
+
+/// Most pixels in a reuse group (2x2).
+pub const GROUP: usize = 4;
+
+impl PathIntegrator {
+    /// Whether [`PathIntegrator::li_group`] shares light among pixels with these settings.
+    pub fn reuses(&self) -> bool {
+        self.reuse && self.max_depth.is_none_or(|d| d >= 3) && self.rr_depth >= 2
+    }
+
+    /// One sample's radiance for each pixel of a group: `rays[k]` is pixel `k`'s camera ray,
+    /// drawn from `samplers[k]`, which the path goes on drawing from. Writes `out[..rays.len()]`.
+    /// Without [`PathIntegrator::reuses`], each value is [`PathIntegrator::li_probed`]'s.
+    pub fn li_group<S: Sampler, P: Probe>(
+        &self,
+        scene: &Scene,
+        rays: &[Ray],
+        samplers: &mut [S],
+        probe: &mut P,
+        out: &mut [Color],
+    ) {
+        let n = rays.len().min(GROUP);
+        if !self.reuses() {
+            for k in 0..n {
+                out[k] = self.li_probed(scene, rays[k], &mut samplers[k], probe);
+            }
+            return;
+        }
+        let mut pre = [Prefix::default(); GROUP];
+        for k in 0..n {
+            let start = PathState::start(rays[k]);
+            out[k] = self.run::<PREFIX, S, P>(scene, start, &mut samplers[k], probe, &mut pre[k]);
+        }
+        // The second vertices whose reflected light is shared, and what they reflect.
+        let mut shared: [Option<(Interaction, Color)>; GROUP] = [None; GROUP];
+        for k in 0..n {
+            let Some((y, state)) = pre[k].y else { continue };
+            let lambertian = scene
+                .bsdf_traits(scene.shapes[y.shape as usize].bsdf)
+                .lambertian;
+            let mut none = Prefix::default();
+            if pre[k].x.is_some() && !pre[k].delta && lambertian {
+                let from_y = PathState {
+                    throughput: Color::ONE,
+                    rr_scale: state.throughput,
+                    ..state
+                };
+                let l = self.run::<SUFFIX, S, P>(scene, from_y, &mut samplers[k], probe, &mut none);
+                shared[k] = Some((y, l));
+            } else {
+                out[k] +=
+                    self.run::<SUFFIX, S, P>(scene, state, &mut samplers[k], probe, &mut none);
+            }
+        }
+        for (j, s) in shared.iter().enumerate().take(n) {
+            let Some((y, l)) = *s else { continue };
+            if !l.is_finite() || l == Color::ZERO {
+                continue;
+            }
+            gather(scene, &pre[..n], j, &y, l, probe, &mut out[..n]);
+        }
+    }
+}
+
+/// Adds to each pixel's value its share of the light `l` reflected at `y`, pixel `j`'s second
+/// vertex.
+fn gather<P: Probe>(
+    scene: &Scene,
+    pre: &[Prefix],
+    j: usize,
+    y: &Interaction,
+    l: Color,
+    probe: &mut P,
+    out: &mut [Color],
+) {
+    let Some((xj, ..)) = pre[j].x else { return };
+    let side = |x: &Interaction| y.frame.n.dot(x.p - y.p) > 0.0;
+    let own_side = side(&xj);
+    // Per pixel: the BSDF value toward y (cosine included), |cos| / dist^2 at y, and the density.
+    let mut terms = [(Color::ZERO, 0.0f32, 0.0f32); GROUP];
+    let mut sum = 0.0f32;
+    for (m, p) in pre.iter().enumerate() {
+        let Some((xm, bsdf, wi)) = p.x else { continue };
+        if side(&xm) != own_side {
+            continue;
+        }
+        let d = y.p - xm.p;
+        let dist2 = d.length_squared();
+        if !(dist2 > 0.0) {
+            continue;
+        }
+        let dir = d / crate::math::sqrt(dist2);
+        let g = y.ng.dot(dir).abs() / dist2;
+        let wo = xm.frame.to_local(dir);
+        let bsdf = &scene.bsdfs[bsdf as usize];
+        let pdf = bsdf.pdf(wi, wo, xm.uv) * g;
+        if !(pdf > 0.0 && pdf.is_finite()) {
+            continue;
+        }
+        if m != j {
+            let target = offset_ray_origin(y.p, y.p_err, y.ng, xm.p - y.p);
+            let blocked = probe.occluded(scene, &xm.spawn_ray_to(target));
+            probe.ray(RayKind::Shadow);
+            probe.shadow(blocked);
+            if blocked {
+                continue;
+            }
+        }
+        terms[m] = (bsdf.eval(wi, wo, xm.uv), g, pdf);
+        sum += pdf;
+    }
+    if !(sum > 0.0) {
+        return;
+    }
+    for (o, (f, g, pdf)) in out.iter_mut().zip(terms) {
+        if pdf > 0.0 {
+            *o += f * l * (g / sum);
+        }
+    }
+}
