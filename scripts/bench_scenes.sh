@@ -12,6 +12,7 @@
 # renderers) the wave-by-wave mean of N seeds (N times the time; MAX_SECONDS applies per seed).
 # REPEATS=N renders every curve (both renderers) N times and keeps each wave's least time.
 # ADAPTIVE=1 adds Tessera's adaptive-sampling curves (`--adaptive`), ADAPTIVE=only measures only those.
+# INTEGRATORS=a,b (default path_mis) names Tessera's curves, e.g. INTEGRATORS=path_mis,path_mis+reuse.
 # For a build tuned to this CPU, as Mitsuba's LLVM variant's kernels are (same image bits):
 #   RUSTFLAGS="-C target-cpu=native" cargo build --profile dist -p tessera --target-dir target/native
 #   TESSERA=target/native/dist/tessera scripts/bench_scenes.sh 2 30
@@ -27,6 +28,7 @@ PYTHON="${PYTHON:-python3}"
 VARIANTS="${VARIANTS:-scalar_rgb,llvm_ad_rgb}"
 SAMPLERS="${SAMPLERS:-independent,zsobol}"
 SEEDS="${SEEDS:-1}"
+INTEGRATORS="${INTEGRATORS:-path_mis}"
 REPEATS="${REPEATS:-1}"
 TESSERA="${TESSERA:-target/dist/tessera}"
 ADAPTIVE_FLAG=()
@@ -38,7 +40,7 @@ mkdir -p "$OUT"
 for NAME in cbox veach_mis; do
     REF="scenes/refs/${NAME}_128x128_mitsuba.exr"
     "$TESSERA" bench "scenes/$NAME.xml" -D res=128 -D rfilter=box --reference "$REF" \
-        --integrators path_mis --sampler "$SAMPLERS" --seeds "$SEEDS" --repeats "$REPEATS" --threads "$THREADS" \
+        --integrators "$INTEGRATORS" --sampler "$SAMPLERS" --seeds "$SEEDS" --repeats "$REPEATS" --threads "$THREADS" \
         --max-seconds "$MAX" ${ADAPTIVE_FLAG[@]+"${ADAPTIVE_FLAG[@]}"} -o "$OUT/$NAME.csv"
     "$PYTHON" scripts/mitsuba_bench.py "scenes/$NAME.xml" -D res=128 -D rfilter=box \
         --reference "$REF" --variant "$VARIANTS" --seeds "$SEEDS" --repeats "$REPEATS" --threads "$THREADS" --max-seconds "$MAX" \

@@ -52,9 +52,12 @@ train() {
 cbox -D res=128 -D rfilter=box --spp 64 --sampler zsobol
 cbox -D res=128 -D rfilter=box --spp 64 --sampler independent
 cbox -D res=128 -D rfilter=box --spp 32 --sampler zsobol --adaptive
+cbox -D res=128 -D rfilter=box --spp 32 --sampler zsobol --integrator path+reuse
+cbox -D res=128 -D rfilter=box --spp 16 --sampler zsobol --integrator path+reuse --adaptive
 veach_mis -D res=128 -D rfilter=box --spp 64 --sampler zsobol
 veach_mis -D res=128 -D rfilter=box --spp 64 --sampler independent
 veach_mis -D res=128 -D rfilter=box --spp 32 --sampler zsobol --adaptive
+veach_mis -D res=128 -D rfilter=box --spp 32 --sampler zsobol --integrator path+reuse
 materials -D res=64 --spp 16
 envmap -D res=64 --spp 16
 cs500_spheres -D res=64 --spp 16
