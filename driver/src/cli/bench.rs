@@ -22,7 +22,8 @@ pub struct BenchArgs {
     /// The converged reference image (EXR or PFM, the scene's size).
     #[arg(long, required_unless_present = "plot_only")]
     pub reference: Option<PathBuf>,
-    /// Integrators to measure, comma separated (default: the scene file's).
+    /// Integrators to measure, comma separated (default: the scene file's); `NAME+reuse` is the
+    /// path tracer NAME with path reuse.
     #[arg(long, value_delimiter = ',')]
     pub integrators: Vec<String>,
     /// Samplers to measure, comma separated (independent, zsobol; default: the scene file's).

@@ -71,7 +71,8 @@ pub struct RenderArgs {
     #[arg(long)]
     pub seed: Option<u64>,
     /// Integrator name (path, path_mis, path_half, path_ems, path_mats, direct, direct_ems,
-    /// direct_mats, direct_mis); keeps the file's max_depth etc.
+    /// direct_mats, direct_mis; a path tracer's name with `+reuse` for path reuse); keeps the
+    /// file's max_depth etc.
     #[arg(long)]
     pub integrator: Option<String>,
     /// Sampler (independent, zsobol), overriding the scene file.
