@@ -98,6 +98,29 @@ pub struct PixelCache {
     zsobol: Option<ZSobolPixel>,
 }
 
+impl PixelCache {
+    /// The zsobol cache, moved to pixel `(x, y)` (made on first use) and told its run.
+    #[inline]
+    fn zsobol_for(
+        &mut self,
+        seed: u64,
+        x: u32,
+        y: u32,
+        log2_spp: u32,
+        run: Range<u64>,
+    ) -> &mut ZSobolPixel {
+        let pixel = match &mut self.zsobol {
+            Some(p) => {
+                p.move_to(seed, x, y, log2_spp);
+                p
+            }
+            none => none.insert(ZSobolPixel::new(seed, x, y, log2_spp)),
+        };
+        pixel.set_run(run);
+        pixel
+    }
+}
+
 /// [`render_samples_probed`] with a cache kept from pixel to pixel by the caller: the same
 /// values, bit for bit, for any cache (fresh or used by other pixels, seeds or sample counts).
 #[inline]
@@ -162,14 +185,7 @@ fn render_samples_plain<P: Probe>(
             if samples.is_empty() {
                 return;
             }
-            let pixel = match &mut cache.zsobol {
-                Some(p) => {
-                    p.move_to(seed, x, y, log2_spp);
-                    p
-                }
-                none => none.insert(ZSobolPixel::new(seed, x, y, log2_spp)),
-            };
-            pixel.set_run(samples.clone());
+            let pixel = cache.zsobol_for(seed, x, y, log2_spp, samples.clone());
             for index in samples {
                 add(trace(scene, integrator, x, y, pixel.sampler(index), probe));
             }
@@ -260,14 +276,7 @@ pub fn render_group_cached<P: Probe>(
             }
             for k in 0..GROUP {
                 let (x, y) = pixels[k.min(n - 1)];
-                let pixel = match &mut caches.pixels[k].zsobol {
-                    Some(p) => {
-                        p.move_to(seed, x, y, log2_spp);
-                        p
-                    }
-                    none => none.insert(ZSobolPixel::new(seed, x, y, log2_spp)),
-                };
-                pixel.set_run(samples.clone());
+                caches.pixels[k].zsobol_for(seed, x, y, log2_spp, samples.clone());
             }
             for index in samples {
                 let [a, b, c, d] = &mut caches.pixels;
