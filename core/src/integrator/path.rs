@@ -155,7 +155,6 @@ impl PathIntegrator {
         sampler: &mut S,
         probe: &mut P,
     ) -> Color {
-        // One loop per strategy, so that the strategy's tests fold away in each.
         self.run::<WHOLE, S, P>(
             scene,
             PathState::start(ray),
@@ -175,6 +174,7 @@ impl PathIntegrator {
         probe: &mut P,
         prefix: &mut Prefix,
     ) -> Color {
+        // One loop per strategy, so that the strategy's tests fold away in each.
         match self.strategy {
             Strategy::Bsdf => self.trace::<BSDF, MODE, S, P>(scene, state, sampler, probe, prefix),
             Strategy::Emitter => {
@@ -306,7 +306,7 @@ impl PathIntegrator {
                     rr_scale: Color::ONE,
                     pending: Some(si),
                 };
-                prefix.y = Some((si, state));
+                prefix.y = Some(state);
                 break;
             }
             let shape = &scene.shapes[si.shape as usize];

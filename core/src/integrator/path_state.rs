@@ -30,7 +30,8 @@ pub(super) struct PathState {
     pub prev: Option<Prev>,
     /// Scales the throughput in Russian roulette's survival probability (`SUFFIX` only).
     pub rr_scale: Color,
-    /// The vertex the ray already reached, its emission counted (`SUFFIX` only).
+    /// The vertex the ray already reached, its emission counted (a `PREFIX` run leaves it for
+    /// `SUFFIX`, which starts there).
     pub pending: Option<Interaction>,
 }
 
@@ -59,6 +60,6 @@ pub(super) struct Prefix {
     pub x: Option<(Interaction, u32, Vec3)>,
     /// Whether the bounce from `x` took a delta component.
     pub delta: bool,
-    /// The second vertex and the state at it (emission already counted).
-    pub y: Option<(Interaction, PathState)>,
+    /// The state at the second vertex, which its `pending` holds (emission already counted).
+    pub y: Option<PathState>,
 }

@@ -69,7 +69,8 @@ impl PathIntegrator {
         // The second vertices whose reflected light is shared, and what they reflect.
         let mut shared: [Option<(Interaction, Color)>; GROUP] = [None; GROUP];
         for k in 0..n {
-            let Some((y, state)) = pre[k].y else { continue };
+            let Some(state) = pre[k].y else { continue };
+            let Some(y) = state.pending else { continue };
             let lambertian = scene
                 .bsdf_traits(scene.shapes[y.shape as usize].bsdf)
                 .lambertian;
