@@ -1,7 +1,6 @@
 //! The per-sample entry point: one camera sample of one pixel, replayable alone.
 use crate::film::PixelAccum;
 use crate::integrator::{Integrator, NoProbe, PathIntegrator, Probe, GROUP};
-use crate::math::Ray;
 use crate::sampling::{IndependentSampler, Sampler, SamplerKind, ZSobolPixel, ZSobolSampler};
 use crate::scene::Scene;
 use crate::Color;
@@ -141,15 +140,16 @@ pub fn render_samples_cached<P: Probe>(
         let (pixels, n) = group_of(scene, x, y);
         let me = pixels[..n].iter().position(|&p| p == (x, y)).unwrap_or(0);
         let mut caches = GroupCache::default();
+        let all: [Range<u64>; GROUP] = core::array::from_fn(|_| samples.clone());
         render_group_cached(
             scene,
             integrator,
             seed,
             &pixels[..n],
-            samples,
+            &all[..n],
             &mut caches,
             probe,
-            |k, c| {
+            |k, _, c| {
                 if k == me {
                     add(c)
                 }
@@ -223,94 +223,128 @@ pub struct GroupCache {
     pixels: [PixelCache; GROUP],
 }
 
-/// Samples `samples` of every pixel of a group (`pixels`, as [`group_of`] gives them), sample by
-/// sample: `add(k, value)` gets pixel `k`'s value of each sample in index order. Each value is
-/// a pure function of the seed, the group, the pixel and the sample index; with an integrator
-/// that does not reuse, it is [`render_sample_probed`]'s.
+/// Every pixel of a group (`pixels`, as [`group_of`] gives them) takes its samples
+/// `samples[k]`, sample index by sample index over their union: `add(k, index, value)` gets pixel
+/// `k`'s value of each of its samples in index order. At each index the pixels that take it
+/// share their light (with an integrator that [`reuses`]); so each value is a pure function of
+/// the seed, the group, the pixel, the sample index and which of the group's pixels take that
+/// index (all of them when the ranges are equal, as in every render but an adaptive pass). With
+/// an integrator that does not reuse, it is [`render_sample_probed`]'s.
 #[allow(clippy::too_many_arguments)]
 pub fn render_group_cached<P: Probe>(
     scene: &Scene,
     integrator: &Integrator,
     seed: u64,
     pixels: &[(u32, u32)],
-    samples: Range<u64>,
+    samples: &[Range<u64>],
     caches: &mut GroupCache,
     probe: &mut P,
-    mut add: impl FnMut(usize, Color),
+    mut add: impl FnMut(usize, u64, Color),
 ) {
+    let n = pixels.len().min(GROUP).min(samples.len());
     let Integrator::Path(path) = integrator else {
-        for (k, &(x, y)) in pixels.iter().enumerate() {
+        for (k, &(x, y)) in pixels[..n].iter().enumerate() {
             let cache = &mut caches.pixels[k];
+            let mut index = samples[k].start;
             render_samples_plain(
                 scene,
                 integrator,
                 seed,
                 x,
                 y,
-                samples.clone(),
+                samples[k].clone(),
                 cache,
                 probe,
-                |c| add(k, c),
+                |c| {
+                    add(k, index, c);
+                    index += 1;
+                },
             );
         }
         return;
     };
-    let n = pixels.len().min(GROUP);
+    let live = samples[..n].iter().filter(|r| !r.is_empty());
+    let lo = live.clone().map(|r| r.start).min();
+    let hi = live.map(|r| r.end).max();
+    let (Some(lo), Some(hi)) = (lo, hi) else {
+        return;
+    };
+    let takes = |k: usize, index: u64| samples[k].contains(&index);
     let mut out = [Color::ZERO; GROUP];
     match scene.sampler {
         SamplerKind::Independent => {
-            for index in samples {
+            for index in lo..hi {
                 let mut samplers = core::array::from_fn::<_, GROUP, _>(|k| {
                     let (x, y) = pixels[k.min(n - 1)];
                     IndependentSampler::new(seed, x, y, index)
                 });
-                group_sample(scene, path, pixels, &mut samplers[..n], probe, &mut out);
-                for (k, &c) in out[..n].iter().enumerate() {
-                    add(k, c);
+                let taking = core::array::from_fn(|k| k < n && takes(k, index));
+                group_sample(
+                    scene,
+                    path,
+                    pixels,
+                    taking,
+                    &mut samplers[..n],
+                    probe,
+                    &mut out,
+                );
+                for k in (0..n).filter(|&k| taking[k]) {
+                    add(k, index, out[k]);
                 }
             }
         }
         SamplerKind::ZSobol { log2_spp } => {
-            if samples.is_empty() {
-                return;
-            }
             for k in 0..GROUP {
                 let (x, y) = pixels[k.min(n - 1)];
-                caches.pixels[k].zsobol_for(seed, x, y, log2_spp, samples.clone());
+                caches.pixels[k].zsobol_for(seed, x, y, log2_spp, lo..hi);
             }
-            for index in samples {
+            for index in lo..hi {
                 let [a, b, c, d] = &mut caches.pixels;
                 let mut samplers = [a, b, c, d].map(|p| match &mut p.zsobol {
                     Some(z) => z.sampler(index),
                     None => unreachable!("every pixel cache was set above"),
                 });
-                group_sample(scene, path, pixels, &mut samplers[..n], probe, &mut out);
-                for (k, &c) in out[..n].iter().enumerate() {
-                    add(k, c);
+                let taking = core::array::from_fn(|k| k < n && takes(k, index));
+                group_sample(
+                    scene,
+                    path,
+                    pixels,
+                    taking,
+                    &mut samplers[..n],
+                    probe,
+                    &mut out,
+                );
+                for k in (0..n).filter(|&k| taking[k]) {
+                    add(k, index, out[k]);
                 }
             }
         }
     }
 }
 
-/// One sample of each pixel of a group: camera rays drawn from each pixel's sampler, then the
-/// group estimator.
+/// One sample of each pixel of a group that takes it (`taking`): camera rays drawn from those
+/// pixels' samplers, then the group estimator.
 #[inline]
 fn group_sample<S: Sampler, P: Probe>(
     scene: &Scene,
     path: &PathIntegrator,
     pixels: &[(u32, u32)],
+    taking: [bool; GROUP],
     samplers: &mut [S],
     probe: &mut P,
     out: &mut [Color; GROUP],
 ) {
-    let mut rays = [Ray::new(glam::Vec3::ZERO, glam::Vec3::Z); GROUP];
+    let mut rays = [None; GROUP];
     for (k, s) in samplers.iter_mut().enumerate() {
+        if !taking[k] {
+            continue;
+        }
         let (x, y) = pixels[k];
         let offset = scene.filter.sample(s.next_2d());
         let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
-        rays[k] = scene.camera.generate_ray(pos);
-        probe.camera(pos, &rays[k]);
+        let ray = scene.camera.generate_ray(pos);
+        probe.camera(pos, &ray);
+        rays[k] = Some(ray);
     }
     let n = samplers.len();
     path.li_group(scene, &rays[..n], samplers, probe, &mut out[..n]);

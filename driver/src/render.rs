@@ -7,7 +7,7 @@
 //! `RenderOptions::pixels` restricts the render to a crop window or a tile set (see
 //! [`PixelSelection`]); the selected pixels get exactly the bits the whole render gives them and
 //! the others stay empty.
-use crate::render_groups::render_tile_groups;
+use crate::render_groups::{render_tile_groups, Sharing};
 pub use crate::split::selection::PixelSelection;
 use crossbeam_channel::unbounded;
 use std::ops::Range;
@@ -207,8 +207,8 @@ pub fn render_into_targets(
         "render_into_targets: one target per pixel"
     );
     let (w, h) = (scene.camera.width, scene.camera.height);
-    let total = opts.pixels.rects(w, h, opts.tile_size).len();
-    let mut done = 0;
+    // The tile count is the loop's own (it may round the tile edge), told with each tile.
+    let mut complete = opts.pixels.rects(w, h, opts.tile_size).is_empty();
     render_tiles::<NoProbe>(
         scene,
         integrator,
@@ -217,11 +217,11 @@ pub fn render_into_targets(
         stop,
         Some(targets),
         &mut |d, t| {
-            done = d;
+            complete = d == t;
             progress(d, t)
         },
     );
-    done == total
+    complete
 }
 
 /// Brings every selected pixel of `fb` to `opts.samples.end` samples, each pixel continuing from
@@ -275,7 +275,9 @@ fn render_tiles<P: TileProbe>(
     progress: &mut dyn FnMut(usize, usize),
 ) -> P {
     let (w, h) = (scene.camera.width, scene.camera.height);
-    let mut list = opts.pixels.rects(w, h, opts.tile_size);
+    let reuse = reuses(integrator);
+    let (sharing, tile_size) = Sharing::choose(reuse, targets.is_some(), opts.tile_size);
+    let mut list = opts.pixels.rects(w, h, tile_size);
     if let Some(targets) = targets {
         largest_first(&mut list, targets, &fb.pixels, w);
     }
@@ -287,7 +289,6 @@ fn render_tiles<P: TileProbe>(
     let cursor = AtomicUsize::new(0);
     let (tx, rx) = unbounded::<(usize, Vec<PixelAccum>)>();
     let threads = opts.threads.max(1).min(list.len().max(1));
-    let reuse = reuses(integrator);
     std::thread::scope(|s| {
         let mut workers = Vec::with_capacity(threads);
         for _ in 0..threads {
@@ -324,6 +325,7 @@ fn render_tiles<P: TileProbe>(
                             t,
                             &mut acc,
                             &range,
+                            sharing,
                             &mut groups,
                             &mut probe,
                         );

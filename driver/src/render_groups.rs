@@ -7,10 +7,37 @@ use tessera_core::integrator::{Integrator, GROUP};
 use tessera_core::render::{group_of, render_group_cached, GroupCache};
 use tessera_core::scene::Scene;
 
-/// A tile's pixels when the integrator shares light among 2x2 groups: group by group, each
-/// group's paths traced for every sample any of its pixels in the tile takes (pixels outside the
-/// tile are traced for their neighbours and dropped), so a pixel's values do not depend on the
-/// tiling.
+/// Which of a group's pixels take part in each of the group's samples.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Sharing {
+    /// Every pixel of the group, at every sample index any of its pixels in the tile takes
+    /// (pixels outside the tile, or past their own range, are traced for their neighbours and
+    /// dropped): a pixel's values depend only on its group and sample indices, not on the
+    /// tiling, a crop or where an interrupted render stopped.
+    Whole,
+    /// Only the pixels whose own range holds the index (adaptive passes, where the pixels of a
+    /// group take different numbers of samples): no path is traced only to be dropped. The
+    /// values then depend on the pass's ranges, which are a function of the accumulators and
+    /// the pass's targets; the tiles must hold whole groups (even edges from even corners).
+    OwnRanges,
+}
+
+impl Sharing {
+    /// The sharing for a render loop with path reuse on or off and per-pixel targets (adaptive
+    /// passes) or not, and the tile edge it needs: `OwnRanges` rounds `tile_size` up to even,
+    /// so that tiles (from the image's corner, as adaptive renders' are) hold whole groups.
+    /// Tiles change no bit.
+    pub(crate) fn choose(reuse: bool, targets: bool, tile_size: u32) -> (Sharing, u32) {
+        if reuse && targets {
+            (Sharing::OwnRanges, tile_size.max(1).next_multiple_of(2))
+        } else {
+            (Sharing::Whole, tile_size)
+        }
+    }
+}
+
+/// A tile's pixels when the integrator shares light among 2x2 groups, group by group (see
+/// [`Sharing`] for which pixels take part in each sample).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn render_tile_groups<P: TileProbe>(
     scene: &Scene,
@@ -19,6 +46,7 @@ pub(crate) fn render_tile_groups<P: TileProbe>(
     t: &Tile,
     acc: &mut [PixelAccum],
     range: &dyn Fn(&PixelAccum, u32, u32) -> Range<u64>,
+    sharing: Sharing,
     groups: &mut GroupCache,
     probe: &mut P,
 ) {
@@ -37,24 +65,25 @@ pub(crate) fn render_tile_groups<P: TileProbe>(
                 let r = range(&acc[i], x, y);
                 if !r.is_empty() {
                     (lo, hi) = (lo.min(r.start), hi.max(r.end));
-                    mine[k] = Some((i, r));
                 }
+                mine[k] = Some((i, r));
             }
             if lo >= hi {
                 continue;
             }
-            let mut next = [lo; GROUP];
+            let samples: [Range<u64>; GROUP] = std::array::from_fn(|k| match (&mine[k], sharing) {
+                (Some((_, r)), Sharing::OwnRanges) => r.clone(),
+                _ => lo..hi,
+            });
             render_group_cached(
                 scene,
                 integrator,
                 seed,
                 &pixels[..n],
-                lo..hi,
+                &samples[..n],
                 groups,
                 probe,
-                |k, c| {
-                    let index = next[k];
-                    next[k] += 1;
+                |k, index, c| {
                     if let Some((i, r)) = &mine[k] {
                         if r.contains(&index) {
                             acc[*i].add(c);

@@ -6,7 +6,11 @@
 //! region means' variance. Each side is therefore `K` renders with different seeds, and each
 //! 8x8-pixel region's `K` means are compared by Welch's t-test. Significance 0.01,
 //! Sidak-corrected over all regions and channels of a test.
-use tessera::render::Framebuffer;
+//!
+//! Adaptive passes share light only among the pixels of a group that take each sample index;
+//! that estimator is checked with fixed targets that differ inside every group.
+use tessera::render::{render_into_targets, Framebuffer, RenderOptions};
+use tessera::scene::LoadedScene;
 use tessera::stats::{sidak_alpha, welch_test, Moments};
 use tessera_tests::{load_file, render_loaded};
 
@@ -33,13 +37,26 @@ fn region_means(fb: &Framebuffer) -> Vec<[f64; 3]> {
 /// Per region and channel, the moments of its mean over `K` seeds (from `seed0`), each render
 /// scaled by `scale`.
 fn replicates(file: &str, integrator: &str, spp: u64, seed0: u64, scale: f64) -> Vec<[Moments; 3]> {
+    replicates_by(file, integrator, seed0, scale, &|l, seed| {
+        render_loaded(l, spp, seed)
+    })
+}
+
+/// [`replicates`] with renders made by `render(scene, seed)`.
+fn replicates_by(
+    file: &str,
+    integrator: &str,
+    seed0: u64,
+    scale: f64,
+    render: &dyn Fn(&LoadedScene, u64) -> Framebuffer,
+) -> Vec<[Moments; 3]> {
     let mut loaded = load_file(file, &[("res", "64"), ("rfilter", "box")]);
     loaded
         .set_integrator(Some(integrator), None)
         .expect("path tracer");
     let mut out: Vec<[Moments; 3]> = Vec::new();
     for s in 0..K {
-        let fb = render_loaded(&loaded, spp, seed0 + s);
+        let fb = render(&loaded, seed0 + s);
         assert_eq!(fb.dropped(), 0, "{file} {integrator}: dropped samples");
         let means = region_means(&fb);
         out.resize_with(means.len(), Default::default);
@@ -100,6 +117,39 @@ fn reuse_agrees_with_plain_paths_on_veach_mis() {
 #[test]
 fn reuse_agrees_with_plain_paths_on_materials() {
     agrees("materials.xml", 16);
+}
+
+/// Targets that differ inside every 2x2 group (8 to 32 samples, fixed in advance): at each
+/// sample index only the pixels that take it share, weighted over those pixels' densities.
+#[test]
+fn reuse_with_uneven_targets_agrees_with_plain_paths() {
+    let targets: Vec<u64> = (0..(RES * RES) as u64)
+        .map(|i| [8, 32, 16, 24][(i % 2 + i / RES as u64 % 2 * 2) as usize] + (i / 7 % 2) * 8)
+        .collect();
+    let uneven = replicates_by("cbox.xml", "path+reuse", 500, 1.0, &|l, seed| {
+        let opts = RenderOptions {
+            threads: 2,
+            tile_size: 16,
+            seed,
+            ..Default::default()
+        };
+        let mut fb = Framebuffer::new(RES, RES);
+        render_into_targets(
+            &l.scene,
+            &l.integrator,
+            &opts,
+            &mut fb,
+            &targets,
+            None,
+            &mut |_, _| {},
+        );
+        fb
+    });
+    let plain = replicates("cbox.xml", "path", 32, 600, 1.0);
+    let alpha = sidak_alpha(0.01, (RES / BLOCK).pow(2) as usize * 3);
+    let (p, what) = worst(&uneven, &plain);
+    eprintln!("cbox: reuse with uneven targets vs plain: worst p = {p:.3e} at {what}");
+    assert!(p >= alpha, "p = {p:.3e} < {alpha:.3e} at {what}");
 }
 
 /// The comparison has power: reuse renders made 2% brighter are rejected.

@@ -25,6 +25,9 @@
 //!    they lack, rounded by a running sum in pixel order so that the counts add up to the
 //!    pass's budget exactly.
 //!
+//! With [`AdaptiveParams::block`] above 1, steps 3 and 4 go by aligned square blocks of pixels:
+//! a block's pixels share the mean of their scores and take one count each (`blocks.rs`).
+//!
 //! Everything is computed in `f64` in a fixed order from the accumulators alone: the same
 //! accumulators give the same counts on any machine, whatever rendered them (thread count, tile
 //! size). The counts depend on the samples themselves, so the image is not exactly unbiased: a
@@ -33,6 +36,7 @@
 use crate::film::PixelAccum;
 use crate::math::sqrt_f64;
 
+mod blocks;
 mod variance;
 use alloc::vec;
 use alloc::vec::Vec;
@@ -57,6 +61,11 @@ pub struct AdaptiveParams {
     /// pixel holding one sample is judged by its neighbourhood, see
     /// [`neighbourhood_variance`]).
     pub warmup: u64,
+    /// Edge of the aligned square blocks of pixels that are planned together and take the same
+    /// count in each pass (default 1: every pixel on its own). 2 when the integrator shares
+    /// light among 2x2 pixel groups (path reuse), which then finds every pixel of a group at
+    /// each sample index instead of tracing the others' paths only to share them.
+    pub block: u32,
 }
 
 impl Default for AdaptiveParams {
@@ -65,6 +74,7 @@ impl Default for AdaptiveParams {
             floor: 0.01,
             uniform: 0.25,
             warmup: 1,
+            block: 1,
         }
     }
 }
@@ -108,7 +118,11 @@ pub fn plan_pass(
     let worst = raw.iter().flatten().fold(0.0f64, |m, &v| m.max(v));
     let mut v: Vec<f64> = raw.iter().map(|r| r.unwrap_or(worst)).collect();
     drop(raw);
-    let score = smooth_sqrt(&v, w, h);
+    let mut score = smooth_sqrt(&v, w, h);
+    let block = params.block.max(1) as usize;
+    if block > 1 {
+        blocks::block_mean(&mut score, w, h, block);
+    }
     let total = pixels
         .iter()
         .map(|p| (p.count + p.dropped) as f64)
@@ -138,6 +152,9 @@ pub fn plan_pass(
         }
     } else {
         lack.fill(budget as f64 / n as f64);
+    }
+    if block > 1 {
+        return blocks::round_blocks(lack, w, h, block, budget);
     }
     round_to_budget(lack, budget)
 }
@@ -321,6 +338,7 @@ pub(crate) mod tests {
                 floor: [0.0, 1e-4, 0.01][t % 3],
                 uniform: [0.0, 0.25, 1.0][(t / 3) % 3],
                 warmup: 2,
+                block: 1,
             };
             let budget = next() % 300;
             let got = plan_pass(&pixels, w as u32, h as u32, budget, &params);

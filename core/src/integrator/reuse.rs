@@ -44,26 +44,32 @@ impl PathIntegrator {
     }
 
     /// One sample's radiance for each pixel of a group: `rays[k]` is pixel `k`'s camera ray,
-    /// drawn from `samplers[k]`, which the path goes on drawing from. Writes `out[..rays.len()]`.
-    /// Without [`PathIntegrator::reuses`], each value is [`PathIntegrator::li_probed`]'s.
+    /// drawn from `samplers[k]`, which the path goes on drawing from, or `None` for a pixel that
+    /// does not take this sample (it neither shares nor receives light; its `samplers[k]` is not
+    /// touched and `out[k]` is zero). Writes `out[..rays.len()]`. Without
+    /// [`PathIntegrator::reuses`], each value is [`PathIntegrator::li_probed`]'s.
     pub fn li_group<S: Sampler, P: Probe>(
         &self,
         scene: &Scene,
-        rays: &[Ray],
+        rays: &[Option<Ray>],
         samplers: &mut [S],
         probe: &mut P,
         out: &mut [Color],
     ) {
         let n = rays.len().min(GROUP);
+        out[..n].fill(Color::ZERO);
         if !self.reuses() {
             for k in 0..n {
-                out[k] = self.li_probed(scene, rays[k], &mut samplers[k], probe);
+                if let Some(ray) = rays[k] {
+                    out[k] = self.li_probed(scene, ray, &mut samplers[k], probe);
+                }
             }
             return;
         }
         let mut pre = [Prefix::default(); GROUP];
         for k in 0..n {
-            let start = PathState::start(rays[k]);
+            let Some(ray) = rays[k] else { continue };
+            let start = PathState::start(ray);
             out[k] = self.run::<PREFIX, S, P>(scene, start, &mut samplers[k], probe, &mut pre[k]);
         }
         // The second vertices whose reflected light is shared, and what they reflect.

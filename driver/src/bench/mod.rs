@@ -125,6 +125,7 @@ pub fn run_waves(
         match adaptive {
             Some(a) if done >= a.warmup.max(1) => {
                 let pixels = w as u64 * h as u64;
+                let a = &a.for_integrator(integrator);
                 let targets = pass_targets(&fb.pixels, w, h, pixels * (next - done), a);
                 render_into_targets(
                     scene,

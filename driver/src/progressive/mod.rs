@@ -309,6 +309,7 @@ fn adaptive_passes(
     pending: &mut Option<Vec<u64>>,
 ) -> Result<(Ending, u64), String> {
     let target = plan.target.unwrap_or(u64::MAX);
+    let params = &params.for_integrator(job.integrator);
     // Samples every pixel takes before the first adaptive pass (never past the target).
     let first = params.warmup.max(1).min(target);
     let pixels = (fb.pixels.len() as u64).max(1);
