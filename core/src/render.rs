@@ -1,6 +1,6 @@
 //! The per-sample entry point: one camera sample of one pixel, replayable alone.
 use crate::film::PixelAccum;
-use crate::integrator::{Integrator, NoProbe, PathIntegrator, Probe, GROUP};
+use crate::integrator::{Integrator, NoProbe, PathIntegrator, Probe, GROUP, GROUP_H, GROUP_W};
 use crate::sampling::{IndependentSampler, Sampler, SamplerKind, ZSobolPixel, ZSobolSampler};
 use crate::scene::Scene;
 use crate::Color;
@@ -193,7 +193,7 @@ fn render_samples_plain<P: Probe>(
     }
 }
 
-/// Whether `integrator` shares light among the pixels of a group ([`GROUP`] pixels, 2x2): then
+/// Whether `integrator` shares light among the pixels of a group ([`GROUP`] pixels, 4x2): then
 /// a pixel's values depend on its group's paths, and render loops go group by group
 /// ([`group_of`], [`render_group_cached`]).
 #[inline]
@@ -201,15 +201,16 @@ pub fn reuses(integrator: &Integrator) -> bool {
     matches!(integrator, Integrator::Path(p) if p.reuses())
 }
 
-/// The pixels of the group that holds pixel `(x, y)`: the 2x2 block at even coordinates, clipped
-/// to the image, in row order; the second value is how many there are.
+/// The pixels of the group that holds pixel `(x, y)`: the `GROUP_W x GROUP_H` block at
+/// multiples of those, clipped to the image, in row order; the second value is how many there
+/// are.
 pub fn group_of(scene: &Scene, x: u32, y: u32) -> ([(u32, u32); GROUP], usize) {
     let (w, h) = (scene.camera.width, scene.camera.height);
-    let (x0, y0) = (x & !1, y & !1);
+    let (x0, y0) = (x - x % GROUP_W, y - y % GROUP_H);
     let mut pixels = [(x0, y0); GROUP];
     let mut n = 0;
-    for (py, px) in [(y0, x0), (y0, x0 + 1), (y0 + 1, x0), (y0 + 1, x0 + 1)] {
-        if px < w && py < h {
+    for py in (y0..y0 + GROUP_H).filter(|&py| py < h) {
+        for px in (x0..x0 + GROUP_W).filter(|&px| px < w) {
             pixels[n] = (px, py);
             n += 1;
         }
@@ -299,8 +300,7 @@ pub fn render_group_cached<P: Probe>(
                 caches.pixels[k].zsobol_for(seed, x, y, log2_spp, lo..hi);
             }
             for index in lo..hi {
-                let [a, b, c, d] = &mut caches.pixels;
-                let mut samplers = [a, b, c, d].map(|p| match &mut p.zsobol {
+                let mut samplers = caches.pixels.each_mut().map(|p| match &mut p.zsobol {
                     Some(z) => z.sampler(index),
                     None => unreachable!("every pixel cache was set above"),
                 });

@@ -1,9 +1,9 @@
-//! The tile loop's body when the integrator shares light among 2x2 pixel groups
-//! (`core/src/integrator/reuse.rs`).
+//! The tile loop's body when the integrator shares light among groups of pixels (4x2,
+//! `core/src/integrator/reuse.rs`).
 use crate::render::{Tile, TileProbe};
 use std::ops::Range;
 use tessera_core::film::PixelAccum;
-use tessera_core::integrator::{Integrator, GROUP};
+use tessera_core::integrator::{Integrator, GROUP, GROUP_H, GROUP_W};
 use tessera_core::render::{group_of, render_group_cached, GroupCache};
 use tessera_core::scene::Scene;
 
@@ -18,25 +18,36 @@ pub(crate) enum Sharing {
     /// Only the pixels whose own range holds the index (adaptive passes, where the pixels of a
     /// group take different numbers of samples): no path is traced only to be dropped. The
     /// values then depend on the pass's ranges, which are a function of the accumulators and
-    /// the pass's targets; the tiles must hold whole groups (even edges from even corners).
+    /// the pass's targets; the tiles must hold whole groups (edges and corners at multiples of
+    /// the group's dimensions).
     OwnRanges,
 }
 
 impl Sharing {
     /// The sharing for a render loop with path reuse on or off and per-pixel targets (adaptive
-    /// passes) or not, and the tile edge it needs: `OwnRanges` rounds `tile_size` up to even,
-    /// so that tiles (from the image's corner, as adaptive renders' are) hold whole groups.
-    /// Tiles change no bit.
+    /// passes) or not, and the tile edge it needs: `OwnRanges` rounds `tile_size` up to a
+    /// multiple of both group dimensions, so that tiles (from the image's corner, as adaptive
+    /// renders' are) hold whole groups. Tiles change no bit.
     pub(crate) fn choose(reuse: bool, targets: bool, tile_size: u32) -> (Sharing, u32) {
         if reuse && targets {
-            (Sharing::OwnRanges, tile_size.max(1).next_multiple_of(2))
+            let edge = lcm(GROUP_W, GROUP_H);
+            (Sharing::OwnRanges, tile_size.max(1).next_multiple_of(edge))
         } else {
             (Sharing::Whole, tile_size)
         }
     }
 }
 
-/// A tile's pixels when the integrator shares light among 2x2 groups, group by group (see
+/// The least common multiple of two positive numbers.
+fn lcm(a: u32, b: u32) -> u32 {
+    let (mut x, mut y) = (a, b);
+    while y != 0 {
+        (x, y) = (y, x % y);
+    }
+    a / x * b
+}
+
+/// A tile's pixels when the integrator shares light among groups, group by group (see
 /// [`Sharing`] for which pixels take part in each sample).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn render_tile_groups<P: TileProbe>(
@@ -51,8 +62,8 @@ pub(crate) fn render_tile_groups<P: TileProbe>(
     probe: &mut P,
 ) {
     let tw = (t.x1 - t.x0) as usize;
-    for gy in (t.y0 & !1..t.y1).step_by(2) {
-        for gx in (t.x0 & !1..t.x1).step_by(2) {
+    for gy in (t.y0 - t.y0 % GROUP_H..t.y1).step_by(GROUP_H as usize) {
+        for gx in (t.x0 - t.x0 % GROUP_W..t.x1).step_by(GROUP_W as usize) {
             let (pixels, n) = group_of(scene, gx, gy);
             // Each pixel's index into `acc` and its samples, for the pixels in the tile.
             let mut mine: [Option<(usize, Range<u64>)>; GROUP] = Default::default();

@@ -2,7 +2,7 @@
 //! region, on scenes with Lambertian second vertices (cbox), glossy ones that fall back to plain
 //! paths (veach_mis) and a mix of smooth, delta and layered materials (materials).
 //!
-//! Reuse correlates the pixels of a 2x2 group, so a render's per-pixel variances do not give its
+//! Reuse correlates the pixels of a group (4x2), so a render's per-pixel variances do not give its
 //! region means' variance. Each side is therefore `K` renders with different seeds, and each
 //! 8x8-pixel region's `K` means are compared by Welch's t-test. Significance 0.01,
 //! Sidak-corrected over all regions and channels of a test.
@@ -119,7 +119,7 @@ fn reuse_agrees_with_plain_paths_on_materials() {
     agrees("materials.xml", 16);
 }
 
-/// Targets that differ inside every 2x2 group (8 to 32 samples, fixed in advance): at each
+/// Targets that differ inside every group (8 to 40 samples, fixed in advance): at each
 /// sample index only the pixels that take it share, weighted over those pixels' densities.
 #[test]
 fn reuse_with_uneven_targets_agrees_with_plain_paths() {

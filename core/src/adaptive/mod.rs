@@ -25,7 +25,7 @@
 //!    they lack, rounded by a running sum in pixel order so that the counts add up to the
 //!    pass's budget exactly.
 //!
-//! With [`AdaptiveParams::block`] above 1, steps 3 and 4 go by aligned square blocks of pixels:
+//! With [`AdaptiveParams::block`] larger than one pixel, steps 3 and 4 go by aligned blocks:
 //! a block's pixels share the mean of their scores and take one count each (`blocks.rs`).
 //!
 //! Everything is computed in `f64` in a fixed order from the accumulators alone: the same
@@ -61,11 +61,12 @@ pub struct AdaptiveParams {
     /// pixel holding one sample is judged by its neighbourhood, see
     /// [`neighbourhood_variance`]).
     pub warmup: u64,
-    /// Edge of the aligned square blocks of pixels that are planned together and take the same
-    /// count in each pass (default 1: every pixel on its own). 2 when the integrator shares
-    /// light among 2x2 pixel groups (path reuse), which then finds every pixel of a group at
-    /// each sample index instead of tracing the others' paths only to share them.
-    pub block: u32,
+    /// Width and height of the aligned blocks of pixels that are planned together and take the
+    /// same count in each pass (default `(1, 1)`: every pixel on its own). The reuse group's
+    /// size when the integrator shares light among groups of pixels (path reuse), which then
+    /// finds every pixel of a group at each sample index instead of tracing the others' paths
+    /// only to share them ([`AdaptiveParams::for_integrator`]).
+    pub block: (u32, u32),
 }
 
 impl Default for AdaptiveParams {
@@ -74,7 +75,7 @@ impl Default for AdaptiveParams {
             floor: 0.01,
             uniform: 0.25,
             warmup: 1,
-            block: 1,
+            block: (1, 1),
         }
     }
 }
@@ -119,8 +120,12 @@ pub fn plan_pass(
     let mut v: Vec<f64> = raw.iter().map(|r| r.unwrap_or(worst)).collect();
     drop(raw);
     let mut score = smooth_sqrt(&v, w, h);
-    let block = params.block.max(1) as usize;
-    if block > 1 {
+    let block = (
+        params.block.0.max(1) as usize,
+        params.block.1.max(1) as usize,
+    );
+    let by_blocks = block != (1, 1);
+    if by_blocks {
         blocks::block_mean(&mut score, w, h, block);
     }
     let total = pixels
@@ -153,7 +158,7 @@ pub fn plan_pass(
     } else {
         lack.fill(budget as f64 / n as f64);
     }
-    if block > 1 {
+    if by_blocks {
         return blocks::round_blocks(lack, w, h, block, budget);
     }
     round_to_budget(lack, budget)
@@ -338,7 +343,7 @@ pub(crate) mod tests {
                 floor: [0.0, 1e-4, 0.01][t % 3],
                 uniform: [0.0, 0.25, 1.0][(t / 3) % 3],
                 warmup: 2,
-                block: 1,
+                block: (1, 1),
             };
             let budget = next() % 300;
             let got = plan_pass(&pixels, w as u32, h as u32, budget, &params);

@@ -15,7 +15,7 @@ pub use mis::{balance_heuristic, power_heuristic, Heuristic};
 pub use path::{PathIntegrator, Strategy};
 pub use probe::{Counters, NoProbe, PathEnd, Probe, RayKind};
 pub use record::{Event, PathRecord};
-pub use reuse::GROUP;
+pub use reuse::{GROUP, GROUP_H, GROUP_W};
 pub use select::{VertexSelection, MAX_VERTEX_LIGHTS, UNIFORM_SHARE};
 
 use crate::math::Ray;

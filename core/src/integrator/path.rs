@@ -73,7 +73,7 @@ pub struct PathIntegrator {
     pub hide_emitters: bool,
     /// How `Strategy::Mis` weighs its two strategies.
     pub heuristic: Heuristic,
-    /// Whether render loops share light among the pixels of 2x2 groups ([`super::reuse`]).
+    /// Whether render loops share light among the pixels of 4x2 groups ([`super::reuse`]).
     pub reuse: bool,
 }
 

@@ -3,7 +3,7 @@
 //! Path tracers, `path` = `path_mis` (MIS), `path_half`, `path_ems`, `path_mats`: `max_depth`
 //! (integer, default -1 = unbounded), `rr_depth` (integer >= 1, default 5), `hide_emitters`
 //! (boolean, false), and Tessera's own `heuristic` (string power|balance, default power) and
-//! `reuse` (boolean, false: share light among 2x2 pixel groups, `core/src/integrator/reuse.rs`).
+//! `reuse` (boolean, false: share light among 4x2 pixel groups, `core/src/integrator/reuse.rs`).
 //! Direct lighting, `direct` (Mitsuba 3): `shading_samples` (integer, 1), `emitter_samples`,
 //! `bsdf_samples` (integers, default shading_samples), `hide_emitters`; `direct_ems`,
 //! `direct_mats`, `direct_mis` (Wakame: 1/0, 0/1, 1/1 samples with the balance heuristic) take
@@ -30,7 +30,7 @@ pub struct IntegratorSpec {
     pub rr_depth: u32,
     /// Hide emitters seen by the camera.
     pub hide_emitters: bool,
-    /// Share light among 2x2 pixel groups (path tracers' `reuse`).
+    /// Share light among 4x2 pixel groups (path tracers' `reuse`).
     pub reuse: bool,
     /// MIS heuristic, when the file names one.
     pub heuristic: Option<Heuristic>,
