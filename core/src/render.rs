@@ -270,8 +270,6 @@ pub fn render_group_cached<P: Probe>(
     let (Some(lo), Some(hi)) = (lo, hi) else {
         return;
     };
-    let takes = |k: usize, index: u64| samples[k].contains(&index);
-    let mut out = [Color::ZERO; GROUP];
     match scene.sampler {
         SamplerKind::Independent => {
             for index in lo..hi {
@@ -279,19 +277,17 @@ pub fn render_group_cached<P: Probe>(
                     let (x, y) = pixels[k.min(n - 1)];
                     IndependentSampler::new(seed, x, y, index)
                 });
-                let taking = core::array::from_fn(|k| k < n && takes(k, index));
+                let group = &pixels[..n];
                 group_sample(
                     scene,
                     path,
-                    pixels,
-                    taking,
-                    &mut samplers[..n],
+                    group,
+                    samples,
+                    index,
+                    &mut samplers,
                     probe,
-                    &mut out,
+                    &mut add,
                 );
-                for k in (0..n).filter(|&k| taking[k]) {
-                    add(k, index, out[k]);
-                }
             }
         }
         SamplerKind::ZSobol { log2_spp } => {
@@ -304,39 +300,42 @@ pub fn render_group_cached<P: Probe>(
                     Some(z) => z.sampler(index),
                     None => unreachable!("every pixel cache was set above"),
                 });
-                let taking = core::array::from_fn(|k| k < n && takes(k, index));
+                let group = &pixels[..n];
                 group_sample(
                     scene,
                     path,
-                    pixels,
-                    taking,
-                    &mut samplers[..n],
+                    group,
+                    samples,
+                    index,
+                    &mut samplers,
                     probe,
-                    &mut out,
+                    &mut add,
                 );
-                for k in (0..n).filter(|&k| taking[k]) {
-                    add(k, index, out[k]);
-                }
             }
         }
     }
 }
 
-/// One sample of each pixel of a group that takes it (`taking`): camera rays drawn from those
-/// pixels' samplers, then the group estimator.
+/// Sample `index` of each pixel of a group (`pixels`) whose range in `samples` holds it: camera
+/// rays drawn from those pixels' samplers (`samplers[k]` is pixel `k`'s; the others, and any
+/// past the group's size, are not touched), then the group estimator; each value goes to
+/// `add(k, index, value)`.
 #[inline]
+#[allow(clippy::too_many_arguments)]
 fn group_sample<S: Sampler, P: Probe>(
     scene: &Scene,
     path: &PathIntegrator,
     pixels: &[(u32, u32)],
-    taking: [bool; GROUP],
-    samplers: &mut [S],
+    samples: &[Range<u64>],
+    index: u64,
+    samplers: &mut [S; GROUP],
     probe: &mut P,
-    out: &mut [Color; GROUP],
+    add: &mut impl FnMut(usize, u64, Color),
 ) {
+    let n = pixels.len();
     let mut rays = [None; GROUP];
-    for (k, s) in samplers.iter_mut().enumerate() {
-        if !taking[k] {
+    for (k, s) in samplers[..n].iter_mut().enumerate() {
+        if !samples[k].contains(&index) {
             continue;
         }
         let (x, y) = pixels[k];
@@ -346,8 +345,11 @@ fn group_sample<S: Sampler, P: Probe>(
         probe.camera(pos, &ray);
         rays[k] = Some(ray);
     }
-    let n = samplers.len();
-    path.li_group(scene, &rays[..n], samplers, probe, &mut out[..n]);
+    let mut out = [Color::ZERO; GROUP];
+    path.li_group(scene, &rays[..n], &mut samplers[..n], probe, &mut out[..n]);
+    for k in (0..n).filter(|&k| rays[k].is_some()) {
+        add(k, index, out[k]);
+    }
 }
 
 /// One camera sample of pixel `(x, y)` drawn from `sampler`.
