@@ -185,7 +185,10 @@ pub fn render_into(
 /// Brings every selected pixel of `fb` to `targets[i]` samples (`targets` row-major, one per
 /// pixel of the image), each pixel continuing from its own count (`count + dropped`);
 /// `opts.samples` is not used. Used by adaptive sampling, where pixels hold different counts:
-/// a pixel's bits equal a plain render of its first `targets[i]` samples. With `stop`, no tile
+/// a pixel's bits equal a plain render of its first `targets[i]` samples. (With path reuse, a
+/// sample's value also depends on which pixels of its group take it in this call, those whose
+/// range holds its index; tile edges are then rounded up so that tiles hold whole groups, see
+/// `render_groups.rs`.) With `stop`, no tile
 /// is started once it is set (the tiles not rendered keep their sums); returns whether every
 /// tile was rendered.
 ///
