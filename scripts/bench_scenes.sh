@@ -12,6 +12,8 @@
 # renderers) the wave-by-wave mean of N seeds (N times the time; MAX_SECONDS applies per seed).
 # REPEATS=N renders every curve (both renderers) N times and keeps each wave's least time.
 # ADAPTIVE=1 adds Tessera's adaptive-sampling curves (`--adaptive`), ADAPTIVE=only measures only those.
+# FRESH=1 renders each of Tessera's waves afresh (`--fresh`: the sampler set up for that wave's
+# samples, the wave timed alone), as Mitsuba's script does.
 # INTEGRATORS=a,b (default path_mis) names Tessera's curves, e.g. INTEGRATORS=path_mis,path_mis+reuse.
 # For a build tuned to this CPU, as Mitsuba's LLVM variant's kernels are (same image bits):
 #   RUSTFLAGS="-C target-cpu=native" cargo build --profile dist -p tessera --target-dir target/native
@@ -36,12 +38,15 @@ case "${ADAPTIVE:-}" in
     1) ADAPTIVE_FLAG=(--adaptive) ;;
     only) ADAPTIVE_FLAG=(--adaptive-only) ;;
 esac
+FRESH_FLAG=()
+if [ "${FRESH:-}" = 1 ]; then FRESH_FLAG=(--fresh); fi
 mkdir -p "$OUT"
 for NAME in cbox veach_mis; do
     REF="scenes/refs/${NAME}_128x128_mitsuba.exr"
     "$TESSERA" bench "scenes/$NAME.xml" -D res=128 -D rfilter=box --reference "$REF" \
         --integrators "$INTEGRATORS" --sampler "$SAMPLERS" --seeds "$SEEDS" --repeats "$REPEATS" --threads "$THREADS" \
-        --max-seconds "$MAX" ${ADAPTIVE_FLAG[@]+"${ADAPTIVE_FLAG[@]}"} -o "$OUT/$NAME.csv"
+        --max-seconds "$MAX" ${ADAPTIVE_FLAG[@]+"${ADAPTIVE_FLAG[@]}"} \
+        ${FRESH_FLAG[@]+"${FRESH_FLAG[@]}"} -o "$OUT/$NAME.csv"
     "$PYTHON" scripts/mitsuba_bench.py "scenes/$NAME.xml" -D res=128 -D rfilter=box \
         --reference "$REF" --variant "$VARIANTS" --seeds "$SEEDS" --repeats "$REPEATS" --threads "$THREADS" --max-seconds "$MAX" \
         -o "$OUT/$NAME.csv"

@@ -6,11 +6,14 @@
 //! scene's sampler as it is set up: `tessera bench` sets zsobol up for `--max-spp` samples, so
 //! its waves are the first `2^k` samples of every pixel's block of that size). A row's
 //! `seconds` is the wall time spent rendering that image (the sum of its waves), never the time
-//! spent measuring it.
+//! spent measuring it. [`fresh::run_fresh`] (`tessera bench --fresh`) instead renders each
+//! wave's image from scratch, the sampler set up for that wave's count, as a user's render and
+//! Mitsuba's bench script do.
 //!
 //! CSV columns ([`CSV_HEADER`]): `integrator, sampler, spp, threads, seconds,
 //! samples_per_second, rmse, relmse, mae`; `samples_per_second` is pixels x spp / seconds.
 //! `scripts/mitsuba_bench.py` appends rows of the same form (integrator `mitsuba:NAME`).
+pub mod fresh;
 pub mod mean;
 pub mod plot;
 pub mod ratio;

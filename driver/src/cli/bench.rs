@@ -1,6 +1,7 @@
 //! `tessera bench`: error against time for one or more integrators (see `crate::bench`), or
 //! (`--plot-only`) just the plot of an existing report, e.g. one with Mitsuba 3 rows appended by
 //! `scripts/mitsuba_bench.py`.
+use crate::bench::fresh::{fresh_name, run_fresh};
 use crate::bench::mean::mean_curve;
 use crate::bench::plot::write_plot;
 use crate::bench::ratio::{ratio, Ratio};
@@ -95,6 +96,12 @@ pub struct BenchArgs {
     /// Measure only the adaptive curves (implies --adaptive).
     #[arg(long)]
     pub adaptive_only: bool,
+    /// Render every wave's image afresh, with the sampler set up for that wave's sample count
+    /// (as `render --spp N` does, and as Mitsuba's bench script does), instead of continuing
+    /// one sequence set up for --max-spp; a row's time is then that render's alone. Curves are
+    /// named `NAME (SAMPLER+fresh)`; a curve costs about twice as long.
+    #[arg(long)]
+    pub fresh: bool,
 }
 
 fn usage(msg: impl std::fmt::Display) -> i32 {
@@ -285,9 +292,10 @@ pub fn run(args: &BenchArgs) -> i32 {
         if let Err(e) = loaded.set_sampler(s, args.max_spp) {
             return usage(e);
         }
-        let sampler = match adaptive {
-            Some(_) => format!("{}+adaptive", loaded.scene.sampler.name()),
-            None => loaded.scene.sampler.name().to_string(),
+        let sampler = match (adaptive, args.fresh) {
+            (a, true) => fresh_name(loaded.scene.sampler, a.is_some()),
+            (Some(_), false) => format!("{}+adaptive", loaded.scene.sampler.name()),
+            (None, false) => loaded.scene.sampler.name().to_string(),
         };
         let mut runs = Vec::new();
         for k in 0..args.seeds {
@@ -298,7 +306,14 @@ pub fn run(args: &BenchArgs) -> i32 {
             };
             let label = format!("{n} ({sampler}");
             match fastest_of_repeats(
-                args, &loaded, n, &label, &seeded, &reference, limits, adaptive,
+                args,
+                &mut loaded,
+                n,
+                &label,
+                &seeded,
+                &reference,
+                limits,
+                adaptive,
             ) {
                 Ok(r) => runs.push(r),
                 Err(e) => {
@@ -344,7 +359,7 @@ pub fn run(args: &BenchArgs) -> i32 {
 #[allow(clippy::too_many_arguments)]
 fn fastest_of_repeats(
     args: &BenchArgs,
-    loaded: &crate::scene::LoadedScene,
+    loaded: &mut crate::scene::LoadedScene,
     integrator: &str,
     label: &str,
     opts: &RenderOptions,
@@ -361,28 +376,43 @@ fn fastest_of_repeats(
         if args.repeats > 1 {
             note.push_str(&format!(" run {}", rep + 1));
         }
-        let (r, _) = run_waves(
-            &loaded.scene,
-            &loaded.integrator,
-            integrator,
-            opts,
-            reference,
-            limits,
-            adaptive,
-            &mut |row| {
-                if !args.quiet {
-                    eprintln!(
-                        "{label}{note}): {:>7} spp {:>9.3} s {:>7.3} M samples/s  relMSE {:.4e}  RMSE {:.4e}  MAE {:.4e}",
-                        row.spp,
-                        row.seconds,
-                        row.samples_per_second / 1e6,
-                        row.errors.relmse,
-                        row.errors.rmse,
-                        row.errors.mae
-                    );
-                }
-            },
-        );
+        let mut print = |row: &Row| {
+            if !args.quiet {
+                eprintln!(
+                    "{label}{note}): {:>7} spp {:>9.3} s {:>7.3} M samples/s  relMSE {:.4e}  RMSE {:.4e}  MAE {:.4e}",
+                    row.spp,
+                    row.seconds,
+                    row.samples_per_second / 1e6,
+                    row.errors.relmse,
+                    row.errors.rmse,
+                    row.errors.mae
+                );
+            }
+        };
+        let r = if args.fresh {
+            run_fresh(
+                &mut loaded.scene,
+                &loaded.integrator,
+                integrator,
+                opts,
+                reference,
+                limits,
+                adaptive,
+                &mut print,
+            )
+        } else {
+            let (r, _) = run_waves(
+                &loaded.scene,
+                &loaded.integrator,
+                integrator,
+                opts,
+                reference,
+                limits,
+                adaptive,
+                &mut print,
+            );
+            r
+        };
         runs.push(r);
     }
     fastest_curve(&runs)

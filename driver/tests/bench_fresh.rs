@@ -1,0 +1,198 @@
+//! `tessera bench --fresh`: each wave's image is a render from scratch with the sampler set up
+//! for that wave's sample count, bit for bit what `render --spp N` makes (and, for zsobol, not
+//! the continuing waves' image); adaptive fresh waves are the continuing schedule run from
+//! scratch; the command line names the curves `SAMPLER+fresh`. Nothing here depends on timing.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use tessera::bench::fresh::run_fresh;
+use tessera::bench::{errors, read_csv, run_waves, Row, WaveLimits};
+use tessera::image_io::{write_image, RgbImage};
+use tessera::render::{render, RenderOptions};
+use tessera::scene::{load_scene, LoadedScene};
+use tessera_core::adaptive::AdaptiveParams;
+
+const BIN: &str = env!("CARGO_BIN_EXE_tessera");
+
+fn cbox() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/cbox.xml")
+}
+
+/// The 12x12 box-filtered Cornell box with `sampler`.
+fn small_cbox(sampler: &str) -> LoadedScene {
+    let d: Vec<(String, String)> = [("res", "12"), ("rfilter", "box")]
+        .iter()
+        .map(|(k, v)| (k.to_string(), v.to_string()))
+        .collect();
+    let mut l = load_scene(&cbox(), &d).expect("cbox loads");
+    l.set_sampler(Some(sampler), 1 << 20).unwrap();
+    l
+}
+
+fn opts(samples: std::ops::Range<u64>) -> RenderOptions {
+    RenderOptions {
+        samples,
+        threads: 2,
+        tile_size: 5,
+        seed: 3,
+        pixels: Default::default(),
+    }
+}
+
+fn flat_reference(l: &LoadedScene) -> RgbImage {
+    let (w, h) = (l.scene.camera.width, l.scene.camera.height);
+    RgbImage {
+        width: w,
+        height: h,
+        data: vec![[0.2, 0.1, 0.05]; (w * h) as usize],
+    }
+}
+
+const LIMITS: WaveLimits = WaveLimits {
+    max_seconds: 1e9,
+    max_spp: 8,
+};
+
+/// The fresh rows of `l` (sampler restored afterwards, as the function promises).
+fn fresh(l: &mut LoadedScene, adaptive: Option<&AdaptiveParams>) -> Vec<Row> {
+    let before = l.scene.sampler;
+    let reference = flat_reference(l);
+    let mut seen = 0;
+    let rows = run_fresh(
+        &mut l.scene,
+        &l.integrator,
+        "path",
+        &opts(0..1),
+        &reference,
+        LIMITS,
+        adaptive,
+        &mut |_| seen += 1,
+    );
+    assert_eq!(l.scene.sampler, before, "the scene's sampler is restored");
+    assert_eq!(seen, rows.len());
+    assert_eq!(rows.iter().map(|r| r.spp).collect::<Vec<_>>(), [1, 2, 4, 8]);
+    rows
+}
+
+#[test]
+fn fresh_waves_are_plain_renders_set_up_for_their_count() {
+    let mut l = small_cbox("zsobol");
+    let reference = flat_reference(&l);
+    let rows = fresh(&mut l, None);
+    let (continuing, _) = run_waves(
+        &l.scene,
+        &l.integrator,
+        "path",
+        &opts(0..1),
+        &reference,
+        LIMITS,
+        None,
+        &mut |_| {},
+    );
+    let base = l.scene.sampler;
+    for (r, c) in rows.iter().zip(&continuing) {
+        assert_eq!(r.sampler, "zsobol+fresh");
+        l.scene.sampler = base.for_spp(r.spp);
+        let plain = render(&l.scene, &l.integrator, &opts(0..r.spp), &mut |_, _| {});
+        assert_eq!(
+            r.errors,
+            errors(&plain.rgb(), &reference.data),
+            "{} spp",
+            r.spp
+        );
+        // The continuing waves use the first samples of a 2^20 block, another image.
+        assert_ne!(r.errors, c.errors, "{} spp", r.spp);
+    }
+}
+
+#[test]
+fn fresh_and_continuing_agree_where_the_sampler_ignores_the_count() {
+    // The independent sampler draws the same samples whatever the count it is set up for.
+    let mut l = small_cbox("independent");
+    let reference = flat_reference(&l);
+    let rows = fresh(&mut l, None);
+    let (continuing, _) = run_waves(
+        &l.scene,
+        &l.integrator,
+        "path",
+        &opts(0..1),
+        &reference,
+        LIMITS,
+        None,
+        &mut |_| {},
+    );
+    for (r, c) in rows.iter().zip(&continuing) {
+        assert_eq!(r.sampler, "independent+fresh");
+        assert_eq!(r.errors, c.errors, "{} spp", r.spp);
+    }
+}
+
+#[test]
+fn adaptive_fresh_waves_run_the_schedule_from_scratch() {
+    let mut l = small_cbox("zsobol");
+    let reference = flat_reference(&l);
+    let params = AdaptiveParams::default();
+    let rows = fresh(&mut l, Some(&params));
+    let base = l.scene.sampler;
+    for r in &rows {
+        assert_eq!(r.sampler, "zsobol+adaptive+fresh");
+        l.scene.sampler = base.for_spp(r.spp);
+        let to = WaveLimits {
+            max_seconds: 1e9,
+            max_spp: r.spp,
+        };
+        let (waves, _) = run_waves(
+            &l.scene,
+            &l.integrator,
+            "path",
+            &opts(0..1),
+            &reference,
+            to,
+            Some(&params),
+            &mut |_| {},
+        );
+        assert_eq!(r.errors, waves.last().unwrap().errors, "{} spp", r.spp);
+    }
+    // Past the warm-up the schedule adapts: the 8 spp image is not the uniform one.
+    l.scene.sampler = base.for_spp(8);
+    let plain = render(&l.scene, &l.integrator, &opts(0..8), &mut |_, _| {});
+    assert_ne!(rows[3].errors, errors(&plain.rgb(), &reference.data));
+}
+
+#[test]
+fn cli_names_the_fresh_curves() {
+    let dir = std::env::temp_dir().join(format!("tessera-bench-fresh-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let l = small_cbox("independent");
+    let reference = dir.join("ref.exr");
+    write_image(&reference, &flat_reference(&l)).unwrap();
+    let csv = dir.join("r.csv");
+    let o = Command::new(BIN)
+        .arg("bench")
+        .arg(cbox())
+        .args(["-D", "res=12", "-D", "rfilter=box", "--reference"])
+        .arg(&reference)
+        .args(["--sampler", "zsobol", "--max-spp", "4", "--seed", "3"])
+        .args(["--threads", "2", "--adaptive", "--fresh", "-q", "-o"])
+        .arg(&csv)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0), "{o:?}");
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stdout.contains("path (zsobol+fresh) (2 threads): time to relMSE"),
+        "{stdout}"
+    );
+    let got: Vec<(String, u64)> = read_csv(&csv)
+        .unwrap()
+        .into_iter()
+        .map(|r| (r.sampler, r.spp))
+        .collect();
+    let want: Vec<(String, u64)> = ["zsobol+fresh", "zsobol+adaptive+fresh"]
+        .iter()
+        .flat_map(|s| [1, 2, 4].map(|n| (s.to_string(), n)))
+        .collect();
+    assert_eq!(got, want);
+    let _ = std::fs::remove_dir_all(&dir);
+}
