@@ -7,8 +7,9 @@
 //! block of 2^20 are not as well spread as a whole block of 8 (on cbox, reuse, 8 spp: 12% more
 //! relMSE). Mitsuba's bench script renders each wave from scratch. Here wave `k` does the same:
 //! a new framebuffer, the sampler set up for `2^k` samples ([`SamplerKind::for_spp`]), and the
-//! row's time is that render's time alone. The image is bit for bit a render with `sample_count` `2^k` and the same seed; with adaptive sampling it is the
-//! continuing waves' schedule run from scratch up to `2^k`.
+//! row's time is that render's time alone. The image is bit for bit a render with
+//! `sample_count` `2^k` and the same seed; with adaptive sampling it is the continuing waves'
+//! schedule run from scratch up to `2^k`.
 //!
 //! A curve costs about twice the continuing one (each wave repeats the work of all before it).
 //! Its rows name the sampler with `+fresh` appended (`zsobol+fresh`, `zsobol+adaptive+fresh`).
