@@ -53,6 +53,26 @@ const LIMITS: WaveLimits = WaveLimits {
     max_spp: 8,
 };
 
+/// The continuing waves' rows of `l` up to `limits.max_spp` (with the sampler as `l` has it).
+fn continuing(
+    l: &LoadedScene,
+    reference: &RgbImage,
+    limits: WaveLimits,
+    adaptive: Option<&AdaptiveParams>,
+) -> Vec<Row> {
+    let (rows, _) = run_waves(
+        &l.scene,
+        &l.integrator,
+        "path",
+        &opts(0..1),
+        reference,
+        limits,
+        adaptive,
+        &mut |_| {},
+    );
+    rows
+}
+
 /// The fresh rows of `l` (sampler restored afterwards, as the function promises).
 fn fresh(l: &mut LoadedScene, adaptive: Option<&AdaptiveParams>) -> Vec<Row> {
     let before = l.scene.sampler;
@@ -79,18 +99,8 @@ fn fresh_waves_are_plain_renders_set_up_for_their_count() {
     let mut l = small_cbox("zsobol");
     let reference = flat_reference(&l);
     let rows = fresh(&mut l, None);
-    let (continuing, _) = run_waves(
-        &l.scene,
-        &l.integrator,
-        "path",
-        &opts(0..1),
-        &reference,
-        LIMITS,
-        None,
-        &mut |_| {},
-    );
     let base = l.scene.sampler;
-    for (r, c) in rows.iter().zip(&continuing) {
+    for (r, c) in rows.iter().zip(&continuing(&l, &reference, LIMITS, None)) {
         assert_eq!(r.sampler, "zsobol+fresh");
         l.scene.sampler = base.for_spp(r.spp);
         let plain = render(&l.scene, &l.integrator, &opts(0..r.spp), &mut |_, _| {});
@@ -111,17 +121,7 @@ fn fresh_and_continuing_agree_where_the_sampler_ignores_the_count() {
     let mut l = small_cbox("independent");
     let reference = flat_reference(&l);
     let rows = fresh(&mut l, None);
-    let (continuing, _) = run_waves(
-        &l.scene,
-        &l.integrator,
-        "path",
-        &opts(0..1),
-        &reference,
-        LIMITS,
-        None,
-        &mut |_| {},
-    );
-    for (r, c) in rows.iter().zip(&continuing) {
+    for (r, c) in rows.iter().zip(&continuing(&l, &reference, LIMITS, None)) {
         assert_eq!(r.sampler, "independent+fresh");
         assert_eq!(r.errors, c.errors, "{} spp", r.spp);
     }
@@ -141,16 +141,7 @@ fn adaptive_fresh_waves_run_the_schedule_from_scratch() {
             max_seconds: 1e9,
             max_spp: r.spp,
         };
-        let (waves, _) = run_waves(
-            &l.scene,
-            &l.integrator,
-            "path",
-            &opts(0..1),
-            &reference,
-            to,
-            Some(&params),
-            &mut |_| {},
-        );
+        let waves = continuing(&l, &reference, to, Some(&params));
         assert_eq!(r.errors, waves.last().unwrap().errors, "{} spp", r.spp);
     }
     // Past the warm-up the schedule adapts: the 8 spp image is not the uniform one.
