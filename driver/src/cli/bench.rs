@@ -28,7 +28,8 @@ pub struct BenchArgs {
     #[arg(long, value_delimiter = ',')]
     pub integrators: Vec<String>,
     /// Samplers to measure, comma separated (independent, zsobol; default: the scene file's).
-    /// Each integrator is measured with each sampler; zsobol is set up for --max-spp samples.
+    /// Each integrator is measured with each sampler; zsobol is set up for --max-spp samples
+    /// (with --fresh, for each wave's count).
     #[arg(long, value_delimiter = ',')]
     pub sampler: Vec<String>,
     /// Stop a curve before a wave that would end after this many seconds.
@@ -97,9 +98,9 @@ pub struct BenchArgs {
     #[arg(long)]
     pub adaptive_only: bool,
     /// Render every wave's image afresh, with the sampler set up for that wave's sample count
-    /// (as a render with that `sample_count` does, and as Mitsuba's bench script does), instead of continuing
-    /// one sequence set up for --max-spp; a row's time is then that render's alone. Curves are
-    /// named `NAME (SAMPLER+fresh)`; a curve costs about twice as long.
+    /// (as a render with that `sample_count` does, and as Mitsuba's bench script does), instead
+    /// of continuing one sequence set up for --max-spp; a row's time is then that render's
+    /// alone. Curves are named `NAME (SAMPLER+fresh)`; a curve costs about twice as long.
     #[arg(long)]
     pub fresh: bool,
 }
