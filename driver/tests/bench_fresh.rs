@@ -1,16 +1,17 @@
 //! `tessera bench --fresh`: each wave's image is a render from scratch with the sampler set up
 //! for that wave's sample count, bit for bit what `render --spp N` makes (and, for zsobol, not
 //! the continuing waves' image); adaptive fresh waves are the continuing schedule run from
-//! scratch; the command line names the curves `SAMPLER+fresh`. Nothing here depends on timing.
+//! scratch with zsobol set up as `render --adaptive` sets it up, bit for bit that command's
+//! image; the command line names the curves `SAMPLER+fresh`. Nothing here depends on timing.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use tessera::bench::fresh::run_fresh;
 use tessera::bench::{errors, read_csv, run_waves, Row, WaveLimits};
-use tessera::image_io::{write_image, RgbImage};
+use tessera::image_io::{read_image, write_image, RgbImage};
 use tessera::render::{render, RenderOptions};
 use tessera::scene::{load_scene, LoadedScene};
-use tessera_core::adaptive::AdaptiveParams;
+use tessera_core::adaptive::{AdaptiveParams, ZSOBOL_BLOCK_FACTOR};
 
 const BIN: &str = env!("CARGO_BIN_EXE_tessera");
 
@@ -134,20 +135,68 @@ fn adaptive_fresh_waves_run_the_schedule_from_scratch() {
     let params = AdaptiveParams::default();
     let rows = fresh(&mut l, Some(&params));
     let base = l.scene.sampler;
-    for r in &rows {
-        assert_eq!(r.sampler, "zsobol+adaptive+fresh");
-        l.scene.sampler = base.for_spp(r.spp);
+    let schedule = |l: &mut LoadedScene, spp: u64, block: u64| {
+        l.scene.sampler = base.for_spp(block);
         let to = WaveLimits {
             max_seconds: 1e9,
-            max_spp: r.spp,
+            max_spp: spp,
         };
-        let waves = continuing(&l, &reference, to, Some(&params));
-        assert_eq!(r.errors, waves.last().unwrap().errors, "{} spp", r.spp);
+        continuing(l, &reference, to, Some(&params))
+            .last()
+            .unwrap()
+            .errors
+    };
+    for r in &rows {
+        assert_eq!(r.sampler, "zsobol+adaptive+fresh");
+        // zsobol's blocks are ZSOBOL_BLOCK_FACTOR times the wave's count, as in render --adaptive.
+        let want = schedule(&mut l, r.spp, r.spp * ZSOBOL_BLOCK_FACTOR);
+        assert_eq!(r.errors, want, "{} spp", r.spp);
+        // Control: blocks of the count itself give another image.
+        assert_ne!(r.errors, schedule(&mut l, r.spp, r.spp), "{} spp", r.spp);
     }
     // Past the warm-up the schedule adapts: the 8 spp image is not the uniform one.
-    l.scene.sampler = base.for_spp(8);
+    l.scene.sampler = base.for_spp(8 * ZSOBOL_BLOCK_FACTOR);
     let plain = render(&l.scene, &l.integrator, &opts(0..8), &mut |_, _| {});
     assert_ne!(rows[3].errors, errors(&plain.rgb(), &reference.data));
+}
+
+#[test]
+fn adaptive_fresh_wave_is_what_render_adaptive_writes() {
+    let dir = std::env::temp_dir().join(format!("tessera-fresh-render-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut l = small_cbox("zsobol");
+    let reference = flat_reference(&l);
+    let rows = fresh(&mut l, Some(&AdaptiveParams::default()));
+    for r in &rows[1..] {
+        let out = dir.join(format!("{}.exr", r.spp));
+        let o = Command::new(BIN)
+            .arg("render")
+            .arg(cbox())
+            .args(["-D", "res=12", "-D", "rfilter=box", "-D"])
+            .arg(format!("spp={}", r.spp))
+            .args([
+                "--sampler",
+                "zsobol",
+                "--adaptive",
+                "--seed",
+                "3",
+                "-q",
+                "-o",
+            ])
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(0), "{o:?}");
+        let image = read_image(&out).unwrap();
+        assert_eq!(
+            r.errors,
+            errors(&image.data, &reference.data),
+            "{} spp",
+            r.spp
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]

@@ -8,8 +8,11 @@
 //! relMSE). Mitsuba's bench script renders each wave from scratch. Here wave `k` does the same:
 //! a new framebuffer, the sampler set up for `2^k` samples ([`SamplerKind::for_spp`]), and the
 //! row's time is that render's time alone. The image is bit for bit a render with
-//! `sample_count` `2^k` and the same seed; with adaptive sampling it is the continuing waves'
-//! schedule run from scratch up to `2^k`.
+//! `sample_count` `2^k` and the same seed. With adaptive sampling it is the continuing waves'
+//! schedule run from scratch up to `2^k`, with the sampler set up as `render --adaptive` sets
+//! it up for `sample_count` `2^k` (zsobol blocks [`ZSOBOL_BLOCK_FACTOR`] times the count, so the
+//! noisiest pixels, which take several times the mean, stay in one stratified block): bit for
+//! bit that command's image.
 //!
 //! A curve costs about twice the continuing one (each wave repeats the work of all before it).
 //! Its rows name the sampler with `+fresh` appended (`zsobol+fresh`, `zsobol+adaptive+fresh`).
@@ -17,7 +20,7 @@ use super::{errors, run_waves, Row, WaveLimits};
 use crate::image_io::RgbImage;
 use crate::render::{render_into, Framebuffer, RenderOptions};
 use std::time::Instant;
-use tessera_core::adaptive::AdaptiveParams;
+use tessera_core::adaptive::{AdaptiveParams, ZSOBOL_BLOCK_FACTOR};
 use tessera_core::integrator::Integrator;
 use tessera_core::sampling::SamplerKind;
 use tessera_core::scene::Scene;
@@ -25,7 +28,8 @@ use tessera_core::scene::Scene;
 /// Renders `integrator` afresh at 1, 2, 4, ... spp until a limit is reached (no render starts
 /// whose predicted time, twice the last one's, passes `limits.max_seconds`; the first always
 /// runs), calling `on_wave` with each row; returns the rows. `scene.sampler` is set up for each
-/// wave's count in turn and restored before returning.
+/// wave's count in turn (as `render --adaptive` sets it up, with `adaptive`) and restored before
+/// returning.
 #[allow(clippy::too_many_arguments)]
 pub fn run_fresh(
     scene: &mut Scene,
@@ -47,7 +51,11 @@ pub fn run_fresh(
                 break;
             }
         }
-        scene.sampler = base.for_spp(spp);
+        let block = match adaptive {
+            Some(_) => spp.saturating_mul(ZSOBOL_BLOCK_FACTOR),
+            None => spp,
+        };
+        scene.sampler = base.for_spp(block);
         let (seconds, rgb) = match adaptive {
             Some(a) => {
                 let to_spp = WaveLimits {
