@@ -52,14 +52,18 @@ fn main() {
         "8/embR",
         "agree"
     );
-    // `CAST_ONLY=bvh8|g8|embree|none` (for callgrind and perf): `CAST_PASSES` (default 1) passes of
-    // the random rays, closest hit, with one of the two on the first size, then exit.
+    // `CAST_ONLY=bvh8|g8|embree|robust|none` (for callgrind and perf): `CAST_PASSES` (default 1)
+    // passes of the random rays, closest hit, with one of them on the first size, then exit
+    // (`embree` is its default mode, `robust` its robust mode, the one the table's `embR` is).
     let only = std::env::var("CAST_ONLY").ok();
     for (label, target) in wanted_sizes() {
         let (positions, indices) = bumpy_sphere(frequency_for(target));
         if let Some(which) = &only {
             let pos: Vec<[f32; 3]> = positions.iter().map(|p| p.to_array()).collect();
-            let embree = Embree::new(&pos, &indices);
+            let embree = match which.as_str() {
+                "robust" => Embree::with_mode(&pos, &indices, Mode::Robust),
+                _ => Embree::new(&pos, &indices),
+            };
             let scene = Scene::with_build_params(mesh_parts(positions, indices), build_params())
                 .expect("valid scene");
             let w8 = WideScene::<Bvh8>::new(&scene, build_params());
@@ -69,7 +73,7 @@ fn main() {
             let found = std::iter::repeat_n(random.iter(), passes)
                 .flatten()
                 .filter(|r| match which.as_str() {
-                    "embree" => embree.intersect(r).is_some(),
+                    "embree" | "robust" => embree.intersect(r).is_some(),
                     "none" => false,
                     "g8" => g8.intersect_hit(r).is_some(),
                     _ => w8.intersect_hit(r).is_some(),
