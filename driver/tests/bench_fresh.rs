@@ -49,6 +49,14 @@ fn flat_reference(l: &LoadedScene) -> RgbImage {
     }
 }
 
+/// An empty folder of this process for test `name`'s files.
+fn empty_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("tessera-fresh-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
 const LIMITS: WaveLimits = WaveLimits {
     max_seconds: 1e9,
     max_spp: 8,
@@ -162,9 +170,7 @@ fn adaptive_fresh_waves_run_the_schedule_from_scratch() {
 
 #[test]
 fn adaptive_fresh_wave_is_what_render_adaptive_writes() {
-    let dir = std::env::temp_dir().join(format!("tessera-fresh-render-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = empty_dir("render");
     let mut l = small_cbox("zsobol");
     let reference = flat_reference(&l);
     let rows = fresh(&mut l, Some(&AdaptiveParams::default()));
@@ -201,9 +207,7 @@ fn adaptive_fresh_wave_is_what_render_adaptive_writes() {
 
 #[test]
 fn cli_names_the_fresh_curves() {
-    let dir = std::env::temp_dir().join(format!("tessera-bench-fresh-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = empty_dir("cli");
     let l = small_cbox("independent");
     let reference = dir.join("ref.exr");
     write_image(&reference, &flat_reference(&l)).unwrap();

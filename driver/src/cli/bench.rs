@@ -99,9 +99,9 @@ pub struct BenchArgs {
     pub adaptive_only: bool,
     /// Render every wave's image afresh, with the sampler set up for that wave's sample count
     /// (as a render with that `sample_count` does, adaptive ones as `render --adaptive` does,
-    /// and as Mitsuba's bench script does), instead
-    /// of continuing one sequence set up for --max-spp; a row's time is then that render's
-    /// alone. Curves are named `NAME (SAMPLER+fresh)`; a curve costs about twice as long.
+    /// and as Mitsuba's bench script does), instead of continuing one sequence set up for
+    /// --max-spp; a row's time is then that render's alone. Curves are named
+    /// `NAME (SAMPLER+fresh)`; a curve costs about twice as long.
     #[arg(long)]
     pub fresh: bool,
 }
