@@ -83,8 +83,8 @@ impl Bvh {
             .collect();
         let mut nodes = Vec::with_capacity(2 * items.len().max(1));
         if !items.is_empty() {
-            let n = items.len();
-            build_node(&mut items, 0, n, 0, &params, &mut nodes);
+            let (n, range) = (items.len(), RangeBounds::of(&items));
+            build_node(&mut items, 0, n, range, 0, &params, &mut nodes);
         }
         (Bvh { nodes }, items.iter().map(|it| it.index).collect())
     }
@@ -142,93 +142,169 @@ impl Bvh {
     }
 }
 
-fn make_leaf(items: &[Item], start: usize, end: usize, bounds: Aabb, nodes: &mut Vec<BvhNode>) {
+fn make_leaf(start: usize, end: usize, bounds: Aabb, nodes: &mut Vec<BvhNode>) {
     nodes.push(BvhNode {
         bounds,
         offset: start as u32,
         count: (end - start) as u16,
         axis: 0,
     });
-    let _ = items;
+}
+
+/// The boxes around a range of items and around their centroids.
+#[derive(Clone, Copy)]
+struct RangeBounds {
+    bounds: Aabb,
+    centroids: Aabb,
+}
+
+impl RangeBounds {
+    fn of(items: &[Item]) -> RangeBounds {
+        RangeBounds {
+            bounds: items.iter().fold(Aabb::EMPTY, |b, it| b.union(it.bounds)),
+            centroids: items.iter().fold(Aabb::EMPTY, |b, it| b.grow(it.centroid)),
+        }
+    }
+}
+
+/// The items whose centroids fall in one bin along one axis.
+#[derive(Clone, Copy)]
+struct Bin {
+    bounds: Aabb,
+    count: usize,
+}
+
+impl Bin {
+    const EMPTY: Bin = Bin {
+        bounds: Aabb::EMPTY,
+        count: 0,
+    };
+}
+
+/// The cheapest split found: its SAH cost, axis, last bin of the left side, and the boxes of
+/// the two sides (the unions of their bins, which are the unions of their items).
+struct Split {
+    cost: f32,
+    axis: usize,
+    bin: usize,
+    left: Aabb,
+    right: Aabb,
+}
+
+/// The bin of a centroid coordinate `c` along an axis whose centroids start at `min` (`scale`
+/// is `BINS` over the centroids' extent).
+#[inline(always)]
+fn bin_of(c: f32, min: f32, scale: f32) -> usize {
+    (((c - min) * scale) as usize).min(BINS - 1)
+}
+
+/// Bins the items along every axis of positive centroid extent in one pass over them, then
+/// sweeps each axis's bins for the cheapest split.
+fn best_split(slice: &[Item], cb: &Aabb, params: &BuildParams) -> Option<Split> {
+    let ext = cb.extent();
+    let axes: [bool; 3] =
+        core::array::from_fn(|a| ext[a].partial_cmp(&0.0) == Some(core::cmp::Ordering::Greater));
+    let scale: [f32; 3] = core::array::from_fn(|a| BINS as f32 / ext[a]);
+    let mut bins = [[Bin::EMPTY; BINS]; 3];
+    for it in slice {
+        for axis in 0..3 {
+            if axes[axis] {
+                let bin = &mut bins[axis][bin_of(it.centroid[axis], cb.min[axis], scale[axis])];
+                bin.count += 1;
+                bin.bounds = bin.bounds.union(it.bounds);
+            }
+        }
+    }
+    let mut best: Option<Split> = None;
+    for axis in (0..3).filter(|&a| axes[a]) {
+        let bins = &bins[axis];
+        // Sweep from the right to get the suffix boxes, then from the left.
+        let mut right = [Bin::EMPTY; BINS];
+        let mut acc = Bin::EMPTY;
+        for i in (1..BINS).rev() {
+            acc.bounds = acc.bounds.union(bins[i].bounds);
+            acc.count += bins[i].count;
+            right[i] = acc;
+        }
+        let mut left = Bin::EMPTY;
+        for i in 0..BINS - 1 {
+            left.bounds = left.bounds.union(bins[i].bounds);
+            left.count += bins[i].count;
+            let r = &right[i + 1];
+            if left.count == 0 || r.count == 0 {
+                continue;
+            }
+            let cost = left.bounds.area() * params.leaf_cost(left.count)
+                + r.bounds.area() * params.leaf_cost(r.count);
+            if best.as_ref().is_none_or(|b| cost < b.cost) {
+                best = Some(Split {
+                    cost,
+                    axis,
+                    bin: i,
+                    left: left.bounds,
+                    right: r.bounds,
+                });
+            }
+        }
+    }
+    best
 }
 
 fn build_node(
     items: &mut [Item],
     start: usize,
     end: usize,
+    range: RangeBounds,
     depth: usize,
     params: &BuildParams,
     nodes: &mut Vec<BvhNode>,
 ) {
-    let slice = &items[start..end];
-    let bounds = slice.iter().fold(Aabb::EMPTY, |b, it| b.union(it.bounds));
-    let cb = slice.iter().fold(Aabb::EMPTY, |b, it| b.grow(it.centroid));
+    let RangeBounds {
+        bounds,
+        centroids: cb,
+    } = range;
     let count = end - start;
     if count == 1 || depth >= MAX_DEPTH && count <= u16::MAX as usize {
-        return make_leaf(items, start, end, bounds, nodes);
-    }
-    let ext = cb.extent();
-    let mut best: Option<(f32, usize, usize)> = None; // (cost, axis, split bin)
-    for axis in 0..3 {
-        if ext[axis].partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
-            continue;
-        }
-        let mut bin_bounds = [Aabb::EMPTY; BINS];
-        let mut bin_count = [0usize; BINS];
-        let scale = BINS as f32 / ext[axis];
-        for it in slice {
-            let b = (((it.centroid[axis] - cb.min[axis]) * scale) as usize).min(BINS - 1);
-            bin_count[b] += 1;
-            bin_bounds[b] = bin_bounds[b].union(it.bounds);
-        }
-        // Sweep from the right to get suffix areas, then from the left.
-        let mut right_area = [0.0f32; BINS];
-        let mut right_count = [0usize; BINS];
-        let (mut rb, mut rc) = (Aabb::EMPTY, 0usize);
-        for i in (1..BINS).rev() {
-            rb = rb.union(bin_bounds[i]);
-            rc += bin_count[i];
-            right_area[i] = rb.area();
-            right_count[i] = rc;
-        }
-        let (mut lb, mut lc) = (Aabb::EMPTY, 0usize);
-        for i in 0..BINS - 1 {
-            lb = lb.union(bin_bounds[i]);
-            lc += bin_count[i];
-            if lc == 0 || right_count[i + 1] == 0 {
-                continue;
-            }
-            let cost = lb.area() * params.leaf_cost(lc)
-                + right_area[i + 1] * params.leaf_cost(right_count[i + 1]);
-            if best.is_none_or(|(c, _, _)| cost < c) {
-                best = Some((cost, axis, i));
-            }
-        }
+        return make_leaf(start, end, bounds, nodes);
     }
     let area = bounds.area();
-    let split = match best {
-        Some((cost, axis, bin)) => {
-            let split_cost = params.traversal_cost + if area > 0.0 { cost / area } else { 0.0 };
+    let split = match best_split(&items[start..end], &cb, params) {
+        Some(sp) => {
+            let split_cost = params.traversal_cost + if area > 0.0 { sp.cost / area } else { 0.0 };
             if count <= params.max_leaf && split_cost >= params.leaf_cost(count) {
-                return make_leaf(items, start, end, bounds, nodes);
+                return make_leaf(start, end, bounds, nodes);
             }
-            let scale = BINS as f32 / ext[axis];
+            let (axis, bin) = (sp.axis, sp.bin);
+            let scale = BINS as f32 / cb.extent()[axis];
             let minc = cb.min[axis];
-            let mid = partition(&mut items[start..end], |it| {
-                (((it.centroid[axis] - minc) * scale) as usize).min(BINS - 1) <= bin
+            let (mid, lc, rc) = partition(&mut items[start..end], |it| {
+                bin_of(it.centroid[axis], minc, scale) <= bin
             });
-            Some((axis, start + mid))
+            let left = RangeBounds {
+                bounds: sp.left,
+                centroids: lc,
+            };
+            let right = RangeBounds {
+                bounds: sp.right,
+                centroids: rc,
+            };
+            Some((axis, start + mid, left, right))
         }
         None => None,
     };
-    let (axis, mid) = match split {
+    let (axis, mid, left, right) = match split {
         Some(s) if s.1 > start && s.1 < end => s,
         _ => {
             // All centroids coincide: a leaf if small, else split by index to bound leaf size.
             if count <= params.max_leaf * 4 {
-                return make_leaf(items, start, end, bounds, nodes);
+                return make_leaf(start, end, bounds, nodes);
             }
-            (0, start + count / 2)
+            let mid = start + count / 2;
+            let (left, right) = (
+                RangeBounds::of(&items[start..mid]),
+                RangeBounds::of(&items[mid..end]),
+            );
+            (0, mid, left, right)
         }
     };
     let me = nodes.len();
@@ -238,18 +314,24 @@ fn build_node(
         count: 0,
         axis: axis as u16,
     });
-    build_node(items, start, mid, depth + 1, params, nodes);
+    build_node(items, start, mid, left, depth + 1, params, nodes);
     nodes[me].offset = nodes.len() as u32;
-    build_node(items, mid, end, depth + 1, params, nodes);
+    build_node(items, mid, end, right, depth + 1, params, nodes);
 }
 
-fn partition(items: &mut [Item], pred: impl Fn(&Item) -> bool) -> usize {
+/// Moves the items for which `pred` holds to the front (in the order a swapping scan leaves
+/// them); returns how many there are and the boxes around the centroids of each side.
+fn partition(items: &mut [Item], pred: impl Fn(&Item) -> bool) -> (usize, Aabb, Aabb) {
     let mut first = 0;
+    let (mut lc, mut rc) = (Aabb::EMPTY, Aabb::EMPTY);
     for i in 0..items.len() {
         if pred(&items[i]) {
+            lc = lc.grow(items[i].centroid);
             items.swap(first, i);
             first += 1;
+        } else {
+            rc = rc.grow(items[i].centroid);
         }
     }
-    first
+    (first, lc, rc)
 }
