@@ -179,6 +179,13 @@ impl Bin {
         bounds: Aabb::EMPTY,
         count: 0,
     };
+
+    /// Adds `count` items whose union is `bounds`.
+    #[inline(always)]
+    fn add(&mut self, bounds: Aabb, count: usize) {
+        self.bounds = self.bounds.union(bounds);
+        self.count += count;
+    }
 }
 
 /// The cheapest split found: its SAH cost, axis, last bin of the left side, and the boxes of
@@ -209,9 +216,7 @@ fn best_split(slice: &[Item], cb: &Aabb, params: &BuildParams) -> Option<Split> 
     for it in slice {
         for axis in 0..3 {
             if axes[axis] {
-                let bin = &mut bins[axis][bin_of(it.centroid[axis], cb.min[axis], scale[axis])];
-                bin.count += 1;
-                bin.bounds = bin.bounds.union(it.bounds);
+                bins[axis][bin_of(it.centroid[axis], cb.min[axis], scale[axis])].add(it.bounds, 1);
             }
         }
     }
@@ -222,14 +227,12 @@ fn best_split(slice: &[Item], cb: &Aabb, params: &BuildParams) -> Option<Split> 
         let mut right = [Bin::EMPTY; BINS];
         let mut acc = Bin::EMPTY;
         for i in (1..BINS).rev() {
-            acc.bounds = acc.bounds.union(bins[i].bounds);
-            acc.count += bins[i].count;
+            acc.add(bins[i].bounds, bins[i].count);
             right[i] = acc;
         }
         let mut left = Bin::EMPTY;
         for i in 0..BINS - 1 {
-            left.bounds = left.bounds.union(bins[i].bounds);
-            left.count += bins[i].count;
+            left.add(bins[i].bounds, bins[i].count);
             let r = &right[i + 1];
             if left.count == 0 || r.count == 0 {
                 continue;
