@@ -302,6 +302,18 @@ pub enum Mode {
     Mitsuba,
 }
 
+/// Embree's device configuration: one thread, plus `EMBREE_CONFIG` if set (for example
+/// `EMBREE_CONFIG=isa=avx2` to time Embree's AVX2 kernels on a host where it would pick AVX-512).
+fn device_config() -> std::ffi::CString {
+    let extra = std::env::var("EMBREE_CONFIG").unwrap_or_default();
+    let config = if extra.is_empty() {
+        "threads=1".to_string()
+    } else {
+        format!("threads=1,{extra}")
+    };
+    std::ffi::CString::new(config).expect("EMBREE_CONFIG has no NUL byte")
+}
+
 impl Embree {
     /// A scene of one triangle mesh in the default (fast) mode.
     pub fn new(positions: &[[f32; 3]], indices: &[[u32; 3]]) -> Embree {
@@ -314,11 +326,12 @@ impl Embree {
         let mut vertices: Vec<f32> = positions.iter().flatten().copied().collect();
         vertices.push(0.0);
         let idx: Vec<u32> = indices.iter().flatten().copied().collect();
+        let config = device_config();
         // SAFETY: the config is a NUL-terminated string; every handle passed on is the non-null
         // one Embree returned (checked); the shared buffers point into `vertices` and `idx`, whose
         // heap storage lives (unmoved) in the returned struct as long as the scene.
         unsafe {
-            let device = rtcNewDevice(c"threads=1".as_ptr());
+            let device = rtcNewDevice(config.as_ptr());
             assert!(!device.is_null(), "rtcNewDevice failed");
             let scene = rtcNewScene(device);
             let geom = rtcNewGeometry(device, GEOMETRY_TYPE_TRIANGLE);

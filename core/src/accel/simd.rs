@@ -3,11 +3,22 @@
 //! lane-by-lane test (`hit_scalar`) whose bits the SIMD tests of [`super::simd8`] reproduce.
 //!
 //! The test uses IEEE subtraction and multiplication (no fused multiply-add) in a fixed order,
-//! and the NaN rule of SSE's `minps`/`maxps`: when a comparison is unordered the second operand
-//! is returned. The running bound is always the second operand, so a NaN slab distance (`0 *
-//! inf`: the origin on a slab plane of an axis the ray is parallel to) is dropped and the slab
-//! does not cull, which is conservative. No `unsafe` here: the intrinsics are in
-//! [`super::simd8`].
+//! and reduces the slab distances with integer `max`/`min` on their bit patterns (`pmaxsd`,
+//! `pminsd`: one cycle each, where float `maxps`/`minps` take four, and the reductions lie on
+//! the path from a node's load to the next node's), then compares the two as integers.
+//! - Entry: the running value starts at `+0`, so the integer order is the float order: positive
+//!   floats compare as their bits do, and every negative value (`-0`, and the NaN of `0 * inf`
+//!   when the origin lies on a plane of an axis the ray is parallel to, negative on x86) falls
+//!   below `+0` and is dropped. The portable loop drops a NaN explicitly, whatever its sign.
+//! - Exit: distances are measured from an origin a float or two behind the ray's along each axis
+//!   ([`RayPre::o_far`]). An exit plane at or beyond the origin then gives a positive distance
+//!   (through the origin: a tiny one, or `+inf` for a parallel axis, never `0 * inf`), and a zero
+//!   or negative exit means a plane truly behind the origin. Those cull, `-0` included, which is
+//!   why the integer comparison may treat `-0` as negative. The one NaN left (a parallel axis
+//!   whose plane lies exactly on that moved origin) also means "behind" and culls.
+//!
+//! The mask keeps the float test's guarantee: it never drops a box the ray meets within
+//! `[0, t_max]`. No `unsafe` here: the intrinsics are in [`super::simd8`].
 
 use crate::math::{gamma, Ray};
 
@@ -19,10 +30,17 @@ pub const MAX_X: usize = 3;
 /// What the slab test needs of a ray, computed once per ray.
 #[derive(Clone, Copy, Debug)]
 pub struct RayPre {
-    /// Origin.
+    /// Origin, for entry distances.
     pub o: [f32; 3],
+    /// Origin for exit distances: `o` moved back along each axis (against the sign of `inv`) by
+    /// one or two floats, so an exit plane through the origin gives a positive distance (see the
+    /// module).
+    pub o_far: [f32; 3],
     /// `1 / d` per axis (`±inf` for a zero component, by the sign of that zero).
     pub inv: [f32; 3],
+    /// `inv * FAR_SCALE`: the exit distances' widening folded into the inverse (the same number
+    /// of roundings as widening the reduced distance).
+    pub inv_far: [f32; 3],
     /// Per axis, the row (of SoA boxes) of the plane the ray enters by.
     pub near: [usize; 3],
     /// Per axis, the row of the plane the ray leaves by.
@@ -34,17 +52,25 @@ impl RayPre {
     #[inline]
     pub fn new(ray: &Ray) -> RayPre {
         let inv = [1.0 / ray.d.x, 1.0 / ray.d.y, 1.0 / ray.d.z];
+        let o = ray.o.to_array();
         let mut near = [0; 3];
         let mut far = [0; 3];
+        let mut o_far = o;
         for a in 0..3 {
             // `1 / -0.0` is `-inf`: a negative zero direction enters by the max plane.
             let neg = inv[a] < 0.0;
             near[a] = if neg { MAX_X + a } else { MIN_X + a };
             far[a] = if neg { MIN_X + a } else { MAX_X + a };
+            // At least one float back (`|o| 2^-23` is one or two units in the last place, the
+            // least subnormal covers `o = 0`), without the branches of `next_up`/`next_down`.
+            let back = o[a].abs() * f32::EPSILON + f32::from_bits(1);
+            o_far[a] = o[a] - back.copysign(inv[a]);
         }
         RayPre {
-            o: ray.o.to_array(),
+            o,
+            o_far,
             inv,
+            inv_far: inv.map(|i| i * FAR_SCALE),
             near,
             far,
         }
@@ -54,31 +80,18 @@ impl RayPre {
 /// Widening of the exit distance that covers the rounding of the slab test (as pbrt-v4).
 pub(super) const FAR_SCALE: f32 = 1.0 + 2.0 * gamma(3);
 
-/// `minps` on one lane: `a` if `a < b`, else `b` (also when either is NaN).
+/// A float's bits as a signed integer, the order the reductions use.
 #[inline(always)]
-fn min_sse(a: f32, b: f32) -> f32 {
-    if a < b {
-        a
-    } else {
-        b
-    }
-}
-
-/// `maxps` on one lane: `a` if `a > b`, else `b` (also when either is NaN).
-#[inline(always)]
-fn max_sse(a: f32, b: f32) -> f32 {
-    if a > b {
-        a
-    } else {
-        b
-    }
+pub(super) fn key(t: f32) -> i32 {
+    t.to_bits() as i32
 }
 
 /// The portable slab test on `N` boxes in SoA rows (`rows[MIN_X + axis][lane]`,
 /// `rows[MAX_X + axis][lane]`): bit `i` of the mask is set when the ray meets box `i` within
 /// `[0, t_max]`; `t_near[i]` is where it enters (meaningful for set bits only). Lane by lane the
 /// operations of the SSE and AVX2 tests; the eight-box reference
-/// ([`super::simd8::hit8_scalar`]) is this one.
+/// ([`super::simd8::hit8_scalar`]) is this one. NaN distances are handled explicitly (an entry
+/// dropped, an exit culls), as the integer reductions handle x86's NaN, whose sign bit is set.
 #[inline]
 pub(super) fn hit_scalar<const N: usize>(
     rows: &[[f32; N]; 6],
@@ -88,16 +101,17 @@ pub(super) fn hit_scalar<const N: usize>(
     let mut mask = 0;
     let mut t_near = [0.0f32; N];
     for (lane, tn_out) in t_near.iter_mut().enumerate() {
-        let mut tn = 0.0f32;
-        let mut tf = f32::INFINITY;
+        let mut tn = key(0.0);
+        let mut tf = key(t_max);
         for a in 0..3 {
             let t0 = (rows[ray.near[a]][lane] - ray.o[a]) * ray.inv[a];
-            let t1 = (rows[ray.far[a]][lane] - ray.o[a]) * ray.inv[a];
-            tn = max_sse(t0, tn);
-            tf = min_sse(t1, tf);
+            let t1 = (rows[ray.far[a]][lane] - ray.o_far[a]) * ray.inv_far[a];
+            if !t0.is_nan() {
+                tn = tn.max(key(t0));
+            }
+            tf = tf.min(if t1.is_nan() { i32::MIN } else { key(t1) });
         }
-        tf = min_sse(tf * FAR_SCALE, t_max);
-        *tn_out = tn;
+        *tn_out = f32::from_bits(tn as u32);
         if tn <= tf {
             mask |= 1 << lane;
         }

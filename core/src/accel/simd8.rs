@@ -1,9 +1,9 @@
 //! Eight ray-box slab tests at once, for the 8-wide BVH: one of the crate's few modules allowed
 //! `unsafe`.
 //!
-//! Three versions compute the same bits, with the operations, order and NaN rule of
-//! [`super::simd`] (IEEE subtraction and multiplication, no fused multiply-add; `min`/`max` as
-//! SSE's `minps`/`maxps`, which return the second operand when a comparison is unordered):
+//! Three versions compute the same bits, with the operations and order of [`super::simd`] (IEEE
+//! subtraction and multiplication, no fused multiply-add; the distances reduced with integer
+//! `max`/`min` on their bits):
 //! - [`hit8_avx2`]: one 256-bit register per bound, on CPUs that have AVX2, detected at run time
 //!   ([`Avx2::detect`]) since the binary targets the x86-64 baseline;
 //! - [`hit8_sse`]: two 128-bit halves, the portable x86_64 version (SSE2 is in the baseline);
@@ -18,7 +18,7 @@
 //! and SSE intrinsics outside a `#[target_feature]` function. Each block says why it is sound.
 #![allow(unsafe_code)]
 
-use super::simd::{hit_scalar, RayPre, FAR_SCALE, MAX_X, MIN_X};
+use super::simd::{hit_scalar, RayPre, MAX_X, MIN_X};
 use super::tri4::{test4, Lanes, Ray4, Tri4};
 use super::tri8::{test8_portable, Lanes8};
 
@@ -56,11 +56,21 @@ pub fn hit8_scalar(boxes: &Boxes8, ray: &RayPre, t_max: f32) -> (u32, [f32; 8]) 
     hit_scalar(&boxes.b, ray, t_max)
 }
 
-/// The slab test on two SSE halves; same contract and bits as [`hit8_scalar`].
+/// The slab test on two SSE halves; same contract and bits as [`hit8_scalar`]. SSE2 has no
+/// `pmaxsd`/`pminsd` (SSE4.1): a compare and a blend stand in for them.
 #[cfg(target_arch = "x86_64")]
 #[inline]
 pub fn hit8_sse(boxes: &Boxes8, ray: &RayPre, t_max: f32) -> (u32, [f32; 8]) {
     use core::arch::x86_64::*;
+    // SAFETY (both helpers): SSE2 is in the x86_64 baseline; register operations only.
+    let max = |a: __m128i, b: __m128i| unsafe {
+        let gt = _mm_cmpgt_epi32(a, b);
+        _mm_or_si128(_mm_and_si128(gt, a), _mm_andnot_si128(gt, b))
+    };
+    let min = |a: __m128i, b: __m128i| unsafe {
+        let gt = _mm_cmpgt_epi32(a, b);
+        _mm_or_si128(_mm_and_si128(gt, b), _mm_andnot_si128(gt, a))
+    };
     let mut t_near = [0.0f32; 8];
     let mut mask = 0;
     for half in 0..2 {
@@ -70,27 +80,33 @@ pub fn hit8_sse(boxes: &Boxes8, ray: &RayPre, t_max: f32) -> (u32, [f32; 8]) {
         // an `[f32; 8]` borrowed for the call (`loadu` needs no alignment); the store writes
         // four f32s at `at..at + 4` of the local `[f32; 8]` `t_near`.
         mask |= unsafe {
-            let mut tn = _mm_setzero_ps();
-            let mut tf = _mm_set1_ps(f32::INFINITY);
+            let mut tn = _mm_setzero_si128();
+            let mut tf = _mm_castps_si128(_mm_set1_ps(t_max));
             for a in 0..3 {
-                let o = _mm_set1_ps(ray.o[a]);
-                let inv = _mm_set1_ps(ray.inv[a]);
                 let near = _mm_loadu_ps(boxes.b[ray.near[a]].as_ptr().add(at));
                 let far = _mm_loadu_ps(boxes.b[ray.far[a]].as_ptr().add(at));
-                let t0 = _mm_mul_ps(_mm_sub_ps(near, o), inv);
-                let t1 = _mm_mul_ps(_mm_sub_ps(far, o), inv);
-                tn = _mm_max_ps(t0, tn);
-                tf = _mm_min_ps(t1, tf);
+                let t0 = _mm_mul_ps(
+                    _mm_sub_ps(near, _mm_set1_ps(ray.o[a])),
+                    _mm_set1_ps(ray.inv[a]),
+                );
+                let t1 = _mm_mul_ps(
+                    _mm_sub_ps(far, _mm_set1_ps(ray.o_far[a])),
+                    _mm_set1_ps(ray.inv_far[a]),
+                );
+                tn = max(_mm_castps_si128(t0), tn);
+                tf = min(_mm_castps_si128(t1), tf);
             }
-            tf = _mm_min_ps(_mm_mul_ps(tf, _mm_set1_ps(FAR_SCALE)), _mm_set1_ps(t_max));
-            _mm_storeu_ps(t_near.as_mut_ptr().add(at), tn);
-            (_mm_movemask_ps(_mm_cmple_ps(tn, tf)) as u32) << at
+            _mm_storeu_si128(t_near.as_mut_ptr().add(at).cast(), tn);
+            // Hit where not `tn > tf`.
+            ((_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpgt_epi32(tn, tf))) ^ 0xf) as u32) << at
         };
     }
     (mask, t_near)
 }
 
-/// The AVX2 slab test; same contract and bits as [`hit8_scalar`].
+/// The AVX2 slab test; same contract and bits as [`hit8_scalar`]. The reductions are balanced
+/// (two levels of one-cycle integer operations), so the mask is ready one subtraction, one
+/// multiplication and about four cycles after the node's boxes arrive.
 ///
 /// # Safety
 /// Callable (safely) only from code compiled with AVX2; elsewhere the caller must know the CPU
@@ -101,11 +117,9 @@ pub fn hit8_sse(boxes: &Boxes8, ray: &RayPre, t_max: f32) -> (u32, [f32; 8]) {
 pub fn hit8_avx2(boxes: &Boxes8, ray: &RayPre, t_max: f32) -> (u32, [f32; 8]) {
     use core::arch::x86_64::*;
     let mut t_near = [0.0f32; 8];
-    let mut tn = _mm256_setzero_ps();
-    let mut tf = _mm256_set1_ps(f32::INFINITY);
+    let mut t0 = [_mm256_setzero_si256(); 3];
+    let mut t1 = [_mm256_setzero_si256(); 3];
     for a in 0..3 {
-        let o = _mm256_set1_ps(ray.o[a]);
-        let inv = _mm256_set1_ps(ray.inv[a]);
         // SAFETY: each load reads the eight f32s of a row of `boxes.b`, an `[f32; 8]` borrowed
         // for the call (`loadu` needs no alignment).
         let (near, far) = unsafe {
@@ -114,20 +128,31 @@ pub fn hit8_avx2(boxes: &Boxes8, ray: &RayPre, t_max: f32) -> (u32, [f32; 8]) {
                 _mm256_loadu_ps(boxes.b[ray.far[a]].as_ptr()),
             )
         };
-        let t0 = _mm256_mul_ps(_mm256_sub_ps(near, o), inv);
-        let t1 = _mm256_mul_ps(_mm256_sub_ps(far, o), inv);
-        tn = _mm256_max_ps(t0, tn);
-        tf = _mm256_min_ps(t1, tf);
+        let o = _mm256_set1_ps(ray.o[a]);
+        let o_far = _mm256_set1_ps(ray.o_far[a]);
+        t0[a] = _mm256_castps_si256(_mm256_mul_ps(
+            _mm256_sub_ps(near, o),
+            _mm256_set1_ps(ray.inv[a]),
+        ));
+        t1[a] = _mm256_castps_si256(_mm256_mul_ps(
+            _mm256_sub_ps(far, o_far),
+            _mm256_set1_ps(ray.inv_far[a]),
+        ));
     }
-    tf = _mm256_min_ps(
-        _mm256_mul_ps(tf, _mm256_set1_ps(FAR_SCALE)),
-        _mm256_set1_ps(t_max),
+    // Integer max/min are exact and associative: the balanced order gives the scalar loop's bits.
+    let tn = _mm256_max_epi32(
+        _mm256_max_epi32(t0[0], t0[1]),
+        _mm256_max_epi32(t0[2], _mm256_setzero_si256()),
+    );
+    let tf = _mm256_min_epi32(
+        _mm256_min_epi32(t1[0], t1[1]),
+        _mm256_min_epi32(t1[2], _mm256_castps_si256(_mm256_set1_ps(t_max))),
     );
     // SAFETY: the store writes the eight f32s of the local `t_near`, exclusively borrowed here.
-    unsafe { _mm256_storeu_ps(t_near.as_mut_ptr(), tn) };
-    // `_CMP_LE_OQ` is `cmpleps`: false when either side is NaN, as `tn <= tf` in the scalar test.
-    let mask = _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(tn, tf)) as u32;
-    (mask, t_near)
+    unsafe { _mm256_storeu_si256(t_near.as_mut_ptr().cast(), tn) };
+    // Hit where not `tn > tf`.
+    let miss = _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(tn, tf))) as u32;
+    (miss ^ 0xff, t_near)
 }
 
 /// Asks the CPU to bring the first `bytes` bytes of `slice[i]` into the cache: a hint, with no
