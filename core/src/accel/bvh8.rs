@@ -7,6 +7,7 @@
 //! been found; any hit stops at the first hit. Nodes are stored depth
 //! first, the root at index 0; a child is either an interior node (its index) or a leaf (a range
 //! of the primitive order returned by the build).
+use super::entry::{nearest_first, Entry};
 use super::leaves::FnLeaves;
 use super::simd::{RayPre, MAX_X, MIN_X};
 use super::simd8::{prefetch_in, Avx2, Boxes8, Hit8, Portable, WithHit8};
@@ -85,14 +86,6 @@ impl Default for Bvh8 {
             avx2: None,
         }
     }
-}
-
-/// A postponed child: node index or first primitive, leaf count (0 for a node), entry distance.
-#[derive(Clone, Copy, Default)]
-struct Entry {
-    child: u32,
-    count: u32,
-    t_near: f32,
 }
 
 /// Entries of the traversal stack kept in the function's frame. A node pushes at most 7 entries
@@ -367,47 +360,12 @@ impl Bvh8 {
                         }
                         continue;
                     }
-                    let first = entry(mask.trailing_zeros() as usize);
-                    mask &= mask - 1;
-                    if mask == 0 {
-                        // One child hit (the common case deep down): no sorting.
-                        cur = first;
-                        continue;
-                    }
                     if mask & (mask - 1) == 0 {
-                        // Two children hit: go on with the nearer, push the other (on a tie the
-                        // lower lane goes first, as in the sort below), without the round trip
-                        // through the stack.
-                        let second = entry(mask.trailing_zeros() as usize);
-                        let (near, far) = if first.t_near <= second.t_near {
-                            (first, second)
-                        } else {
-                            (second, first)
-                        };
-                        stack[sp] = far;
-                        sp += 1;
-                        cur = near;
+                        // One child hit (the common case deep down): no sorting.
+                        cur = entry(mask.trailing_zeros() as usize);
                         continue;
                     }
-                    // Push the hit children sorted by entry distance, farthest deepest (equal
-                    // distances in lane order, which accel/root.rs reproduces): an insertion sort
-                    // in place on the top of the stack, then pop the nearest.
-                    let base = sp;
-                    stack[sp] = first;
-                    sp += 1;
-                    while mask != 0 {
-                        let e = entry(mask.trailing_zeros() as usize);
-                        mask &= mask - 1;
-                        let mut j = sp;
-                        while j > base && stack[j - 1].t_near <= e.t_near {
-                            stack[j] = stack[j - 1];
-                            j -= 1;
-                        }
-                        stack[j] = e;
-                        sp += 1;
-                    }
-                    sp -= 1;
-                    cur = stack[sp];
+                    cur = nearest_first(mask, entry, stack, &mut sp);
                     continue;
                 }
             } else {

@@ -6,6 +6,7 @@ mod bvh;
 mod bvh8;
 mod collapse;
 mod counts;
+mod entry;
 mod leaves;
 mod root;
 pub mod simd;
