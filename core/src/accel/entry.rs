@@ -75,3 +75,60 @@ pub(super) fn nearest_first(
     *sp = top - 1;
     stack[top - 1]
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use alloc::vec::Vec;
+
+    /// Every mask of two to eight hit lanes, with distances drawn from a few values (so ties are
+    /// common): the nearest comes back and the stack, read from the top, holds the rest, in the
+    /// order of a stable sort by distance (lane order on ties).
+    #[test]
+    fn orders_as_a_stable_sort_by_distance() {
+        let mut state = 12345u32;
+        let mut next = || {
+            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            state >> 16
+        };
+        for mask in 0u32..256 {
+            if mask.count_ones() < 2 {
+                continue;
+            }
+            for _ in 0..50 {
+                let t: Vec<f32> = (0..8).map(|_| (next() % 4) as f32 * 0.5).collect();
+                let entry = |lane: usize| Entry {
+                    child: lane as u32,
+                    count: 0,
+                    t_near: t[lane],
+                };
+                let mut want: Vec<usize> = (0..8).filter(|&l| mask & (1 << l) != 0).collect();
+                want.sort_by(|&a, &b| t[a].total_cmp(&t[b]));
+                let mut stack = [Entry::default(); 16];
+                let mut sp = 3; // entries already on the stack stay untouched
+                let near = nearest_first(mask, entry, &mut stack, &mut sp);
+                let mut got = alloc::vec![near.child as usize];
+                got.extend(stack[3..sp].iter().rev().map(|e| e.child as usize));
+                assert_eq!(got, want, "mask {mask:08b}, distances {t:?}");
+            }
+        }
+    }
+
+    /// All distances equal: lane order throughout (both tests fail when the exchanges swap on
+    /// ties, checked by hand with `<=` in `order`).
+    #[test]
+    fn ties_keep_lane_order() {
+        let entry = |lane: usize| Entry {
+            child: lane as u32,
+            count: 0,
+            t_near: 1.0,
+        };
+        for mask in [0b11u32, 0b1011, 0b1111_0000] {
+            let mut stack = [Entry::default(); 8];
+            let mut sp = 0;
+            let near = nearest_first(mask, entry, &mut stack, &mut sp);
+            assert_eq!(near.child, mask.trailing_zeros());
+            assert!(stack[..sp].windows(2).all(|w| w[0].child > w[1].child));
+        }
+    }
+}
