@@ -10,7 +10,7 @@
 //!   floats compare as their bits do, and every negative value (`-0`, and the NaN of `0 * inf`
 //!   when the origin lies on a plane of an axis the ray is parallel to, negative on x86) falls
 //!   below `+0` and is dropped. The portable loop drops a NaN explicitly, whatever its sign.
-//! - Exit: distances are measured from an origin a float or two behind the ray's along each axis
+//! - Exit: distances are measured from an origin at least a float behind the ray's along each axis
 //!   ([`RayPre::o_far`]). An exit plane at or beyond the origin then gives a positive distance
 //!   (through the origin: a tiny one, or `+inf` for a parallel axis, never `0 * inf`), and a zero
 //!   or negative exit means a plane truly behind the origin. Those cull, `-0` included, which is
@@ -33,8 +33,8 @@ pub struct RayPre {
     /// Origin, for entry distances.
     pub o: [f32; 3],
     /// Origin for exit distances: `o` moved back along each axis (against the sign of `inv`) by
-    /// one or two floats (by the least normal float where `o` is zero), so an exit plane through
-    /// the origin gives a positive distance (see the module).
+    /// at least one float (one or two, except near zero, where the least normal float is the
+    /// step), so an exit plane through the origin gives a positive distance (see the module).
     pub o_far: [f32; 3],
     /// `1 / d` per axis (`±inf` for a zero component, by the sign of that zero).
     pub inv: [f32; 3],
@@ -84,7 +84,7 @@ pub(super) const FAR_SCALE: f32 = 1.0 + 2.0 * gamma(3);
 
 /// A float's bits as a signed integer, the order the reductions use.
 #[inline(always)]
-pub(super) fn key(t: f32) -> i32 {
+fn key(t: f32) -> i32 {
     t.to_bits() as i32
 }
 
