@@ -14,6 +14,12 @@ use tessera_core::math::{Aabb, Norm, Ray, Transform};
 use tessera_core::scene::{Scene, SceneParts};
 use tessera_core::texture::Texture;
 
+/// The `tessera` binary's allocator (jemalloc with transparent huge pages), so the benches time
+/// casts in memory laid out as a render's is.
+#[cfg(not(target_env = "msvc"))]
+#[global_allocator]
+static ALLOCATOR: tikv_jemallocator::Jemalloc = tikv_jemallocator::Jemalloc;
+
 /// A small deterministic generator (SplitMix64).
 pub struct Rng(pub u64);
 

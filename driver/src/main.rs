@@ -4,6 +4,13 @@ use clap::error::ErrorKind;
 use clap::Parser;
 use tessera::cli::{Cli, Command};
 
+/// jemalloc, built to back its mappings with transparent huge pages (`.cargo/config.toml`): a
+/// large scene's acceleration structure then takes few TLB entries (see the README's
+/// "Against Embree" section for what it measured).
+#[cfg(not(target_env = "msvc"))]
+#[global_allocator]
+static ALLOCATOR: tikv_jemallocator::Jemalloc = tikv_jemallocator::Jemalloc;
+
 fn main() {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
