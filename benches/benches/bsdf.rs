@@ -7,10 +7,10 @@ use glam::{Vec2, Vec3};
 use std::hint::black_box;
 use std::path::Path;
 use std::time::Duration;
-use tessera::xml::Kind;
 use tessera_benches::Rng;
 use tessera_core::bsdf::Bsdf;
 use tessera_core::math::Norm;
+use tessera_scene::xml::Kind;
 
 const CASES: [(&str, &str); 3] = [
     (
@@ -38,9 +38,9 @@ const N: usize = 4096;
 
 fn build(xml: &str) -> Bsdf {
     let text = format!("<scene version=\"3.0.0\">\n{xml}\n</scene>\n");
-    let root = tessera::xml::load_str(&text, Path::new("bench.xml"), &[]).expect("parses");
+    let root = tessera_scene::xml::load_str(&text, Path::new("bench.xml"), &[]).expect("parses");
     let child = root.children_of(Kind::Bsdf).next().expect("a <bsdf>");
-    tessera::scene::build_bsdf_object(&child.obj).expect("builds")
+    tessera_scene::build_bsdf_object(&child.obj).expect("builds")
 }
 
 fn upper(rng: &mut Rng) -> Vec3 {

@@ -34,12 +34,12 @@ use embree_ffi::{Embree, Mode, RawPacket16};
 use glam::{Vec2, Vec3};
 use std::path::Path;
 use std::time::Instant;
-use tessera::scene::load_scene;
 use tessera_benches::Rng;
 use tessera_core::emitter::Emitter;
 use tessera_core::geometry::{Interaction, Prim};
 use tessera_core::math::Ray;
 use tessera_core::scene::Scene;
+use tessera_scene::load_scene;
 
 /// Rays cast per second by `cast`, which takes a chunk (a few rays, or a packet) and returns
 /// how many hit: best of `rounds` rounds of at least 0.2 s each over `chunks`, which hold `rays`

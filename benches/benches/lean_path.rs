@@ -47,7 +47,6 @@ use glam::{Vec2, Vec3};
 use std::path::Path;
 use std::time::Instant;
 use tessera::render::{render, RenderOptions};
-use tessera::scene::load_scene;
 use tessera_core::bsdf::Bsdf;
 use tessera_core::emitter::Emitter;
 use tessera_core::geometry::{interpolate_point, Prim, ShapeKind, SHADOW_EPSILON};
@@ -57,6 +56,7 @@ use tessera_core::sampling::zsobol::{log2_spp_for, to_unit};
 use tessera_core::sampling::{dimension_of, Sampler, SamplerKind, Stage, ZSobolPixel};
 use tessera_core::scene::Scene;
 use tessera_core::texture::Texture;
+use tessera_scene::load_scene;
 
 #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
 #[path = "lean_path/f8.rs"]
@@ -675,7 +675,7 @@ fn main() {
             .map_or(String::from("no reference"), |r| {
                 format!(
                     "relMSE {:.3e}",
-                    tessera::bench::errors(&images[j], &r.data).relmse
+                    tessera_lab::bench::errors(&images[j], &r.data).relmse
                 )
             });
         println!(

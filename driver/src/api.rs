@@ -1,5 +1,5 @@
 //! The driver as a library: load a scene (from a file or from text), render it on worker
-//! threads, get the image. These are thin, documented entry points over [`crate::scene`] and
+//! threads, get the image. These are thin, documented entry points over [`tessera_scene`] and
 //! [`crate::render`], for programs that embed Tessera instead of calling the `tessera` command.
 //!
 //! ```no_run
@@ -7,11 +7,11 @@
 //! let image = tessera::render(&scene, &tessera::Options { spp: Some(16), ..Default::default() });
 //! tessera::image_io::write_image("cbox.png".as_ref(), &image).expect("the image is written");
 //! ```
-use crate::error::InputError;
 use crate::image_io::RgbImage;
 use crate::render::RenderOptions;
-use crate::scene::{load_scene, load_scene_str, LoadedScene};
 use std::path::Path;
+use tessera_scene::error::InputError;
+use tessera_scene::{load_scene, load_scene_str, LoadedScene};
 
 /// A rendered image: linear RGB, row-major, top row first.
 pub type Image = RgbImage;

@@ -5,7 +5,7 @@
 //! Only 8-bit sRGB PNG outputs get an overlay; EXR and PFM data are never touched. The text size
 //! follows the image ([`text_size`]), so the label reads the same at 256x256 and at 4K; the band
 //! covers rows [`label_band`]`..height`, the full width, whatever the text says.
-use crate::bench::text::{Anchor, TextPainter};
+use crate::text::{Anchor, TextPainter};
 use tiny_skia::{Color, Pixmap, PremultipliedColorU8};
 
 /// What to draw.

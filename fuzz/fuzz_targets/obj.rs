@@ -10,8 +10,8 @@ mod common;
 fuzz_target!(|data: &[u8]| {
     let path = common::put("input.obj", data);
     for r in [
-        tessera::mesh::load_obj(&path).map(|m| vec![m]),
-        tessera::mesh::load_obj_with_materials(&path).map(|p| {
+        tessera_scene::mesh::load_obj(&path).map(|m| vec![m]),
+        tessera_scene::mesh::load_obj_with_materials(&path).map(|p| {
             p.plain
                 .into_iter()
                 .chain(p.by_material.into_iter().map(|x| x.1))

@@ -9,7 +9,7 @@ mod common;
 
 fuzz_target!(|data: &[u8]| {
     let path = common::put("input.ply", data);
-    match tessera::mesh::load_ply(&path) {
+    match tessera_scene::mesh::load_ply(&path) {
         Ok(m) => m.validate(&path).expect("a loaded mesh validates"),
         Err(e) => assert!(!e.to_string().contains('\n'), "multi-line error: {e}"),
     }

@@ -17,7 +17,7 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     let path = common::dir().join("scene.xml");
-    let loaded = match tessera::scene::load_scene_str(text, &path, &[]) {
+    let loaded = match tessera_scene::load_scene_str(text, &path, &[]) {
         Ok(l) => l,
         Err(e) => {
             assert!(!e.to_string().contains('\n'), "multi-line error: {e}");

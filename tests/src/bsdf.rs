@@ -1,10 +1,10 @@
 //! Helpers shared by the material tests: build one `<bsdf>` from XML text, directions by angle,
 //! the chi-square configuration and check, and the located-error check for bad parameters.
 use glam::{Vec2, Vec3};
-use tessera::error::InputError;
-use tessera::stats::{sidak_alpha, BsdfChi2, Chi2Result};
-use tessera::xml::Kind;
 use tessera_core::bsdf::Bsdf;
+use tessera_lab::stats::{sidak_alpha, BsdfChi2, Chi2Result};
+use tessera_scene::error::InputError;
+use tessera_scene::xml::Kind;
 
 /// Builds the first `<bsdf>` of `xml`, written inside `<scene version="3.0.0">` (Mitsuba 3) or,
 /// with `nori`, inside a plain `<scene>` (Nori's camelCase names). The text is read as if it
@@ -17,12 +17,12 @@ pub fn build_bsdf_xml(xml: &str, nori: bool) -> Result<Bsdf, InputError> {
     };
     let text = format!("{open}\n{xml}\n</scene>\n");
     let path = crate::scenes_dir().join("case.xml");
-    let root = tessera::xml::load_str(&text, &path, &[])?;
+    let root = tessera_scene::xml::load_str(&text, &path, &[])?;
     let child = root
         .children_of(Kind::Bsdf)
         .next()
         .ok_or_else(|| root.error("no <bsdf> in the snippet"))?;
-    tessera::scene::build_bsdf_object(&child.obj)
+    tessera_scene::build_bsdf_object(&child.obj)
 }
 
 /// [`build_bsdf_xml`] for Mitsuba 3 syntax, panicking with the error.

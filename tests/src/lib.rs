@@ -2,7 +2,7 @@
 //! text, and turn per-pixel sums into the numbers statistical tests need.
 use std::path::{Path, PathBuf};
 use tessera::render::{render, Framebuffer, RenderOptions};
-use tessera::scene::{load_scene, load_scene_str, LoadedScene};
+use tessera_scene::{load_scene, load_scene_str, LoadedScene};
 
 /// The repository's `scenes/` folder.
 pub fn scenes_dir() -> PathBuf {

@@ -5,9 +5,9 @@
 //! file, for every integrator that can handle the case (one that cannot, such as BSDF sampling
 //! with a point light, must give exactly zero). A control shows the test rejects a reference 1%
 //! off.
-use tessera::stats::{sidak_alpha, t_test_from_sums};
 use tessera_core::glam::{DMat4, DVec3};
 use tessera_core::math::Norm;
+use tessera_lab::stats::{sidak_alpha, t_test_from_sums};
 use tessera_tests::analytic_scenes::{
     self as scenes, closed_sphere, over_diffuse_plane, sphere_light,
 };
@@ -27,7 +27,7 @@ fn alpha() -> f64 {
 }
 
 /// Loads `xml` and switches to integrator `name` (with `max_depth` for path tracers).
-fn load_with(xml: &str, name: &str, max_depth: Option<i64>) -> tessera::scene::LoadedScene {
+fn load_with(xml: &str, name: &str, max_depth: Option<i64>) -> tessera_scene::LoadedScene {
     let mut loaded = load_xml(xml, &[]);
     loaded
         .set_integrator(Some(name), max_depth)

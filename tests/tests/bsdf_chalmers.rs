@@ -11,10 +11,10 @@
 //! the wrong probability and a 1%-off albedo are rejected.
 
 use glam::{Vec2, Vec3};
-use tessera::stats::{
+use tessera_core::bsdf::Bsdf;
+use tessera_lab::stats::{
     sampled_albedo, sidak_alpha, t_test_mean, BsdfChi2, Chi2Result, Moments, Pcg32, SphereChi2,
 };
-use tessera_core::bsdf::Bsdf;
 use tessera_tests::bsdf::{build_bsdf_xml, load_bsdf_xml};
 
 /// Chi-square cases (11) plus albedo t-tests (11).

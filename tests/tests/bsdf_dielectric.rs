@@ -16,9 +16,9 @@
 // Reference values are kept as the reference renderer printed them.
 #![allow(clippy::excessive_precision)]
 use glam::{Vec2, Vec3};
-use tessera::stats::{BsdfChi2, Chi2Result, Pcg32, SphereChi2};
 use tessera_core::bsdf::Bsdf;
 use tessera_core::math::Norm;
+use tessera_lab::stats::{BsdfChi2, Chi2Result, Pcg32, SphereChi2};
 use tessera_tests::bsdf::{
     assert_bad_bsdf as bad, assert_chi2_passes, dir_at as dir, load_bsdf_xml as load, rough_xml,
     uniform_direction, CHI2_HALF as CHI2,

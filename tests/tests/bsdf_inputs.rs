@@ -5,9 +5,9 @@
 //! change with it somewhere, so the comparison can fail.
 use glam::{Vec2, Vec3};
 use std::path::Path;
-use tessera::scene::load_bsdf_file;
-use tessera::stats::Pcg32;
 use tessera_core::bsdf::{Bsdf, BsdfSample, Mirror};
+use tessera_lab::stats::Pcg32;
+use tessera_scene::load_bsdf_file;
 use tessera_tests::bsdf::{load_bsdf_xml, uniform_direction};
 
 const UV: Vec2 = Vec2::new(0.25, 0.75);

@@ -12,7 +12,7 @@
 use std::path::{Path, PathBuf};
 
 use glam::{Vec2, Vec3};
-use tessera::scene::load_bsdf_file;
+use tessera_scene::load_bsdf_file;
 
 const UV: Vec2 = Vec2::new(0.25, 0.75);
 

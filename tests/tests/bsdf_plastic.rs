@@ -7,13 +7,13 @@
 //! the file; test `k` uses seed `k`. Run with `--nocapture` to see every p-value.
 
 use glam::{Vec2, Vec3};
-use tessera::error::InputError;
-use tessera::stats::{sampled_albedo, sidak_alpha, BsdfChi2, Pcg32, SphereChi2};
 use tessera_core::bsdf::fresnel::fresnel_dielectric;
 use tessera_core::bsdf::microfacet::MicrofacetKind;
 use tessera_core::bsdf::plastic_common::fresnel_diffuse_reflectance;
 use tessera_core::bsdf::{Bsdf, RoughPlastic};
 use tessera_core::texture::Texture;
+use tessera_lab::stats::{sampled_albedo, sidak_alpha, BsdfChi2, Pcg32, SphereChi2};
+use tessera_scene::error::InputError;
 use tessera_tests::bsdf::{assert_cases_rejected_on_their_line, build_bsdf_xml};
 
 /// Chi-square tests in this file: 5 `plastic` cases, 11 `roughplastic` cases.

@@ -9,7 +9,7 @@
 //! with too few samples) exits 2 with one `file:line:col: message` line.
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
-use tessera::cli::test::{run_to, TestArgs};
+use tessera_cli::test::{run_to, TestArgs};
 
 fn dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("bsdf_tests")

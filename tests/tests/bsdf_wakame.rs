@@ -7,12 +7,12 @@
 //! p-values.
 
 use glam::{Vec2, Vec3};
-use tessera::error::InputError;
-use tessera::stats::{
-    sampled_albedo, sidak_alpha, t_test_mean, BsdfChi2, Moments, Pcg32, SphereChi2,
-};
 use tessera_core::bsdf::Bsdf;
 use tessera_core::math::Norm;
+use tessera_lab::stats::{
+    sampled_albedo, sidak_alpha, t_test_mean, BsdfChi2, Moments, Pcg32, SphereChi2,
+};
+use tessera_scene::error::InputError;
 use tessera_tests::bsdf::{assert_cases_rejected_on_their_line, build_bsdf_xml};
 
 /// Chi-square tests of `microfacet` sampling.

@@ -5,7 +5,7 @@
 //! 0.01, Sidak-corrected over all regions, channels and pairs of a test.
 use tessera::image_io::read_image;
 use tessera::render::Framebuffer;
-use tessera::stats::sidak_alpha;
+use tessera_lab::stats::sidak_alpha;
 use tessera_tests::{
     load_file, region_stats, render_like_mitsuba, render_loaded, scenes_dir,
     worst_against_reference, worst_region,

@@ -9,7 +9,7 @@
 //! control shows that the test rejects a reference 1% off.
 use std::f64::consts::PI;
 use tessera::image_io::{write_image, RgbImage};
-use tessera::stats::{sidak_alpha, t_test_from_sums};
+use tessera_lab::stats::{sidak_alpha, t_test_from_sums};
 use tessera_tests::{load_xml, render_loaded};
 
 /// Number of t-tests in this file (cases x integrators x channels), for the Sidak correction:

@@ -1,7 +1,7 @@
 //! Chi-square goodness-of-fit tests of the direction sampling of the lights at infinity against
 //! their own `pdf_environment`, and of the 2-D distribution behind the environment map.
 //!
-//! Each test draws 1e6 samples through the `tessera::stats` harness with a fixed seed: test `k`
+//! Each test draws 1e6 samples through the `tessera_lab::stats` harness with a fixed seed: test `k`
 //! in the order of [`N_TESTS`]'s list uses seed `k`. The whole file fails with probability 1% if
 //! every sampler is right: each test runs at `sidak_alpha(0.01, N_TESTS)`. Every result is
 //! printed (`--nocapture` shows the p-values). Coordinates that bin the samples (cap squares,
@@ -12,11 +12,11 @@ use std::f64::consts::{PI, TAU};
 use tessera_core::math::{Frame, Norm};
 
 use glam::{DMat3, DVec3, Vec2, Vec3};
-use tessera::stats::{sidak_alpha, Chi2Result, PlaneChi2, SphereChi2};
 use tessera_core::emitter::{DistantDisk, Emitter, EmitterCtx, EnvMap};
 use tessera_core::geometry::Interaction;
 use tessera_core::sampling::Distribution2D;
 use tessera_core::Color;
+use tessera_lab::stats::{sidak_alpha, Chi2Result, PlaneChi2, SphereChi2};
 use tessera_tests::cap::{cap_coords, cap_dir, frame_around};
 
 /// Number of chi-square tests in this file (one per seed):
@@ -160,7 +160,7 @@ fn t01_distribution2d() {
     );
     check("Distribution2D 7x5 with empty cells", &r);
     // The density it reports is the one it samples.
-    let mut rng = tessera::stats::Pcg32::new(100);
+    let mut rng = tessera_lab::stats::Pcg32::new(100);
     for _ in 0..10_000 {
         let (p, pdf) = d.sample(rng.next_vec2()).expect("a sample");
         assert_eq!(

@@ -8,7 +8,7 @@
 //! regions, channels and pairs of a test.
 use tessera::image_io::read_image;
 use tessera::render::Framebuffer;
-use tessera::stats::sidak_alpha;
+use tessera_lab::stats::sidak_alpha;
 use tessera_tests::{
     load_file, region_stats, render_loaded, scenes_dir, worst_against_reference, worst_region,
 };
@@ -101,7 +101,7 @@ fn envmap_scene_matches_mitsuba() {
 }
 
 /// Worst region p-value of `loaded` at 512 spp against the Mitsuba reference.
-fn worst_against_mitsuba(loaded: &tessera::scene::LoadedScene) -> (f64, String) {
+fn worst_against_mitsuba(loaded: &tessera_scene::LoadedScene) -> (f64, String) {
     let ours = render_loaded(loaded, 512, 11);
     let reference =
         read_image(&scenes_dir().join("refs/envmap_64x64_mitsuba.exr")).expect("reference image");
@@ -135,7 +135,7 @@ fn comparison_rejects_a_turned_sky() {
         text, turned,
         "the scene's envmap rotation changed; update this test"
     );
-    let loaded = tessera::scene::load_scene_str(
+    let loaded = tessera_scene::load_scene_str(
         &turned,
         &scenes_dir().join(SCENE),
         &[

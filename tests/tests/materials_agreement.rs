@@ -9,8 +9,8 @@
 //! Mitsuba 3 made it (lights picked uniformly), scaled by the sample-count ratio. Significance 0.01, Sidak-corrected over regions and channels. Controls show that a
 //! visible change of one material is rejected.
 use tessera::image_io::read_image;
-use tessera::scene::LoadedScene;
-use tessera::stats::sidak_alpha;
+use tessera_lab::stats::sidak_alpha;
+use tessera_scene::LoadedScene;
 use tessera_tests::{
     load_file, render_like_mitsuba, render_loaded, scenes_dir, worst_against_reference,
 };
@@ -39,7 +39,7 @@ fn loaded_edited(scene: &str, from: &str, to: &str) -> LoadedScene {
         text, edited,
         "{scene} no longer contains {from:?}; update this test"
     );
-    tessera::scene::load_scene_str(
+    tessera_scene::load_scene_str(
         &edited,
         &scenes_dir().join(scene),
         &[

@@ -1,14 +1,14 @@
 //! OBJ files with MTL materials (`<shape type="obj">` with `use_mtl`): the file in `tests/mtl/`
 //! is split into one shape per material, each material becomes the BSDF documented in
-//! `driver/src/mesh/mtl_material.rs` (compared with the same tree written as scene XML), `Ke`
+//! `scene/src/mesh/mtl_material.rs` (compared with the same tree written as scene XML), `Ke`
 //! becomes an area light, `d` / `Tr` a mask that renders as partial transparency, and bad
 //! material input is an error located in the OBJ or MTL file.
 use std::path::{Path, PathBuf};
 
 use glam::Vec3;
-use tessera::scene::{load_scene_str, LoadedScene};
 use tessera_core::bsdf::Bsdf;
 use tessera_core::emitter::Emitter;
+use tessera_scene::{load_scene_str, LoadedScene};
 
 fn dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("mtl")
@@ -38,14 +38,17 @@ fn quads(extra: &str) -> LoadedScene {
 /// The first `<bsdf>` of a snippet, built as a scene would build it.
 fn bsdf(xml: &str) -> Bsdf {
     let text = format!("<scene version=\"3.0.0\">{xml}</scene>");
-    let root = tessera::xml::load_str(&text, &dir().join("inline.xml"), &[]).unwrap();
-    let c = root.children_of(tessera::xml::Kind::Bsdf).next().unwrap();
-    tessera::scene::build_bsdf_object(&c.obj).unwrap_or_else(|e| panic!("{e}"))
+    let root = tessera_scene::xml::load_str(&text, &dir().join("inline.xml"), &[]).unwrap();
+    let c = root
+        .children_of(tessera_scene::xml::Kind::Bsdf)
+        .next()
+        .unwrap();
+    tessera_scene::build_bsdf_object(&c.obj).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Asserts that two models agree (eval and pdf) over many direction pairs at several uv.
 fn same(label: &str, a: &Bsdf, b: &Bsdf, scale: f32) {
-    let mut rng = tessera::stats::Pcg32::new(3);
+    let mut rng = tessera_lab::stats::Pcg32::new(3);
     for _ in 0..500 {
         let wi = tessera_core::sampling::warp::square_to_uniform_sphere(rng.next_vec2());
         let wo = tessera_core::sampling::warp::square_to_uniform_sphere(rng.next_vec2());

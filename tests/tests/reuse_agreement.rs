@@ -10,8 +10,8 @@
 //! Adaptive passes share light only among the pixels of a group that take each sample index;
 //! that estimator is checked with fixed targets that differ inside every group.
 use tessera::render::{render_into_targets, Framebuffer, RenderOptions};
-use tessera::scene::LoadedScene;
-use tessera::stats::{sidak_alpha, welch_test, Moments};
+use tessera_lab::stats::{sidak_alpha, welch_test, Moments};
+use tessera_scene::LoadedScene;
 use tessera_tests::{load_file, render_loaded};
 
 const RES: u32 = 64;

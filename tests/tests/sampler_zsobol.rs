@@ -18,8 +18,6 @@
 //! - Rendering: closed-form scenes rendered with zsobol, t-tested across independent seeds (each
 //!   seed's pixel mean is one independent, unbiased estimate; the samples within a pixel are
 //!   not independent, so their sample variance would not be the estimate's variance).
-use tessera::stats::rng::Pcg32;
-use tessera::stats::{chi2_test, sidak_alpha, DEFAULT_MIN_EXPECTED};
 use tessera_core::sampling::owen::{mix64, owen_scramble_u32, scramble_index};
 use tessera_core::sampling::sobol::{
     sobol_dim0, sobol_dim1, sobol_dim1_reference, sobol_dim1_reversed, sobol_dim2_reversed,
@@ -27,6 +25,8 @@ use tessera_core::sampling::sobol::{
 };
 use tessera_core::sampling::zsobol::{log2_spp_for, to_unit};
 use tessera_core::sampling::{IndependentSampler, Sampler, SamplerKind, ZSobolSampler};
+use tessera_lab::stats::rng::Pcg32;
+use tessera_lab::stats::{chi2_test, sidak_alpha, DEFAULT_MIN_EXPECTED};
 use tessera_tests::load_xml;
 
 /// Whether `pts` (N = 2^m points) has exactly one point in every elementary interval of every
@@ -537,7 +537,7 @@ fn scene_files_choose_the_sampler() {
         l.warnings
     );
     let path = tessera_tests::scenes_dir().join("inline-test.xml");
-    let err = tessera::scene::load_scene_str(&xml("sobol"), &path, &[])
+    let err = tessera_scene::load_scene_str(&xml("sobol"), &path, &[])
         .expect_err("unknown sampler is an error")
         .to_string();
     assert!(err.contains("inline-test.xml:4:5"), "{err}");

@@ -5,10 +5,10 @@
 //! on the repository's scenes (mirrors, glass, delta and area lights, environments) with every
 //! integrator and Russian roulette from the first bounce. Control: the checker flags a draw past
 //! a stage's budget, a stage started twice and a start inside a stage.
-use tessera::stats::rng::Pcg32;
 use tessera_core::integrator::{DirectIntegrator, Heuristic, Integrator};
 use tessera_core::sampling::{dimension_of, Sampler, Stage, BOUNCE_DIMENSIONS, CAMERA_DIMENSIONS};
 use tessera_core::scene::Scene;
+use tessera_lab::stats::rng::Pcg32;
 use tessera_tests::load_file;
 
 /// A sampler that checks the layout: uniform values from a PCG32, and a list of violations.

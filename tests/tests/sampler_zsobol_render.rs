@@ -7,9 +7,9 @@
 //! shows the test rejects a reference 2% off, and the image is also bit for bit the same for
 //! any thread count and tile size and when its samples are rendered in two ranges.
 use tessera::render::{render, render_into, Framebuffer, RenderOptions};
-use tessera::scene::LoadedScene;
-use tessera::stats::sidak_alpha;
 use tessera_core::sampling::SamplerKind;
+use tessera_lab::stats::sidak_alpha;
+use tessera_scene::LoadedScene;
 use tessera_tests::analytic_scenes::{closed_sphere, furnace_box, sphere_light};
 use tessera_tests::{load_xml, t_test_f32};
 

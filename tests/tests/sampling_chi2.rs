@@ -1,6 +1,6 @@
 //! Chi-square goodness-of-fit tests of every sampling routine of the core against its pdf.
 //!
-//! Each test draws its samples through the `tessera::stats` harness (`SphereChi2`,
+//! Each test draws its samples through the `tessera_lab::stats` harness (`SphereChi2`,
 //! `PlaneChi2`, or `chi2_test` on counts drawn from a `Pcg32`), with a fixed seed: test `k` in
 //! the order of [`N_TESTS`]'s list uses seed `k`. The whole file fails with probability 1% if
 //! every sampler is right: each test runs at the Šidák-corrected level
@@ -15,12 +15,12 @@ use std::f64::consts::TAU;
 use tessera_core::math::{Norm, Ray, Transform};
 
 use glam::{DMat4, DVec3, Vec2, Vec3};
-use tessera::stats::{
-    chi2_test, sidak_alpha, Chi2Result, Pcg32, PlaneChi2, SphereChi2, DEFAULT_MIN_EXPECTED,
-};
 use tessera_core::camera::{Filter, GaussianFilter};
 use tessera_core::geometry::{Disk, Mesh, Shape, ShapeKind, Sphere};
 use tessera_core::sampling::{warp, Discrete1D};
+use tessera_lab::stats::{
+    chi2_test, sidak_alpha, Chi2Result, Pcg32, PlaneChi2, SphereChi2, DEFAULT_MIN_EXPECTED,
+};
 use tessera_tests::cap::{cap_coords, cap_dir, frame_around};
 
 /// Number of chi-square tests in this file (one per seed):

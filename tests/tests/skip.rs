@@ -3,8 +3,8 @@
 //! never counts cannot pass.
 use tessera::render::RenderOptions;
 use tessera::render_stats::render_with_stats;
-use tessera::scene::LoadedScene;
 use tessera_core::integrator::Counters;
+use tessera_scene::LoadedScene;
 use tessera_tests::load_xml;
 
 /// A 16x16 scene looking at the origin from +z, with `body` as its shapes and emitters.

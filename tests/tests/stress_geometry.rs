@@ -7,10 +7,10 @@
 //! - Very thin (1e-6 wide) and very large (1e6) triangles: rays aimed inside them all hit.
 //! - Vertex normals pointing against the faces: finite, nothing dropped.
 //! - NaN or Inf in an OBJ's vertex data: an error naming the file, line and column.
-use tessera::stats::sidak_alpha;
 use tessera_core::geometry::intersect_triangle;
 use tessera_core::glam::DVec3;
 use tessera_core::math::{Norm, Ray};
+use tessera_lab::stats::sidak_alpha;
 use tessera_tests::stress::{assert_pixel_within, scratch_dir, Placement};
 use tessera_tests::{load_xml, render_loaded};
 
@@ -260,7 +260,7 @@ fn non_finite_vertex_data_is_a_located_error() {
   <shape type="obj"><string name="filename" value="{}"/></shape></scene>"#,
             obj.display()
         );
-        let err = tessera::scene::load_scene_str(
+        let err = tessera_scene::load_scene_str(
             &xml,
             &tessera_tests::scenes_dir().join("inline-test.xml"),
             &[],

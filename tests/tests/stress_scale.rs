@@ -15,9 +15,9 @@
 //! - The Cornell box, placed the same ways, agrees region by region with its unit-scale render;
 //!   a render with the light moved 5% of the box is rejected (control).
 use std::f64::consts::PI;
-use tessera::stats::sidak_alpha;
 use tessera_core::glam::DVec3;
 use tessera_core::math::{Norm, Ray};
+use tessera_lab::stats::sidak_alpha;
 use tessera_tests::stress::{assert_pixel_within, cbox_xml, scratch_dir, Placement};
 use tessera_tests::{load_xml, region_stats, render_loaded, worst_region};
 

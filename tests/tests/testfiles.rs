@@ -2,7 +2,7 @@
 //! references computed independently by scripts/make_ttest_files.py), and a control that a
 //! wrong reference fails.
 use std::path::Path;
-use tessera::testfile::run_test_object;
+use tessera_lab::testfile::run_test_object;
 
 fn file() -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/test-lambert.xml")
@@ -10,7 +10,7 @@ fn file() -> std::path::PathBuf {
 
 #[test]
 fn lambert_point_and_furnace_test_file_passes() {
-    let root = tessera::xml::load_file(&file(), &[]).expect("test file loads");
+    let root = tessera_scene::xml::load_file(&file(), &[]).expect("test file loads");
     let results = run_test_object(&root, 0, |_| {}).expect("test file runs");
     assert_eq!(results.len(), 29);
     let failed: Vec<String> = results
@@ -31,7 +31,7 @@ fn lambert_point_and_furnace_test_file_passes() {
 #[test]
 fn lights_test_file_passes() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/test-lights.xml");
-    let root = tessera::xml::load_file(&path, &[]).expect("test file loads");
+    let root = tessera_scene::xml::load_file(&path, &[]).expect("test file loads");
     let results = run_test_object(&root, 0, |_| {}).expect("test file runs");
     assert_eq!(results.len(), 42);
     let failed: Vec<String> = results
@@ -54,7 +54,7 @@ fn a_reference_two_percent_off_fails() {
     let end = start + text[start..].find(',').unwrap();
     let wrong = text[start..end].parse::<f64>().unwrap() * 1.02;
     let altered = format!("{}{wrong}{}", &text[..start], &text[end..]);
-    let root = tessera::xml::load_str(&altered, &file(), &[]).expect("altered file loads");
+    let root = tessera_scene::xml::load_str(&altered, &file(), &[]).expect("altered file loads");
     let results = run_test_object(&root, 0, |_| {}).expect("runs");
     assert!(
         !results[0].passed,

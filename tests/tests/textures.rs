@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 use tessera_core::math::Norm;
 
 use glam::{Vec2, Vec3};
-use tessera::scene::{load_bsdf_file, load_scene_str};
+use tessera_scene::{load_bsdf_file, load_scene_str};
 
 fn close(a: f32, b: f32) -> bool {
     (a - b).abs() <= 1e-3 * a.abs().max(b.abs()) + 1e-5

@@ -1,0 +1,49 @@
+//! The `tessera` command line as a library: argument definitions and one module per subcommand
+//! (`src/main.rs` is the binary). Tests call the subcommands in-process through it.
+// `!(x > 0.0)` rejects NaN along with the values it names (as in the core).
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+pub mod bench;
+pub mod compare;
+pub mod decor;
+pub mod merge;
+pub mod probe_args;
+pub mod render;
+pub mod render_once;
+pub mod split_args;
+pub mod test;
+
+use clap::{Parser, Subcommand};
+
+/// Tessera: a physically based Monte Carlo path tracer.
+#[derive(Parser, Debug)]
+#[command(name = "tessera", version, about)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// Subcommands.
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Render a scene file to one or more images.
+    Render(render::RenderArgs),
+    /// Run a Nori-style test file (`ttest` with scenes or BSDFs, `chi2test`) and report each case.
+    Test(test::TestArgs),
+    /// Measure error against time in waves of 1, 2, 4, ... spp against a reference image; write
+    /// a CSV report and a log-log plot (or plot an existing report).
+    Bench(bench::BenchArgs),
+    /// Compare an image with a reference: means, RMSE, relMSE, MAE, largest difference; text or
+    /// JSON, optionally a false-colour difference PNG.
+    Compare(compare::CompareArgs),
+    /// Assemble part files (from a render with --crop, --tiles or --sample-range) into one image.
+    Merge(merge::MergeArgs),
+}
+
+/// Parses `name=value` for `-D`.
+pub fn parse_define(s: &str) -> Result<(String, String), String> {
+    match s.split_once('=') {
+        Some((k, v)) if !k.is_empty() => Ok((k.to_string(), v.to_string())),
+        _ => Err(format!("expected name=value, found \"{s}\"")),
+    }
+}

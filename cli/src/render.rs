@@ -1,0 +1,415 @@
+//! `tessera render`: load, render progressively on worker threads, write every requested output.
+//!
+//! Stopping rule: `--spp N` (default: the scene's `sample_count`), `--time SECONDS` (a time
+//! budget; with `--spp` too, whichever comes first), `--target-error E` (the first power of two
+//! spp whose estimated relative MSE is at most `E`; with `--spp` or `--time`, whichever comes
+//! first), `--forever` (until Ctrl-C / SIGTERM).
+//! SIGINT / SIGTERM stop at the next tile boundary, write the outputs (and the checkpoint, with
+//! `--checkpoint`) and exit 130 / 143; a second signal exits at once without writing.
+//! `--resume FILE` continues a checkpoint to the same bits as an uninterrupted render.
+use super::decor::{spp_text, Decor};
+use clap::Args;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+use tessera::checkpoint::{
+    load_checkpoint, scene_hash, write_checkpoint, CheckpointMeta, Continuation,
+};
+use tessera::image_io::Format;
+use tessera::progressive::bar::{progress_bar, update_bar};
+use tessera::progressive::{self, spp_range, Ending, Job, Plan, Status};
+use tessera::render::Framebuffer;
+use tessera_core::adaptive::{AdaptiveParams, ZSOBOL_BLOCK_FACTOR};
+use tessera_core::camera::Perspective;
+use tessera_scene::error::InputError;
+use tessera_scene::{load_scene, MAX_EDGE, MAX_PIXELS};
+
+/// Arguments of `tessera render`.
+#[derive(Args, Debug, Clone)]
+pub struct RenderArgs {
+    /// The scene file (Mitsuba 3 or Nori XML).
+    pub scene: PathBuf,
+    /// Output image; the extension picks the format (.exr, .pfm, .png). May be repeated.
+    #[arg(short = 'o', long = "output", required_unless_present = "debug_pixel")]
+    pub outputs: Vec<PathBuf>,
+    /// Samples per pixel (default: the scene's sampler, or the resumed checkpoint's target).
+    #[arg(long, conflicts_with = "forever")]
+    pub spp: Option<u64>,
+    /// Time budget in seconds: render passes until it is spent (with --spp, whichever first).
+    #[arg(long, conflicts_with = "forever")]
+    pub time: Option<f64>,
+    /// Render until interrupted (Ctrl-C or SIGTERM), writing the outputs on the way out.
+    #[arg(long)]
+    pub forever: bool,
+    /// Write the current average to every output (and the checkpoint) this often, in seconds.
+    #[arg(long)]
+    pub write_every: Option<f64>,
+    /// Checkpoint file, written at every --write-every, at the end and on interrupt.
+    #[arg(long)]
+    pub checkpoint: Option<PathBuf>,
+    /// Continue the render saved in this checkpoint (and keep checkpointing to it unless
+    /// --checkpoint names another file).
+    #[arg(long)]
+    pub resume: Option<PathBuf>,
+    /// Scale the film's width and height (e.g. 0.25 for a quick preview; at least 1 pixel).
+    #[arg(long)]
+    pub resolution_scale: Option<f64>,
+    /// Label PNG outputs with integrator, sampler, spp, time and resolution (EXR/PFM untouched).
+    #[arg(long)]
+    pub overlay: bool,
+    /// Draw the tile grid on PNG outputs.
+    #[arg(long)]
+    pub overlay_grid: bool,
+    /// Draw a rectangle x0,y0,x1,y1 (pixels) on PNG outputs.
+    #[arg(long, value_parser = tessera::overlay::parse_crop)]
+    pub overlay_crop: Option<[u32; 4]>,
+    /// Worker threads (default: all cores). The image does not depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Seed of every random stream (default: the sampler's `seed`, else 0).
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Integrator name (path, path_mis, path_half, path_ems, path_mats, direct, direct_ems,
+    /// direct_mats, direct_mis; a path tracer's name with `+reuse` for path reuse); keeps the
+    /// file's max_depth etc.
+    #[arg(long)]
+    pub integrator: Option<String>,
+    /// Sampler (independent, zsobol), overriding the scene file.
+    #[arg(long)]
+    pub sampler: Option<String>,
+    /// Longest path (-1 = unbounded), overriding the scene file.
+    #[arg(long, allow_hyphen_values = true)]
+    pub max_depth: Option<i64>,
+    /// Tile edge in pixels. The image does not depend on it.
+    #[arg(long, default_value_t = 32)]
+    pub tile_size: u32,
+    /// Override a scene `<default>`: -D name=value.
+    #[arg(short = 'D', value_parser = super::parse_define)]
+    pub defines: Vec<(String, String)>,
+    /// No progress bar.
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// Adaptive sampling: after 2 samples in every pixel, passes doubling the mean sample count
+    /// send each pass's samples where the relative variance is highest; --spp is then the mean
+    /// over pixels. Consistent, not unbiased (see the README).
+    #[arg(long)]
+    pub adaptive: bool,
+    /// Stop at the first power of two spp (with --adaptive: doubling of the mean) whose relative
+    /// MSE, estimated from the two halves of the samples, is at most this (e.g. 1e-3; checked
+    /// from 16 spp on). Without --spp there is no sample limit.
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "forever")]
+    pub target_error: Option<f64>,
+    /// Render a piece of the image (a part, for `tessera merge`).
+    #[command(flatten)]
+    pub split: super::split_args::SplitArgs,
+    /// `--stats`, `--debug-pixel`.
+    #[command(flatten)]
+    pub probe: super::probe_args::ProbeArgs,
+}
+
+fn usage(msg: String) -> i32 {
+    eprintln!("error: {msg}");
+    InputError::EXIT_CODE
+}
+
+fn seconds(name: &str, v: Option<f64>) -> Result<Option<Duration>, String> {
+    match v {
+        None => Ok(None),
+        Some(s) if s.is_finite() && s > 0.0 && s < 1e9 => Ok(Some(Duration::from_secs_f64(s))),
+        Some(s) => Err(format!(
+            "--{name} must be a positive number of seconds, found {s}"
+        )),
+    }
+}
+
+/// Ctrl-C / SIGTERM: the first sets `stop` (and `code` to 130 / 143), a second exits at once.
+fn register_signals(stop: &Arc<AtomicBool>, code: &Arc<AtomicUsize>) -> Result<(), String> {
+    use signal_hook::consts::{SIGINT, SIGTERM};
+    use signal_hook::flag;
+    let signalled = Arc::new(AtomicBool::new(false));
+    for (sig, exit) in [(SIGINT, 130), (SIGTERM, 143)] {
+        // The shutdown goes first: it fires only if an earlier signal already armed it.
+        flag::register_conditional_shutdown(sig, exit, Arc::clone(&signalled))
+            .and_then(|_| flag::register_usize(sig, Arc::clone(code), exit as usize))
+            .and_then(|_| flag::register(sig, Arc::clone(stop)))
+            .and_then(|_| flag::register(sig, Arc::clone(&signalled)))
+            .map_err(|e| format!("cannot install signal handlers: {e}"))?;
+    }
+    Ok(())
+}
+
+/// Runs the command; returns the exit code.
+pub fn run(args: &RenderArgs) -> i32 {
+    for o in &args.outputs {
+        if Format::from_path(o).is_none() {
+            return usage(format!(
+                "{}: unknown output format (use .exr, .pfm or .png)",
+                o.display()
+            ));
+        }
+    }
+    if args.tile_size == 0 || args.tile_size > 4096 {
+        return usage(format!(
+            "--tile-size must be between 1 and 4096, found {}",
+            args.tile_size
+        ));
+    }
+    if args.spp == Some(0) {
+        return usage("--spp must be at least 1".into());
+    }
+    if let Some(e) = args.target_error.filter(|e| !(e.is_finite() && *e > 0.0)) {
+        return usage(format!(
+            "--target-error must be a positive relative MSE, found {e}"
+        ));
+    }
+    let (budget, write_every) = match (
+        seconds("time", args.time),
+        seconds("write-every", args.write_every),
+    ) {
+        (Ok(b), Ok(w)) => (b, w),
+        (Err(e), _) | (_, Err(e)) => return usage(e),
+    };
+    let mut loaded = match load_scene(&args.scene, &args.defines) {
+        Ok(l) => l,
+        Err(e) => return usage(e.to_string()),
+    };
+    for w in &loaded.warnings {
+        eprintln!("warning: {w}");
+    }
+    if let Err(e) = loaded.set_integrator(args.integrator.as_deref(), args.max_depth) {
+        return usage(e);
+    }
+    // zsobol's pixel blocks follow the scene's sample count, never --spp or --time, so that
+    // progressive passes, resumed checkpoints and sample-range parts all draw one sequence.
+    // Adaptive renders (never split into parts) give noisy pixels several times the mean: their
+    // blocks are ZSOBOL_BLOCK_FACTOR times larger, so those pixels stay in one block.
+    let scene_spp = match args.adaptive {
+        true => loaded.spp.saturating_mul(ZSOBOL_BLOCK_FACTOR),
+        false => loaded.spp,
+    };
+    if let Err(e) = loaded.set_sampler(args.sampler.as_deref(), scene_spp) {
+        return usage(e);
+    }
+    if let Some(f) = args.resolution_scale {
+        if let Err(e) = scale_resolution(&mut loaded.scene.camera, f) {
+            return usage(e);
+        }
+    }
+    let threads = args
+        .threads
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    if threads == 0 {
+        return usage("--threads must be at least 1".into());
+    }
+    let seed = args.seed.unwrap_or(loaded.seed);
+    if super::render_once::wanted(args) {
+        return super::render_once::run(args, &loaded, threads, seed);
+    }
+    let scene_bytes = match std::fs::read(&args.scene) {
+        Ok(b) => b,
+        Err(e) => return usage(format!("{}: {e}", args.scene.display())),
+    };
+    let (w, h) = (loaded.scene.camera.width, loaded.scene.camera.height);
+    let mut meta = CheckpointMeta {
+        width: w,
+        height: h,
+        seed,
+        target_spp: 0,
+        scene_hash: scene_hash(&scene_bytes, &args.defines),
+        passes: 0,
+        seconds: 0.0,
+        integrator: format!(
+            "{:?}, sampler {:?}{}",
+            loaded.integrator,
+            loaded.scene.sampler,
+            match args.adaptive {
+                true => format!(", adaptive {:?}", AdaptiveParams::default()),
+                false => String::new(),
+            }
+        ),
+    };
+    let mut fb = Framebuffer::new(w, h);
+    let mut resumed_target = None;
+    let mut pending = None;
+    let mut resumed_check = None;
+    if let Some(path) = &args.resume {
+        let ck = match load_checkpoint(path) {
+            Ok(c) => c,
+            Err(e) => return usage(e),
+        };
+        if let Err(e) = ck.meta.matches(&meta) {
+            return usage(format!("{}: {e}", path.display()));
+        }
+        meta.passes = ck.meta.passes;
+        meta.seconds = ck.meta.seconds;
+        resumed_target = (ck.meta.target_spp > 0).then_some(ck.meta.target_spp);
+        fb.pixels = ck.pixels;
+        pending = ck.pending;
+        // The check point matters only to a render that checks (it stays in the file otherwise
+        // only until the next write).
+        resumed_check = ck.check.filter(|_| args.target_error.is_some());
+    }
+    let target = if args.forever {
+        None
+    } else if let Some(n) = args.spp.or(resumed_target) {
+        Some(n)
+    } else if budget.is_some() || args.target_error.is_some() {
+        None
+    } else {
+        Some(loaded.spp)
+    };
+    // Adaptive renders count the mean (single pixels may well be past the target).
+    let (what, high) = match args.adaptive {
+        true => (
+            "a mean of",
+            progressive::taken(&fb) / (fb.pixels.len() as u64).max(1),
+        ),
+        false => ("pixels at", spp_range(&fb).1),
+    };
+    if let Some(t) = target.filter(|t| *t < high) {
+        let path = args.resume.as_deref().unwrap_or(args.scene.as_path());
+        return usage(format!(
+            "{}: the checkpoint already has {what} {high} spp, more than the target {t}",
+            path.display()
+        ));
+    }
+    meta.target_spp = target.unwrap_or(0);
+    let checkpoint = args.checkpoint.clone().or_else(|| args.resume.clone());
+    let stop = Arc::new(AtomicBool::new(false));
+    let signal = Arc::new(AtomicUsize::new(0));
+    if let Err(e) = register_signals(&stop, &signal) {
+        eprintln!("error: {e}");
+        return 1;
+    }
+    let (bar, mode) = progress_bar(args.quiet, target, budget, w as u64 * h as u64);
+    let job = Job {
+        scene: &loaded.scene,
+        integrator: &loaded.integrator,
+        seed: meta.seed,
+        threads,
+        tile_size: args.tile_size,
+    };
+    let plan = Plan {
+        target,
+        budget,
+        write_every,
+        adaptive: args.adaptive.then(AdaptiveParams::default),
+        target_error: args.target_error,
+        pending,
+        resumed_check,
+    };
+    let taken = progressive::taken;
+    let samples_before = taken(&fb);
+    let start = Instant::now();
+    let base = meta.clone();
+    let decor = Decor::new(args, &loaded);
+    let save = |fb: &Framebuffer, passes: u64, more: Continuation| -> Result<(), String> {
+        let mut m = base.clone();
+        m.passes += passes;
+        m.seconds += start.elapsed().as_secs_f64();
+        write_all(&args.outputs, checkpoint.as_deref(), &m, fb, more, &decor)
+    };
+    let result = progressive::run(
+        job,
+        &mut fb,
+        &plan,
+        &stop,
+        &mut |s: &Status| update_bar(&bar, mode, s),
+        &mut |fb, passes, check| {
+            save(
+                fb,
+                passes,
+                Continuation {
+                    pending: None,
+                    check,
+                },
+            )
+        },
+    );
+    bar.finish_and_clear();
+    let progressive::Outcome {
+        ending,
+        passes,
+        estimate,
+        pending,
+        check,
+    } = match result {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return 1;
+        }
+    };
+    let more = Continuation {
+        pending: pending.as_deref(),
+        check: check.as_ref(),
+    };
+    if let Err(e) = save(&fb, passes, more) {
+        eprintln!("error: {e}");
+        return 1;
+    }
+    let secs = start.elapsed().as_secs_f64();
+    let spp = spp_text(&fb);
+    let code = signal.load(Ordering::SeqCst) as i32;
+    if !args.quiet || code != 0 {
+        let error = match (args.target_error, estimate) {
+            (Some(t), Some(e)) => format!("; estimated relMSE {e:.2e} (target {t:.2e})"),
+            (Some(t), None) => format!("; relMSE not yet estimated (target {t:.2e})"),
+            _ => String::new(),
+        };
+        eprintln!(
+            "{w}x{h} at {spp} spp, {passes} passes in {secs:.2} s ({:.2} M samples/s, {threads} threads); {} non-finite samples dropped{}{error}",
+            (taken(&fb) - samples_before) as f64 / secs.max(1e-9) / 1e6,
+            fb.dropped(),
+            match ending {
+                Ending::Target | Ending::ErrorReached => "",
+                Ending::Time => "; time budget spent",
+                Ending::Stopped => "; interrupted",
+            }
+        );
+    }
+    if code != 0 {
+        match &checkpoint {
+            Some(c) => eprintln!("checkpoint written: resume with --resume {}", c.display()),
+            None => eprintln!("no --checkpoint given: this render cannot be resumed"),
+        }
+    }
+    code
+}
+
+/// Writes the average to every output, then the checkpoint (each atomically), with what the
+/// render needs to go on the same way (`more`).
+fn write_all(
+    outputs: &[PathBuf],
+    checkpoint: Option<&std::path::Path>,
+    meta: &CheckpointMeta,
+    fb: &Framebuffer,
+    more: Continuation,
+    decor: &Decor,
+) -> Result<(), String> {
+    for o in outputs {
+        decor.write(o, fb, meta.seconds)?;
+    }
+    if let Some(c) = checkpoint {
+        write_checkpoint(c, meta, &fb.pixels, more)?;
+    }
+    Ok(())
+}
+
+/// `--resolution-scale`: multiplies the film's width and height (rounded, at least 1 pixel)
+/// keeping the field of view (the camera maps the film to the same view whatever its size).
+fn scale_resolution(camera: &mut Perspective, f: f64) -> Result<(), String> {
+    if !(f.is_finite() && f > 0.0 && f <= 16.0) {
+        return Err(format!("--resolution-scale must be in (0, 16], found {f}"));
+    }
+    let scale = |n: u32| ((n as f64 * f).round() as i64).clamp(1, MAX_EDGE);
+    let (w, h) = (scale(camera.width), scale(camera.height));
+    if w * h > MAX_PIXELS {
+        return Err(format!(
+            "--resolution-scale {f} gives {w}x{h} pixels, over the limit of {MAX_PIXELS}"
+        ));
+    }
+    (camera.width, camera.height) = (w as u32, h as u32);
+    Ok(())
+}

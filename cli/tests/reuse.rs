@@ -1,0 +1,157 @@
+//! Path reuse (`path+reuse`, `core/src/integrator/reuse.rs`): the same bits for any thread
+//! count, tile size (odd sizes split groups between tiles), sample split and sampler; one sample
+//! replayed alone equals the render's; off, it changes nothing; it really shares light.
+
+use std::ops::Range;
+use tessera::render::{render, Framebuffer, RenderOptions};
+use tessera_core::film::PixelAccum;
+use tessera_core::render::render_sample;
+use tessera_scene::LoadedScene;
+
+mod scenes;
+use scenes::load;
+
+fn render_with(
+    l: &LoadedScene,
+    samples: Range<u64>,
+    threads: usize,
+    tile_size: u32,
+) -> Framebuffer {
+    let opts = RenderOptions {
+        samples,
+        threads,
+        tile_size,
+        seed: l.seed,
+        pixels: Default::default(),
+    };
+    render(&l.scene, &l.integrator, &opts, &mut |_, _| {})
+}
+
+fn bits(p: &PixelAccum) -> [u64; 8] {
+    [
+        p.sum[0].to_bits(),
+        p.sum[1].to_bits(),
+        p.sum[2].to_bits(),
+        p.sum_sq[0].to_bits(),
+        p.sum_sq[1].to_bits(),
+        p.sum_sq[2].to_bits(),
+        p.count,
+        p.dropped,
+    ]
+}
+
+fn same(a: &Framebuffer, b: &Framebuffer) -> bool {
+    a.pixels
+        .iter()
+        .zip(&b.pixels)
+        .all(|(p, q)| bits(p) == bits(q))
+}
+
+/// cbox at an odd resolution (groups clipped at the right and bottom edges), `reuse` on.
+fn reusing(sampler: &str) -> LoadedScene {
+    let mut l = load("cbox.xml", &[("res", "23"), ("spp", "4")]);
+    l.set_integrator(Some("path+reuse"), None).unwrap();
+    l.set_sampler(Some(sampler), 4).unwrap();
+    l
+}
+
+#[test]
+fn same_bits_for_any_threads_tiles_and_split() {
+    for sampler in ["independent", "zsobol"] {
+        let l = reusing(sampler);
+        let reference = render_with(&l, 0..4, 1, 64);
+        let lit = reference.pixels.iter().filter(|p| p.sum[0] > 0.0).count();
+        assert!(lit > reference.pixels.len() / 2, "{sampler}: {lit} lit");
+        for (threads, tile) in [(2, 1), (2, 5), (3, 7), (2, 16), (8, 3)] {
+            let fb = render_with(&l, 0..4, threads, tile);
+            assert!(
+                same(&reference, &fb),
+                "{sampler}: {threads} threads, tile {tile}"
+            );
+        }
+        // Sample ranges rendered apart hold the same per-sample values: the second half alone
+        // equals the second half of a whole render's accumulators minus the first half.
+        let first = render_with(&l, 0..2, 2, 5);
+        let second = render_with(&l, 2..4, 3, 7);
+        for ((w, a), b) in reference
+            .pixels
+            .iter()
+            .zip(&first.pixels)
+            .zip(&second.pixels)
+        {
+            let mut m = *a;
+            m.merge(b);
+            assert_eq!(m.count, w.count);
+            for k in 0..3 {
+                let (x, y) = (m.sum[k], w.sum[k]);
+                assert!((x - y).abs() <= 1e-12 * x.abs().max(y.abs()) + 1e-300);
+            }
+        }
+    }
+}
+
+#[test]
+fn one_sample_replayed_alone_matches_the_render() {
+    for sampler in ["independent", "zsobol"] {
+        let l = reusing(sampler);
+        for index in [0u64, 3] {
+            let fb = render_with(&l, index..index + 1, 2, 5);
+            for (x, y) in [
+                (0, 0),
+                (1, 0),
+                (0, 1),
+                (1, 1),
+                (22, 22),
+                (22, 7),
+                (13, 22),
+                (9, 4),
+            ] {
+                let c = render_sample(&l.scene, &l.integrator, l.seed, x, y, index);
+                let mut want = PixelAccum::default();
+                want.add(c);
+                assert_eq!(
+                    bits(fb.at(x, y)),
+                    bits(&want),
+                    "{sampler} ({x}, {y}) #{index}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn reuse_shares_light_and_off_changes_nothing() {
+    let mut l = load("cbox.xml", &[("res", "16"), ("spp", "2")]);
+    let plain = render_with(&l, 0..2, 2, 16);
+    // `path` named explicitly (reuse off) is the file's integrator, bit for bit.
+    l.set_integrator(Some("path"), None).unwrap();
+    assert!(same(&plain, &render_with(&l, 0..2, 2, 5)));
+    // With reuse, most pixels change (their indirect light now comes from four paths).
+    l.set_integrator(Some("path+reuse"), None).unwrap();
+    let shared = render_with(&l, 0..2, 2, 16);
+    let changed = plain
+        .pixels
+        .iter()
+        .zip(&shared.pixels)
+        .filter(|(p, q)| bits(p) != bits(q))
+        .count();
+    assert!(
+        changed > plain.pixels.len() / 2,
+        "only {changed} pixels changed"
+    );
+    // Where reuse cannot apply (max_depth 2: no second vertex reflects), it is plain rendering.
+    let mut direct = load(
+        "cbox.xml",
+        &[("res", "16"), ("spp", "2"), ("max_depth", "2")],
+    );
+    let want = render_with(&direct, 0..2, 2, 16);
+    direct.set_integrator(Some("path+reuse"), None).unwrap();
+    assert!(same(&want, &render_with(&direct, 0..2, 2, 7)));
+}
+
+#[test]
+fn reuse_needs_a_path_tracer() {
+    let mut l = load("cbox.xml", &[("res", "8"), ("spp", "1")]);
+    let e = l.set_integrator(Some("direct+reuse"), None).unwrap_err();
+    assert!(e.contains("needs a path tracer"), "{e}");
+}
