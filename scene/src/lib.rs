@@ -7,6 +7,7 @@
 pub mod error;
 pub mod image;
 pub mod mesh;
+pub mod plugin;
 pub mod xml;
 
 mod bsdfs;

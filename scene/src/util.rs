@@ -59,7 +59,7 @@ pub fn color_required(obj: &Object, name: &str) -> Result<Color> {
     }
 }
 
-fn check_color(obj: &Object, name: &str, c: [f64; 3]) -> Result<Color> {
+pub(crate) fn check_color(obj: &Object, name: &str, c: [f64; 3]) -> Result<Color> {
     let v = Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32);
     if !v.is_finite() || v.min_element() < 0.0 {
         return Err(at_prop(

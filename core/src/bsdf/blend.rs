@@ -1,10 +1,10 @@
 //! Linear blend of two models (`blendbsdf` as in Mitsuba 3; Chalmers' `LinearBlend` is the
 //! alias `blend`).
 //!
-//! Scene parameters (`<bsdf type="blendbsdf">` or `"blend"`): `weight` (float or texture in
-//! [0, 1], default 0.5; a texture is read as a scalar, see `Texture::eval_1`), exactly two
-//! nested `<bsdf>`s. `f = (1 - w) f0 + w f1`: the weight belongs to the second model, so
-//! Chalmers' `LinearBlend(w, a, b) = w a + (1 - w) b` is `blend` with `b` first and `a` second.
+//! A texture weight is read as a scalar (`Texture::eval_1`). `f = (1 - w) f0 + w f1`: the
+//! weight belongs to the second model, so Chalmers' `LinearBlend(w, a, b) = w a + (1 - w) b` is
+//! `blend` with `b` first and `a` second. Its scene parameters are declared with its loader, in
+//! `scene/src/materials/basic.rs`.
 //!
 //! Sampling chooses the second model when `u1 < w` (then reuses `u1 / w`), the first otherwise
 //! (`(u1 - w) / (1 - w)`), as Mitsuba 3 does. A smooth sample reports the mixed density

@@ -1,10 +1,8 @@
 //! Chalmers' Blinn-Phong dielectric layer over an optional nested model (`blinnphong`), from
 //! the Chalmers path-tracer tutorial (tasks 3 and 6).
 //!
-//! Scene parameters (`<bsdf type="blinnphong">`): `shininess` (float >= 0, default 25: the
-//! Blinn-Phong exponent `s`), `r0` or its alias `fresnel` (float in [0, 1], default 0.04: the
-//! Schlick reflectance at normal incidence; at most one of the two names), and at most one
-//! nested `<bsdf>` (the layer below; none means nothing is under the coating).
+//! Its scene parameters are declared with its loader, in
+//! `scene/src/materials/chalmers.rs`.
 //!
 //! With `h = normalize(wi + wo)` and both directions above the surface:
 //! - `F = r0 + (1 - r0)(1 - h.wi)^5`, `D = (s + 2)/(2 pi) (n.h)^s`,

@@ -1,9 +1,8 @@
 //! Chalmers' tinted Blinn-Phong metal (`blinnphong_metal`), from the Chalmers path-tracer
 //! tutorial (task 4).
 //!
-//! Scene parameters (`<bsdf type="blinnphong_metal">`): `color` (rgb or texture in [0, 1],
-//! default 0.5: the tint), `shininess` (float >= 0, default 25), `r0` or its alias `fresnel`
-//! (float in [0, 1], default 0.04; at most one of the two names).
+//! Its scene parameters are declared with its loader, in
+//! `scene/src/materials/chalmers.rs`.
 //!
 //! `f = color F D G / (4 (n.wi)(n.wo))` with the terms of [`BlinnPhong`](super::BlinnPhong)'s
 //! lobe; the refracted share `1 - F` is absorbed (the tutorial's `refraction_brdf` of a metal

@@ -1,13 +1,8 @@
 //! Smooth metal: a perfect mirror weighted by the complex Fresnel reflectance (Mitsuba 3's
 //! `conductor`). One-sided: a ray arriving from the back (`wi.z <= 0`) scatters nothing.
 //!
-//! Scene parameters (`<bsdf type="conductor">`):
-//! - `material` (string, default `"none"`): a named metal from Mitsuba 3's list (`Au`, `Cu`,
-//!   `Al`, ...; RGB values tabulated by the driver), or `none` = a perfect mirror (`eta` 0,
-//!   `k` 1, reflectance 1 at every angle);
-//! - `eta`, `k` (rgb / float, defaults 0 and 1): the real and imaginary parts of the complex
-//!   index of refraction, instead of `material`;
-//! - `specular_reflectance` (rgb / texture, default 1): a tint (not physical).
+//! Its scene parameters are declared with its loader, in
+//! `scene/src/materials/conductor.rs`.
 //!
 //! The only component is a delta reflection, so `eval` and `pdf` are zero and `sample` returns
 //! the mirror direction with probability 1.

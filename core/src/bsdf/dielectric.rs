@@ -2,11 +2,8 @@
 //! refraction (Mitsuba 3's `dielectric`). Works from both sides: `wi.z < 0` means the ray
 //! arrives from inside.
 //!
-//! Scene parameters (`<bsdf type="dielectric">`):
-//! - `int_ior` (float or a named material, default `"bk7"` = 1.5046): index inside;
-//! - `ext_ior` (float or named, default `"air"` = 1.000277): index outside;
-//! - `specular_reflectance`, `specular_transmittance` (rgb / texture, default 1): tints (not
-//!   physical).
+//! Its scene parameters are declared with its loader, in
+//! `scene/src/materials/dielectric.rs`.
 //!
 //! Two delta components: the mirror direction, chosen with probability `F` (the Fresnel
 //! reflectance at `cos theta_i`), and the refracted direction with probability `1 - F`

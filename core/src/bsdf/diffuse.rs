@@ -1,8 +1,8 @@
 //! Lambertian reflection, one-sided as in Mitsuba 3 (the back side is black; wrap it in
 //! `twosided` for both sides).
 //!
-//! Scene parameters (`<bsdf type="diffuse">`): `reflectance` (rgb, default 0.5; Nori's `albedo`
-//! is the same parameter).
+//! Its scene parameters are declared with its loader, in
+//! `scene/src/materials/basic.rs`.
 use super::BsdfSample;
 use crate::math::INV_PI;
 use crate::sampling::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};

@@ -1,7 +1,7 @@
 //! Opacity mask over a model (`mask`), as in Mitsuba 3: a surface that is partly not there.
 //!
-//! Scene parameters (`<bsdf type="mask">`): `opacity` (float or texture in [0, 1], default 0.5;
-//! a texture is read as a scalar, see `Texture::eval_1`), exactly one nested `<bsdf>`.
+//! A texture opacity is read as a scalar (`Texture::eval_1`). Its scene parameters are declared
+//! with its loader, in `scene/src/materials/basic.rs`.
 //!
 //! With opacity `a`: `eval` and `pdf` are `a` times the nested model's (Mitsuba 3 measured); a
 //! ray passes straight through (`wo = -wi`, weight 1, `eta` 1) with probability `1 - a`, a

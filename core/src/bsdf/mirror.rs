@@ -1,7 +1,8 @@
 //! Nori's perfect mirror (`mirror`): every ray is reflected about the normal with weight 1.
 //! One-sided, as in Nori (nothing is reflected from the back).
 //!
-//! Scene parameters (`<bsdf type="mirror">`): none.
+//! Its scene parameters are declared with its loader, in
+//! `scene/src/materials/wakame.rs`.
 use super::BsdfSample;
 use crate::Color;
 use glam::{Vec2, Vec3};

@@ -1,12 +1,8 @@
 //! Smooth plastic (Mitsuba 3's `plastic`): a smooth dielectric coating over a diffuse base,
 //! one-sided (the back side is black).
 //!
-//! Scene parameters (`<bsdf type="plastic">`):
-//! - `diffuse_reflectance` (rgb or texture, default 0.5): the base's albedo;
-//! - `specular_reflectance` (rgb or texture, default 1): a factor on the coating's reflection;
-//! - `int_ior` (float or material name, default "polypropylene" = 1.49), `ext_ior` (float or
-//!   material name, default "air" = 1.000277);
-//! - `nonlinear` (bool, default false): let internal scattering shift the base's colour.
+//! Its scene parameters are declared with its loader, in
+//! `scene/src/materials/plastic.rs`.
 //!
 //! Model (as Mitsuba 3): the coating reflects `F(cos theta_i)` as a delta lobe; the rest
 //! refracts in, scatters diffusely at the base, and leaves through the coating with

@@ -1,14 +1,8 @@
 //! Rough metal: a Torrance-Sparrow microfacet reflection model with conductor Fresnel (Mitsuba
 //! 3's `roughconductor`). One-sided: nothing scatters when `wi` or `wo` is below the surface.
 //!
-//! Scene parameters (`<bsdf type="roughconductor">`):
-//! - `distribution` (string, `beckmann` (default) or `ggx`);
-//! - `alpha` (float, default 0.1), or both `alpha_u` and `alpha_v` (anisotropic roughness along
-//!   the tangent and bitangent); all must be positive;
-//! - `sample_visible` (boolean, default true): sample only the visible normals;
-//! - `material` (string, default `"none"` = perfect reflector), or `eta` and `k` (rgb / float,
-//!   defaults 0 and 1), as for `conductor`;
-//! - `specular_reflectance` (rgb / texture, default 1).
+//! Its scene parameters are declared with its loader, in
+//! `scene/src/materials/conductor.rs`.
 //!
 //! `f(wi, wo) = F(wi.h) D(h) G(wi, wo, h) / (4 cos theta_i cos theta_o)` with the half vector
 //! `h = normalize(wi + wo)`. Sampling draws a microfacet normal `m` (visible normals by

@@ -3,13 +3,8 @@
 //! Surfaces"; Mitsuba 3's `roughdielectric`). Works from both sides: `wi.z < 0` means the ray
 //! arrives from inside.
 //!
-//! Scene parameters (`<bsdf type="roughdielectric">`):
-//! - `distribution` (string, `beckmann` (default) or `ggx`);
-//! - `alpha` (float, default 0.1), or both `alpha_u` and `alpha_v`; all positive;
-//! - `sample_visible` (boolean, default true): sample only the normals visible from `wi`;
-//! - `int_ior` (float or named, default `"bk7"`), `ext_ior` (default `"air"`); they must
-//!   differ;
-//! - `specular_reflectance`, `specular_transmittance` (rgb / texture, default 1): tints.
+//! Its scene parameters are declared with its loader, in
+//! `scene/src/materials/dielectric.rs`.
 //!
 //! # Model
 //!

@@ -1,16 +1,8 @@
 //! Rough plastic (Mitsuba 3's `roughplastic`): a rough dielectric coating (microfacet
 //! reflection, Walter et al. 2007) over a diffuse base, one-sided (the back side is black).
 //!
-//! Scene parameters (`<bsdf type="roughplastic">`):
-//! - `distribution` (string, `beckmann` | `ggx`, default `beckmann`);
-//! - `alpha` (float > 0, default 0.1; isotropic only, as in Mitsuba 3; values below 1e-4 act as
-//!   1e-4, as in Mitsuba 3);
-//! - `sample_visible` (bool, default true): sample the normals visible from `wi`;
-//! - `diffuse_reflectance` (rgb or texture, default 0.5), `specular_reflectance` (rgb or
-//!   texture, default 1);
-//! - `int_ior` (default "polypropylene" = 1.49), `ext_ior` (default "air" = 1.000277): float or
-//!   material name; they must differ;
-//! - `nonlinear` (bool, default false).
+//! Roughness values below 1e-4 act as 1e-4, as in Mitsuba 3. Its scene parameters are declared with
+//! its loader, in `scene/src/materials/plastic.rs`.
 //!
 //! Model (as Mitsuba 3): `f cos = s F(wi.h) D(h) G(wi, wo, h) / (4 cos theta_i)` for the coating
 //! plus `d' / pi / eta^2 cos theta_o T(cos theta_i) T(cos theta_o)` for the base, where `T` is the

@@ -3,10 +3,8 @@
 //! `R = F + (1-F)^2 F / (1 - F^2) = 2F / (1 + F)`, and transmission passes straight through
 //! (`wo = -wi`, no refraction, `eta` = 1) with `1 - R`. Both sides behave alike.
 //!
-//! Scene parameters (`<bsdf type="thindielectric">`):
-//! - `int_ior` (float or a named material, default `"bk7"`): index of the sheet;
-//! - `ext_ior` (float or named, default `"air"`): index around it;
-//! - `specular_reflectance`, `specular_transmittance` (rgb / texture, default 1): tints.
+//! Its scene parameters are declared with its loader, in
+//! `scene/src/materials/dielectric.rs`.
 //!
 //! Two delta components chosen with probabilities `R` and `1 - R`; the weights are the tints.
 use super::fresnel::fresnel_dielectric;

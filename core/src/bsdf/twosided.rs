@@ -1,8 +1,7 @@
 //! Two-sided adapter: a model for the front and one for the back of a surface.
 //!
-//! Scene parameters (`<bsdf type="twosided">`): one nested `<bsdf>` (used on both sides) or two
-//! (front, then back). A ray arriving from the back sees the back model as if the surface were
-//! flipped.
+//! A ray arriving from the back sees the back model as if the surface were flipped. Its scene
+//! parameters are declared with its loader, in `scene/src/materials/basic.rs`.
 use super::{Bsdf, BsdfSample};
 use crate::Color;
 use alloc::boxed::Box;

@@ -1,11 +1,8 @@
 //! Wakame's (Nori's) `microfacet`: a Beckmann rough dielectric reflection over a Lambertian
 //! base, one-sided (the back side is black).
 //!
-//! Scene parameters (`<bsdf type="microfacet">`; the Nori names `intIOR` / `extIOR` arrive as
-//! `int_ior` / `ext_ior`):
-//! - `alpha` (float > 0, default 0.1): Beckmann roughness;
-//! - `int_ior` (float or material name, default 1.5046), `ext_ior` (default 1.000277);
-//! - `kd` (rgb in `[0, 1]`, default 0.5): diffuse reflectance.
+//! Its scene parameters are declared with its loader, in
+//! `scene/src/materials/wakame.rs`.
 //!
 //! Model (the assignment's formula): `f = kd / pi + ks D(h) F(h.wi) G1(wi, h) G1(wo, h) /
 //! (4 cos theta_i cos theta_o)` with `ks = 1 - max(kd)`, Beckmann `D`, dielectric Fresnel `F`

@@ -1,49 +1,104 @@
-//! `diffuse`, `twosided`, `blendbsdf` (and Chalmers' `blend`), `mask`.
-//!
-//! - `diffuse`: `reflectance` (rgb or texture, default 0.5).
-//! - `twosided`: one nested bsdf (both sides) or two (front, then back).
-//! - `blendbsdf` / `blend`: `weight` (float or texture in [0, 1], default 0.5), exactly two
-//!   nested bsdfs; `f = (1 - weight) first + weight second`.
-//! - `mask`: `opacity` (float or texture in [0, 1], default 0.5), exactly one nested bsdf.
-use super::texture::texture;
-use super::{nested_bsdfs, Result};
+//! `diffuse`, `twosided`, `blendbsdf` (also Chalmers' `blend`) and `mask`: the plain reflector
+//! and the wrappers that combine other BSDFs.
+use super::texture::read_texture;
+use super::{nested_bsdfs, BsdfPlugin, Result};
+use crate::plugin::{Param, Plugin, Range};
 use crate::xml::Object;
 use tessera_core::bsdf::{Blend, Bsdf, Diffuse, Mask, TwoSided};
 
-/// Builds the plugins of this file.
-pub fn build(obj: &Object) -> Result<Bsdf> {
-    Ok(match obj.plugin.as_str() {
-        "diffuse" => Bsdf::Diffuse(Diffuse {
-            reflectance: texture(obj, "reflectance", [0.5; 3], true)?,
-        }),
-        "twosided" => {
-            let mut v = nested_bsdfs(obj, 1, 2)?;
-            let back = v.pop().unwrap();
-            let front = v.pop().unwrap_or_else(|| back.clone());
-            Bsdf::TwoSided(TwoSided {
-                front: Box::new(front),
-                back: Box::new(back),
-            })
-        }
-        "blendbsdf" | "blend" => {
-            let weight = texture(obj, "weight", [0.5; 3], true)?;
-            let mut v = nested_bsdfs(obj, 2, 2)?;
-            let second = v.pop().unwrap();
-            let first = v.pop().unwrap();
-            Bsdf::Blend(Blend {
-                weight,
-                first: Box::new(first),
-                second: Box::new(second),
-            })
-        }
-        "mask" => {
-            let opacity = texture(obj, "opacity", [0.5; 3], true)?;
-            let nested = nested_bsdfs(obj, 1, 1)?.pop().unwrap();
-            Bsdf::Mask(Mask {
-                opacity,
-                nested: Box::new(nested),
-            })
-        }
-        other => return Err(obj.error(format!("bsdf \"{other}\" is not implemented yet"))),
-    })
+const REFLECTANCE: Param = Param::texture(
+    "reflectance",
+    [0.5; 3],
+    Range::Unit,
+    "albedo (diffuse reflectance)",
+);
+
+/// `diffuse`.
+pub const DIFFUSE: BsdfPlugin = Plugin {
+    name: "diffuse",
+    aliases: &[],
+    doc: "Lambertian reflection, one-sided (the back side is black unless wrapped in `twosided`).",
+    params: &[REFLECTANCE],
+    nested: "",
+    build: |obj| {
+        Ok(Bsdf::Diffuse(Diffuse {
+            reflectance: read_texture(obj, &REFLECTANCE)?,
+        }))
+    },
+};
+
+/// `twosided`.
+pub const TWOSIDED: BsdfPlugin = Plugin {
+    name: "twosided",
+    aliases: &[],
+    doc: "Makes a one-sided model two-sided: the back is the front model seen from below, or a \
+          second model.",
+    params: &[],
+    nested: "one `<bsdf>` for both sides, or two: the front, then the back",
+    build: build_twosided,
+};
+
+fn build_twosided(obj: &Object) -> Result<Bsdf> {
+    let mut v = nested_bsdfs(obj, 1, 2)?;
+    let back = v.pop().expect("at least one nested bsdf");
+    let front = v.pop().unwrap_or_else(|| back.clone());
+    Ok(Bsdf::TwoSided(TwoSided {
+        front: Box::new(front),
+        back: Box::new(back),
+    }))
+}
+
+const WEIGHT: Param = Param::texture(
+    "weight",
+    [0.5; 3],
+    Range::Unit,
+    "share of the second model: f = (1 - weight) first + weight second",
+);
+
+/// `blendbsdf` (Chalmers' `blend`).
+pub const BLENDBSDF: BsdfPlugin = Plugin {
+    name: "blendbsdf",
+    aliases: &["blend"],
+    doc: "A linear blend of two models.",
+    params: &[WEIGHT],
+    nested: "exactly two `<bsdf>`: the first and the second model",
+    build: build_blend,
+};
+
+fn build_blend(obj: &Object) -> Result<Bsdf> {
+    let weight = read_texture(obj, &WEIGHT)?;
+    let mut v = nested_bsdfs(obj, 2, 2)?;
+    let second = v.pop().expect("two nested bsdfs");
+    let first = v.pop().expect("two nested bsdfs");
+    Ok(Bsdf::Blend(Blend {
+        weight,
+        first: Box::new(first),
+        second: Box::new(second),
+    }))
+}
+
+const OPACITY: Param = Param::texture(
+    "opacity",
+    [0.5; 3],
+    Range::Unit,
+    "probability that a ray meets the nested model (else it passes straight through)",
+);
+
+/// `mask`.
+pub const MASK: BsdfPlugin = Plugin {
+    name: "mask",
+    aliases: &[],
+    doc: "An opacity mask over a model: cut-outs such as leaves.",
+    params: &[OPACITY],
+    nested: "exactly one `<bsdf>`",
+    build: build_mask,
+};
+
+fn build_mask(obj: &Object) -> Result<Bsdf> {
+    let opacity = read_texture(obj, &OPACITY)?;
+    let nested = nested_bsdfs(obj, 1, 1)?.pop().expect("one nested bsdf");
+    Ok(Bsdf::Mask(Mask {
+        opacity,
+        nested: Box::new(nested),
+    }))
 }

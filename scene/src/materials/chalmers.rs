@@ -1,13 +1,9 @@
 //! Chalmers' path-tracer tutorial materials: `blinnphong` and `blinnphong_metal` (its
 //! `LinearBlend` is `blend`, built in `basic.rs`).
-//!
-//! - `blinnphong`: `shininess` (float >= 0, default 25), `r0` or `fresnel` (float in [0, 1],
-//!   default 0.04; not both), at most one nested bsdf (the layer below; none: nothing below).
-//! - `blinnphong_metal`: `color` (rgb or texture in [0, 1], default 0.5), `shininess`, `r0` or
-//!   `fresnel` as above.
-use super::super::util::{at_prop, float_checked};
-use super::texture::texture;
-use super::{nested_bsdfs, Result};
+use super::super::util::at_prop;
+use super::texture::read_texture;
+use super::{nested_bsdfs, BsdfPlugin, Result};
+use crate::plugin::{Default, Param, ParamType, Plugin, Range};
 use crate::xml::Object;
 use tessera_core::bsdf::{BlinnPhong, BlinnPhongMetal, Bsdf};
 
@@ -16,15 +12,63 @@ pub const DEFAULT_SHININESS: f64 = 25.0;
 /// Default Schlick reflectance at normal incidence (a dielectric of index 1.5).
 pub const DEFAULT_R0: f64 = 0.04;
 
-/// Builds the plugins of this file.
-pub fn build(obj: &Object) -> Result<Bsdf> {
-    let shininess = float_checked(
-        obj,
-        "shininess",
-        DEFAULT_SHININESS,
-        |s| (0.0..=1e6).contains(&s),
-        "in [0, 1e6]",
-    )?;
+const SHININESS: Param = Param::float(
+    "shininess",
+    DEFAULT_SHININESS,
+    Range::closed(0.0, 1e6),
+    "Blinn-Phong exponent",
+);
+const R0: Param = Param::float(
+    "r0",
+    DEFAULT_R0,
+    Range::Unit,
+    "Schlick's reflectance at normal incidence",
+);
+const FRESNEL: Param = Param::new(
+    "fresnel",
+    ParamType::Float,
+    Default::Note("r0's"),
+    Range::Unit,
+    "the tutorial's name for r0 (give one of the two)",
+);
+const COLOR: Param = Param::texture("color", [0.5; 3], Range::Unit, "the metal's tint");
+
+/// `blinnphong`.
+pub const BLINNPHONG: BsdfPlugin = Plugin {
+    name: "blinnphong",
+    aliases: &[],
+    doc: "The Chalmers tutorial's dielectric layer: a Blinn-Phong lobe weighted by Schlick's \
+          Fresnel over a nested model.",
+    params: &[SHININESS, R0, FRESNEL],
+    nested: "at most one `<bsdf>`: the layer below (none: nothing below)",
+    build: |obj| {
+        let (shininess, r0) = lobe(obj)?;
+        let base = nested_bsdfs(obj, 0, 1)?.pop().map(Box::new);
+        Ok(Bsdf::BlinnPhong(BlinnPhong::new(shininess, r0, base)))
+    },
+};
+
+/// `blinnphong_metal`.
+pub const BLINNPHONG_METAL: BsdfPlugin = Plugin {
+    name: "blinnphong_metal",
+    aliases: &[],
+    doc: "The Chalmers tutorial's metal: a tinted Blinn-Phong lobe.",
+    params: &[COLOR, SHININESS, R0, FRESNEL],
+    nested: "",
+    build: |obj| {
+        let (shininess, r0) = lobe(obj)?;
+        nested_bsdfs(obj, 0, 0)?;
+        Ok(Bsdf::BlinnPhongMetal(BlinnPhongMetal::new(
+            read_texture(obj, &COLOR)?,
+            shininess,
+            r0,
+        )))
+    },
+};
+
+/// The exponent and the reflectance at normal incidence (`r0` or its alias `fresnel`).
+fn lobe(obj: &Object) -> Result<(f32, f32)> {
+    let shininess = SHININESS.read_f32(obj)?;
     if obj.has("r0") && obj.has("fresnel") {
         return Err(at_prop(
             obj,
@@ -35,27 +79,10 @@ pub fn build(obj: &Object) -> Result<Bsdf> {
             ),
         ));
     }
-    let r0_name = if obj.has("fresnel") { "fresnel" } else { "r0" };
-    let r0 = float_checked(
-        obj,
-        r0_name,
-        DEFAULT_R0,
-        |r| (0.0..=1.0).contains(&r),
-        "in [0, 1]",
-    )?;
-    Ok(match obj.plugin.as_str() {
-        "blinnphong" => {
-            let base = nested_bsdfs(obj, 0, 1)?.pop().map(Box::new);
-            Bsdf::BlinnPhong(BlinnPhong::new(shininess, r0, base))
-        }
-        "blinnphong_metal" => {
-            nested_bsdfs(obj, 0, 0)?;
-            Bsdf::BlinnPhongMetal(BlinnPhongMetal::new(
-                texture(obj, "color", [0.5; 3], true)?,
-                shininess,
-                r0,
-            ))
-        }
-        other => return Err(obj.error(format!("bsdf \"{other}\" is not implemented yet"))),
-    })
+    let r0 = if obj.has("fresnel") {
+        FRESNEL.read_f32_or(obj, DEFAULT_R0)?
+    } else {
+        R0.read_f32(obj)?
+    };
+    Ok((shininess, r0))
 }

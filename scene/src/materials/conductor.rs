@@ -1,18 +1,10 @@
 //! `conductor` and `roughconductor` (Mitsuba 3 names and defaults), and the microfacet
-//! parameters shared with `roughdielectric`.
-//!
-//! - `conductor`: `material` (string, default `"none"`: perfect mirror, `eta` 0, `k` 1) or
-//!   `eta` / `k` (rgb / float, defaults 0 / 1; giving `eta` with a material other than `none`
-//!   is an error, as in Mitsuba); `specular_reflectance` (rgb, default 1, in [0, 1]).
-//! - `roughconductor`: the same plus `distribution` (`beckmann` (default) | `ggx`, any case),
-//!   `alpha` (float, default 0.1) or both `alpha_u` and `alpha_v` (positive), `sample_visible`
-//!   (boolean, default true).
-//!
-//! Named metals come from [`conductor_table`] (Mitsuba 3's RGB values). Roughness must be a
-//! number here (Mitsuba also takes a texture).
-use super::super::util::{at_prop, float_checked};
-use super::texture::texture;
-use super::Result;
+//! parameters shared with `roughdielectric`. Named metals come from [`conductor_table`]
+//! (Mitsuba 3's RGB values). Roughness must be a number here (Mitsuba also takes a texture).
+use super::super::util::at_prop;
+use super::texture::read_texture;
+use super::{BsdfPlugin, Result};
+use crate::plugin::{Default, Param, ParamType, Plugin, Range};
 use crate::xml::Object;
 use tessera_core::bsdf::microfacet::{Microfacet, MicrofacetKind};
 use tessera_core::bsdf::{Bsdf, Conductor, RoughConductor};
@@ -21,30 +13,120 @@ use tessera_core::texture::Texture;
 #[path = "conductor_table.rs"]
 pub(crate) mod conductor_table;
 
-/// Builds the plugins of this file.
-pub fn build(obj: &Object) -> Result<Bsdf> {
-    let (eta, k) = complex_ior(obj)?;
-    let specular_reflectance = texture(obj, "specular_reflectance", [1.0; 3], true)?;
-    Ok(match obj.plugin.as_str() {
-        "conductor" => Bsdf::Conductor(Conductor {
+const MATERIAL: Param = Param::new(
+    "material",
+    ParamType::String,
+    Default::Str("none"),
+    Range::Note("a metal of Mitsuba 3's table, or none"),
+    "named metal giving eta and k; \"none\" is a perfect mirror (eta 0, k 1)",
+);
+const ETA: Param = Param::texture(
+    "eta",
+    [0.0; 3],
+    Range::NonNegative,
+    "real part of the index of refraction (only with material \"none\")",
+);
+const K: Param = Param::texture(
+    "k",
+    [1.0; 3],
+    Range::NonNegative,
+    "imaginary part of the index of refraction (only with material \"none\")",
+);
+const SPECULAR_REFLECTANCE: Param = Param::texture(
+    "specular_reflectance",
+    [1.0; 3],
+    Range::Unit,
+    "factor on the reflection (not physical; for artistic control)",
+);
+/// `distribution` of the rough plugins.
+pub(crate) const DISTRIBUTION: Param = Param::new(
+    "distribution",
+    ParamType::Choice,
+    Default::Str("beckmann"),
+    Range::OneOfAnyCase(&["beckmann", "ggx"]),
+    "microfacet distribution (any letter case)",
+);
+/// `alpha` of the rough plugins.
+pub(crate) const ALPHA: Param = Param::float(
+    "alpha",
+    0.1,
+    Range::Positive,
+    "roughness (root mean square slope of the microfacets)",
+);
+/// `alpha_u` of the anisotropic rough plugins.
+pub(crate) const ALPHA_U: Param = Param::new(
+    "alpha_u",
+    ParamType::Float,
+    Default::Absent,
+    Range::Positive,
+    "roughness along the tangent; give alpha_u and alpha_v together, instead of alpha",
+);
+/// `alpha_v` of the anisotropic rough plugins.
+pub(crate) const ALPHA_V: Param = Param::new(
+    "alpha_v",
+    ParamType::Float,
+    Default::Absent,
+    Range::Positive,
+    "roughness along the bitangent; give alpha_u and alpha_v together, instead of alpha",
+);
+/// `sample_visible` of the rough plugins.
+pub(crate) const SAMPLE_VISIBLE: Param = Param::boolean(
+    "sample_visible",
+    true,
+    "sample only the microfacet normals the incident direction sees (less noise)",
+);
+
+/// `conductor`.
+pub const CONDUCTOR: BsdfPlugin = Plugin {
+    name: "conductor",
+    aliases: &[],
+    doc: "A smooth metal: mirror reflection weighted by the complex Fresnel factor.",
+    params: &[MATERIAL, ETA, K, SPECULAR_REFLECTANCE],
+    nested: "",
+    build: |obj| {
+        let (eta, k) = complex_ior(obj)?;
+        Ok(Bsdf::Conductor(Conductor {
             eta,
             k,
-            specular_reflectance,
-        }),
-        "roughconductor" => Bsdf::RoughConductor(RoughConductor {
+            specular_reflectance: read_texture(obj, &SPECULAR_REFLECTANCE)?,
+        }))
+    },
+};
+
+/// `roughconductor`.
+pub const ROUGHCONDUCTOR: BsdfPlugin = Plugin {
+    name: "roughconductor",
+    aliases: &[],
+    doc: "A rough metal: a microfacet model (Beckmann or GGX, isotropic or anisotropic) with \
+          the complex Fresnel factor.",
+    params: &[
+        MATERIAL,
+        ETA,
+        K,
+        SPECULAR_REFLECTANCE,
+        DISTRIBUTION,
+        ALPHA,
+        ALPHA_U,
+        ALPHA_V,
+        SAMPLE_VISIBLE,
+    ],
+    nested: "",
+    build: |obj| {
+        let (eta, k) = complex_ior(obj)?;
+        let specular_reflectance = read_texture(obj, &SPECULAR_REFLECTANCE)?;
+        Ok(Bsdf::RoughConductor(RoughConductor {
             distribution: microfacet(obj)?,
             eta,
             k,
             specular_reflectance,
-        }),
-        other => return Err(obj.error(format!("bsdf \"{other}\" is not a conductor"))),
-    })
-}
+        }))
+    },
+};
 
 /// `(eta, k)` from `material` or from `eta` / `k`, as Mitsuba 3 resolves them.
 fn complex_ior(obj: &Object) -> Result<(Texture, Texture)> {
-    let material = obj.string_opt("material")?;
-    let named = material.as_deref().filter(|m| *m != "none");
+    let material = MATERIAL.read_string(obj)?;
+    let named = Some(material.as_str()).filter(|m| *m != "none");
     if obj.has("eta") || named.is_none() {
         if named.is_some() {
             return Err(at_prop(
@@ -56,8 +138,8 @@ fn complex_ior(obj: &Object) -> Result<(Texture, Texture)> {
                 ),
             ));
         }
-        let eta = texture(obj, "eta", [0.0; 3], false)?;
-        let k = texture(obj, "k", [1.0; 3], false)?;
+        let eta = read_texture(obj, &ETA)?;
+        let k = read_texture(obj, &K)?;
         return Ok((eta, k));
     }
     let name = named.unwrap_or_default();
@@ -84,25 +166,10 @@ fn complex_ior(obj: &Object) -> Result<(Texture, Texture)> {
 /// The microfacet distribution of a rough plugin: `distribution`, `alpha` or
 /// `alpha_u`/`alpha_v`, `sample_visible` (Mitsuba 3's names, defaults and rules).
 pub(crate) fn microfacet(obj: &Object) -> Result<Microfacet> {
-    let kind = match obj.string_opt("distribution")? {
-        None => MicrofacetKind::Beckmann,
-        Some(s) => match s.to_lowercase().as_str() {
-            "beckmann" => MicrofacetKind::Beckmann,
-            "ggx" => MicrofacetKind::Ggx,
-            _ => {
-                return Err(at_prop(
-                    obj,
-                    "distribution",
-                    format!(
-                        "\"distribution\" of {}: unknown distribution \"{s}\" (known: beckmann, \
-                         ggx)",
-                        obj.describe()
-                    ),
-                ))
-            }
-        },
+    let kind = match DISTRIBUTION.read_choice(obj)? {
+        "ggx" => MicrofacetKind::Ggx,
+        _ => MicrofacetKind::Beckmann,
     };
-    let positive = |v: f64| v > 0.0;
     let (alpha_u, alpha_v) = if obj.has("alpha_u") || obj.has("alpha_v") {
         for (name, other) in [("alpha_u", "alpha_v"), ("alpha_v", "alpha_u")] {
             if !obj.has(name) {
@@ -126,18 +193,16 @@ pub(crate) fn microfacet(obj: &Object) -> Result<Microfacet> {
                 ),
             ));
         }
-        (
-            float_checked(obj, "alpha_u", 0.1, positive, "positive")?,
-            float_checked(obj, "alpha_v", 0.1, positive, "positive")?,
-        )
+        let read = |p: &Param| p.read_f32_opt(obj)?.ok_or_else(|| obj.missing(p.name));
+        (read(&ALPHA_U)?, read(&ALPHA_V)?)
     } else {
-        let a = float_checked(obj, "alpha", 0.1, positive, "positive")?;
+        let a = ALPHA.read_f32(obj)?;
         (a, a)
     };
     Ok(Microfacet {
         kind,
         alpha_u,
         alpha_v,
-        sample_visible: obj.boolean("sample_visible", true)?,
+        sample_visible: SAMPLE_VISIBLE.read_bool(obj)?,
     })
 }

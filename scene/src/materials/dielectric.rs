@@ -1,65 +1,150 @@
-//! `dielectric`, `roughdielectric`, `thindielectric` (Mitsuba 3 names and defaults).
-//!
-//! - all three: `int_ior` (float or named material, default `"bk7"`), `ext_ior` (default
-//!   `"air"`), both positive; the model uses `eta = int_ior / ext_ior` (computed in single
-//!   precision, as Mitsuba does); `specular_reflectance`, `specular_transmittance` (rgb,
-//!   default 1, in [0, 1]).
-//! - `roughdielectric` also: `distribution`, `alpha` or `alpha_u`/`alpha_v`, `sample_visible`
-//!   (see [`super::conductor::microfacet`]); its indices must differ (as in Mitsuba).
+//! `dielectric`, `roughdielectric`, `thindielectric` (Mitsuba 3 names and defaults). The models
+//! use `eta = int_ior / ext_ior`, computed in single precision as Mitsuba does.
 use super::super::util::at_prop;
-use super::conductor::microfacet;
-use super::ior::ior;
-use super::texture::texture;
-use super::Result;
+use super::conductor::{microfacet, ALPHA, ALPHA_U, ALPHA_V, DISTRIBUTION, SAMPLE_VISIBLE};
+use super::ior::read_ior;
+use super::texture::read_texture;
+use super::{BsdfPlugin, Result};
+use crate::plugin::{Param, Plugin, Range};
 use crate::xml::Object;
 use tessera_core::bsdf::{Bsdf, Dielectric, RoughDielectric, ThinDielectric};
+use tessera_core::texture::Texture;
 
-/// Builds the plugins of this file.
-pub fn build(obj: &Object) -> Result<Bsdf> {
-    let int_ior = ior(obj, "int_ior", "bk7")? as f32;
-    let ext_ior = ior(obj, "ext_ior", "air")? as f32;
-    let eta = int_ior / ext_ior;
-    if !(eta.is_finite() && eta > 0.0) {
+/// `int_ior` of the glass plugins.
+pub(crate) const INT_IOR: Param = Param::ior("int_ior", "bk7", "index of refraction inside");
+/// `ext_ior` of the glass plugins.
+pub(crate) const EXT_IOR: Param = Param::ior("ext_ior", "air", "index of refraction outside");
+const SPECULAR_REFLECTANCE: Param = Param::texture(
+    "specular_reflectance",
+    [1.0; 3],
+    Range::Unit,
+    "factor on the reflection (not physical; for artistic control)",
+);
+const SPECULAR_TRANSMITTANCE: Param = Param::texture(
+    "specular_transmittance",
+    [1.0; 3],
+    Range::Unit,
+    "factor on the transmission (not physical; for artistic control)",
+);
+
+/// `dielectric`.
+pub const DIELECTRIC: BsdfPlugin = Plugin {
+    name: "dielectric",
+    aliases: &[],
+    doc: "Smooth glass: Fresnel-weighted mirror reflection and refraction.",
+    params: &[
+        INT_IOR,
+        EXT_IOR,
+        SPECULAR_REFLECTANCE,
+        SPECULAR_TRANSMITTANCE,
+    ],
+    nested: "",
+    build: |obj| {
+        let g = Glass::read(obj)?;
+        Ok(Bsdf::Dielectric(Dielectric {
+            eta: g.eta,
+            specular_reflectance: g.reflectance,
+            specular_transmittance: g.transmittance,
+        }))
+    },
+};
+
+/// `thindielectric`.
+pub const THINDIELECTRIC: BsdfPlugin = Plugin {
+    name: "thindielectric",
+    aliases: &[],
+    doc: "A thin glass sheet (a window pane): reflection and straight-through transmission, with \
+          the inter-reflections inside the sheet summed.",
+    params: &[
+        INT_IOR,
+        EXT_IOR,
+        SPECULAR_REFLECTANCE,
+        SPECULAR_TRANSMITTANCE,
+    ],
+    nested: "",
+    build: |obj| {
+        let g = Glass::read(obj)?;
+        Ok(Bsdf::ThinDielectric(ThinDielectric {
+            eta: g.eta,
+            specular_reflectance: g.reflectance,
+            specular_transmittance: g.transmittance,
+        }))
+    },
+};
+
+/// `roughdielectric`.
+pub const ROUGHDIELECTRIC: BsdfPlugin = Plugin {
+    name: "roughdielectric",
+    aliases: &[],
+    doc:
+        "Rough glass (Walter et al. 2007): microfacet reflection and refraction. Its indices must \
+          differ, as in Mitsuba 3.",
+    params: &[
+        INT_IOR,
+        EXT_IOR,
+        SPECULAR_REFLECTANCE,
+        SPECULAR_TRANSMITTANCE,
+        DISTRIBUTION,
+        ALPHA,
+        ALPHA_U,
+        ALPHA_V,
+        SAMPLE_VISIBLE,
+    ],
+    nested: "",
+    build: build_rough,
+};
+
+fn build_rough(obj: &Object) -> Result<Bsdf> {
+    let g = Glass::read(obj)?;
+    if g.int_ior == g.ext_ior {
         return Err(at_prop(
             obj,
             "int_ior",
             format!(
-                "the indices of {} give no usable ratio ({int_ior} / {ext_ior})",
-                obj.describe()
+                "{}: \"int_ior\" and \"ext_ior\" must differ (both {})",
+                obj.describe(),
+                g.int_ior
             ),
         ));
     }
-    let specular_reflectance = texture(obj, "specular_reflectance", [1.0; 3], true)?;
-    let specular_transmittance = texture(obj, "specular_transmittance", [1.0; 3], true)?;
-    Ok(match obj.plugin.as_str() {
-        "dielectric" => Bsdf::Dielectric(Dielectric {
-            eta,
-            specular_reflectance,
-            specular_transmittance,
-        }),
-        "thindielectric" => Bsdf::ThinDielectric(ThinDielectric {
-            eta,
-            specular_reflectance,
-            specular_transmittance,
-        }),
-        "roughdielectric" => {
-            if int_ior == ext_ior {
-                return Err(at_prop(
-                    obj,
-                    "int_ior",
-                    format!(
-                        "{}: \"int_ior\" and \"ext_ior\" must differ (both {int_ior})",
-                        obj.describe()
-                    ),
-                ));
-            }
-            Bsdf::RoughDielectric(RoughDielectric {
-                distribution: microfacet(obj)?,
-                eta,
-                specular_reflectance,
-                specular_transmittance,
-            })
+    Ok(Bsdf::RoughDielectric(RoughDielectric {
+        distribution: microfacet(obj)?,
+        eta: g.eta,
+        specular_reflectance: g.reflectance,
+        specular_transmittance: g.transmittance,
+    }))
+}
+
+/// What the three glass plugins share.
+struct Glass {
+    int_ior: f32,
+    ext_ior: f32,
+    eta: f32,
+    reflectance: Texture,
+    transmittance: Texture,
+}
+
+impl Glass {
+    fn read(obj: &Object) -> Result<Glass> {
+        let int_ior = read_ior(obj, &INT_IOR)? as f32;
+        let ext_ior = read_ior(obj, &EXT_IOR)? as f32;
+        let eta = int_ior / ext_ior;
+        if !(eta.is_finite() && eta > 0.0) {
+            return Err(at_prop(
+                obj,
+                "int_ior",
+                format!(
+                    "the indices of {} give no usable ratio ({int_ior} / {ext_ior})",
+                    obj.describe()
+                ),
+            ));
         }
-        other => return Err(obj.error(format!("bsdf \"{other}\" is not a dielectric"))),
-    })
+        Ok(Glass {
+            int_ior,
+            ext_ior,
+            eta,
+            reflectance: read_texture(obj, &SPECULAR_REFLECTANCE)?,
+            transmittance: read_texture(obj, &SPECULAR_TRANSMITTANCE)?,
+        })
+    }
 }

@@ -1,5 +1,6 @@
 //! Indices of refraction: a number or one of Mitsuba 3's named materials.
 use super::super::util::{at_prop, Result};
+use crate::plugin::{Default, Param};
 use crate::xml::{Object, Value};
 
 /// Named indices of refraction (at 589 nm), as Mitsuba 3 accepts them.
@@ -28,6 +29,14 @@ pub const NAMED: &[(&str, f64)] = &[
     ("pet", 1.5750),
     ("diamond", 2.419),
 ];
+
+/// The declared index of refraction `p` of `obj` (its default names a material).
+pub fn read_ior(obj: &Object, p: &Param) -> Result<f64> {
+    let Default::Str(default) = p.default else {
+        unreachable!("index \"{}\" has no named default", p.name)
+    };
+    ior(obj, p.name, default)
+}
 
 /// The index of refraction `name` of `obj`: a `<float>` or a `<string>` naming a material;
 /// `default` names the value used when absent. Must be finite and positive.

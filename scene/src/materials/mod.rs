@@ -1,5 +1,6 @@
-//! Builders from `<bsdf>` objects to core BSDFs, grouped by family; each file lists the
-//! parameters of the plugins it builds (same names and defaults as Mitsuba 3 unless noted).
+//! The BSDF plugins: one [`Plugin`] per `<bsdf type=...>`, declared in the file of its family
+//! (same names and defaults as Mitsuba 3 unless its declaration says otherwise), and the
+//! table [`BSDFS`] that lists them.
 mod basic;
 mod chalmers;
 mod conductor;
@@ -10,46 +11,37 @@ pub(crate) mod texture;
 mod wakame;
 
 use super::util::Result;
+use crate::plugin::{self, Plugin};
 use crate::xml::{Child, Kind, Object};
 use tessera_core::bsdf::Bsdf;
 
-/// Every `<bsdf type=...>` Tessera knows.
-pub const KNOWN: &[&str] = &[
-    "diffuse",
-    "twosided",
-    "blendbsdf",
-    "blend",
-    "mask",
-    "conductor",
-    "roughconductor",
-    "dielectric",
-    "roughdielectric",
-    "thindielectric",
-    "plastic",
-    "roughplastic",
-    "mirror",
-    "microfacet",
-    "blinnphong",
-    "blinnphong_metal",
+/// A BSDF plugin.
+pub type BsdfPlugin = Plugin<fn(&Object) -> Result<Bsdf>>;
+
+/// Every `<bsdf type=...>` Tessera knows, in the order the reference lists them.
+pub static BSDFS: &[BsdfPlugin] = &[
+    basic::DIFFUSE,
+    plastic::PLASTIC,
+    plastic::ROUGHPLASTIC,
+    conductor::CONDUCTOR,
+    conductor::ROUGHCONDUCTOR,
+    dielectric::DIELECTRIC,
+    dielectric::ROUGHDIELECTRIC,
+    dielectric::THINDIELECTRIC,
+    basic::TWOSIDED,
+    basic::BLENDBSDF,
+    basic::MASK,
+    wakame::MIRROR,
+    wakame::MICROFACET,
+    chalmers::BLINNPHONG,
+    chalmers::BLINNPHONG_METAL,
 ];
 
 /// Builds one BSDF (recursively for wrappers) and reports unused parameters.
 pub fn build_bsdf(obj: &Object) -> Result<Bsdf> {
-    let b = match obj.plugin.as_str() {
-        "diffuse" | "twosided" | "blendbsdf" | "blend" | "mask" => basic::build(obj)?,
-        "conductor" | "roughconductor" => conductor::build(obj)?,
-        "dielectric" | "roughdielectric" | "thindielectric" => dielectric::build(obj)?,
-        "plastic" | "roughplastic" => plastic::build(obj)?,
-        "mirror" | "microfacet" => wakame::build(obj)?,
-        "blinnphong" | "blinnphong_metal" => chalmers::build(obj)?,
-        other => {
-            return Err(obj.error(format!(
-                "unknown bsdf \"{other}\" (known: {})",
-                KNOWN.join(", ")
-            )))
-        }
-    };
-    obj.check_unused()?;
+    let plugin = plugin::find(BSDFS, "bsdf", obj)?;
+    let b = (plugin.build)(obj)?;
+    plugin.check_unused(obj)?;
     Ok(b)
 }
 
@@ -82,4 +74,27 @@ pub fn nested_bsdfs(obj: &Object, min: usize, max: usize) -> Result<Vec<Bsdf>> {
             build_bsdf(&c.obj)
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{build_bsdf, BSDFS};
+    use crate::plugin::check::check_family;
+    use crate::xml::Kind;
+
+    #[test]
+    fn declarations_match_what_the_builders_read() {
+        check_family(
+            BSDFS,
+            Kind::Bsdf,
+            build_bsdf,
+            |name| match name {
+                "twosided" | "mask" => "<bsdf type=\"diffuse\"/>",
+                "blendbsdf" => "<bsdf type=\"diffuse\"/><bsdf type=\"conductor\"/>",
+                _ => "",
+            },
+            // Given alone, alpha_u (or alpha_v) asks for its partner.
+            &[("roughplastic", "alpha_u"), ("roughplastic", "alpha_v")],
+        );
+    }
 }

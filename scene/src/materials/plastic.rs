@@ -1,92 +1,171 @@
-//! `plastic` and `roughplastic` (Mitsuba 3): a dielectric coating over a diffuse base.
-//!
-//! - both: `diffuse_reflectance` (rgb or texture in [0, 1], default 0.5),
-//!   `specular_reflectance` (rgb or texture in [0, 1], default 1), `int_ior` (float > 0 or
-//!   material name, default "polypropylene" = 1.49), `ext_ior` (default "air" = 1.000277),
-//!   `nonlinear` (bool, default false);
-//! - `roughplastic` also: `distribution` (`beckmann` | `ggx`, default `beckmann`), `alpha`
-//!   (float > 0, default 0.1; `alpha_u` and `alpha_v` are accepted only when equal, since the
-//!   model is isotropic as in Mitsuba 3), `sample_visible` (bool, default true). The indices
-//!   must differ, as Mitsuba 3 requires.
-use super::super::util::{at_prop, float_checked};
-use super::ior::ior;
-use super::texture::texture;
-use super::Result;
+//! `plastic` and `roughplastic` (Mitsuba 3): a dielectric coating over a diffuse base. The
+//! indices of `roughplastic` must differ, as Mitsuba 3 requires.
+use super::super::util::at_prop;
+use super::conductor::{ALPHA, DISTRIBUTION, SAMPLE_VISIBLE};
+use super::ior::read_ior;
+use super::texture::read_texture;
+use super::{BsdfPlugin, Result};
+use crate::plugin::{Param, Plugin, Range};
 use crate::xml::Object;
 use tessera_core::bsdf::microfacet::MicrofacetKind;
 use tessera_core::bsdf::{Bsdf, Plastic, RoughPlastic};
+use tessera_core::texture::Texture;
 
-/// Builds the plugins of this file.
-pub fn build(obj: &Object) -> Result<Bsdf> {
-    let diffuse = texture(obj, "diffuse_reflectance", [0.5; 3], true)?;
-    let specular = texture(obj, "specular_reflectance", [1.0; 3], true)?;
-    let int_ior = ior(obj, "int_ior", "polypropylene")?;
-    let ext_ior = ior(obj, "ext_ior", "air")?;
-    let nonlinear = obj.boolean("nonlinear", false)?;
-    let eta = (int_ior / ext_ior) as f32;
-    if !(eta.is_finite() && eta > 0.0) {
+const DIFFUSE_REFLECTANCE: Param = Param::texture(
+    "diffuse_reflectance",
+    [0.5; 3],
+    Range::Unit,
+    "albedo of the diffuse base",
+);
+const SPECULAR_REFLECTANCE: Param = Param::texture(
+    "specular_reflectance",
+    [1.0; 3],
+    Range::Unit,
+    "factor on the coating's reflection (not physical; for artistic control)",
+);
+const INT_IOR: Param = Param::ior(
+    "int_ior",
+    "polypropylene",
+    "index of refraction of the coating",
+);
+const EXT_IOR: Param = Param::ior("ext_ior", "air", "index of refraction outside");
+const NONLINEAR: Param = Param::boolean(
+    "nonlinear",
+    false,
+    "account for the base's colour shift from internal scattering (Mitsuba 3's nonlinear)",
+);
+const ALPHA_U: Param = Param::float(
+    "alpha_u",
+    0.1,
+    Range::Positive,
+    "accepted instead of alpha when given with an equal alpha_v (the model is isotropic)",
+);
+const ALPHA_V: Param = Param::float(
+    "alpha_v",
+    0.1,
+    Range::Positive,
+    "accepted instead of alpha when given with an equal alpha_u (the model is isotropic)",
+);
+
+/// `plastic`.
+pub const PLASTIC: BsdfPlugin = Plugin {
+    name: "plastic",
+    aliases: &[],
+    doc: "A smooth dielectric coating over a diffuse base: varnished wood, smooth plastic.",
+    params: &[
+        DIFFUSE_REFLECTANCE,
+        SPECULAR_REFLECTANCE,
+        INT_IOR,
+        EXT_IOR,
+        NONLINEAR,
+    ],
+    nested: "",
+    build: |obj| {
+        let c = Coating::read(obj)?;
+        Ok(Bsdf::Plastic(Plastic::new(
+            c.diffuse,
+            c.specular,
+            c.eta,
+            c.nonlinear,
+        )))
+    },
+};
+
+/// `roughplastic`.
+pub const ROUGHPLASTIC: BsdfPlugin = Plugin {
+    name: "roughplastic",
+    aliases: &[],
+    doc: "A rough dielectric coating (isotropic microfacets) over a diffuse base.",
+    params: &[
+        DIFFUSE_REFLECTANCE,
+        SPECULAR_REFLECTANCE,
+        INT_IOR,
+        EXT_IOR,
+        NONLINEAR,
+        DISTRIBUTION,
+        ALPHA,
+        ALPHA_U,
+        ALPHA_V,
+        SAMPLE_VISIBLE,
+    ],
+    nested: "",
+    build: build_rough,
+};
+
+fn build_rough(obj: &Object) -> Result<Bsdf> {
+    let c = Coating::read(obj)?;
+    if c.int_ior == c.ext_ior {
         return Err(at_prop(
             obj,
             "int_ior",
             format!(
-                "\"int_ior\" / \"ext_ior\" of {} is out of range",
-                obj.describe()
+                "\"int_ior\" and \"ext_ior\" of {} must differ (both are {})",
+                obj.describe(),
+                c.int_ior
             ),
         ));
     }
-    if obj.plugin == "plastic" {
-        return Ok(Bsdf::Plastic(Plastic::new(
-            diffuse, specular, eta, nonlinear,
-        )));
-    }
-    if int_ior == ext_ior {
-        return Err(at_prop(
-            obj,
-            "int_ior",
-            format!(
-                "\"int_ior\" and \"ext_ior\" of {} must differ (both are {int_ior})",
-                obj.describe()
-            ),
-        ));
-    }
-    let kind = distribution(obj)?;
+    let kind = match DISTRIBUTION.read_choice(obj)? {
+        "ggx" => MicrofacetKind::Ggx,
+        _ => MicrofacetKind::Beckmann,
+    };
     let alpha = roughness(obj)?;
-    let sample_visible = obj.boolean("sample_visible", true)?;
+    let sample_visible = SAMPLE_VISIBLE.read_bool(obj)?;
     Ok(Bsdf::RoughPlastic(RoughPlastic::new(
-        diffuse,
-        specular,
+        c.diffuse,
+        c.specular,
         kind,
         alpha,
         sample_visible,
-        eta,
-        nonlinear,
+        c.eta,
+        c.nonlinear,
     )))
 }
 
-/// The `distribution` parameter (case-insensitive, as in Mitsuba 3).
-fn distribution(obj: &Object) -> Result<MicrofacetKind> {
-    let name = obj.string("distribution", "beckmann")?;
-    match name.to_ascii_lowercase().as_str() {
-        "beckmann" => Ok(MicrofacetKind::Beckmann),
-        "ggx" => Ok(MicrofacetKind::Ggx),
-        _ => Err(at_prop(
-            obj,
-            "distribution",
-            format!(
-                "\"distribution\" of {} must be \"beckmann\" or \"ggx\", found \"{name}\"",
-                obj.describe()
-            ),
-        )),
+/// What both plugins read.
+struct Coating {
+    diffuse: Texture,
+    specular: Texture,
+    int_ior: f64,
+    ext_ior: f64,
+    eta: f32,
+    nonlinear: bool,
+}
+
+impl Coating {
+    fn read(obj: &Object) -> Result<Coating> {
+        let diffuse = read_texture(obj, &DIFFUSE_REFLECTANCE)?;
+        let specular = read_texture(obj, &SPECULAR_REFLECTANCE)?;
+        let int_ior = read_ior(obj, &INT_IOR)?;
+        let ext_ior = read_ior(obj, &EXT_IOR)?;
+        let nonlinear = NONLINEAR.read_bool(obj)?;
+        let eta = (int_ior / ext_ior) as f32;
+        if !(eta.is_finite() && eta > 0.0) {
+            return Err(at_prop(
+                obj,
+                "int_ior",
+                format!(
+                    "\"int_ior\" / \"ext_ior\" of {} is out of range",
+                    obj.describe()
+                ),
+            ));
+        }
+        Ok(Coating {
+            diffuse,
+            specular,
+            int_ior,
+            ext_ior,
+            eta,
+            nonlinear,
+        })
     }
 }
 
 /// The isotropic roughness: `alpha`, or equal `alpha_u` and `alpha_v`.
 fn roughness(obj: &Object) -> Result<f32> {
-    let positive = |v: f64| v > 0.0;
-    const WHAT: &str = "positive";
     let (has_u, has_v) = (obj.has("alpha_u"), obj.has("alpha_v"));
     if !has_u && !has_v {
-        return float_checked(obj, "alpha", 0.1, positive, WHAT);
+        return ALPHA.read_f32(obj);
     }
     if obj.has("alpha") {
         return Err(at_prop(
@@ -98,8 +177,8 @@ fn roughness(obj: &Object) -> Result<f32> {
             ),
         ));
     }
-    let u = float_checked(obj, "alpha_u", 0.1, positive, WHAT)?;
-    let v = float_checked(obj, "alpha_v", 0.1, positive, WHAT)?;
+    let u = ALPHA_U.read_f32(obj)?;
+    let v = ALPHA_V.read_f32(obj)?;
     if !(has_u && has_v) || u != v {
         let name = if has_u { "alpha_u" } else { "alpha_v" };
         return Err(at_prop(

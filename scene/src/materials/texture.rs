@@ -15,10 +15,20 @@
 //! `tessera_core::texture`'s plugin files.
 use super::super::util::{at_prop, Result};
 use crate::image::read_image;
+use crate::plugin::{Default, Param, Range};
 use crate::xml::{Kind, Object};
 use glam::{DMat4, Vec3};
 use std::path::Path;
 use tessera_core::texture::{Bitmap, Checkerboard, FilterType, Texture, UvTransform, WrapMode};
+
+/// The declared texture parameter `p` of `obj`: its default colour when absent; every value
+/// in `[0, 1]` when its range is [`Range::Unit`], else only non-negative.
+pub fn read_texture(obj: &Object, p: &Param) -> Result<Texture> {
+    let Default::Rgb(default) = p.default else {
+        unreachable!("texture \"{}\" has no constant default", p.name)
+    };
+    texture(obj, p.name, default, p.range == Range::Unit)
+}
 
 /// The texture parameter `name` of `obj` (constant `default` when absent). With `unit`, every
 /// value must lie in `[0, 1]` (reflectances, weights); otherwise only non-negative.

@@ -1,31 +1,46 @@
-//! Nori / Wakame BSDFs.
-//!
-//! - `mirror`: no parameters (a perfect one-sided mirror).
-//! - `microfacet`: `alpha` (float > 0, default 0.1), `int_ior` (Nori's `intIOR`; float > 0 or
-//!   material name, default 1.5046), `ext_ior` (`extIOR`, default 1.000277), `kd` (rgb in
-//!   [0, 1], default 0.5).
-use super::super::util::{at_prop, color, float_checked};
-use super::ior::ior;
-use super::Result;
+//! Nori / Wakame BSDFs: `mirror` and Wakame's `microfacet`.
+use super::super::util::at_prop;
+use super::dielectric::{EXT_IOR, INT_IOR};
+use super::ior::read_ior;
+use super::{BsdfPlugin, Result};
+use crate::plugin::{Default, Param, Plugin, Range};
 use crate::xml::Object;
 use tessera_core::bsdf::{Bsdf, Mirror, WakameMicrofacet};
 
-/// Builds the plugins of this file.
-pub fn build(obj: &Object) -> Result<Bsdf> {
-    if obj.plugin == "mirror" {
-        return Ok(Bsdf::Mirror(Mirror {}));
-    }
-    let alpha = float_checked(obj, "alpha", 0.1, |v| v > 0.0, "positive")?;
-    let int_ior = ior(obj, "int_ior", "bk7")?;
-    let ext_ior = ior(obj, "ext_ior", "air")?;
-    let kd = color(obj, "kd", [0.5; 3])?;
-    if kd.max_element() > 1.0 {
-        return Err(at_prop(
-            obj,
-            "kd",
-            format!("\"kd\" of {} must be in [0, 1], found {kd}", obj.describe()),
-        ));
-    }
+/// `mirror`.
+pub const MIRROR: BsdfPlugin = Plugin {
+    name: "mirror",
+    aliases: &[],
+    doc: "Nori's perfect one-sided mirror.",
+    params: &[],
+    nested: "",
+    build: |_| Ok(Bsdf::Mirror(Mirror {})),
+};
+
+const ALPHA: Param = Param::float("alpha", 0.1, Range::Positive, "Beckmann roughness");
+const KD: Param = Param::rgb(
+    "kd",
+    Default::Rgb([0.5; 3]),
+    Range::Unit,
+    "albedo of the diffuse base",
+);
+
+/// `microfacet`.
+pub const MICROFACET: BsdfPlugin = Plugin {
+    name: "microfacet",
+    aliases: &[],
+    doc: "The Wakame assignment's Beckmann microfacet reflection over a diffuse base (Nori's \
+          `intIOR` / `extIOR` are read as int_ior / ext_ior).",
+    params: &[ALPHA, INT_IOR, EXT_IOR, KD],
+    nested: "",
+    build: build_microfacet,
+};
+
+fn build_microfacet(obj: &Object) -> Result<Bsdf> {
+    let alpha = ALPHA.read_f32(obj)?;
+    let int_ior = read_ior(obj, &INT_IOR)?;
+    let ext_ior = read_ior(obj, &EXT_IOR)?;
+    let kd = KD.read_color(obj)?;
     let eta = (int_ior / ext_ior) as f32;
     if !(eta.is_finite() && eta > 0.0) {
         return Err(at_prop(

@@ -1,0 +1,167 @@
+//! Reading a declared parameter from a parsed object: the declared default when the file does
+//! not give it, the declared range checked with a located one-line error when it does. Texture
+//! and index-of-refraction parameters are read by `materials::texture` and `materials::ior`.
+use super::param::{Default, Param, Range};
+use crate::error::InputError;
+use crate::util::{at_prop, check_color, transform};
+use crate::xml::Object;
+use tessera_core::math::Transform;
+use tessera_core::Color;
+
+type Result<T> = std::result::Result<T, InputError>;
+
+impl Param {
+    /// The error for a value outside the declared range (`what` says the range).
+    pub fn out_of_range(
+        &self,
+        obj: &Object,
+        what: &str,
+        found: impl std::fmt::Display,
+    ) -> InputError {
+        at_prop(
+            obj,
+            self.name,
+            format!(
+                "\"{}\" of {} must be {what}, found {found}",
+                self.name,
+                obj.describe()
+            ),
+        )
+    }
+
+    /// A float: the declared default, or the file's value checked against the declared range.
+    pub fn read_f32(&self, obj: &Object) -> Result<f32> {
+        match self.default {
+            Default::Float(d) => self.read_f32_or(obj, d),
+            Default::Required => {
+                let v = obj
+                    .float_opt(self.name)?
+                    .ok_or_else(|| obj.missing(self.name))?;
+                self.checked(obj, v, |v| self.range.contains(v), &self.range.describe())
+            }
+            other => unreachable!("\"{}\" has no float default ({other:?})", self.name),
+        }
+    }
+
+    /// A float with a default computed by the builder (a [`Default::Note`]).
+    pub fn read_f32_or(&self, obj: &Object, default: f64) -> Result<f32> {
+        let v = obj.float(self.name, default)?;
+        self.checked(obj, v, |v| self.range.contains(v), &self.range.describe())
+    }
+
+    /// A float that must pass `ok`, a rule involving other parameters ([`Range::Note`] says it).
+    pub fn read_f32_where(
+        &self,
+        obj: &Object,
+        default: f64,
+        ok: impl Fn(f64) -> bool,
+    ) -> Result<f32> {
+        let v = obj.float(self.name, default)?;
+        self.checked(obj, v, |v| v.is_finite() && ok(v), &self.range.describe())
+    }
+
+    /// A float, `None` when absent ([`Default::Absent`]).
+    pub fn read_f32_opt(&self, obj: &Object) -> Result<Option<f32>> {
+        match obj.float_opt(self.name)? {
+            None => Ok(None),
+            Some(v) => self
+                .checked(obj, v, |v| self.range.contains(v), &self.range.describe())
+                .map(Some),
+        }
+    }
+
+    fn checked(&self, obj: &Object, v: f64, ok: impl Fn(f64) -> bool, what: &str) -> Result<f32> {
+        if !ok(v) || !(v as f32).is_finite() {
+            return Err(self.out_of_range(obj, what, v));
+        }
+        Ok(v as f32)
+    }
+
+    /// An integer within the declared range.
+    pub fn read_i64(&self, obj: &Object) -> Result<i64> {
+        let v = match self.default {
+            Default::Integer(d) => obj.integer(self.name, d)?,
+            Default::Required => obj
+                .integer_opt(self.name)?
+                .ok_or_else(|| obj.missing(self.name))?,
+            other => unreachable!("\"{}\" has no integer default ({other:?})", self.name),
+        };
+        if !self.range.contains(v as f64) {
+            return Err(self.out_of_range(obj, &self.range.describe(), v));
+        }
+        Ok(v)
+    }
+
+    /// A boolean.
+    pub fn read_bool(&self, obj: &Object) -> Result<bool> {
+        match self.default {
+            Default::Boolean(d) => obj.boolean(self.name, d),
+            other => unreachable!("\"{}\" has no boolean default ({other:?})", self.name),
+        }
+    }
+
+    /// A string (the declared default, or a located "missing" error when it is required).
+    pub fn read_string(&self, obj: &Object) -> Result<String> {
+        match self.default {
+            Default::Str(d) => obj.string(self.name, d),
+            Default::Required => obj
+                .string_opt(self.name)?
+                .ok_or_else(|| obj.missing(self.name)),
+            other => unreachable!("\"{}\" has no string default ({other:?})", self.name),
+        }
+    }
+
+    /// One of the declared names: the file's value (or the default), returned as declared.
+    pub fn read_choice(&self, obj: &Object) -> Result<&'static str> {
+        let s = self.read_string(obj)?;
+        let (names, any_case) = match self.range {
+            Range::OneOf(n) => (n, false),
+            Range::OneOfAnyCase(n) => (n, true),
+            other => unreachable!("\"{}\" is not a choice ({other:?})", self.name),
+        };
+        let found = names.iter().find(|n| {
+            if any_case {
+                n.eq_ignore_ascii_case(&s)
+            } else {
+                **n == s
+            }
+        });
+        found.copied().ok_or_else(|| {
+            at_prop(
+                obj,
+                self.name,
+                format!(
+                    "unknown {} \"{s}\" in {} (known: {})",
+                    self.name,
+                    obj.describe(),
+                    names.join(", ")
+                ),
+            )
+        })
+    }
+
+    /// A colour: finite and non-negative, and in [0, 1] when the range is [`Range::Unit`].
+    pub fn read_color(&self, obj: &Object) -> Result<Color> {
+        let c = match self.default {
+            Default::Rgb(d) => obj.rgb(self.name, d)?,
+            Default::Required => obj.rgb_opt(self.name)?.ok_or_else(|| {
+                obj.error(format!(
+                    "{} needs the parameter \"{}\"",
+                    obj.describe(),
+                    self.name
+                ))
+            })?,
+            other => unreachable!("\"{}\" has no colour default ({other:?})", self.name),
+        };
+        let c = check_color(obj, self.name, c)?;
+        if self.range == Range::Unit && c.max_element() > 1.0 {
+            return Err(self.out_of_range(obj, "in [0, 1]", c));
+        }
+        Ok(c)
+    }
+
+    /// A transform, checked invertible and finite (identity when absent).
+    pub fn read_transform(&self, obj: &Object) -> Result<Transform> {
+        transform(obj, self.name)
+    }
+}
