@@ -1,8 +1,9 @@
 //! Walks the scene tree and assembles the core scene.
 use super::bsdfs::Bsdfs;
-use super::emitters::{build_area, build_scene_emitter};
+use super::emitters::build_emitter;
 use super::integrator::read_integrator;
-use super::sensor::{build_sampler, build_sensor};
+use super::sampler::build_sampler;
+use super::sensor::build_sensor;
 use super::shapes::build_shape;
 use super::util::Result;
 use super::LoadedScene;
@@ -11,7 +12,7 @@ use crate::xml::{Kind, Object};
 use tessera_core::emitter::{AreaLight, Emitter};
 use tessera_core::geometry::{Shape, ShapeKind};
 use tessera_core::sampling::SamplerKind;
-use tessera_core::scene::{LightSelection, Scene, SceneParts};
+use tessera_core::scene::{Scene, SceneParts};
 
 /// Builds a loaded scene from the root `<scene>` object.
 pub fn build(root: &Object) -> Result<LoadedScene> {
@@ -44,7 +45,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
             Kind::Bsdf => {
                 bsdfs.index_of(obj)?;
             }
-            Kind::Emitter => emitters.push(build_scene_emitter(obj)?),
+            Kind::Emitter => emitters.push(build_emitter(obj, None)?),
             // Declared to be referenced (`<ref>`); built where it is used.
             Kind::Texture => {}
             Kind::Shape => {
@@ -57,7 +58,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
                     };
                     let emitter = match parts.emitter {
                         Some(e) => {
-                            emitters.push(build_area(&e.obj, shape_index)?);
+                            emitters.push(build_emitter(&e.obj, Some(shape_index))?);
                             Some(emitters.len() as u32 - 1)
                         }
                         None => None,
@@ -90,7 +91,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
                         flip_normals: parts.flip_normals,
                     });
                 }
-                obj.check_unused()?;
+                parts.plugin.check_unused(obj)?;
             }
             _ => {
                 return Err(InputError::at(
@@ -105,24 +106,6 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         c.mark_used();
     }
     let sensor = sensor.ok_or_else(|| root.error("the scene has no sensor (camera)"))?;
-    // Tessera's own integrator parameter (Mitsuba has none): how emitter sampling picks a light.
-    let light_selection = match integrator_obj
-        .map(|o| o.string("light_selection", "contribution"))
-        .transpose()?
-        .as_deref()
-    {
-        None | Some("contribution") => LightSelection::Contribution,
-        Some("power") => LightSelection::Power,
-        Some("uniform") => LightSelection::Uniform,
-        Some(other) => {
-            let obj = integrator_obj.expect("a value implies an integrator");
-            return Err(super::util::at_prop(
-                obj,
-                "light_selection",
-                format!("unknown light_selection \"{other}\" (contribution, power, uniform)"),
-            ));
-        }
-    };
     let integrator_spec = read_integrator(integrator_obj.map(|o| &**o))?;
     let integrator = integrator_spec
         .build()
@@ -144,7 +127,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         emitters,
         camera: sensor.camera,
         filter: sensor.filter,
-        light_selection,
+        light_selection: integrator_spec.light_selection,
     };
     let mut scene =
         Scene::new(parts).map_err(|e| root.error(format!("cannot build the scene: {e:?}")))?;

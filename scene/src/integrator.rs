@@ -1,22 +1,12 @@
-//! `<integrator>`: every integrator by name, with Mitsuba 3's parameters.
-//!
-//! Path tracers, `path` = `path_mis` (MIS), `path_half`, `path_ems`, `path_mats`: `max_depth`
-//! (integer, default -1 = unbounded), `rr_depth` (integer >= 1, default 5), `hide_emitters`
-//! (boolean, false), and Tessera's own `heuristic` (string power|balance, default power) and
-//! `reuse` (boolean, false: share light among 4x2 pixel groups, `core/src/integrator/reuse.rs`).
-//! Direct lighting, `direct` (Mitsuba 3): `shading_samples` (integer, 1), `emitter_samples`,
-//! `bsdf_samples` (integers, default shading_samples), `hide_emitters`; `direct_ems`,
-//! `direct_mats`, `direct_mis` (Wakame: 1/0, 0/1, 1/1 samples with the balance heuristic) take
-//! only `hide_emitters`. Every integrator also takes Tessera's `light_selection` (string
-//! contribution|power|uniform, default contribution; read by the scene builder). A scene without
-//! an integrator uses `path`.
-use super::util::{at_prop, Result};
+//! The `<integrator>` plugins ([`INTEGRATORS`]), with Mitsuba 3's names and parameters plus
+//! Tessera's own (`heuristic`, `reuse`, `light_selection`). A scene without an integrator uses
+//! `path`. Each plugin reads its parameters into an [`IntegratorSpec`], which the command line
+//! may change (another name, another depth) before the core integrator is made from it.
+use crate::plugin::{self, Param, Plugin, Range};
+use crate::util::Result;
 use crate::xml::Object;
 use tessera_core::integrator::{DirectIntegrator, Heuristic, Integrator, PathIntegrator, Strategy};
-
-/// Every integrator name, for messages.
-pub const INTEGRATOR_NAMES: &str =
-    "path, path_mis, path_half, path_ems, path_mats, direct, direct_ems, direct_mats, direct_mis";
+use tessera_core::scene::LightSelection;
 
 /// An integrator's name and parameters as the scene file gives them; the command line may
 /// change the name or the depth and build again.
@@ -38,6 +28,8 @@ pub struct IntegratorSpec {
     pub emitter_samples: u32,
     /// BSDF samples (`direct`).
     pub bsdf_samples: u32,
+    /// How emitter sampling picks a light.
+    pub light_selection: LightSelection,
 }
 
 impl Default for IntegratorSpec {
@@ -51,6 +43,7 @@ impl Default for IntegratorSpec {
             heuristic: None,
             emitter_samples: 1,
             bsdf_samples: 1,
+            light_selection: LightSelection::Contribution,
         }
     }
 }
@@ -58,116 +51,315 @@ impl Default for IntegratorSpec {
 impl IntegratorSpec {
     /// The integrator, or `None` for an unknown name.
     pub fn build(&self) -> Option<Integrator> {
-        let path = |strategy| {
-            Integrator::Path(PathIntegrator {
-                strategy,
-                max_depth: self.max_depth,
-                rr_depth: self.rr_depth,
-                hide_emitters: self.hide_emitters,
-                heuristic: self.heuristic.unwrap_or(Heuristic::Power),
-                reuse: self.reuse,
-            })
-        };
-        let direct = |e, b, h| {
-            Integrator::Direct(DirectIntegrator {
-                emitter_samples: e,
-                bsdf_samples: b,
-                heuristic: h,
-                hide_emitters: self.hide_emitters,
-            })
-        };
-        Some(match self.name.as_str() {
-            "path" | "path_mis" => path(Strategy::Mis),
-            "path_half" => path(Strategy::Half),
-            "path_ems" => path(Strategy::Emitter),
-            "path_mats" => path(Strategy::Bsdf),
-            "direct" => direct(
-                self.emitter_samples,
-                self.bsdf_samples,
-                self.heuristic.unwrap_or(Heuristic::Power),
-            ),
-            "direct_ems" => direct(1, 0, Heuristic::Balance),
-            "direct_mats" => direct(0, 1, Heuristic::Balance),
-            "direct_mis" => direct(1, 1, self.heuristic.unwrap_or(Heuristic::Balance)),
-            _ => return None,
-        })
+        let plugin = INTEGRATORS.iter().find(|p| p.is(&self.name))?;
+        Some((plugin.build.make)(self))
     }
 }
 
-fn count(obj: &Object, name: &str, default: i64) -> Result<u32> {
-    let v = obj.integer(name, default)?;
-    if !(0..=1 << 20).contains(&v) {
-        return Err(at_prop(
-            obj,
-            name,
-            format!("\"{name}\" must be between 0 and 2^20, found {v}"),
-        ));
-    }
-    Ok(v as u32)
+/// How an integrator plugin is built: `read` takes the file's parameters into a spec, `make`
+/// turns a spec (perhaps changed by the command line) into the core integrator.
+pub struct IntegratorBuild {
+    /// Reads the parameters (the spec's name is already set).
+    pub read: fn(&Object, &mut IntegratorSpec) -> Result<()>,
+    /// Makes the core integrator.
+    pub make: fn(&IntegratorSpec) -> Integrator,
 }
 
-/// Reads the integrator element (or the default `path`).
+/// An integrator plugin.
+pub type IntegratorPlugin = Plugin<IntegratorBuild>;
+
+/// Every `<integrator type=...>` Tessera knows.
+pub static INTEGRATORS: &[IntegratorPlugin] = &[
+    path_plugin(
+        "path",
+        &["path_mis"],
+        "Unidirectional path tracing with next-event estimation and multiple importance \
+         sampling (Mitsuba 3's path).",
+        |s| path(s, Strategy::Mis),
+    ),
+    path_plugin(
+        "path_half",
+        &[],
+        "Path tracing that adds emitter and BSDF sampling with weight 1/2 each (a simpler \
+         unbiased combination than MIS, for comparison).",
+        |s| path(s, Strategy::Half),
+    ),
+    path_plugin(
+        "path_ems",
+        &[],
+        "Path tracing with emitter sampling only at every vertex (lights seen through delta \
+         bounces still count).",
+        |s| path(s, Strategy::Emitter),
+    ),
+    path_plugin(
+        "path_mats",
+        &[],
+        "Path tracing with BSDF sampling only: light is found by hitting it.",
+        |s| path(s, Strategy::Bsdf),
+    ),
+    DIRECT,
+    fixed_direct(
+        "direct_ems",
+        "The Wakame assignment's direct lighting by emitter sampling (one sample).",
+        |s| direct(s, 1, 0, Heuristic::Balance),
+    ),
+    fixed_direct(
+        "direct_mats",
+        "The Wakame assignment's direct lighting by BSDF sampling (one sample).",
+        |s| direct(s, 0, 1, Heuristic::Balance),
+    ),
+    DIRECT_MIS,
+];
+
+/// Reads the integrator element (or the default `path`) and reports unused parameters.
 pub fn read_integrator(obj: Option<&Object>) -> Result<IntegratorSpec> {
     let Some(obj) = obj else {
         return Ok(IntegratorSpec::default());
     };
+    let plugin = plugin::find(INTEGRATORS, "integrator", obj)?;
     let mut spec = IntegratorSpec {
         name: obj.plugin.clone(),
         ..Default::default()
     };
-    if spec.build().is_none() {
-        return Err(obj.error(format!(
-            "unknown integrator \"{}\" (known: {INTEGRATOR_NAMES})",
-            obj.plugin
-        )));
-    }
-    let is_path = spec.name.starts_with("path");
-    if is_path {
-        let max_depth = obj.integer("max_depth", -1)?;
-        if max_depth < -1 || max_depth > u32::MAX as i64 {
-            return Err(at_prop(
-                obj,
-                "max_depth",
-                format!("\"max_depth\" must be -1 (unbounded) or at least 0, found {max_depth}"),
-            ));
-        }
-        spec.max_depth = (max_depth >= 0).then_some(max_depth as u32);
-        let rr_depth = obj.integer("rr_depth", 5)?;
-        if rr_depth < 1 || rr_depth > u32::MAX as i64 {
-            return Err(at_prop(
-                obj,
-                "rr_depth",
-                format!("\"rr_depth\" must be at least 1, found {rr_depth}"),
-            ));
-        }
-        spec.rr_depth = rr_depth as u32;
-        spec.reuse = obj.boolean("reuse", false)?;
-    }
-    if spec.name == "direct" {
-        let shading = count(obj, "shading_samples", 1)?;
-        spec.emitter_samples = count(obj, "emitter_samples", shading as i64)?;
-        spec.bsdf_samples = count(obj, "bsdf_samples", shading as i64)?;
-        if spec.emitter_samples + spec.bsdf_samples == 0 {
-            return Err(
-                obj.error("a direct integrator needs emitter_samples or bsdf_samples above 0")
-            );
-        }
-    }
-    if is_path || spec.name == "direct" || spec.name == "direct_mis" {
-        spec.heuristic = match obj.string_opt("heuristic")?.as_deref() {
-            None => None,
-            Some("power") => Some(Heuristic::Power),
-            Some("balance") => Some(Heuristic::Balance),
-            Some(other) => {
-                return Err(at_prop(
-                    obj,
-                    "heuristic",
-                    format!("unknown heuristic \"{other}\" (power, balance)"),
-                ))
-            }
-        };
-    }
-    spec.hide_emitters = obj.boolean("hide_emitters", false)?;
-    obj.check_unused()?;
+    (plugin.build.read)(obj, &mut spec)?;
+    plugin.check_unused(obj)?;
     Ok(spec)
+}
+
+/// Every integrator name, for messages.
+pub fn integrator_names() -> String {
+    plugin::names(INTEGRATORS)
+}
+
+const MAX_DEPTH: Param = Param::integer(
+    "max_depth",
+    -1,
+    Range::Note("-1 (unbounded) or at least 0"),
+    "longest path in segments (1: emitters seen directly only)",
+);
+const RR_DEPTH: Param = Param::integer(
+    "rr_depth",
+    5,
+    Range::Note("at least 1"),
+    "path length from which Russian roulette may end a path",
+);
+const HIDE_EMITTERS: Param = Param::boolean(
+    "hide_emitters",
+    false,
+    "emitters seen directly by the camera are black",
+);
+const HEURISTIC: Param = Param::new(
+    "heuristic",
+    crate::plugin::ParamType::Choice,
+    crate::plugin::Default::Note("power (balance for direct_mis)"),
+    Range::OneOf(&["power", "balance"]),
+    "multiple importance sampling weights (Tessera's parameter)",
+);
+const REUSE: Param = Param::boolean(
+    "reuse",
+    false,
+    "share light among 4x2 pixel groups (path reuse; Tessera's parameter)",
+);
+const LIGHT_SELECTION: Param = Param::choice(
+    "light_selection",
+    "contribution",
+    &["contribution", "power", "uniform"],
+    "how emitter sampling picks a light (Tessera's parameter)",
+);
+
+fn path(s: &IntegratorSpec, strategy: Strategy) -> Integrator {
+    Integrator::Path(PathIntegrator {
+        strategy,
+        max_depth: s.max_depth,
+        rr_depth: s.rr_depth,
+        hide_emitters: s.hide_emitters,
+        heuristic: s.heuristic.unwrap_or(Heuristic::Power),
+        reuse: s.reuse,
+    })
+}
+
+fn direct(s: &IntegratorSpec, emitter_samples: u32, bsdf_samples: u32, h: Heuristic) -> Integrator {
+    Integrator::Direct(DirectIntegrator {
+        emitter_samples,
+        bsdf_samples,
+        heuristic: h,
+        hide_emitters: s.hide_emitters,
+    })
+}
+
+/// A path tracer: the same parameters, another strategy.
+const fn path_plugin(
+    name: &'static str,
+    aliases: &'static [&'static str],
+    doc: &'static str,
+    make: fn(&IntegratorSpec) -> Integrator,
+) -> IntegratorPlugin {
+    Plugin {
+        name,
+        aliases,
+        doc,
+        params: &[
+            MAX_DEPTH,
+            RR_DEPTH,
+            HIDE_EMITTERS,
+            HEURISTIC,
+            REUSE,
+            LIGHT_SELECTION,
+        ],
+        nested: "",
+        build: IntegratorBuild {
+            read: read_path,
+            make,
+        },
+    }
+}
+
+fn read_path(obj: &Object, spec: &mut IntegratorSpec) -> Result<()> {
+    let max_depth = MAX_DEPTH.read_i64_where(obj, |d| (-1..=u32::MAX as i64).contains(&d))?;
+    spec.max_depth = (max_depth >= 0).then_some(max_depth as u32);
+    spec.rr_depth = RR_DEPTH.read_i64_where(obj, |d| (1..=u32::MAX as i64).contains(&d))? as u32;
+    spec.reuse = REUSE.read_bool(obj)?;
+    read_heuristic(obj, spec)?;
+    read_common(obj, spec)
+}
+
+fn read_heuristic(obj: &Object, spec: &mut IntegratorSpec) -> Result<()> {
+    if obj.has(HEURISTIC.name) {
+        spec.heuristic = Some(
+            match HEURISTIC
+                .with_default(crate::plugin::Default::Str("power"))
+                .read_choice(obj)?
+            {
+                "balance" => Heuristic::Balance,
+                _ => Heuristic::Power,
+            },
+        );
+    }
+    Ok(())
+}
+
+/// `hide_emitters` and `light_selection`, which every integrator takes.
+fn read_common(obj: &Object, spec: &mut IntegratorSpec) -> Result<()> {
+    spec.light_selection = match LIGHT_SELECTION.read_choice(obj)? {
+        "power" => LightSelection::Power,
+        "uniform" => LightSelection::Uniform,
+        _ => LightSelection::Contribution,
+    };
+    spec.hide_emitters = HIDE_EMITTERS.read_bool(obj)?;
+    Ok(())
+}
+
+const SAMPLES: Range = Range::Note("between 0 and 2^20");
+const SHADING_SAMPLES: Param = Param::integer(
+    "shading_samples",
+    1,
+    SAMPLES,
+    "the default of emitter_samples and bsdf_samples",
+);
+const EMITTER_SAMPLES: Param = Param::new(
+    "emitter_samples",
+    crate::plugin::ParamType::Integer,
+    crate::plugin::Default::Note("shading_samples"),
+    SAMPLES,
+    "emitter samples per pixel sample",
+);
+const BSDF_SAMPLES: Param = Param::new(
+    "bsdf_samples",
+    crate::plugin::ParamType::Integer,
+    crate::plugin::Default::Note("shading_samples"),
+    SAMPLES,
+    "BSDF samples per pixel sample (emitter_samples + bsdf_samples must be above 0)",
+);
+
+/// `direct`.
+pub const DIRECT: IntegratorPlugin = Plugin {
+    name: "direct",
+    aliases: &[],
+    doc: "Direct lighting only (Mitsuba 3's direct): emitter and BSDF samples combined by \
+          multiple importance sampling.",
+    params: &[
+        SHADING_SAMPLES,
+        EMITTER_SAMPLES,
+        BSDF_SAMPLES,
+        HEURISTIC,
+        HIDE_EMITTERS,
+        LIGHT_SELECTION,
+    ],
+    nested: "",
+    build: IntegratorBuild {
+        read: read_direct,
+        make: |s| {
+            direct(
+                s,
+                s.emitter_samples,
+                s.bsdf_samples,
+                s.heuristic.unwrap_or(Heuristic::Power),
+            )
+        },
+    },
+};
+
+fn read_direct(obj: &Object, spec: &mut IntegratorSpec) -> Result<()> {
+    let count = |p: &Param, default: i64| -> Result<u32> {
+        let p = p.with_default(crate::plugin::Default::Integer(default));
+        Ok(p.read_i64_where(obj, |n| (0..=1 << 20).contains(&n))? as u32)
+    };
+    let shading = count(&SHADING_SAMPLES, 1)?;
+    spec.emitter_samples = count(&EMITTER_SAMPLES, shading as i64)?;
+    spec.bsdf_samples = count(&BSDF_SAMPLES, shading as i64)?;
+    if spec.emitter_samples + spec.bsdf_samples == 0 {
+        return Err(obj.error("a direct integrator needs emitter_samples or bsdf_samples above 0"));
+    }
+    read_heuristic(obj, spec)?;
+    read_common(obj, spec)
+}
+
+/// A Wakame direct integrator with fixed sample counts.
+const fn fixed_direct(
+    name: &'static str,
+    doc: &'static str,
+    make: fn(&IntegratorSpec) -> Integrator,
+) -> IntegratorPlugin {
+    Plugin {
+        name,
+        aliases: &[],
+        doc,
+        params: &[HIDE_EMITTERS, LIGHT_SELECTION],
+        nested: "",
+        build: IntegratorBuild {
+            read: read_common,
+            make,
+        },
+    }
+}
+
+/// `direct_mis`.
+pub const DIRECT_MIS: IntegratorPlugin = Plugin {
+    name: "direct_mis",
+    aliases: &[],
+    doc: "The Wakame assignment's direct lighting: one emitter and one BSDF sample, combined by \
+          the balance heuristic.",
+    params: &[HEURISTIC, HIDE_EMITTERS, LIGHT_SELECTION],
+    nested: "",
+    build: IntegratorBuild {
+        read: |obj, spec| {
+            read_heuristic(obj, spec)?;
+            read_common(obj, spec)
+        },
+        make: |s| direct(s, 1, 1, s.heuristic.unwrap_or(Heuristic::Balance)),
+    },
+};
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn declarations_match_what_the_builders_read() {
+        crate::plugin::check::check_family(
+            super::INTEGRATORS,
+            crate::xml::Kind::Integrator,
+            |obj| super::read_integrator(Some(obj)),
+            |_| String::new(),
+            &[],
+        );
+    }
 }

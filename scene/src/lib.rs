@@ -13,13 +13,15 @@ pub mod xml;
 mod bsdfs;
 mod build;
 mod emitters;
+mod filter;
 mod integrator;
 pub(crate) mod materials;
+mod sampler;
 mod sensor;
 mod shapes;
 mod util;
 
-pub use integrator::{IntegratorSpec, INTEGRATOR_NAMES};
+pub use integrator::{integrator_names, IntegratorSpec, INTEGRATORS};
 pub use sensor::{MAX_EDGE, MAX_PIXELS};
 
 use crate::error::InputError;
@@ -87,9 +89,13 @@ impl LoadedScene {
             }
             spec.max_depth = (d >= 0).then_some(d as u32);
         }
-        self.integrator = spec
-            .build()
-            .ok_or_else(|| format!("unknown integrator \"{}\" ({INTEGRATOR_NAMES})", spec.name))?;
+        self.integrator = spec.build().ok_or_else(|| {
+            format!(
+                "unknown integrator \"{}\" (known: {})",
+                spec.name,
+                integrator_names()
+            )
+        })?;
         self.integrator_spec = spec;
         Ok(())
     }

@@ -1,19 +1,9 @@
-//! `<sensor>` / Nori's `<camera>` with its `<film>`, `<rfilter>` and `<sampler>`.
-//!
-//! Sensor `perspective`: `fov` (float, degrees) with `fov_axis` (x|y|diagonal|smaller|larger,
-//! default x), or else `focal_length` (string like "50mm", default 50mm, a diagonal field of view
-//! on a 36x24 mm frame, as in Mitsuba 3); `to_world`; `near_clip` (0.01; 1e-4 for a Nori camera, which carries width/height), `far_clip`
-//! (10000).
-//! Film `hdrfilm`: `width` (768), `height` (576); `pixel_format`, `component_format` and
-//! `file_format` are accepted and have no effect (the output file's extension decides). Nori
-//! puts `width`/`height` (defaults 1280x720) on the camera. Filter: `box`, `gaussian` (`stddev`
-//! 0.5); default gaussian. Sampler (`sample_count` 4, `seed` 0): `independent` (default), or
-//! Tessera's `zsobol` (Owen-scrambled Sobol in Morton order, see
-//! `tessera_core::sampling::ZSobolSampler`). Mitsuba's stratified low-discrepancy samplers
-//! (`ldsampler`, `stratified`, `multijitter`, `orthogonal`) render with `zsobol`, the closest
-//! Tessera has (not Mitsuba's exact points; a warning says so); `correlated` renders with the
-//! independent sampler (a warning says so).
-use super::util::{at_prop, float_checked, transform, Result};
+//! The `<sensor>` plugins ([`SENSORS`], Nori's `<camera>`) and the `<film>` plugins ([`FILMS`])
+//! they carry, with the `<rfilter>` and `<sampler>` that may hang off them.
+use crate::filter::build_filter;
+use crate::plugin::{self, Default, Param, ParamType, Plugin, Range};
+use crate::sampler::build_sampler;
+use crate::util::{at_prop, Result};
 use crate::xml::{Kind, Object};
 use tessera_core::camera::{Filter, FovAxis, GaussianFilter, Perspective};
 use tessera_core::sampling::SamplerKind;
@@ -24,6 +14,7 @@ pub const MAX_EDGE: i64 = 1 << 16;
 pub const MAX_PIXELS: i64 = 1 << 26;
 
 /// The sensor and what hangs off it.
+#[derive(Debug)]
 pub struct SensorParts {
     pub camera: Perspective,
     pub filter: Filter,
@@ -32,130 +23,165 @@ pub struct SensorParts {
     pub sampler: Option<SamplerKind>,
 }
 
-/// Builds the pixel filter.
-pub fn build_filter(obj: &Object) -> Result<Filter> {
-    let f = match obj.plugin.as_str() {
-        "box" => Filter::Box,
-        "gaussian" => Filter::Gaussian(GaussianFilter::new(float_checked(
-            obj,
-            "stddev",
-            0.5,
-            |v| v > 0.0 && v <= 64.0,
-            "in (0, 64]",
-        )?)),
-        other => {
-            return Err(obj.error(format!(
-                "unknown rfilter \"{other}\" (known: box, gaussian)"
-            )))
-        }
-    };
-    obj.check_unused()?;
-    Ok(f)
-}
+/// A sensor plugin; the builder may add warnings (from its sampler).
+pub type SensorPlugin = Plugin<fn(&Object, &mut Vec<String>) -> Result<SensorParts>>;
 
-/// Reads a sampler: `(sample_count, seed, which sampler)`.
-pub fn build_sampler(obj: &Object, warnings: &mut Vec<String>) -> Result<(u64, u64, SamplerKind)> {
-    let name = match obj.plugin.as_str() {
-        n @ ("independent" | "zsobol") => n,
-        n @ ("stratified" | "multijitter" | "orthogonal" | "ldsampler" | "correlated") => {
-            let sub = if n == "correlated" {
-                "independent"
-            } else {
-                "zsobol"
-            };
-            warnings.push(format!(
-                "{}: sampler \"{n}\" renders with Tessera's {sub} sampler",
-                obj.loc
-            ));
-            obj.boolean_opt("jitter")?;
-            sub
-        }
-        other => {
-            return Err(obj.error(format!(
-                "unknown sampler \"{other}\" (known: independent, zsobol; Mitsuba's \
-                 ldsampler, stratified, multijitter, orthogonal map to zsobol)"
-            )))
-        }
-    };
-    let spp = obj.integer("sample_count", 4)?;
-    if !(1..=1 << 40).contains(&spp) {
-        return Err(at_prop(
-            obj,
-            "sample_count",
-            format!("\"sample_count\" must be between 1 and 2^40, found {spp}"),
-        ));
-    }
-    let seed = obj.integer("seed", 0)?;
-    obj.check_unused()?;
-    // `name` is one of the two known names by the match above.
-    let kind = SamplerKind::from_name(name, spp as u64).unwrap_or_default();
-    Ok((spp as u64, seed as u64, kind))
-}
+/// Every `<sensor type=...>` Tessera knows.
+pub static SENSORS: &[SensorPlugin] = &[PERSPECTIVE];
 
-fn size(obj: &Object, name: &str, default: i64) -> Result<u32> {
-    let v = obj.integer(name, default)?;
-    if !(1..=MAX_EDGE).contains(&v) {
-        return Err(at_prop(
-            obj,
-            name,
-            format!("\"{name}\" must be between 1 and {MAX_EDGE}, found {v}"),
-        ));
-    }
-    Ok(v as u32)
-}
-
-/// Builds the sensor.
+/// Builds the sensor and reports unused parameters.
 pub fn build_sensor(obj: &Object, warnings: &mut Vec<String>) -> Result<SensorParts> {
-    if obj.plugin != "perspective" {
-        return Err(obj.error(format!(
-            "unknown sensor \"{}\" (known: perspective)",
-            obj.plugin
-        )));
-    }
-    let to_world = transform(obj, "to_world")?;
+    let plugin = plugin::find(SENSORS, "sensor", obj)?;
+    let s = (plugin.build)(obj, warnings)?;
+    plugin.check_unused(obj)?;
+    Ok(s)
+}
+
+/// A film: its size.
+pub type FilmPlugin = Plugin<fn(&Object) -> Result<(u32, u32)>>;
+
+/// Every `<film type=...>` Tessera knows.
+pub static FILMS: &[FilmPlugin] = &[HDRFILM];
+
+const EDGE: Range = Range::Note("between 1 and 65536");
+
+const WIDTH: Param = Param::integer("width", 768, EDGE, "image width in pixels");
+const HEIGHT: Param = Param::integer("height", 576, EDGE, "image height in pixels");
+const PIXEL_FORMAT: Param = Param::new(
+    "pixel_format",
+    ParamType::String,
+    Default::Str("rgb"),
+    Range::Any,
+    "has no effect: the output is linear RGB",
+);
+const COMPONENT_FORMAT: Param = Param::new(
+    "component_format",
+    ParamType::String,
+    Default::Str("float16"),
+    Range::Any,
+    "has no effect: the output file's format decides",
+);
+const FILE_FORMAT: Param = Param::new(
+    "file_format",
+    ParamType::String,
+    Default::Str("openexr"),
+    Range::Any,
+    "has no effect: the output file's extension decides",
+);
+
+/// `hdrfilm`.
+pub const HDRFILM: FilmPlugin = Plugin {
+    name: "hdrfilm",
+    aliases: &[],
+    doc: "The image's size (the outputs' formats come from their file names).",
+    params: &[WIDTH, HEIGHT, PIXEL_FORMAT, COMPONENT_FORMAT, FILE_FORMAT],
+    nested: "an optional `<rfilter>`",
+    build: |film| {
+        let width = edge(film, &WIDTH)?;
+        let height = edge(film, &HEIGHT)?;
+        for p in [PIXEL_FORMAT, COMPONENT_FORMAT, FILE_FORMAT] {
+            film.string_opt(p.name)?;
+        }
+        Ok((width, height))
+    },
+};
+
+fn edge(obj: &Object, p: &Param) -> Result<u32> {
+    Ok(p.read_i64_where(obj, |v| (1..=MAX_EDGE).contains(&v))? as u32)
+}
+
+const TO_WORLD: Param = Param::transform(
+    "to_world",
+    "camera to world; the camera looks down its local +z, with +y up",
+);
+const NEAR_CLIP: Param = Param::new(
+    "near_clip",
+    ParamType::Float,
+    Default::Note("0.01; 1e-4 on a Nori camera (one that carries width/height)"),
+    Range::NonNegative,
+    "distance before which nothing is seen",
+);
+const FAR_CLIP: Param = Param::new(
+    "far_clip",
+    ParamType::Float,
+    Default::Float(10000.0),
+    Range::Note("greater than near_clip"),
+    "distance beyond which nothing is seen",
+);
+const FOV: Param = Param::new(
+    "fov",
+    ParamType::Float,
+    Default::Absent,
+    Range::open(0.0, 180.0),
+    "field of view along fov_axis (else focal_length sets it)",
+)
+.with_unit("degrees");
+const FOV_AXIS: Param = Param::choice(
+    "fov_axis",
+    "x",
+    &["x", "y", "diagonal", "smaller", "larger"],
+    "the image axis fov spans",
+);
+const FOCAL_LENGTH: Param = Param::new(
+    "focal_length",
+    ParamType::String,
+    Default::Str("50mm"),
+    Range::Note("a positive length like \"50mm\""),
+    "focal length on a 36x24 mm frame (a diagonal field of view), when fov is absent",
+);
+const NORI_WIDTH: Param = Param::new(
+    "width",
+    ParamType::Integer,
+    Default::Integer(1280),
+    EDGE,
+    "image width on a Nori camera (which then takes no film)",
+);
+const NORI_HEIGHT: Param = Param::new(
+    "height",
+    ParamType::Integer,
+    Default::Integer(720),
+    EDGE,
+    "image height on a Nori camera",
+);
+
+/// `perspective`.
+pub const PERSPECTIVE: SensorPlugin = Plugin {
+    name: "perspective",
+    aliases: &[],
+    doc: "A pinhole camera.",
+    params: &[
+        TO_WORLD,
+        FOV,
+        FOV_AXIS,
+        FOCAL_LENGTH,
+        NEAR_CLIP,
+        FAR_CLIP,
+        NORI_WIDTH,
+        NORI_HEIGHT,
+    ],
+    nested: "an optional `<film>`, `<rfilter>` and `<sampler>`",
+    build: build_perspective,
+};
+
+fn build_perspective(obj: &Object, warnings: &mut Vec<String>) -> Result<SensorParts> {
+    let to_world = TO_WORLD.read_transform(obj)?;
     // Nori's camera carries width/height and clips at 1e-4; Mitsuba's sensor clips at 0.01.
     let nori = obj.has("width") || obj.has("height");
-    let near = float_checked(
-        obj,
-        "near_clip",
-        if nori { 1e-4 } else { 0.01 },
-        |v| v >= 0.0,
-        "non-negative",
-    )?;
-    let far = float_checked(
-        obj,
-        "far_clip",
-        10000.0,
-        |v| v > near as f64,
-        "greater than near_clip",
-    )?;
-    let (fov, axis) = match obj.float_opt("fov")? {
-        Some(_) => {
-            let fov = float_checked(
-                obj,
-                "fov",
-                0.0,
-                |v| v > 0.0 && v < 180.0,
-                "in (0, 180) degrees",
-            )?;
-            let axis = match obj.string("fov_axis", "x")?.as_str() {
-                "x" => FovAxis::X,
+    let near = NEAR_CLIP.read_f32_or(obj, if nori { 1e-4 } else { 0.01 })?;
+    let far = FAR_CLIP.read_f32_where(obj, 10000.0, |v| v > near as f64)?;
+    let (fov, axis) = match FOV.read_f32_opt(obj)? {
+        Some(fov) => {
+            let axis = match FOV_AXIS.read_choice(obj)? {
                 "y" => FovAxis::Y,
                 "diagonal" => FovAxis::Diagonal,
                 "smaller" => FovAxis::Smaller,
                 "larger" => FovAxis::Larger,
-                other => {
-                    return Err(at_prop(
-                        obj,
-                        "fov_axis",
-                        format!("unknown fov_axis \"{other}\" (x, y, diagonal, smaller, larger)"),
-                    ))
-                }
+                _ => FovAxis::X,
             };
             (fov, axis)
         }
         None => {
-            let s = obj.string("focal_length", "50mm")?;
+            let s = FOCAL_LENGTH.read_string(obj)?;
             let f: f64 = s.trim_end_matches("mm").trim().parse().ok().filter(|f: &f64| *f > 0.0 && f.is_finite()).ok_or_else(|| {
                 at_prop(obj, "focal_length", format!("\"focal_length\" must be a positive length like \"50mm\", found \"{s}\""))
             })?;
@@ -170,8 +196,8 @@ pub fn build_sensor(obj: &Object, warnings: &mut Vec<String>) -> Result<SensorPa
     let (mut width, mut height) = (768, 576);
     // Nori: width/height (and the filter) on the camera itself.
     if obj.has("width") || obj.has("height") {
-        width = size(obj, "width", 1280)?;
-        height = size(obj, "height", 720)?;
+        width = edge(obj, &NORI_WIDTH)?;
+        height = edge(obj, &NORI_HEIGHT)?;
     }
     let (mut spp, mut seed, mut sampler) = (None, None, None);
     for c in &obj.children {
@@ -179,23 +205,15 @@ pub fn build_sensor(obj: &Object, warnings: &mut Vec<String>) -> Result<SensorPa
             Kind::Film => {
                 c.mark_used();
                 let film = &c.obj;
-                if film.plugin != "hdrfilm" {
-                    return Err(
-                        film.error(format!("unknown film \"{}\" (known: hdrfilm)", film.plugin))
-                    );
-                }
-                width = size(film, "width", 768)?;
-                height = size(film, "height", 576)?;
-                for p in ["pixel_format", "component_format", "file_format"] {
-                    film.string_opt(p)?;
-                }
+                let plugin = plugin::find(FILMS, "film", film)?;
+                (width, height) = (plugin.build)(film)?;
                 for f in &film.children {
                     if f.obj.kind == Kind::RFilter {
                         f.mark_used();
                         filter = build_filter(&f.obj)?;
                     }
                 }
-                film.check_unused()?;
+                plugin.check_unused(film)?;
             }
             Kind::RFilter => {
                 c.mark_used();
@@ -216,7 +234,6 @@ pub fn build_sensor(obj: &Object, warnings: &mut Vec<String>) -> Result<SensorPa
             "image of {width}x{height} pixels is over the limit of {MAX_PIXELS} pixels"
         )));
     }
-    obj.check_unused()?;
     let camera = Perspective::new(to_world, width, height, fov, axis, near, far);
     Ok(SensorParts {
         camera,
@@ -225,4 +242,34 @@ pub fn build_sensor(obj: &Object, warnings: &mut Vec<String>) -> Result<SensorPa
         seed,
         sampler,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::plugin::check::check_family;
+    use crate::xml::Kind;
+
+    #[test]
+    fn declarations_match_what_the_builders_read() {
+        check_family(
+            super::SENSORS,
+            Kind::Sensor,
+            |obj| super::build_sensor(obj, &mut Vec::new()),
+            // fov_axis is read with fov; focal_length only without it.
+            |_| "<float name=\"fov\" value=\"45\"/>".to_string(),
+            // A camera that carries width/height is Nori's: its near_clip default differs.
+            &[
+                ("perspective", "width"),
+                ("perspective", "height"),
+                ("perspective", "focal_length"),
+            ],
+        );
+        check_family(
+            super::FILMS,
+            Kind::Film,
+            |obj| (super::FILMS[0].build)(obj),
+            |_| String::new(),
+            &[],
+        );
+    }
 }

@@ -1,24 +1,229 @@
-//! `<shape>` objects: geometry to world space, plus the attached BSDF and area emitter.
-//!
-//! `sphere`: `center` (point, 0), `radius` (float > 0, 1), `to_world` (a similarity; applied as
-//! to_world * translate(center) * scale(radius), as Mitsuba 3 does). `obj`, `ply`: `filename`
-//! (relative to the scene file), `face_normals` (false). `rectangle`, `cube`, `disk`: unit shapes
-//! placed by `to_world`. Every shape: `to_world`, `flip_normals` (false), an optional `<bsdf>`
-//! (nested or `<ref>`; default diffuse 0.5, or black diffuse on an emitting shape, as in Mitsuba
-//! 3), an optional `<emitter type="area">`.
-//!
-//! `obj` only: `use_mtl` (boolean, default false; a Tessera extension, Mitsuba 3 ignores MTL
-//! files). When true, the file's `mtllib` materials apply: the mesh is split into one shape per
-//! `usemtl` material, each with the BSDF and `Ke` area light that `mesh/mtl_material.rs` maps
-//! the material to; faces before any `usemtl` form one more shape with the shape's `<bsdf>` and
-//! `<emitter>` (which are then an error if there are no such faces).
-use super::util::{at_prop, float_checked, transform, vec3, Result};
+//! The `<shape>` plugins ([`SHAPES`]): geometry to world space, plus the attached BSDF and area
+//! emitter. Every shape takes `to_world` and `flip_normals`, an optional `<bsdf>` (nested or
+//! `<ref>`; default diffuse 0.5, or black diffuse on an emitting shape, as in Mitsuba 3) and an
+//! optional `<emitter type="area">`.
 use crate::error::InputError;
 use crate::mesh::{self, MeshData, MtlBsdf};
+use crate::plugin::{self, Default, Param, ParamType, Plugin, Range};
+use crate::util::{at_prop, vec3, Result};
 use crate::xml::{Kind, Object};
 use glam::{Vec2, Vec3};
 use tessera_core::geometry::{Disk, Mesh, ShapeKind, Sphere};
 use tessera_core::math::{Norm, Transform};
+
+/// A shape's geometry before the scene gives it indices.
+pub struct Geometry {
+    /// The geometry that takes the shape's `<bsdf>` and `<emitter>` (none when every face of an
+    /// OBJ has an MTL material).
+    pub kind: Option<ShapeKind>,
+    /// A disk's frame (its `ShapeKind::Disk` index is assigned by the scene builder).
+    pub disk: Option<Disk>,
+    /// The OBJ's faces with MTL materials (`use_mtl`).
+    pub mtl_parts: Vec<MtlPart>,
+}
+
+impl Geometry {
+    fn of(kind: ShapeKind) -> Result<Geometry> {
+        Ok(Geometry {
+            kind: Some(kind),
+            disk: None,
+            mtl_parts: Vec::new(),
+        })
+    }
+}
+
+/// A shape plugin.
+pub type ShapePlugin = Plugin<fn(&Object) -> Result<Geometry>>;
+
+/// Every `<shape type=...>` Tessera knows.
+pub static SHAPES: &[ShapePlugin] = &[SPHERE, OBJ, PLY, RECTANGLE, CUBE, DISK];
+
+const TO_WORLD: Param = Param::transform("to_world", "object to world");
+const FLIP_NORMALS: Param = Param::boolean(
+    "flip_normals",
+    false,
+    "swap the front and back sides (which side an area light or a one-sided BSDF faces)",
+);
+
+const CENTER: Param = Param::new(
+    "center",
+    ParamType::Point,
+    Default::Note("(0, 0, 0)"),
+    Range::Any,
+    "centre, before to_world",
+);
+const RADIUS: Param = Param::float("radius", 1.0, Range::Positive, "radius, before to_world");
+
+/// `sphere`.
+pub const SPHERE: ShapePlugin = Plugin {
+    name: "sphere",
+    aliases: &[],
+    doc: "An analytic sphere, placed by to_world * translate(center) * scale(radius) as in \
+          Mitsuba 3; to_world must be a similarity (a uniform scale, a rotation, a translation).",
+    params: &[CENTER, RADIUS, TO_WORLD, FLIP_NORMALS],
+    nested: "an optional `<bsdf>` and `<emitter type=\"area\">`",
+    build: build_sphere,
+};
+
+fn build_sphere(obj: &Object) -> Result<Geometry> {
+    let center = vec3(obj.point(CENTER.name, [0.0; 3])?);
+    let radius = RADIUS.read_f32(obj)?;
+    let tf = TO_WORLD.read_transform(obj)?;
+    let c = tf.point(center);
+    let axes = [tf.vector(Vec3::X), tf.vector(Vec3::Y), tf.vector(Vec3::Z)].map(|a| a.norm());
+    let s = axes[0];
+    if axes.iter().any(|a| (a - s).abs() > 1e-4 * s)
+        || (tf.vector(Vec3::X).dot(tf.vector(Vec3::Y))).abs() > 1e-4 * s * s
+    {
+        return Err(
+            obj.error("the to_world of a sphere must be a uniform scale, rotation and translation")
+        );
+    }
+    let r = radius * s;
+    if !(r > 0.0 && r.is_finite() && c.is_finite()) {
+        return Err(obj.error("the sphere's size or position is out of range"));
+    }
+    Geometry::of(ShapeKind::Sphere(Sphere {
+        center: c,
+        radius: r,
+    }))
+}
+
+const FILENAME: Param = Param::new(
+    "filename",
+    ParamType::String,
+    Default::Required,
+    Range::Note("relative to the scene file"),
+    "the mesh file",
+);
+const FACE_NORMALS: Param = Param::boolean(
+    "face_normals",
+    false,
+    "use flat face normals, ignoring the file's vertex normals",
+);
+const USE_MTL: Param = Param::boolean(
+    "use_mtl",
+    false,
+    "apply the file's MTL materials (a Tessera extension; Mitsuba 3 ignores MTL files)",
+);
+
+/// `obj`.
+pub const OBJ: ShapePlugin = Plugin {
+    name: "obj",
+    aliases: &[],
+    doc: "A Wavefront OBJ triangle mesh. With use_mtl, the mesh is split into one shape per \
+          `usemtl` material, each with the BSDF and `Ke` area light the material maps to; faces \
+          before any `usemtl` form one more shape with the shape's `<bsdf>` and `<emitter>` \
+          (which are then an error if there are no such faces).",
+    params: &[FILENAME, FACE_NORMALS, USE_MTL, TO_WORLD, FLIP_NORMALS],
+    nested: "an optional `<bsdf>` and `<emitter type=\"area\">`",
+    build: build_mesh_file,
+};
+
+/// `ply`.
+pub const PLY: ShapePlugin = Plugin {
+    name: "ply",
+    aliases: &[],
+    doc: "A PLY triangle mesh (ASCII or binary).",
+    params: &[FILENAME, FACE_NORMALS, TO_WORLD, FLIP_NORMALS],
+    nested: "an optional `<bsdf>` and `<emitter type=\"area\">`",
+    build: build_mesh_file,
+};
+
+fn build_mesh_file(obj: &Object) -> Result<Geometry> {
+    let name = obj
+        .string_opt(FILENAME.name)?
+        .ok_or_else(|| obj.error(format!("{} needs \"filename\"", obj.describe())))?;
+    let base = obj
+        .loc
+        .file
+        .parent()
+        .map(|p| p.to_path_buf())
+        .unwrap_or_default();
+    let path = base.join(&name);
+    let use_mtl = obj.plugin == OBJ.name && USE_MTL.read_bool(obj)?;
+    let face_normals = FACE_NORMALS.read_bool(obj)?;
+    let tf = TO_WORLD.read_transform(obj)?;
+    if !use_mtl {
+        let data = if obj.plugin == OBJ.name {
+            mesh::load_obj(&path)
+        } else {
+            mesh::load_ply(&path)
+        }
+        .map_err(|e| at_filename(obj, e))?;
+        return Geometry::of(ShapeKind::Mesh(to_world_mesh(
+            obj,
+            data,
+            &tf,
+            face_normals,
+        )?));
+    }
+    let parts = mesh::load_obj_with_materials(&path).map_err(|e| at_filename(obj, e))?;
+    let mut mtl_parts = Vec::new();
+    for (i, data) in parts.by_material {
+        mtl_parts.push(MtlPart {
+            mesh: to_world_mesh(obj, data, &tf, face_normals)?,
+            material: mesh::mtl_bsdf(&parts.materials[i])?,
+        });
+    }
+    let kind = match parts.plain {
+        Some(data) => Some(ShapeKind::Mesh(to_world_mesh(
+            obj,
+            data,
+            &tf,
+            face_normals,
+        )?)),
+        None => None,
+    };
+    Ok(Geometry {
+        kind,
+        disk: None,
+        mtl_parts,
+    })
+}
+
+/// `rectangle`.
+pub const RECTANGLE: ShapePlugin = Plugin {
+    name: "rectangle",
+    aliases: &[],
+    doc: "The square [-1, 1]^2 at z = 0, facing +z, placed by to_world.",
+    params: &[TO_WORLD, FLIP_NORMALS],
+    nested: "an optional `<bsdf>` and `<emitter type=\"area\">`",
+    build: |obj| unit_mesh(obj, mesh::rectangle()),
+};
+
+/// `cube`.
+pub const CUBE: ShapePlugin = Plugin {
+    name: "cube",
+    aliases: &[],
+    doc: "The cube [-1, 1]^3, facing out, placed by to_world.",
+    params: &[TO_WORLD, FLIP_NORMALS],
+    nested: "an optional `<bsdf>` and `<emitter type=\"area\">`",
+    build: |obj| unit_mesh(obj, mesh::cube()),
+};
+
+fn unit_mesh(obj: &Object, data: MeshData) -> Result<Geometry> {
+    let tf = TO_WORLD.read_transform(obj)?;
+    Geometry::of(ShapeKind::Mesh(to_world_mesh(obj, data, &tf, false)?))
+}
+
+/// `disk`.
+pub const DISK: ShapePlugin = Plugin {
+    name: "disk",
+    aliases: &[],
+    doc: "The unit disk at z = 0, facing +z, placed by to_world (an analytic shape).",
+    params: &[TO_WORLD, FLIP_NORMALS],
+    nested: "an optional `<bsdf>` and `<emitter type=\"area\">`",
+    build: |obj| {
+        let tf = TO_WORLD.read_transform(obj)?;
+        let disk = Disk::new(tf).ok_or_else(|| obj.error("the disk's to_world flattens it"))?;
+        Ok(Geometry {
+            kind: Some(ShapeKind::Disk(0)),
+            disk: Some(disk),
+            mtl_parts: Vec::new(),
+        })
+    },
+};
 
 /// A part of an OBJ mesh with its MTL material.
 pub struct MtlPart {
@@ -30,6 +235,8 @@ pub struct MtlPart {
 
 /// A shape's geometry and what is attached to it, before indices are assigned.
 pub struct ShapeParts<'a> {
+    /// The plugin, to report the object's unused parameters once its children are built.
+    pub plugin: &'static ShapePlugin,
     /// The geometry that takes the shape's `<bsdf>` and `<emitter>` (none when every face of an
     /// OBJ has an MTL material).
     pub kind: Option<ShapeKind>,
@@ -77,103 +284,16 @@ fn to_world_mesh(obj: &Object, data: MeshData, tf: &Transform, face_normals: boo
     Ok(Mesh::new(positions, normals, uvs, data.indices))
 }
 
-/// Builds the geometry of a shape object and finds its bsdf / emitter children.
+/// Builds the geometry of a shape object and finds its bsdf / emitter children. The caller
+/// reports unused parameters (`ShapeParts::plugin`) once it has built the children.
 pub fn build_shape(obj: &Object) -> Result<ShapeParts<'_>> {
-    let flip_normals = obj.boolean("flip_normals", false)?;
-    let mut disk = None;
-    let mut mtl_parts = Vec::new();
-    let kind = match obj.plugin.as_str() {
-        "sphere" => {
-            let center = vec3(obj.point("center", [0.0; 3])?);
-            let radius = float_checked(obj, "radius", 1.0, |r| r > 0.0, "positive")?;
-            let tf = transform(obj, "to_world")?;
-            let c = tf.point(center);
-            let axes =
-                [tf.vector(Vec3::X), tf.vector(Vec3::Y), tf.vector(Vec3::Z)].map(|a| a.norm());
-            let s = axes[0];
-            if axes.iter().any(|a| (a - s).abs() > 1e-4 * s)
-                || (tf.vector(Vec3::X).dot(tf.vector(Vec3::Y))).abs() > 1e-4 * s * s
-            {
-                return Err(obj.error(
-                    "the to_world of a sphere must be a uniform scale, rotation and translation",
-                ));
-            }
-            let r = radius * s;
-            if !(r > 0.0 && r.is_finite() && c.is_finite()) {
-                return Err(obj.error("the sphere's size or position is out of range"));
-            }
-            Some(ShapeKind::Sphere(Sphere {
-                center: c,
-                radius: r,
-            }))
-        }
-        "obj" | "ply" => {
-            let name = obj
-                .string_opt("filename")?
-                .ok_or_else(|| obj.error(format!("{} needs \"filename\"", obj.describe())))?;
-            let base = obj
-                .loc
-                .file
-                .parent()
-                .map(|p| p.to_path_buf())
-                .unwrap_or_default();
-            let path = base.join(&name);
-            let use_mtl = obj.plugin == "obj" && obj.boolean("use_mtl", false)?;
-            let face_normals = obj.boolean("face_normals", false)?;
-            let tf = transform(obj, "to_world")?;
-            if use_mtl {
-                let parts =
-                    mesh::load_obj_with_materials(&path).map_err(|e| at_filename(obj, e))?;
-                for (i, data) in parts.by_material {
-                    mtl_parts.push(MtlPart {
-                        mesh: to_world_mesh(obj, data, &tf, face_normals)?,
-                        material: mesh::mtl_bsdf(&parts.materials[i])?,
-                    });
-                }
-                match parts.plain {
-                    Some(data) => Some(ShapeKind::Mesh(to_world_mesh(
-                        obj,
-                        data,
-                        &tf,
-                        face_normals,
-                    )?)),
-                    None => None,
-                }
-            } else {
-                let data = if obj.plugin == "obj" {
-                    mesh::load_obj(&path)
-                } else {
-                    mesh::load_ply(&path)
-                }
-                .map_err(|e| at_filename(obj, e))?;
-                Some(ShapeKind::Mesh(to_world_mesh(
-                    obj,
-                    data,
-                    &tf,
-                    face_normals,
-                )?))
-            }
-        }
-        "rectangle" | "cube" => {
-            let data = if obj.plugin == "cube" {
-                mesh::cube()
-            } else {
-                mesh::rectangle()
-            };
-            let tf = transform(obj, "to_world")?;
-            Some(ShapeKind::Mesh(to_world_mesh(obj, data, &tf, false)?))
-        }
-        "disk" => {
-            let tf = transform(obj, "to_world")?;
-            disk = Some(Disk::new(tf).ok_or_else(|| obj.error("the disk's to_world flattens it"))?);
-            Some(ShapeKind::Disk(0))
-        }
-        other => {
-            return Err(obj.error(format!(
-                "unknown shape \"{other}\" (known: sphere, obj, ply, rectangle, disk, cube)"
-            )));
-        }
-    };
+    let flip_normals = FLIP_NORMALS.read_bool(obj)?;
+    let plugin = plugin::find(SHAPES, "shape", obj)?;
+    let Geometry {
+        kind,
+        disk,
+        mtl_parts,
+    } = (plugin.build)(obj)?;
     let mut bsdf = None;
     let mut emitter = None;
     for c in &obj.children {
@@ -203,6 +323,7 @@ pub fn build_shape(obj: &Object) -> Result<ShapeParts<'_>> {
         *slot = Some(c);
     }
     Ok(ShapeParts {
+        plugin,
         kind,
         mtl_parts,
         disk,
@@ -210,4 +331,32 @@ pub fn build_shape(obj: &Object) -> Result<ShapeParts<'_>> {
         bsdf,
         emitter,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn declarations_match_what_the_builders_read() {
+        let root = env!("CARGO_MANIFEST_DIR");
+        crate::plugin::check::check_family(
+            super::SHAPES,
+            crate::xml::Kind::Shape,
+            |obj| {
+                let p = super::build_shape(obj)?;
+                let summary = (p.kind, p.disk, p.flip_normals, p.mtl_parts.len());
+                Ok(format!("{summary:?}"))
+            },
+            |name| match name {
+                "obj" => format!(
+                    "<string name=\"filename\" value=\"{root}/../scenes/meshes/cbox_light.obj\"/>"
+                ),
+                "ply" => format!(
+                    "<string name=\"filename\" \
+                     value=\"{root}/../fuzz/corpus/ply/ascii_normals_uv.ply\"/>"
+                ),
+                _ => String::new(),
+            },
+            &[],
+        );
+    }
 }

@@ -45,20 +45,7 @@ pub fn to_transform(obj: &Object, name: &str, m: DMat4) -> Result<Transform> {
     Ok(Transform { m: mf, inv: invf })
 }
 
-/// A colour parameter checked finite and non-negative.
-pub fn color(obj: &Object, name: &str, default: [f64; 3]) -> Result<Color> {
-    let c = obj.rgb(name, default)?;
-    check_color(obj, name, c)
-}
-
-/// A required colour parameter.
-pub fn color_required(obj: &Object, name: &str) -> Result<Color> {
-    match obj.rgb_opt(name)? {
-        Some(c) => check_color(obj, name, c),
-        None => Err(obj.error(format!("{} needs the parameter \"{name}\"", obj.describe()))),
-    }
-}
-
+/// Converts an rgb value to a colour, checked finite and non-negative (located at `name`).
 pub(crate) fn check_color(obj: &Object, name: &str, c: [f64; 3]) -> Result<Color> {
     let v = Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32);
     if !v.is_finite() || v.min_element() < 0.0 {
@@ -72,25 +59,6 @@ pub(crate) fn check_color(obj: &Object, name: &str, c: [f64; 3]) -> Result<Color
         ));
     }
     Ok(v)
-}
-
-/// A float parameter checked with `ok`.
-pub fn float_checked(
-    obj: &Object,
-    name: &str,
-    default: f64,
-    ok: impl Fn(f64) -> bool,
-    what: &str,
-) -> Result<f32> {
-    let v = obj.float(name, default)?;
-    if !v.is_finite() || !ok(v) || !(v as f32).is_finite() {
-        return Err(at_prop(
-            obj,
-            name,
-            format!("\"{name}\" of {} must be {what}, found {v}", obj.describe()),
-        ));
-    }
-    Ok(v as f32)
 }
 
 /// An error located at a property (or the object when the property is absent).

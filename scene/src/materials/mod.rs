@@ -88,10 +88,13 @@ mod tests {
             BSDFS,
             Kind::Bsdf,
             build_bsdf,
-            |name| match name {
-                "twosided" | "mask" => "<bsdf type=\"diffuse\"/>",
-                "blendbsdf" => "<bsdf type=\"diffuse\"/><bsdf type=\"conductor\"/>",
-                _ => "",
+            |name| {
+                match name {
+                    "twosided" | "mask" => "<bsdf type=\"diffuse\"/>",
+                    "blendbsdf" => "<bsdf type=\"diffuse\"/><bsdf type=\"conductor\"/>",
+                    _ => "",
+                }
+                .to_string()
             },
             // Given alone, alpha_u (or alpha_v) asks for its partner.
             &[("roughplastic", "alpha_u"), ("roughplastic", "alpha_v")],

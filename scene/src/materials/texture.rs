@@ -1,21 +1,11 @@
 //! Texture-valued parameters: a constant (`<rgb>` or `<float>`) or a `<texture>` (nested with
-//! the parameter's name, or a `<ref name=... id=...>` to one declared elsewhere).
-//!
-//! - `bitmap`: `filename` (string, required: PNG, EXR, PFM or RGBE `.hdr`, relative to the
-//!   scene file; a PNG's alpha channel is ignored), `raw` (boolean, default false: when false a
-//!   PNG is sRGB-decoded to linear values, as Mitsuba 3 does), `filter_type` (`bilinear` |
-//!   `nearest`, default bilinear), `wrap_mode` (`repeat` | `mirror` | `clamp`, default repeat),
-//!   `to_uv` (transform, default identity), `accel` (boolean, accepted and ignored: a Mitsuba
-//!   GPU option). Every pixel must be finite and non-negative, and in [0, 1] where the
-//!   parameter is a reflectance or weight.
-//! - `checkerboard`: `color0` (rgb or texture, default 0.4), `color1` (rgb or texture, default
-//!   0.2), `to_uv` (transform, default identity).
-//!
-//! The conventions (which row is `v = 0`, pixel centres, wrapping) are in
-//! `tessera_core::texture`'s plugin files.
+//! the parameter's name, or a `<ref name=... id=...>` to one declared elsewhere), and the
+//! texture plugins `bitmap` and `checkerboard` ([`TEXTURES`]). Every value must be finite and
+//! non-negative, and in [0, 1] where the parameter is a reflectance or weight. The conventions
+//! (which row is `v = 0`, pixel centres, wrapping) are in `tessera_core::texture`'s plugin files.
 use super::super::util::{at_prop, Result};
 use crate::image::read_image;
-use crate::plugin::{Default, Param, Range};
+use crate::plugin::{self, Default, Param, ParamType, Plugin, Range};
 use crate::xml::{Kind, Object};
 use glam::{DMat4, Vec3};
 use std::path::Path;
@@ -24,10 +14,7 @@ use tessera_core::texture::{Bitmap, Checkerboard, FilterType, Texture, UvTransfo
 /// The declared texture parameter `p` of `obj`: its default colour when absent; every value
 /// in `[0, 1]` when its range is [`Range::Unit`], else only non-negative.
 pub fn read_texture(obj: &Object, p: &Param) -> Result<Texture> {
-    let Default::Rgb(default) = p.default else {
-        unreachable!("texture \"{}\" has no constant default", p.name)
-    };
-    texture(obj, p.name, default, p.range == Range::Unit)
+    texture(obj, p.name, rgb_default(p), p.range == Range::Unit)
 }
 
 /// The texture parameter `name` of `obj` (constant `default` when absent). With `unit`, every
@@ -68,28 +55,91 @@ fn range(unit: bool) -> &'static str {
     }
 }
 
+/// A texture plugin: built for a parameter whose values must lie in [0, 1] (`unit`) or only
+/// be non-negative.
+pub type TexturePlugin = Plugin<fn(&Object, bool) -> Result<Texture>>;
+
+/// Every `<texture type=...>` Tessera knows.
+pub static TEXTURES: &[TexturePlugin] = &[BITMAP, CHECKERBOARD];
+
 /// Builds a `<texture>` object and reports its unused parameters.
 fn build_texture(obj: &Object, unit: bool) -> Result<Texture> {
-    let t = match obj.plugin.as_str() {
-        "bitmap" => Texture::Bitmap(bitmap(obj, unit)?),
-        "checkerboard" => Texture::Checkerboard(Checkerboard {
-            color0: Box::new(texture(obj, "color0", [0.4; 3], unit)?),
-            color1: Box::new(texture(obj, "color1", [0.2; 3], unit)?),
-            to_uv: to_uv(obj)?,
-        }),
-        other => {
-            return Err(obj.error(format!(
-                "unknown texture \"{other}\" (known: bitmap, checkerboard)"
-            )))
-        }
-    };
-    obj.check_unused()?;
+    let plugin = plugin::find(TEXTURES, "texture", obj)?;
+    let t = (plugin.build)(obj, unit)?;
+    plugin.check_unused(obj)?;
     Ok(t)
+}
+
+const UNIT_RULE: Range = Range::Note("in [0, 1] for a reflectance or weight, else non-negative");
+const COLOR0: Param = Param::texture("color0", [0.4; 3], UNIT_RULE, "colour of the even squares");
+const COLOR1: Param = Param::texture("color1", [0.2; 3], UNIT_RULE, "colour of the odd squares");
+const TO_UV: Param = Param::transform(
+    "to_uv",
+    "map applied to the surface's uv before the lookup (rows and columns 0, 1 and 3 of the 4x4)",
+);
+
+/// `checkerboard`.
+pub const CHECKERBOARD: TexturePlugin = Plugin {
+    name: "checkerboard",
+    aliases: &[],
+    doc: "Two colours in a checkerboard of 2x2 squares over the unit uv square.",
+    params: &[COLOR0, COLOR1, TO_UV],
+    nested: "",
+    build: |obj, unit| {
+        Ok(Texture::Checkerboard(Checkerboard {
+            color0: Box::new(texture(obj, COLOR0.name, rgb_default(&COLOR0), unit)?),
+            color1: Box::new(texture(obj, COLOR1.name, rgb_default(&COLOR1), unit)?),
+            to_uv: to_uv(obj)?,
+        }))
+    },
+};
+
+const FILENAME: Param = Param::new(
+    "filename",
+    ParamType::String,
+    Default::Required,
+    Range::Note("a PNG, EXR, PFM or RGBE .hdr file, relative to the scene file"),
+    "the image (a PNG's alpha channel is ignored)",
+);
+const RAW: Param = Param::boolean(
+    "raw",
+    false,
+    "keep a PNG's 8-bit values as they are; when false they are sRGB-decoded to linear values",
+);
+const FILTER_TYPE: Param = Param::choice(
+    "filter_type",
+    "bilinear",
+    &["bilinear", "nearest"],
+    "reconstruction between pixels",
+);
+const WRAP_MODE: Param = Param::choice(
+    "wrap_mode",
+    "repeat",
+    &["repeat", "mirror", "clamp"],
+    "what uv outside [0, 1] reads",
+);
+const ACCEL: Param = Param::boolean("accel", true, "Mitsuba's GPU lookup option; has no effect");
+
+/// `bitmap`.
+pub const BITMAP: TexturePlugin = Plugin {
+    name: "bitmap",
+    aliases: &[],
+    doc: "An image texture.",
+    params: &[FILENAME, RAW, FILTER_TYPE, WRAP_MODE, TO_UV, ACCEL],
+    nested: "",
+    build: |obj, unit| Ok(Texture::Bitmap(bitmap(obj, unit)?)),
+};
+
+fn rgb_default(p: &Param) -> [f64; 3] {
+    match p.default {
+        Default::Rgb(c) => c,
+        other => unreachable!("texture \"{}\" has no colour default ({other:?})", p.name),
+    }
 }
 
 /// The `to_uv` transform: rows and columns 0, 1 and 3 of the 4x4 matrix, as Mitsuba 3 reads it.
 fn to_uv(obj: &Object) -> Result<UvTransform> {
-    let m: DMat4 = obj.transform("to_uv", DMat4::IDENTITY)?;
+    let m: DMat4 = obj.transform(TO_UV.name, DMat4::IDENTITY)?;
     let row = |r: usize| [m.col(0)[r] as f32, m.col(1)[r] as f32, m.col(3)[r] as f32];
     let t = UvTransform {
         row_u: row(0),
@@ -117,35 +167,19 @@ fn srgb_to_linear(v: f32) -> f32 {
 }
 
 fn bitmap(obj: &Object, unit: bool) -> Result<Bitmap> {
-    let name = obj
-        .string_opt("filename")?
-        .ok_or_else(|| obj.missing("filename"))?;
-    let raw = obj.boolean("raw", false)?;
-    let filter = match obj.string("filter_type", "bilinear")?.as_str() {
-        "bilinear" => FilterType::Bilinear,
+    let name = FILENAME.read_string(obj)?;
+    let raw = RAW.read_bool(obj)?;
+    let filter = match FILTER_TYPE.read_choice(obj)? {
         "nearest" => FilterType::Nearest,
-        other => {
-            return Err(at_prop(
-                obj,
-                "filter_type",
-                format!("unknown filter_type \"{other}\" (bilinear, nearest)"),
-            ))
-        }
+        _ => FilterType::Bilinear,
     };
-    let wrap = match obj.string("wrap_mode", "repeat")?.as_str() {
-        "repeat" => WrapMode::Repeat,
+    let wrap = match WRAP_MODE.read_choice(obj)? {
         "mirror" => WrapMode::Mirror,
         "clamp" => WrapMode::Clamp,
-        other => {
-            return Err(at_prop(
-                obj,
-                "wrap_mode",
-                format!("unknown wrap_mode \"{other}\" (repeat, mirror, clamp)"),
-            ))
-        }
+        _ => WrapMode::Repeat,
     };
     let to_uv = to_uv(obj)?;
-    obj.boolean("accel", true)?;
+    ACCEL.read_bool(obj)?;
     let base = obj
         .loc
         .file
@@ -217,4 +251,28 @@ pub(crate) fn load_bitmap(
     let (w, h) = (img.width as usize, img.height as usize);
     Bitmap::new(w, h, pixels, s.filter, s.wrap, s.to_uv)
         .ok_or_else(|| format!("\"{name}\": unusable image size {w}x{h}"))
+}
+
+#[cfg(test)]
+mod declaration_tests {
+    use super::{build_texture, TEXTURES};
+    use crate::plugin::check::check_family;
+    use crate::xml::Kind;
+
+    #[test]
+    fn declarations_match_what_the_builders_read() {
+        let image = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/textures/tiles.png");
+        for unit in [false, true] {
+            check_family(
+                TEXTURES,
+                Kind::Texture,
+                |obj| build_texture(obj, unit),
+                |name| match name {
+                    "bitmap" => format!("<string name=\"filename\" value=\"{image}\"/>"),
+                    _ => String::new(),
+                },
+                &[],
+            );
+        }
+    }
 }

@@ -52,7 +52,7 @@ pub fn check_family<T: Debug, B>(
     family: &[Plugin<B>],
     kind: Kind,
     build: impl Fn(&Object) -> Result<T, InputError> + Copy,
-    inner: impl Fn(&str) -> &'static str,
+    inner: impl Fn(&str) -> String,
     skip: &[(&str, &str)],
 ) {
     let tag = kind.tag();

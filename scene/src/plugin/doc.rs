@@ -27,7 +27,7 @@ pub fn plugin_markdown<B>(family: &str, p: &Plugin<B>) -> String {
             q.name,
             q.ty.describe(),
             q.default,
-            q.range.describe(),
+            q.describe_range(),
             q.doc
         );
     }

@@ -217,6 +217,8 @@ pub struct Param {
     pub range: Range,
     /// One line of meaning.
     pub doc: &'static str,
+    /// The unit of a number (`"degrees"`), or empty.
+    pub unit: &'static str,
 }
 
 impl Param {
@@ -228,6 +230,7 @@ impl Param {
             default: Default::Float(default),
             range,
             doc,
+            unit: "",
         }
     }
 
@@ -244,6 +247,7 @@ impl Param {
             default: Default::Integer(default),
             range,
             doc,
+            unit: "",
         }
     }
 
@@ -255,6 +259,7 @@ impl Param {
             default: Default::Boolean(default),
             range: Range::Any,
             doc,
+            unit: "",
         }
     }
 
@@ -271,6 +276,7 @@ impl Param {
             default: Default::Str(default),
             range: Range::OneOf(names),
             doc,
+            unit: "",
         }
     }
 
@@ -287,6 +293,7 @@ impl Param {
             default: Default::Rgb(default),
             range,
             doc,
+            unit: "",
         }
     }
 
@@ -298,6 +305,7 @@ impl Param {
             default: Default::Str(default),
             range: Range::Positive,
             doc,
+            unit: "",
         }
     }
 
@@ -314,6 +322,7 @@ impl Param {
             default,
             range,
             doc,
+            unit: "",
         }
     }
 
@@ -325,6 +334,7 @@ impl Param {
             default: Default::Identity,
             range: Range::Any,
             doc,
+            unit: "",
         }
     }
 
@@ -342,12 +352,27 @@ impl Param {
             default,
             range,
             doc,
+            unit: "",
         }
     }
 
     /// The same parameter with another default.
     pub const fn with_default(self, default: Default) -> Self {
         Param { default, ..self }
+    }
+
+    /// The same parameter with a unit.
+    pub const fn with_unit(self, unit: &'static str) -> Self {
+        Param { unit, ..self }
+    }
+
+    /// The range in words, with the unit: "in (0, 180] degrees".
+    pub fn describe_range(&self) -> String {
+        if self.unit.is_empty() {
+            self.range.describe()
+        } else {
+            format!("{} {}", self.range.describe(), self.unit)
+        }
     }
 
     /// The same parameter with another line of meaning.

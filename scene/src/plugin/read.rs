@@ -37,7 +37,7 @@ impl Param {
                 let v = obj
                     .float_opt(self.name)?
                     .ok_or_else(|| obj.missing(self.name))?;
-                self.checked(obj, v, |v| self.range.contains(v), &self.range.describe())
+                self.checked(obj, v, |v| self.range.contains(v), &self.describe_range())
             }
             other => unreachable!("\"{}\" has no float default ({other:?})", self.name),
         }
@@ -46,7 +46,7 @@ impl Param {
     /// A float with a default computed by the builder (a [`Default::Note`]).
     pub fn read_f32_or(&self, obj: &Object, default: f64) -> Result<f32> {
         let v = obj.float(self.name, default)?;
-        self.checked(obj, v, |v| self.range.contains(v), &self.range.describe())
+        self.checked(obj, v, |v| self.range.contains(v), &self.describe_range())
     }
 
     /// A float that must pass `ok`, a rule involving other parameters ([`Range::Note`] says it).
@@ -57,7 +57,7 @@ impl Param {
         ok: impl Fn(f64) -> bool,
     ) -> Result<f32> {
         let v = obj.float(self.name, default)?;
-        self.checked(obj, v, |v| v.is_finite() && ok(v), &self.range.describe())
+        self.checked(obj, v, |v| v.is_finite() && ok(v), &self.describe_range())
     }
 
     /// A float, `None` when absent ([`Default::Absent`]).
@@ -65,7 +65,7 @@ impl Param {
         match obj.float_opt(self.name)? {
             None => Ok(None),
             Some(v) => self
-                .checked(obj, v, |v| self.range.contains(v), &self.range.describe())
+                .checked(obj, v, |v| self.range.contains(v), &self.describe_range())
                 .map(Some),
         }
     }
@@ -87,7 +87,19 @@ impl Param {
             other => unreachable!("\"{}\" has no integer default ({other:?})", self.name),
         };
         if !self.range.contains(v as f64) {
-            return Err(self.out_of_range(obj, &self.range.describe(), v));
+            return Err(self.out_of_range(obj, &self.describe_range(), v));
+        }
+        Ok(v)
+    }
+
+    /// An integer that must pass `ok` ([`Range::Note`] says the rule).
+    pub fn read_i64_where(&self, obj: &Object, ok: impl Fn(i64) -> bool) -> Result<i64> {
+        let v = match self.default {
+            Default::Integer(d) => obj.integer(self.name, d)?,
+            other => unreachable!("\"{}\" has no integer default ({other:?})", self.name),
+        };
+        if !ok(v) {
+            return Err(self.out_of_range(obj, &self.describe_range(), v));
         }
         Ok(v)
     }
