@@ -6,6 +6,7 @@ pub mod bench;
 pub mod compare;
 pub mod decor;
 pub mod merge;
+pub mod plugins;
 pub mod probe_args;
 pub mod render;
 pub mod render_once;
@@ -36,6 +37,9 @@ pub enum Command {
     /// Compare an image with a reference: means, RMSE, relMSE, MAE, largest difference; text or
     /// JSON, optionally a false-colour difference PNG.
     Compare(compare::CompareArgs),
+    /// Print the plugin reference: every plugin a scene file can name, with its parameters
+    /// (or only the plugins called NAME).
+    Plugins(plugins::PluginsArgs),
     /// Assemble part files (from a render with --crop, --tiles or --sample-range) into one image.
     Merge(merge::MergeArgs),
 }

@@ -42,6 +42,7 @@ fn main() {
         Command::Bench(args) => tessera_cli::bench::run(&args),
         Command::Compare(args) => tessera_cli::compare::run(&args),
         Command::Merge(args) => tessera_cli::merge::run(&args),
+        Command::Plugins(args) => tessera_cli::plugins::run(&args),
     };
     std::process::exit(code);
 }

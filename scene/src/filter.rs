@@ -1,15 +1,15 @@
 //! The `<rfilter>` plugins ([`FILTERS`]): the pixel reconstruction filters `gaussian` (the
-//! default) and `box`. Their conventions are in `tessera_core::camera::filter`.
+//! default), `box` and `tent`. Their conventions are in `tessera_core::camera::filter`.
 use crate::plugin::{self, Param, Plugin, Range};
 use crate::util::Result;
 use crate::xml::Object;
-use tessera_core::camera::{Filter, GaussianFilter};
+use tessera_core::camera::{Filter, GaussianFilter, TentFilter};
 
 /// A reconstruction filter plugin.
 pub type FilterPlugin = Plugin<fn(&Object) -> Result<Filter>>;
 
 /// Every `<rfilter type=...>` Tessera knows.
-pub static FILTERS: &[FilterPlugin] = &[GAUSSIAN, BOX];
+pub static FILTERS: &[FilterPlugin] = &[GAUSSIAN, BOX, TENT];
 
 /// Builds a filter and reports unused parameters.
 pub fn build_filter(obj: &Object) -> Result<Filter> {
@@ -44,6 +44,24 @@ pub const GAUSSIAN: FilterPlugin = Plugin {
     params: &[STDDEV],
     nested: "",
     build: |obj| Ok(Filter::Gaussian(GaussianFilter::new(STDDEV.read_f32(obj)?))),
+};
+
+const RADIUS: Param = Param::float(
+    "radius",
+    1.0,
+    Range::open_closed(0.0, 64.0),
+    "half width of the tent in pixels",
+);
+
+/// `tent`.
+pub const TENT: FilterPlugin = Plugin {
+    name: "tent",
+    aliases: &[],
+    doc: "A triangle, max(0, 1 - |x| / radius) along each axis: no ringing, less aliasing than \
+          box.",
+    params: &[RADIUS],
+    nested: "",
+    build: |obj| Ok(Filter::Tent(TentFilter::new(RADIUS.read_f32(obj)?))),
 };
 
 #[cfg(test)]

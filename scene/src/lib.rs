@@ -8,6 +8,7 @@ pub mod error;
 pub mod image;
 pub mod mesh;
 pub mod plugin;
+pub mod reference;
 pub mod xml;
 
 mod bsdfs;

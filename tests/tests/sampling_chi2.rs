@@ -14,8 +14,8 @@
 use std::f64::consts::TAU;
 use tessera_core::math::{Norm, Ray, Transform};
 
-use glam::{DMat4, DVec3, Vec2, Vec3};
-use tessera_core::camera::{Filter, GaussianFilter};
+use glam::{DMat4, DVec2, DVec3, Vec2, Vec3};
+use tessera_core::camera::{Filter, GaussianFilter, TentFilter};
 use tessera_core::geometry::{Disk, Mesh, Shape, ShapeKind, Sphere};
 use tessera_core::sampling::{warp, Discrete1D};
 use tessera_lab::stats::{
@@ -28,8 +28,9 @@ use tessera_tests::cap::{cap_coords, cap_dir, frame_around};
 ///  6 tiny cone (omc), 7 concentric disk, 8 triangle barycentrics,
 ///  9 sphere cone far, 10 sphere cone near, 11 mesh directions, 12 mesh triangle choice,
 ///  13 mesh barycentrics in one triangle, 14 ellipse (disk) directions,
-///  15 Discrete1D indices, 16 Discrete1D rescaled u, 17 box filter, 18 Gaussian filter.
-const N_TESTS: usize = 18;
+///  15 Discrete1D indices, 16 Discrete1D rescaled u, 17 box filter, 18 Gaussian filter,
+///  19 tent filter.
+const N_TESTS: usize = 19;
 
 /// Samples per test.
 const SAMPLES: usize = 1_000_000;
@@ -796,4 +797,56 @@ fn t18_gaussian_filter() {
         18,
     );
     check("Gaussian filter (stddev 0.5)", &r);
+}
+
+/// The tent filter's documented 1-D density for radius `r`: 31 constant steps over
+/// `|x| ∈ [0, r]`, step `i` covering `[r i / 31, r (i + 1) / 31]` with the value `1 - i / 31`
+/// (the tent at the step's start, as Mitsuba 3 tabulates it), mirrored, normalized over
+/// [-r, r].
+fn tent_step_density(r: f64, x: f64) -> f64 {
+    let h = r / G_STEPS as f64;
+    if x.abs() > r {
+        return 0.0;
+    }
+    let total: f64 = 2.0
+        * h
+        * (0..G_STEPS)
+            .map(|i| 1.0 - i as f64 / G_STEPS as f64)
+            .sum::<f64>();
+    let i = ((x.abs() / h) as usize).min(G_STEPS - 1);
+    (1.0 - i as f64 / G_STEPS as f64) / total
+}
+
+/// Chi-square of the tent filter of radius `r` against the step density of radius `claimed`.
+fn tent_chi2(r: f32, claimed: f64) -> Chi2Result {
+    // [-r, r]^2 mapped to [0, 1]^2 (density × 4 r²), one cell per step.
+    let filter = Filter::Tent(TentFilter::new(r));
+    let r = f64::from(r);
+    PlaneChi2 {
+        bins_x: 2 * G_STEPS,
+        bins_y: 2 * G_STEPS,
+        samples: SAMPLES,
+    }
+    .run(
+        |u| {
+            let s = filter.sample(u).as_dvec2();
+            Some(((s + DVec2::splat(r)) / (2.0 * r)).as_vec2())
+        },
+        |p| {
+            let (x, y) = (
+                (2.0 * f64::from(p.x) - 1.0) * r,
+                (2.0 * f64::from(p.y) - 1.0) * r,
+            );
+            4.0 * r * r * tent_step_density(claimed, x) * tent_step_density(claimed, y)
+        },
+        19,
+    )
+}
+
+#[test]
+fn t19_tent_filter() {
+    check("tent filter (radius 1.25)", &tent_chi2(1.25, 1.25));
+    // Control: the same samples against a tent 10% wider must be rejected.
+    let wrong = tent_chi2(1.25, 1.375);
+    assert!(!wrong.passes(alpha()), "a wrong radius passed: {wrong}");
 }

@@ -2,26 +2,21 @@
 //! offset from its pixel's centre with density proportional to the filter and keeps unit weight,
 //! so every sample lands in exactly one pixel (the tile that owns the pixel owns the sample).
 //!
-//! Scene parameters (`<rfilter>` in `<film>`): `box` (none; radius 0.5 pixel), `gaussian`
-//! (`stddev`, float, default 0.5; radius 4 stddev, truncated, shifted to zero at the radius and
-//! tabulated as in Mitsuba 3). The default filter is gaussian, as in Mitsuba 3 and Nori.
-use alloc::vec::Vec;
+//! The filters other than `box` are tabulated as step functions as Mitsuba 3 tabulates them
+//! ([`StepProfile`]). Their scene parameters are declared with the loader, in
+//! `scene/src/filter.rs`.
+use super::step_profile::{StepProfile, STEPS};
 use glam::Vec2;
 
-/// Entries of the filter's tabulated profile over `[0, radius]`, as in Mitsuba 3.
-const TABLE: usize = 31;
-
-/// A truncated Gaussian, tabulated as Mitsuba 3 does (31 constant steps over `|x|` in
-/// `[0, radius]`, each the filter's value at the step's start) and sampled exactly from that
-/// step function, so the expected image equals Mitsuba's weighted splatting.
+/// A truncated Gaussian (`gaussian`, Mitsuba 3's default), shifted to zero at its radius of 4
+/// standard deviations and tabulated as Mitsuba 3 does.
 #[derive(Clone, Debug)]
 pub struct GaussianFilter {
     /// Standard deviation in pixels.
     pub stddev: f32,
     /// Support radius in pixels.
     pub radius: f32,
-    /// Cumulative weight of the steps, over `[-radius, radius]` (2 * TABLE steps), normalized.
-    cdf: Vec<f32>,
+    profile: StepProfile,
 }
 
 impl GaussianFilter {
@@ -30,38 +25,35 @@ impl GaussianFilter {
         let radius = 4.0 * stddev;
         let alpha = -1.0 / (2.0 * stddev * stddev);
         let bias = libm::expf(alpha * radius * radius);
-        let step = |i: usize| {
-            let x = radius * i as f32 / TABLE as f32;
+        let profile = StepProfile::new(radius, |i| {
+            let x = radius * i as f32 / STEPS as f32;
             (libm::expf(alpha * x * x) - bias).max(0.0) as f64
-        };
-        // Steps from -radius to radius: mirror of the table, then the table.
-        let weights = (0..TABLE).rev().chain(0..TABLE).map(step);
-        let mut cdf = Vec::with_capacity(2 * TABLE + 1);
-        cdf.push(0.0f32);
-        let mut acc = 0.0f64;
-        let sums: Vec<f64> = weights
-            .map(|w| {
-                acc += w;
-                acc
-            })
-            .collect();
-        cdf.extend(sums.iter().map(|s| (s / acc) as f32));
+        });
         GaussianFilter {
             stddev,
             radius,
-            cdf,
+            profile,
         }
     }
-    fn sample_1d(&self, u: f32) -> f32 {
-        let n = 2 * TABLE;
-        let i = self.cdf.partition_point(|&c| c <= u).clamp(1, n) - 1;
-        let (c0, c1) = (self.cdf[i], self.cdf[i + 1]);
-        let t = if c1 > c0 {
-            ((u - c0) / (c1 - c0)).clamp(0.0, 1.0)
-        } else {
-            0.5
-        };
-        -self.radius + 2.0 * self.radius * (i as f32 + t) / n as f32
+}
+
+/// A tent (`tent`): `max(0, 1 - |x| / radius)`, tabulated as Mitsuba 3 does.
+#[derive(Clone, Debug)]
+pub struct TentFilter {
+    /// Support radius in pixels.
+    pub radius: f32,
+    profile: StepProfile,
+}
+
+impl TentFilter {
+    /// The tent of the given radius (positive).
+    pub fn new(radius: f32) -> Self {
+        let inv = 1.0 / radius;
+        let profile = StepProfile::new(radius, |i| {
+            let x = radius * i as f32 / STEPS as f32;
+            (1.0 - libm::fabsf(x * inv)).max(0.0) as f64
+        });
+        TentFilter { radius, profile }
     }
 }
 
@@ -72,6 +64,8 @@ pub enum Filter {
     Box,
     /// Truncated Gaussian.
     Gaussian(GaussianFilter),
+    /// Tent.
+    Tent(TentFilter),
 }
 
 impl Filter {
@@ -80,7 +74,8 @@ impl Filter {
     pub fn sample(&self, u: Vec2) -> Vec2 {
         match self {
             Filter::Box => u - Vec2::splat(0.5),
-            Filter::Gaussian(g) => Vec2::new(g.sample_1d(u.x), g.sample_1d(u.y)),
+            Filter::Gaussian(g) => Vec2::new(g.profile.sample(u.x), g.profile.sample(u.y)),
+            Filter::Tent(t) => Vec2::new(t.profile.sample(u.x), t.profile.sample(u.y)),
         }
     }
 }

@@ -20,15 +20,17 @@ pub fn plugin_markdown<B>(family: &str, p: &Plugin<B>) -> String {
         return s;
     }
     s.push_str("\n| parameter | type | default | range | meaning |\n|---|---|---|---|---|\n");
+    // A `|` inside a cell would end it.
+    let cell = |t: String| t.replace('|', "\\|");
     for q in p.params {
         let _ = writeln!(
             s,
             "| `{}` | {} | {} | {} | {} |",
             q.name,
             q.ty.describe(),
-            q.default,
-            q.describe_range(),
-            q.doc
+            cell(q.default.to_string()),
+            cell(q.describe_range()),
+            cell(q.doc.to_string())
         );
     }
     s

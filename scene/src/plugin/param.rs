@@ -189,7 +189,8 @@ impl Range {
                 number(*hi),
                 if *hi_closed { ']' } else { ')' }
             ),
-            Range::OneOf(names) | Range::OneOfAnyCase(names) => names.join(" | "),
+            Range::OneOf(names) => format!("one of {}", names.join(", ")),
+            Range::OneOfAnyCase(names) => format!("one of {} (any case)", names.join(", ")),
             Range::Note(s) => (*s).into(),
         }
     }
