@@ -26,6 +26,7 @@ pub mod error_estimate;
 pub mod film;
 pub mod geometry;
 pub mod integrator;
+pub mod light;
 pub mod math;
 pub mod render;
 pub mod sampling;

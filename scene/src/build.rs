@@ -10,8 +10,9 @@ use crate::error::InputError;
 use crate::xml::{Kind, Object};
 use tessera_core::emitter::{AreaLight, Emitter};
 use tessera_core::geometry::{Shape, ShapeKind};
+use tessera_core::light::LightSelection;
 use tessera_core::sampling::SamplerKind;
-use tessera_core::scene::{LightSelection, Scene, SceneParts};
+use tessera_core::scene::{Scene, SceneParts};
 
 /// Builds a loaded scene from the root `<scene>` object.
 pub fn build(root: &Object) -> Result<LoadedScene> {

@@ -1,7 +1,6 @@
-//! Emitters: a closed enum, one variant per file.
+//! Emitters: a closed enum, one variant per file: what each kind of light emits and how it is
+//! sampled from a point. Choosing among the lights is the `light` module's.
 mod area;
-mod behind;
-mod bound;
 mod constant;
 mod directional;
 mod distant_disk;
@@ -10,8 +9,6 @@ mod point;
 mod spot;
 
 pub use area::AreaLight;
-pub use behind::Behind;
-pub use bound::{LightBound, LightEstimate};
 pub use constant::ConstantEnv;
 pub use directional::DirectionalLight;
 pub use distant_disk::DistantDisk;

@@ -17,12 +17,11 @@
 //!   lights, delta BSDF components).
 //! - `path_mis` / `path`: the same two strategies combined by the power heuristic (Tessera's own
 //!   parameter `heuristic`, string power|balance, default power).
-use super::light::{emission_along, sample_light};
 pub(super) use super::path_state::{PathState, Prefix, PREFIX, SUFFIX, WHOLE};
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
-use super::select::VertexSelection;
 use super::Heuristic;
 use crate::geometry::Interaction;
+use crate::light::{emission_along, sample_light, VertexSelection};
 use crate::math::{Norm, Ray};
 use crate::sampling::{Sampler, Stage};
 use crate::scene::Scene;

@@ -7,11 +7,11 @@
 //! probed render gives the same bits as an unprobed one. [`Counters`] counts the work (for
 //! `tessera render --stats`); [`PathRecord`](super::PathRecord) records a path for
 //! `--debug-pixel`.
-use super::light::LightSample;
 use crate::accel::TraversalCounts;
 use crate::bsdf::BsdfSample;
 use crate::emitter::EmitterSample;
 use crate::geometry::{Interaction, ShapeKind};
+use crate::light::LightSample;
 use crate::math::Ray;
 use crate::scene::Scene;
 use crate::Color;
