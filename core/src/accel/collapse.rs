@@ -11,7 +11,7 @@
 //!   `area * node_cost`; of a leaf: `area * blocks * block_cost` (blocks of four triangles).
 //!
 //! Both are deterministic functions of the binary tree (ties go to the first candidate).
-use super::bvh8::Bvh8Node;
+use super::wide::Bvh8Node;
 use super::Bvh;
 use alloc::vec;
 use alloc::vec::Vec;

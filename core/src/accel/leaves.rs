@@ -2,7 +2,7 @@
 //! traversal calls for each leaf a ray reaches, so the leaf tests compile into the traversal's
 //! own (possibly AVX2-enabled) function. The triangle blocks' implementations are
 //! [`ClosestLeaves`](super::ClosestLeaves) and [`AnyLeaves`](super::AnyLeaves).
-use super::simd8::Hit8;
+use super::slab_simd::Hit8;
 
 /// The leaves of a traversal ([`Bvh8::cast`](super::Bvh8::cast)).
 pub trait Leaves {

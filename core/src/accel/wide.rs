@@ -1,5 +1,5 @@
 //! An 8-wide BVH: the binary SAH hierarchy collapsed so each node holds up to eight children,
-//! whose boxes are stored in SoA layout and tested against a ray at once ([`super::simd8`]:
+//! whose boxes are stored in SoA layout and tested against a ray at once ([`super::slab_simd`]:
 //! AVX2 where the CPU has it, detected once per build, else a portable test with the same bits).
 //!
 //! Closest-hit traversal visits the children a ray meets nearest entry first, postponing the
@@ -9,8 +9,8 @@
 //! of the primitive order returned by the build).
 use super::entry::{nearest_first, Entry};
 use super::leaves::FnLeaves;
-use super::simd::{RayPre, MAX_X, MIN_X};
-use super::simd8::{prefetch_in, Avx2, Boxes8, Hit8, Portable, WithHit8};
+use super::slab::{RayPre, MAX_X, MIN_X};
+use super::slab_simd::{prefetch_in, Avx2, Boxes8, Hit8, Portable, WithHit8};
 use super::{BuildParams, Bvh, Collapse, Leaves};
 use crate::math::{Aabb, Ray};
 use alloc::vec::Vec;
@@ -99,7 +99,7 @@ const SMALL_STACK: usize = 16;
 
 impl Bvh8 {
     /// The binary build's leaf-size trade-off, for leaves of four-triangle blocks
-    /// ([`super::tri4`]): a leaf of `n` primitives costs `ceil(n / 4)` block tests, one
+    /// ([`super::tri_block`]): a leaf of `n` primitives costs `ceil(n / 4)` block tests, one
     /// traversal step a quarter of one. Measured on the 4-wide BVH that preceded this one
     /// (`BVH_PARAMS` in `--bench bvh_compare`, callgrind and renders of the Cornell box): with
     /// block costs the SAH fills blocks (49-57 bytes per triangle instead of 71-75); costs 0.5
