@@ -5,6 +5,7 @@
 //! Files, each named for its role:
 //! - `binary`: the binary hierarchy built with the binned surface-area heuristic;
 //! - `collapse`: collapsing it into 8-wide nodes;
+//! - `wide_node`: the 8-wide node (eight child boxes and their children);
 //! - `wide`: the 8-wide hierarchy scenes cast rays with, and its walk (`entry`: the walk's stack
 //!   order; `root`: the walk of a one-node tree; `leaves`: what the walk calls at a leaf);
 //! - `slab`: the ray-box slab test's common ground (the prepared ray, the box layout, the
@@ -27,9 +28,11 @@ pub mod slab_simd;
 pub mod tri_block;
 pub mod tri_block_pair;
 mod wide;
+mod wide_node;
 pub use binary::{BuildParams, Bvh, BvhNode};
 pub use blocks::{AnyLeaves, ClosestLeaves, LeafRanges, TriBlocks};
 pub use collapse::Collapse;
 pub use counts::TraversalCounts;
 pub use leaves::Leaves;
-pub use wide::{Bvh8, Bvh8Node};
+pub use wide::Bvh8;
+pub use wide_node::Bvh8Node;
