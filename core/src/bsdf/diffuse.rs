@@ -3,7 +3,7 @@
 //!
 //! Scene parameters (`<bsdf type="diffuse">`): `reflectance` (rgb, default 0.5; Nori's `albedo`
 //! is the same parameter).
-use super::BsdfSample;
+use super::sample::BsdfSample;
 use crate::math::INV_PI;
 use crate::sampling::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 use crate::texture::Texture;

@@ -2,7 +2,7 @@
 //! One-sided, as in Nori (nothing is reflected from the back).
 //!
 //! Scene parameters (`<bsdf type="mirror">`): none.
-use super::BsdfSample;
+use super::sample::BsdfSample;
 use crate::Color;
 use glam::{Vec2, Vec3};
 

@@ -3,7 +3,8 @@
 //! Scene parameters (`<bsdf type="twosided">`): one nested `<bsdf>` (used on both sides) or two
 //! (front, then back). A ray arriving from the back sees the back model as if the surface were
 //! flipped.
-use super::{Bsdf, BsdfSample};
+use super::sample::BsdfSample;
+use super::Bsdf;
 use crate::Color;
 use alloc::boxed::Box;
 use glam::{Vec2, Vec3};
