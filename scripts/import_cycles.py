@@ -5,6 +5,8 @@ A file A uses a file B when A names an item B defines: through a `use` (a `pub u
 where the file also names the item itself, so a module that merely re-exports its children does
 not depend on them), a path in the code (`crate::x::Y`, `super::Y`, `child::Y`) or an intra-doc
 link (`[`Y`]`, `[text](super::Y)`). `#[cfg(test)]` modules are left out: tests may reach anywhere.
+The crate root's own doc links are left out too: the root declares every module, and its
+overview is the crate's table of contents.
 
 Two readings of "the file B defines", both reported:
 - written: the file of the module the path names the item in (`crate::integrator::X` is an edge
@@ -286,7 +288,8 @@ def edges(mods):
             if first in ("crate", "super", "self") or first in mod.children:
                 segs = [first] + m.group(2).split("::")[1:]
                 add(mod, segs, "::".join(segs))
-        for m in re.finditer(r"\[`([^`\]]+)`\](?!\()|\]\(([\w:]+)\)", mod.docs):
+        docs = "" if mod.path == () else mod.docs
+        for m in re.finditer(r"\[`([^`\]]+)`\](?!\()|\]\(([\w:]+)\)", docs):
             link = m.group(1) or m.group(2)
             link = re.sub(r"^(fn|struct|enum|trait|type|const|static|mod|macro|method)@", "", link)
             link = re.sub(r"(\(\)|!)$", "", link)

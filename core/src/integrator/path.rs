@@ -17,9 +17,9 @@
 //!   lights, delta BSDF components).
 //! - `path_mis` / `path`: the same two strategies combined by the power heuristic (Tessera's own
 //!   parameter `heuristic`, string power|balance, default power).
+use super::mis::Heuristic;
 use super::path_state::{PathState, Prefix, Prev, PREFIX, SUFFIX, WHOLE};
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
-use super::Heuristic;
 use crate::geometry::Interaction;
 use crate::light::{emission_along, sample_light, VertexSelection};
 use crate::math::{Norm, Ray};

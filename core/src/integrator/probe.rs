@@ -5,7 +5,7 @@
 //! the ordinary render (`li` = `li_probed` with `NoProbe`) compiles to the same code as without
 //! hooks. A probe only observes: it never changes a value, a branch or the sampler's stream, so a
 //! probed render gives the same bits as an unprobed one. [`Counters`] counts the work (for
-//! `tessera render --stats`); [`PathRecord`](super::PathRecord) records a path for
+//! `tessera render --stats`); `PathRecord` records a path for
 //! `--debug-pixel`.
 use crate::accel::TraversalCounts;
 use crate::bsdf::BsdfSample;
