@@ -3,7 +3,7 @@
 //! is read from disk, so the benchmarks need no big files in the repository.
 use glam::{Vec2, Vec3};
 use std::time::Instant;
-use tessera_core::accel::tri4::Ray4;
+use tessera_core::accel::tri_block::Ray4;
 use tessera_core::accel::{
     AnyLeaves, BuildParams, Bvh, Bvh8, ClosestLeaves, Collapse, LeafRanges, TriBlocks,
 };

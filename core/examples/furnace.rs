@@ -14,9 +14,10 @@ use tessera_core::film::PixelAccum;
 use tessera_core::geometry::{Shape, ShapeKind, Sphere};
 use tessera_core::glam::{Mat4, Vec3, Vec4};
 use tessera_core::integrator::{Integrator, PathIntegrator};
+use tessera_core::light::LightSelection;
 use tessera_core::math::{Norm, Transform};
 use tessera_core::render::render_pixel;
-use tessera_core::scene::{LightSelection, Scene, SceneParts};
+use tessera_core::scene::{Scene, SceneParts};
 use tessera_core::texture::Texture;
 use tessera_core::Color;
 

@@ -7,9 +7,9 @@
 //! square roots, lengths and normalisations go through [`math::sqrt`] and [`math::Norm`] (the same
 //! bits as libm's and glam's, without libm's legacy-SSE assembly).
 #![no_std]
-// `unsafe` only in `accel::simd8`, `accel::tri4`, `accel::tri8` (SSE/AVX2 intrinsics, CPU
-// feature detection) and `math::sqrt` (the SSE square-root intrinsics), which allow it and
-// justify each block.
+// `unsafe` only in `accel::slab_simd`, `accel::tri_block`, `accel::tri_block_pair` (SSE/AVX2
+// intrinsics, CPU feature detection) and `math::sqrt` (the SSE square-root intrinsics), which
+// allow it and justify each block.
 #![deny(unsafe_code)]
 // `!(x > 0.0)` is this crate's way of rejecting NaN along with the values it names; clippy's
 // suggestion (`partial_cmp`) would hide that intent.
@@ -26,6 +26,7 @@ pub mod error_estimate;
 pub mod film;
 pub mod geometry;
 pub mod integrator;
+pub mod light;
 pub mod math;
 pub mod render;
 pub mod sampling;

@@ -1,30 +1,14 @@
 //! The flat, read-only scene: shapes, primitives under a BVH, BSDFs, emitters, camera.
-use crate::accel::tri4::Ray4;
+use crate::accel::tri_block::Ray4;
 use crate::accel::{AnyLeaves, BuildParams, Bvh8, ClosestLeaves, TriBlocks};
 use crate::bsdf::{Bsdf, BsdfTraits};
 use crate::camera::{Filter, Perspective};
-use crate::emitter::{Behind, Emitter, EmitterCtx, LightBound};
+use crate::emitter::{Emitter, EmitterCtx};
 use crate::geometry::{Disk, Hit, Interaction, Prim, Shape, ShapeKind, TriRay};
+use crate::light::{Behind, LightBound, LightSampler, LightSelection};
 use crate::math::{Aabb, Norm, Ray};
-use crate::sampling::Discrete1D;
 use alloc::vec::Vec;
 use glam::{Vec2, Vec3};
-
-/// How emitter sampling picks one light.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum LightSelection {
-    /// At each vertex, in proportion to an estimate of each light's contribution there (its
-    /// irradiance times the BSDF toward it), a fifth spread evenly: the default
-    /// ([`crate::integrator::VertexSelection`]). Scenes with one light or more than
-    /// [`crate::integrator::MAX_VERTEX_LIGHTS`] choose by power instead.
-    #[default]
-    Contribution,
-    /// In proportion to each light's emitted power (luminance), so shadow rays go where the light
-    /// is. Falls back to uniform when no light reports a positive power.
-    Power,
-    /// Every light with the same probability (the seeds' and Mitsuba 3's default).
-    Uniform,
-}
 
 /// What a scene contains, computed once; integrators consult it to skip work a scene does not
 /// need (no shadow rays without emitters, no environment lookups without an environment...).
@@ -89,10 +73,8 @@ pub struct Scene {
     pub emitters: Vec<Emitter>,
     /// Indices of the emitters at infinity (seen by rays that escape the scene).
     pub environments: Vec<u32>,
-    /// Light choice by power (None: uniform), where no vertex selection applies.
-    selection: Option<Discrete1D>,
-    /// Each light as vertex selection sees it (empty: the scene-wide `selection` applies).
-    light_bounds: Vec<LightBound>,
+    /// How emitter sampling picks a light (built from `emitters`).
+    lights: LightSampler,
     /// The camera.
     pub camera: Perspective,
     /// The pixel filter.
@@ -105,29 +87,6 @@ pub struct Scene {
     pub scene_center: glam::Vec3,
     /// Radius of the scene's bounding sphere (lights at infinity aim at it).
     pub scene_radius: f32,
-}
-
-/// The scene-wide light choice (by power, or `None` for uniform) and the per-light bounds of
-/// vertex selection (empty unless `how` is `Contribution` and 2 to
-/// [`crate::integrator::MAX_VERTEX_LIGHTS`] lights exist; the scene-wide choice is by power then).
-fn selection_for(
-    how: LightSelection,
-    emitters: &[Emitter],
-    ctx: &EmitterCtx,
-) -> (Option<Discrete1D>, Vec<LightBound>) {
-    let by_power = || Discrete1D::new(emitters.iter().map(|e| e.power(ctx)));
-    match how {
-        LightSelection::Contribution => {
-            let bounds = if (2..=crate::integrator::MAX_VERTEX_LIGHTS).contains(&emitters.len()) {
-                emitters.iter().map(|e| LightBound::of(e, ctx)).collect()
-            } else {
-                Vec::new()
-            };
-            (by_power(), bounds)
-        }
-        LightSelection::Power => (by_power(), Vec::new()),
-        LightSelection::Uniform => (None, Vec::new()),
-    }
 }
 
 /// Why a scene could not be built (the driver checks inputs first; this guards embedders).
@@ -221,7 +180,7 @@ impl Scene {
             scene_center: center,
             scene_radius: radius,
         };
-        let (selection, light_bounds) = selection_for(p.light_selection, &p.emitters, &ctx);
+        let lights = LightSampler::new(p.light_selection, &p.emitters, &ctx);
         let prims: Vec<Prim> = order.iter().map(|&i| prims[i as usize]).collect();
         let tris: Vec<[Vec3; 3]> = order.iter().map(|&i| tris[i as usize]).collect();
         let blocks = TriBlocks::build(&mut bvh, &tris);
@@ -245,8 +204,7 @@ impl Scene {
             bsdf_traits,
             emitters: p.emitters,
             environments,
-            selection,
-            light_bounds,
+            lights,
             scene_center: center,
             scene_radius: radius,
             camera: p.camera,
@@ -274,9 +232,13 @@ impl Scene {
 
     /// Changes how emitter sampling picks a light.
     pub fn set_light_selection(&mut self, how: LightSelection) {
-        let (selection, bounds) = selection_for(how, &self.emitters, &self.emitter_ctx());
-        self.selection = selection;
-        self.light_bounds = bounds;
+        self.lights = LightSampler::new(how, &self.emitters, &self.emitter_ctx());
+    }
+
+    /// How emitter sampling picks a light.
+    #[inline]
+    pub fn lights(&self) -> &LightSampler {
+        &self.lights
     }
 
     /// [`BsdfTraits::of`] BSDF `i`, as computed when the scene was built.
@@ -288,32 +250,7 @@ impl Scene {
     /// Each light as vertex selection sees it; empty where the scene-wide choice applies.
     #[inline]
     pub fn light_bounds(&self) -> &[LightBound] {
-        &self.light_bounds
-    }
-
-    /// Picks a light for emitter sampling: its index and the probability it was picked.
-    #[inline]
-    pub fn select_emitter(&self, u: f32) -> Option<(usize, f32)> {
-        let n = self.emitters.len();
-        if n == 0 {
-            return None;
-        }
-        match &self.selection {
-            Some(d) => {
-                let (i, _) = d.sample_reuse(u);
-                Some((i, d.pmf(i)))
-            }
-            None => Some((((u * n as f32) as usize).min(n - 1), 1.0 / n as f32)),
-        }
-    }
-
-    /// The probability that [`Scene::select_emitter`] picks light `i`.
-    #[inline]
-    pub fn emitter_select_pdf(&self, i: usize) -> f32 {
-        match &self.selection {
-            Some(d) => d.pmf(i),
-            None => 1.0 / self.emitters.len() as f32,
-        }
+        self.lights.bounds()
     }
 
     /// Corners of primitive `i` if it is a triangle.

@@ -6,7 +6,7 @@ use crate::plugin::{self, Param, Plugin, Range};
 use crate::util::Result;
 use crate::xml::Object;
 use tessera_core::integrator::{DirectIntegrator, Heuristic, Integrator, PathIntegrator, Strategy};
-use tessera_core::scene::LightSelection;
+use tessera_core::light::LightSelection;
 
 /// An integrator's name and parameters as the scene file gives them; the command line may
 /// change the name or the depth and build again.

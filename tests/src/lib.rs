@@ -147,7 +147,7 @@ pub fn worst_region(
 /// made four of eight seeds fail although our two light choices agree with each other at 8192.
 pub fn render_like_mitsuba(l: &LoadedScene, spp: u64, seed: u64) -> Framebuffer {
     let mut scene = l.scene.clone();
-    scene.set_light_selection(tessera_core::scene::LightSelection::Uniform);
+    scene.set_light_selection(tessera_core::light::LightSelection::Uniform);
     render_two_threads(&scene, &l.integrator, spp, seed)
 }
 

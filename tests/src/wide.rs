@@ -4,7 +4,7 @@
 //! test, the counted walks and the scene's own casts. Used by `tests/bvh8.rs` and
 //! `tests/bvh8_mixed.rs`.
 use crate::soup::brute_closest;
-use tessera_core::accel::tri4::Ray4;
+use tessera_core::accel::tri_block::Ray4;
 use tessera_core::accel::{Bvh, Bvh8, Collapse, LeafRanges, TriBlocks};
 use tessera_core::geometry::{Hit, TriRay};
 use tessera_core::glam::Vec3;

@@ -9,9 +9,9 @@
 //! the ray. The comparison harness is `tessera_tests::wide`; soups of spheres and disks (leaves
 //! with and without triangles) are tested in `bvh8_mixed.rs`, the scene's casts on their own in
 //! `scene_casts.rs`.
-use tessera_core::accel::simd::{RayPre, MAX_X, MIN_X};
-use tessera_core::accel::simd8::{hit8_scalar, Avx2, Boxes8, Hit8, Portable, WithHit8};
-use tessera_core::accel::tri4::Ray4;
+use tessera_core::accel::slab::{RayPre, MAX_X, MIN_X};
+use tessera_core::accel::slab_simd::{hit8_scalar, Avx2, Boxes8, Hit8, Portable, WithHit8};
+use tessera_core::accel::tri_block::Ray4;
 use tessera_core::accel::{AnyLeaves, Bvh, Bvh8, ClosestLeaves, Collapse, Leaves};
 use tessera_core::geometry::{Hit, TriRay};
 use tessera_core::glam::Vec3;

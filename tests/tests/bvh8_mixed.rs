@@ -3,7 +3,7 @@
 //! (the stackless walk of `accel/root.rs`). Closest and any hits agree with brute force and the
 //! other walks (`tessera_tests::wide::compare`). Control: leaves blind to spheres and disks must
 //! disagree.
-use tessera_core::accel::tri4::Ray4;
+use tessera_core::accel::tri_block::Ray4;
 use tessera_core::accel::{AnyLeaves, Bvh8, ClosestLeaves};
 use tessera_core::geometry::{Disk, Hit, Mesh, ShapeKind, Sphere, TriRay};
 use tessera_core::glam::{EulerRot, Mat4, Quat, Vec3};

@@ -106,7 +106,7 @@ fn comparison_rejects_a_two_percent_bias() {
 /// default, by contribution at each vertex, is held against both in tests/light_select.rs.)
 #[test]
 fn light_selection_by_power_or_uniform_agrees() {
-    use tessera_core::scene::LightSelection;
+    use tessera_core::light::LightSelection;
     let mut loaded = load_file("cs500_spheres.xml", &[("res", "64"), ("rfilter", "box")]);
     loaded.scene.set_light_selection(LightSelection::Power);
     let power = render_loaded(&loaded, 256, 21);

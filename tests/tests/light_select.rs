@@ -2,10 +2,12 @@
 //! distribution that keeps every light, `pick` draws from exactly that distribution
 //! (chi-square), it puts shadow rays where light arrives (a lower-variance emitter estimate on
 //! Veach's plates than a uniform choice), and it changes the noise, never the image.
-use tessera_core::emitter::LightBound;
-use tessera_core::integrator::{sample_light, NoProbe, VertexSelection, UNIFORM_SHARE};
+use tessera_core::integrator::NoProbe;
+use tessera_core::light::{
+    sample_light, LightBound, LightSelection, VertexSelection, UNIFORM_SHARE,
+};
 use tessera_core::sampling::{IndependentSampler, Sampler};
-use tessera_core::scene::{LightSelection, Scene};
+use tessera_core::scene::Scene;
 use tessera_lab::stats::{chi2_test, sidak_alpha, DEFAULT_MIN_EXPECTED};
 use tessera_tests::{load_file, load_xml, region_stats, render_loaded, worst_region};
 

@@ -291,7 +291,7 @@ fn traversal_counts_follow_the_rays() {
 
 /// The Cornell box's ceiling light is flat and one-sided, and the ceiling lies 5 mm behind it:
 /// light sampling at ceiling points stops before drawing a point on the light
-/// (`emitter::Behind`). The image is bit for bit the one rendered without that test, with both
+/// (`light::Behind`). The image is bit for bit the one rendered without that test, with both
 /// samplers; and the test does fire there (control: points of the ceiling are behind, points of
 /// the floor are not).
 #[test]

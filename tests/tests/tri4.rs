@@ -1,4 +1,4 @@
-//! The four-lane triangle test (`accel::tri4`) against the scalar watertight test: every lane
+//! The four-lane triangle test (`accel::tri_block`) against the scalar watertight test: every lane
 //! gives the same hit or miss, distance and barycentrics, bit for bit, as `TriRay::intersect`
 //! (with the scalar test run for the lanes the vector code hands back); the SSE and portable
 //! versions agree bit for bit; re-checking a hit against a smaller `t_max` (`Lanes::accepts`)
@@ -7,9 +7,9 @@
 //! degenerate triangles, coordinates from 1e-38 to 1e38, infinite and NaN corners, and `t_max`
 //! on, just above and just below the hit distance. Controls show that a 1-ulp change of one
 //! result, and a different but equivalent-looking formula (`t_scaled / det`), are caught.
-use tessera_core::accel::simd8::{Avx2, Hit8, Portable};
-use tessera_core::accel::tri4::{test4, test4_scalar, Lanes, Ray4, Tri4};
-use tessera_core::accel::tri8::{test8_portable, Lanes8};
+use tessera_core::accel::slab_simd::{Avx2, Hit8, Portable};
+use tessera_core::accel::tri_block::{test4, test4_scalar, Lanes, Ray4, Tri4};
+use tessera_core::accel::tri_block_pair::{test8_portable, Lanes8};
 use tessera_core::geometry::TriRay;
 use tessera_core::glam::Vec3;
 use tessera_core::math::Ray;
@@ -367,7 +367,7 @@ fn controls_one_ulp_changes_are_detected() {
     );
 }
 
-/// The eight-lane test (`accel::tri8`: two blocks in one AVX2 pass, where the CPU has AVX2)
+/// The eight-lane test (`accel::tri_block_pair`: two blocks per AVX2 pass, where the CPU has AVX2)
 /// gives the same masks and hit-lane bits as the two four-lane tests, block `a` in lanes 0-3 and
 /// block `b` in lanes 4-7. Control: the blocks swapped are told apart.
 #[test]

@@ -9,8 +9,8 @@
 //! visits lanes in primitive order and lowers `t_max` as it goes, exactly as a loop of scalar
 //! tests over the leaf's primitives would, so it finds the same primitive at the same distance.
 use super::leaves::Leaves;
-use super::simd8::{prefetch_in, Hit8, Portable};
-use super::tri4::{Ray4, Tri4};
+use super::slab_simd::{prefetch_in, Hit8, Portable};
+use super::tri_block::{Ray4, Tri4};
 use super::Bvh8;
 use crate::geometry::Hit;
 use alloc::vec::Vec;

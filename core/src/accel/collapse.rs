@@ -1,4 +1,4 @@
-//! Collapsing the binary SAH hierarchy into 8-wide nodes ([`super::Bvh8`]), two ways:
+//! Collapsing the binary SAH hierarchy into 8-wide nodes (`Bvh8`), two ways:
 //!
 //! - [`Collapse::Greedy`]: each node takes its binary children and keeps replacing the interior
 //!   child of largest surface area by that child's two children while it has fewer than eight;
@@ -11,7 +11,7 @@
 //!   `area * node_cost`; of a leaf: `area * blocks * block_cost` (blocks of four triangles).
 //!
 //! Both are deterministic functions of the binary tree (ties go to the first candidate).
-use super::bvh8::Bvh8Node;
+use super::wide_node::Bvh8Node;
 use super::Bvh;
 use alloc::vec;
 use alloc::vec::Vec;

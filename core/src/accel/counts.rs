@@ -2,7 +2,7 @@
 //! and triangle blocks tested), for statistics such as `--stats` and the benches. They return
 //! exactly what [`Scene::intersect_hit`] and [`Scene::occluded`] return; the ordinary casts are
 //! compiled without counters.
-use super::tri4::Ray4;
+use super::tri_block::Ray4;
 use crate::geometry::Hit;
 use crate::math::Ray;
 use crate::scene::Scene;

@@ -1,10 +1,10 @@
-//! What a BVH traversal does at its leaves ([`Bvh8::cast`](super::Bvh8::cast)): the trait the
+//! What a BVH traversal does at its leaves (`Bvh8::cast`): the trait the
 //! traversal calls for each leaf a ray reaches, so the leaf tests compile into the traversal's
 //! own (possibly AVX2-enabled) function. The triangle blocks' implementations are
-//! [`ClosestLeaves`](super::ClosestLeaves) and [`AnyLeaves`](super::AnyLeaves).
-use super::simd8::Hit8;
+//! `ClosestLeaves` and `AnyLeaves`.
+use super::slab_simd::Hit8;
 
-/// The leaves of a traversal ([`Bvh8::cast`](super::Bvh8::cast)).
+/// The leaves of a traversal (`Bvh8::cast`).
 pub trait Leaves {
     /// Whether a traversal may stop early and start again from the root with a larger stack
     /// (when a small one overflows), calling [`Leaves::test`] again for the same leaves: true

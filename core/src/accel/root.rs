@@ -8,8 +8,8 @@
 //! (it pushes the children on a stack sorted by distance, or in lane order for any hit), so the
 //! leaves see the same calls with the same `t_max` and the results are the same. No prefetching:
 //! a one-node scene's leaves are a few kilobytes.
-use super::simd::RayPre;
-use super::simd8::Hit8;
+use super::slab::RayPre;
+use super::slab_simd::Hit8;
 use super::{Bvh8, Leaves};
 use crate::math::Ray;
 

@@ -1,26 +1,9 @@
-//! Plans by blocks: with [`super::AdaptiveParams::block`] larger than one pixel, the pixels of
+//! Plans by blocks: with `AdaptiveParams::block` larger than one pixel, the pixels of
 //! each aligned `width x height` block (clipped at the image's edge) are judged together and
 //! take the same number of samples in a pass, so that an integrator sharing light among them
 //! (path reuse, 4x2) finds all of them at each sample index.
-use super::AdaptiveParams;
-use crate::integrator::{Integrator, GROUP_H, GROUP_W};
 use alloc::vec;
 use alloc::vec::Vec;
-
-impl AdaptiveParams {
-    /// These settings for rendering with `integrator`: blocks of its reuse groups
-    /// ([`GROUP_W`] x [`GROUP_H`]) when it shares light among them ([`crate::render::reuses`]),
-    /// so that each pass finds every pixel of a group at each sample index.
-    pub fn for_integrator(self, integrator: &Integrator) -> Self {
-        if !crate::render::reuses(integrator) {
-            return self;
-        }
-        AdaptiveParams {
-            block: (GROUP_W, GROUP_H),
-            ..self
-        }
-    }
-}
 
 /// The blocks of a `w x h` image, row by row: each block's pixel indices (row-major inside the
 /// block), handed to `f` one block at a time.

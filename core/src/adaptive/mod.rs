@@ -34,6 +34,7 @@
 //! pixel whose first samples happened to be quiet gets fewer later samples. The uniform share,
 //! the smoothing and the growing totals keep that effect small; see the README's measurements.
 use crate::film::PixelAccum;
+use crate::integrator::{Integrator, GROUP_H, GROUP_W};
 use crate::math::sqrt_f64;
 
 mod blocks;
@@ -76,6 +77,21 @@ impl Default for AdaptiveParams {
             uniform: 0.25,
             warmup: 1,
             block: (1, 1),
+        }
+    }
+}
+
+impl AdaptiveParams {
+    /// These settings for rendering with `integrator`: blocks of its reuse groups
+    /// ([`GROUP_W`] x [`GROUP_H`]) when it shares light among them ([`crate::render::reuses`]),
+    /// so that each pass finds every pixel of a group at each sample index.
+    pub fn for_integrator(self, integrator: &Integrator) -> Self {
+        if !crate::render::reuses(integrator) {
+            return self;
+        }
+        AdaptiveParams {
+            block: (GROUP_W, GROUP_H),
+            ..self
         }
     }
 }

@@ -1,10 +1,10 @@
 //! Per-pixel noise estimates for adaptive sampling: the per-sample relative variance of a
 //! pixel from its own samples, and, for a pixel holding a single sample, from its
-//! neighbourhood's values (see the notes of [`super`]).
+//! neighbourhood's values (see the notes of the `adaptive` module).
 use crate::film::PixelAccum;
 
-/// The per-sample relative variance of one pixel (see the notes of [`super`]), or `None` with fewer
-/// than two accepted samples.
+/// The per-sample relative variance of one pixel (see the notes of the `adaptive` module), or
+/// `None` with fewer than two accepted samples.
 pub fn relative_variance(acc: &PixelAccum, floor: f64) -> Option<f64> {
     if acc.count < 2 {
         return None;

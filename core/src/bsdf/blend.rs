@@ -10,7 +10,8 @@
 //! (`(u1 - w) / (1 - w)`), as Mitsuba 3 does. A smooth sample reports the mixed density
 //! `(1 - w) p0 + w p1` and `weight = eval / pdf`; a delta sample keeps its own weight and its
 //! discrete probability times the probability of choosing its model.
-use super::{Bsdf, BsdfSample};
+use super::sample::BsdfSample;
+use super::Bsdf;
 use crate::texture::Texture;
 use crate::Color;
 use alloc::boxed::Box;

@@ -24,7 +24,8 @@
 //! reported `pdf` is the exact mixture of both strategies and `weight = eval / pdf`; a delta
 //! component of the base keeps its discrete probability times 1/2.
 use super::fresnel::schlick;
-use super::{Bsdf, BsdfSample};
+use super::sample::BsdfSample;
+use super::Bsdf;
 use crate::math::{safe_sqrt, sincos_turns, Norm, INV_TWO_PI};
 use crate::Color;
 use alloc::boxed::Box;

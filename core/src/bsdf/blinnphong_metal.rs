@@ -9,7 +9,7 @@
 //! is zero). One-sided. Sampling always draws the lobe (the tutorial's 50% choice of the
 //! absorbing "refraction" would only waste samples; the pdf is the lobe's exactly).
 use super::blinnphong::Lobe;
-use super::BsdfSample;
+use super::sample::BsdfSample;
 use crate::texture::Texture;
 use crate::Color;
 use glam::{Vec2, Vec3};

@@ -7,7 +7,7 @@
 //! The only component is a delta reflection, so `eval` and `pdf` are zero and `sample` returns
 //! the mirror direction with probability 1.
 use super::fresnel::fresnel_conductor;
-use super::BsdfSample;
+use super::sample::BsdfSample;
 use crate::texture::Texture;
 use crate::Color;
 use glam::{Vec2, Vec3};

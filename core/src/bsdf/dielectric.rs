@@ -10,7 +10,7 @@
 //! (always reflection under total internal reflection). Both weights are the tints; the
 //! refraction's also carries the radiance scaling `1 / eta^2` (`eta` = `eta_t / eta_i`).
 use super::fresnel::{fresnel_dielectric, refract};
-use super::BsdfSample;
+use super::sample::BsdfSample;
 use crate::texture::Texture;
 use crate::Color;
 use glam::{Vec2, Vec3};

@@ -3,7 +3,7 @@
 //!
 //! Its scene parameters are declared with its loader, in
 //! `scene/src/materials/basic.rs`.
-use super::BsdfSample;
+use super::sample::BsdfSample;
 use crate::math::INV_PI;
 use crate::sampling::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 use crate::texture::Texture;

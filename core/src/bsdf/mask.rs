@@ -8,7 +8,8 @@
 //! delta component. Sampling chooses the nested model when `u1 < a` (reusing `u1 / a`); its
 //! smooth samples keep their weight and report the density `a p`, its delta samples their
 //! probability times `a`.
-use super::{Bsdf, BsdfSample};
+use super::sample::BsdfSample;
+use super::Bsdf;
 use crate::texture::Texture;
 use crate::Color;
 use alloc::boxed::Box;

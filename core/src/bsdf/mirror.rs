@@ -3,7 +3,7 @@
 //!
 //! Its scene parameters are declared with its loader, in
 //! `scene/src/materials/wakame.rs`.
-use super::BsdfSample;
+use super::sample::BsdfSample;
 use crate::Color;
 use glam::{Vec2, Vec3};
 

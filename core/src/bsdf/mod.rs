@@ -21,6 +21,7 @@ pub mod plastic_common;
 mod roughconductor;
 mod roughdielectric;
 mod roughplastic;
+mod sample;
 mod thindielectric;
 mod traits;
 mod twosided;
@@ -38,6 +39,7 @@ pub use plastic::Plastic;
 pub use roughconductor::RoughConductor;
 pub use roughdielectric::RoughDielectric;
 pub use roughplastic::RoughPlastic;
+pub use sample::BsdfSample;
 pub use thindielectric::ThinDielectric;
 pub use traits::BsdfTraits;
 pub use twosided::TwoSided;
@@ -47,37 +49,16 @@ use crate::sampling::Sampler;
 use crate::Color;
 use glam::{Vec2, Vec3};
 
-/// A sampled direction with its Monte Carlo weight.
-#[derive(Clone, Copy, Debug)]
-pub struct BsdfSample {
-    /// Sampled direction (local).
-    pub wo: Vec3,
-    /// `f(wi, wo) |cos theta_o| / pdf`: the throughput factor.
-    pub weight: Color,
-    /// Solid-angle density (for a delta component: its discrete probability).
-    pub pdf: f32,
-    /// Whether a delta (specular) component was sampled.
-    pub delta: bool,
-    /// Relative index of refraction `eta_t / eta_i` of a refraction (1 for reflection), for
-    /// Russian roulette to see through the radiance scaling.
-    pub eta: f32,
-}
-
-impl BsdfSample {
-    /// A sample of a smooth (non-delta) reflection toward `wo`, weighted `f / pdf`; `None`
-    /// unless `wo` is in the upper hemisphere and `pdf` is positive.
-    #[inline]
-    pub fn smooth_reflection(wo: Vec3, f: Color, pdf: f32) -> Option<BsdfSample> {
-        if !(wo.z > 0.0 && pdf > 0.0) {
-            return None;
+impl BsdfTraits {
+    /// The answers for `bsdf`.
+    pub fn of(bsdf: &Bsdf) -> Self {
+        let (uses_u1, uses_u2) = bsdf.sample_inputs();
+        BsdfTraits {
+            uses_u1,
+            uses_u2,
+            has_smooth: bsdf.has_smooth(),
+            lambertian: bsdf.is_lambertian(),
         }
-        Some(BsdfSample {
-            wo,
-            weight: f / pdf,
-            pdf,
-            delta: false,
-            eta: 1.0,
-        })
     }
 }
 

@@ -16,7 +16,7 @@ use super::fresnel::fresnel_dielectric;
 use super::plastic_common::{
     coating_probability, fresnel_diffuse_reflectance, internal_scattering, specular_sampling_weight,
 };
-use super::BsdfSample;
+use super::sample::BsdfSample;
 use crate::math::INV_PI;
 use crate::sampling::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 use crate::texture::Texture;

@@ -10,7 +10,7 @@
 use super::conductor::conductor_fresnel;
 use super::fresnel::reflect;
 use super::microfacet::Microfacet;
-use super::BsdfSample;
+use super::sample::BsdfSample;
 use crate::math::Norm;
 use crate::texture::Texture;
 use crate::Color;

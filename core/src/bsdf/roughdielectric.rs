@@ -28,7 +28,7 @@
 //! does); the weight then carries the ratio of the two densities, so it stays `f cos / pdf`.
 use super::fresnel::{fresnel_dielectric, reflect, refract};
 use super::microfacet::Microfacet;
-use super::BsdfSample;
+use super::sample::BsdfSample;
 use crate::math::{sqrt, Norm};
 use crate::texture::Texture;
 use crate::Color;

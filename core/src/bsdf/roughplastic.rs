@@ -16,7 +16,7 @@ use super::plastic_common::{
     coating_probability, internal_scattering, lerp_table, rough_tables, specular_sampling_weight,
     TABLE_RES,
 };
-use super::BsdfSample;
+use super::sample::BsdfSample;
 use crate::math::{Norm, INV_PI};
 use crate::sampling::warp::cosine_hemisphere_pdf;
 use crate::texture::Texture;

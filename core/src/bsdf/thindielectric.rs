@@ -8,7 +8,7 @@
 //!
 //! Two delta components chosen with probabilities `R` and `1 - R`; the weights are the tints.
 use super::fresnel::fresnel_dielectric;
-use super::BsdfSample;
+use super::sample::BsdfSample;
 use crate::texture::Texture;
 use crate::Color;
 use glam::{Vec2, Vec3};

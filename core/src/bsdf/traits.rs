@@ -1,36 +1,25 @@
 //! What the path loop asks of a BSDF at every vertex before using it (which random inputs its
 //! sampling reads, whether emitter sampling can help), answered once per BSDF when the scene is
-//! built ([`crate::scene::Scene::bsdf_traits`]) instead of by two dispatches per bounce.
-use super::Bsdf;
+//! built (`Scene::bsdf_traits`) instead of by two dispatches per bounce. The answers come from
+//! the enum's dispatch (`BsdfTraits::of`, with the enum), so this file does not depend on it.
 use crate::sampling::Sampler;
 use glam::Vec2;
 
-/// The per-vertex questions of [`Bsdf::sample_inputs`] and [`Bsdf::has_smooth`], answered.
+/// The per-vertex questions of `Bsdf::sample_inputs` and `Bsdf::has_smooth`, answered.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct BsdfTraits {
-    /// [`Bsdf::sample`] reads `u1` (it chooses among components).
+    /// `Bsdf::sample` reads `u1` (it chooses among components).
     pub uses_u1: bool,
-    /// [`Bsdf::sample`] reads `u2`.
+    /// `Bsdf::sample` reads `u2`.
     pub uses_u2: bool,
     /// Some component is smooth (non-delta): emitter sampling can contribute.
     pub has_smooth: bool,
-    /// [`Bsdf::is_lambertian`]: path reuse may share the light it reflects.
+    /// `Bsdf::is_lambertian`: path reuse may share the light it reflects.
     pub lambertian: bool,
 }
 
 impl BsdfTraits {
-    /// The answers for `bsdf`.
-    pub fn of(bsdf: &Bsdf) -> Self {
-        let (uses_u1, uses_u2) = bsdf.sample_inputs();
-        BsdfTraits {
-            uses_u1,
-            uses_u2,
-            has_smooth: bsdf.has_smooth(),
-            lambertian: bsdf.is_lambertian(),
-        }
-    }
-
-    /// Draws `(u1, u2)` for [`Bsdf::sample`] as [`Bsdf::draw_sample_inputs`] does: the inputs
+    /// Draws `(u1, u2)` for `Bsdf::sample` as `Bsdf::draw_sample_inputs` does: the inputs
     /// the BSDF ignores are skipped, not drawn, and given as 0.5.
     #[inline(always)]
     pub fn draw_sample_inputs<S: Sampler>(self, sampler: &mut S) -> (f32, Vec2) {

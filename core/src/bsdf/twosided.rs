@@ -2,7 +2,8 @@
 //!
 //! A ray arriving from the back sees the back model as if the surface were flipped. Its scene
 //! parameters are declared with its loader, in `scene/src/materials/basic.rs`.
-use super::{Bsdf, BsdfSample};
+use super::sample::BsdfSample;
+use super::Bsdf;
 use crate::Color;
 use alloc::boxed::Box;
 use glam::{Vec2, Vec3};

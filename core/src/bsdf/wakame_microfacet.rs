@@ -11,7 +11,7 @@
 //! `pdf = ks D(h) cos theta_h / (4 h.wo) + (1 - ks) cos theta_o / pi`.
 use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetKind};
-use super::BsdfSample;
+use super::sample::BsdfSample;
 use crate::math::{Norm, INV_PI};
 use crate::sampling::warp::cosine_hemisphere_pdf;
 use crate::Color;

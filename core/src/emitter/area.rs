@@ -4,8 +4,9 @@
 //! Sampling: spheres seen from outside by solid angle (the cone toward them), every other shape
 //! uniformly by area (meshes choose a triangle by area). Points behind a flat light get no
 //! sample at all ([`Behind`], set when the scene is built).
-use super::{Behind, EmitterCtx, EmitterSample};
+use super::sample::{EmitterCtx, EmitterSample};
 use crate::geometry::{Interaction, SampleToward};
+use crate::light::Behind;
 use crate::math::offset_ray_origin;
 use crate::Color;
 use glam::{Vec2, Vec3};
@@ -17,7 +18,7 @@ pub struct AreaLight {
     pub shape: u32,
     /// Emitted radiance.
     pub radiance: Color,
-    /// Where none of its light arrives, for a flat mesh (set when the [`Scene`](crate::scene::Scene) is built).
+    /// Where none of its light arrives, for a flat mesh (set when the `Scene` is built).
     pub behind: Option<Behind>,
 }
 

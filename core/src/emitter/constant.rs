@@ -2,7 +2,7 @@
 //!
 //! Scene parameters (`<emitter type="constant">`): `radiance` (rgb, default 1). Sampled uniformly
 //! over the sphere of directions.
-use super::EmitterSample;
+use super::sample::EmitterSample;
 use crate::geometry::Interaction;
 use crate::sampling::warp::{square_to_uniform_sphere, uniform_sphere_pdf};
 use crate::Color;

@@ -7,7 +7,7 @@
 //!
 //! Shadow rays go to infinity. For light selection by power it counts as `irradiance` falling
 //! on the disk of the scene's bounding sphere, `pi r^2 E`.
-use super::EmitterSample;
+use super::sample::EmitterSample;
 use crate::geometry::Interaction;
 use crate::Color;
 use glam::Vec3;

@@ -11,7 +11,7 @@
 //! `1 / (2 pi (1 - cos thetaA))`); `1 - cos` is kept as `2 sin^2(thetaA / 2)` so tiny disks stay
 //! exact. For light selection by power it counts as `pi r^2 * 2 pi (1 - cos thetaA) * L` (the
 //! radiance of the cap falling on the disk of the scene's bounding sphere).
-use super::EmitterSample;
+use super::sample::EmitterSample;
 use crate::geometry::Interaction;
 use crate::math::{Norm, PI};
 use crate::sampling::warp::square_to_uniform_cone_omc;

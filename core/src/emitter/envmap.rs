@@ -24,7 +24,7 @@
 //! sin(theta), positive wherever the radiance is (so emitter sampling alone covers the map), and
 //! `pdf_uv / (2 pi^2 sin theta)` is its exact solid-angle density. For light selection by power
 //! the map counts as `pi r^2` times its integral of luminance over the sphere.
-use super::{luminance, EmitterSample};
+use super::sample::{luminance, EmitterSample};
 use crate::geometry::Interaction;
 use crate::math::{acos, safe_sqrt, sqrt, Norm, INV_PI, INV_TWO_PI, PI};
 use crate::sampling::Distribution2D;

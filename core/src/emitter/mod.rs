@@ -1,62 +1,26 @@
-//! Emitters: a closed enum, one variant per file.
+//! Emitters: a closed enum, one variant per file: what each kind of light emits and how it is
+//! sampled from a point. Choosing among the lights is the `light` module's.
 mod area;
-mod behind;
-mod bound;
 mod constant;
 mod directional;
 mod distant_disk;
 mod envmap;
 mod point;
+mod sample;
 mod spot;
 
 pub use area::AreaLight;
-pub use behind::Behind;
-pub use bound::{LightBound, LightEstimate};
 pub use constant::ConstantEnv;
 pub use directional::DirectionalLight;
 pub use distant_disk::DistantDisk;
 pub use envmap::EnvMap;
 pub use point::PointLight;
+pub use sample::{luminance, EmitterCtx, EmitterSample};
 pub use spot::SpotLight;
 
-use crate::geometry::{Disk, Interaction, Shape};
+use crate::geometry::Interaction;
 use crate::Color;
 use glam::{Vec2, Vec3};
-
-/// What emitters need to know of the scene while sampling.
-pub struct EmitterCtx<'a> {
-    /// All shapes.
-    pub shapes: &'a [Shape],
-    /// All disks.
-    pub disks: &'a [Disk],
-    /// Centre of the scene's bounding sphere.
-    pub scene_center: Vec3,
-    /// Radius of the scene's bounding sphere.
-    pub scene_radius: f32,
-}
-
-/// Luminance (Rec. 709) of a linear RGB colour.
-#[inline]
-pub fn luminance(c: Color) -> f32 {
-    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
-}
-
-/// A light sample seen from a reference point.
-#[derive(Clone, Copy, Debug)]
-pub struct EmitterSample {
-    /// Unit direction from the reference point toward the light.
-    pub wo: Vec3,
-    /// Where the shadow segment ends (already offset off the light's surface), or `None` for a
-    /// light at infinity (shadow ray of unbounded extent along `wo`).
-    pub target: Option<Vec3>,
-    /// Emitted radiance arriving along `-wo`, divided by `pdf` (excludes light selection).
-    pub weight: Color,
-    /// Solid-angle density (1 for delta lights).
-    pub pdf: f32,
-    /// Whether the light is a delta distribution (a point, or a single direction): no other
-    /// strategy can find it.
-    pub delta: bool,
-}
 
 /// Light sources.
 #[derive(Clone, Debug)]

@@ -2,7 +2,7 @@
 //!
 //! Scene parameters (`<emitter type="point">`): `intensity` (rgb, default 1, W/sr), `position`
 //! (point, default 0,0,0) or `to_world` (its translation is the position).
-use super::EmitterSample;
+use super::sample::EmitterSample;
 use crate::geometry::Interaction;
 use crate::math::sqrt;
 use crate::Color;

@@ -10,7 +10,7 @@
 //! Falloff at angle `theta` from the axis (Mitsuba 3's, checked against Mitsuba 3.9.1 itself):
 //! 1 for `theta <= beam_width`, `(cutoff - theta) / (cutoff - beam_width)` (linear in the angle)
 //! between the two, 0 for `theta >= cutoff`.
-use super::EmitterSample;
+use super::sample::EmitterSample;
 use crate::geometry::Interaction;
 use crate::math::{acos, sqrt, Norm, Transform, PI};
 use crate::Color;

@@ -130,7 +130,7 @@ impl Mesh {
             self.uv(idx, b1, b2),
         )
     }
-    /// Everything [`Shape::interaction`](super::Shape::interaction) needs of a hit on triangle
+    /// Everything `Shape::interaction` needs of a hit on triangle
     /// `i` at barycentrics `(b1, b2)`, reading the triangle once: [`Mesh::surface`] and
     /// [`Mesh::dpdu`] together.
     #[inline]

@@ -1,5 +1,5 @@
 //! Primitives as the BVH stores them: which shape (and face) each is. A triangle's corners are
-//! kept apart, in blocks of four in the same order ([`crate::scene::Scene::blocks`]), so the
+//! kept apart, in blocks of four in the same order (`Scene::blocks`), so the
 //! leaf loop reads 37 bytes per triangle and nothing else.
 use super::{Disk, Sphere, TriRay};
 use crate::math::{Aabb, Ray};

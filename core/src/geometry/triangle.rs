@@ -63,7 +63,7 @@ impl TriRay {
 
     /// The origin, the axis permutation `[kx, ky, kz]` (the ray is sheared along `kz`, its
     /// largest direction component) and the shear `(sx, sy, sz)`: what the four-lane test
-    /// ([`crate::accel::tri4`]) needs to repeat this test's operations exactly.
+    /// (`accel::tri_block`) needs to repeat this test's operations exactly.
     #[inline(always)]
     pub fn parts(&self) -> (Vec3, [usize; 3], [f32; 3]) {
         (self.o, self.k, [self.sx, self.sy, self.sz])

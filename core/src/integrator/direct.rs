@@ -8,10 +8,9 @@
 //! `direct_mis` (1, 1, balance heuristic) are the same integrator with fixed settings. With a
 //! count of zero, the other strategy gets weight one; a strategy that cannot produce a sample
 //! (a delta light for BSDF sampling, a delta BSDF for emitter sampling) leaves it to the other.
-use super::light::{emission_along, sample_light};
+use super::mis::Heuristic;
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
-use super::select::VertexSelection;
-use super::Heuristic;
+use crate::light::{emission_along, sample_light, VertexSelection};
 use crate::math::{Norm, Ray};
 use crate::sampling::{Sampler, Stage};
 use crate::scene::Scene;

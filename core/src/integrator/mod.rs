@@ -1,22 +1,18 @@
 //! Integrators: a closed enum; each estimates the radiance arriving along one camera ray.
 mod direct;
-mod light;
 mod mis;
 mod path;
 mod path_state;
 mod probe;
 mod record;
 mod reuse;
-mod select;
 
 pub use direct::DirectIntegrator;
-pub use light::{emission_along, sample_light, LightSample};
 pub use mis::{balance_heuristic, power_heuristic, Heuristic};
 pub use path::{PathIntegrator, Strategy};
 pub use probe::{Counters, NoProbe, PathEnd, Probe, RayKind};
 pub use record::{Event, PathRecord};
 pub use reuse::{GROUP, GROUP_H, GROUP_W};
-pub use select::{VertexSelection, MAX_VERTEX_LIGHTS, UNIFORM_SHARE};
 
 use crate::math::Ray;
 use crate::sampling::Sampler;

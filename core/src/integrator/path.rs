@@ -17,12 +17,11 @@
 //!   lights, delta BSDF components).
 //! - `path_mis` / `path`: the same two strategies combined by the power heuristic (Tessera's own
 //!   parameter `heuristic`, string power|balance, default power).
-use super::light::{emission_along, sample_light};
-pub(super) use super::path_state::{PathState, Prefix, PREFIX, SUFFIX, WHOLE};
+use super::mis::Heuristic;
+use super::path_state::{PathState, Prefix, Prev, PREFIX, SUFFIX, WHOLE};
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
-use super::select::VertexSelection;
-use super::Heuristic;
 use crate::geometry::Interaction;
+use crate::light::{emission_along, sample_light, VertexSelection};
 use crate::math::{Norm, Ray};
 use crate::sampling::{Sampler, Stage};
 use crate::scene::Scene;
@@ -73,7 +72,7 @@ pub struct PathIntegrator {
     pub hide_emitters: bool,
     /// How `Strategy::Mis` weighs its two strategies.
     pub heuristic: Heuristic,
-    /// Whether render loops share light among the pixels of 4x2 groups ([`super::reuse`]).
+    /// Whether render loops share light among the pixels of 4x2 groups (`reuse`).
     pub reuse: bool,
 }
 
@@ -88,18 +87,6 @@ impl Default for PathIntegrator {
             reuse: false,
         }
     }
-}
-
-/// What the next vertex needs to know about how the path left the previous one.
-#[derive(Clone, Copy)]
-pub(super) struct Prev {
-    p: Vec3,
-    /// BSDF density of the sampled direction.
-    pdf: f32,
-    /// Whether emitter sampling ran there and could have produced this direction.
-    nee: bool,
-    /// The light selection used there, when it was the vertex's own.
-    sel: Option<VertexSelection>,
 }
 
 impl PathIntegrator {

@@ -1,19 +1,33 @@
-//! A path's state between vertices, and the two halves the group estimator of
-//! [`super::reuse`] splits a path into ([`PREFIX`], [`SUFFIX`]).
-use super::path::Prev;
+//! A path's state between vertices (what it carries from one bounce to the next, including how it
+//! left the last vertex, [`Prev`]), and the two halves the group estimator of
+//! `reuse` splits a path into ([`PREFIX`], [`SUFFIX`]).
 use crate::geometry::Interaction;
+use crate::light::VertexSelection;
 use crate::math::Ray;
 use crate::Color;
 use glam::Vec3;
 
 /// How the path loop runs: a whole path, or one of the two halves the group
-/// estimator of [`super::reuse`] splits it into.
+/// estimator of `reuse` splits it into.
 pub(super) const WHOLE: u8 = 0;
 /// Stops once the second vertex's emission is counted, keeping the first vertex and the state.
 pub(super) const PREFIX: u8 = 1;
 /// Starts from a paused state at an already-found vertex; Russian roulette sees the throughput
 /// times the state's `rr_scale`.
 pub(super) const SUFFIX: u8 = 2;
+
+/// What the next vertex needs to know about how the path left the previous one.
+#[derive(Clone, Copy)]
+pub(super) struct Prev {
+    /// Where the path left the previous vertex.
+    pub p: Vec3,
+    /// BSDF density of the sampled direction.
+    pub pdf: f32,
+    /// Whether emitter sampling ran there and could have produced this direction.
+    pub nee: bool,
+    /// The light selection used there, when it was the vertex's own.
+    pub sel: Option<VertexSelection>,
+}
 
 /// A path's state between two vertices: what the loop carries from one bounce to the next.
 #[derive(Clone, Copy)]

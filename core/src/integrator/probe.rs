@@ -5,13 +5,13 @@
 //! the ordinary render (`li` = `li_probed` with `NoProbe`) compiles to the same code as without
 //! hooks. A probe only observes: it never changes a value, a branch or the sampler's stream, so a
 //! probed render gives the same bits as an unprobed one. [`Counters`] counts the work (for
-//! `tessera render --stats`); [`PathRecord`](super::PathRecord) records a path for
+//! `tessera render --stats`); `PathRecord` records a path for
 //! `--debug-pixel`.
-use super::light::LightSample;
 use crate::accel::TraversalCounts;
 use crate::bsdf::BsdfSample;
 use crate::emitter::EmitterSample;
 use crate::geometry::{Interaction, ShapeKind};
+use crate::light::LightSample;
 use crate::math::Ray;
 use crate::scene::Scene;
 use crate::Color;

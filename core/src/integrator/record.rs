@@ -1,10 +1,10 @@
 //! A [`Probe`] that records one sample's path event by event, for `tessera render
 //! --debug-pixel` (the driver formats it).
-use super::light::LightSample;
 use super::probe::{PathEnd, Probe, RayKind};
 use crate::bsdf::BsdfSample;
 use crate::emitter::EmitterSample;
 use crate::geometry::Interaction;
+use crate::light::LightSample;
 use crate::math::Ray;
 use crate::scene::Scene;
 use crate::Color;

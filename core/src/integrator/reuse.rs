@@ -26,7 +26,8 @@
 //! The cost: up to 56 shadow rays per group of eight (each pair of first and second vertices,
 //! seven per pixel), eight BSDF densities and evaluations per second vertex. Neighbouring pixels' noise becomes
 //! correlated; each pixel's error does not grow.
-use super::path::{PathIntegrator, PathState, Prefix, PREFIX, SUFFIX};
+use super::path::PathIntegrator;
+use super::path_state::{PathState, Prefix, PREFIX, SUFFIX};
 use super::probe::{Probe, RayKind};
 use crate::geometry::Interaction;
 use crate::math::{offset_ray_origin, Ray};

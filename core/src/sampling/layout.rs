@@ -7,7 +7,7 @@
 //! layout as pbrt-v4: camera dimensions first, then per bounce emitter selection (1), emitter
 //! position (2), BSDF component (1), BSDF direction (2) and Russian roulette (1).
 //!
-//! The integrators call [`Sampler::start_stage`](super::Sampler::start_stage) before each stage;
+//! The integrators call `Sampler::start_stage` before each stage;
 //! a stage that draws fewer values than its budget leaves the rest unused, one that would draw
 //! more runs into the next stage's dimensions (still unbiased, only less stratified).
 
@@ -52,7 +52,7 @@ pub const fn dimension_of(depth: u32, stage: Stage) -> u32 {
 /// The 2D draw whose sequence index the 2D draw starting at `dim` shares, if any: the point on
 /// the emitter at bounce 0 shares the camera's (dimension 0), the point on the emitter at bounce
 /// `d + 1` shares the BSDF direction's of bounce `d`. A stratified sampler can then make each
-/// such couple one 4D point of a net (see [`zsobol`](super::zsobol)): the pixel footprint with
+/// such couple one 4D point of a net (see `zsobol`): the pixel footprint with
 /// the light seen from the first vertex, and each bounce's direction with the light sampled
 /// where it lands, which is what one-bounce lighting integrates over.
 #[inline]

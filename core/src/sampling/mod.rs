@@ -16,8 +16,8 @@ pub use distribution2d::Distribution2D;
 pub use independent::{pixel_key, IndependentSampler};
 pub use kind::{SamplerKind, SAMPLER_NAMES};
 pub use layout::{dimension_of, paired_dimension, Stage, BOUNCE_DIMENSIONS, CAMERA_DIMENSIONS};
-pub use zsobol::ZSobolSampler;
-pub use zsobol_pixel::{CachedZSobol, ZSobolPixel, CACHED_DIMENSIONS};
+pub use zsobol::{ZSobolSampler, CACHED_DIMENSIONS};
+pub use zsobol_pixel::{CachedZSobol, ZSobolPixel};
 
 use glam::Vec2;
 

@@ -125,7 +125,7 @@ pub fn sobol_dim1(i: u32) -> u32 {
 /// the binary digits of `j` are among those of `k` (Lucas' theorem); so reversed bit `j` is the
 /// parity of the bits of `i` at the positions `k` whose digits include `j`'s, which five
 /// shift-and-XOR steps fold together (one per binary digit of a position). Shifts instead of
-/// table lookups, so that eight lanes of it vectorise ([`super::zsobol_lanes`]).
+/// table lookups, so that eight lanes of it vectorise (`zsobol_lanes`).
 #[inline(always)]
 pub fn sobol_dim1_reversed(i: u32) -> u32 {
     let mut y = i;

@@ -58,6 +58,12 @@ use glam::Vec2;
 /// Largest `log2_spp`: a pixel's block holds at most 2^32 samples before the epoch changes.
 pub const MAX_LOG2_SPP: u32 = 32;
 
+/// Dimensions whose draws the caches built on this sampler keep (the pixel parts of a pixel's
+/// table, and the lanes of an eight-sample group): the camera's 2 and 8 bounces of 7 fit with
+/// room; later dimensions are computed per draw, as [`ZSobolSampler`] does. Here, below both
+/// caches, so that neither has to reach into the other for it.
+pub const CACHED_DIMENSIONS: usize = 64;
+
 /// Spreads the 32 bits of `v` to the even bits of a `u64`.
 #[inline]
 fn spread_bits(v: u32) -> u64 {
@@ -203,7 +209,7 @@ impl ZSobolSampler {
 
     /// The part of dimension `dim`'s draw that depends only on (seed, epoch, `K`, pixel): the
     /// same for every sample of the pixel's block, so a pixel's samples can share it
-    /// ([`ZSobolPixel`](super::zsobol_pixel::ZSobolPixel)).
+    /// (`ZSobolPixel`).
     #[inline]
     pub fn pixel_draw(&self, dim: u32) -> PixelDraw {
         self.pixel_draw_hashed(self.dimension_hash(dim))

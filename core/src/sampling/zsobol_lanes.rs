@@ -5,7 +5,7 @@
 //!
 //! Why. A renderer takes a pixel's samples one after another, and each sample draws the same
 //! dimensions (the fixed per-bounce layout, [`dimension_of`](super::dimension_of)). With
-//! [`ZSobolPixel`](super::ZSobolPixel) the part of a draw that depends on the pixel alone is
+//! `ZSobolPixel` (which draws through this module) the part of a draw that depends on the pixel alone is
 //! already shared; what is left per sample (a Laine-Karras scramble of the sample bits, two or
 //! three more for the coordinates, a Sobol matrix and three bit reversals) is the same
 //! arithmetic on different sample bits, which eight lanes do at once. The first sample of a
@@ -18,9 +18,8 @@
 use super::owen::reversed_lk;
 use super::zsobol::{
     sample_reversed, to_unit, value_1d_of, value_2d_of, value_2d_paired_of, DimensionDraw,
-    PixelDraw,
+    PixelDraw, CACHED_DIMENSIONS,
 };
-use super::zsobol_pixel::CACHED_DIMENSIONS;
 
 /// Samples in a group.
 pub const LANES: usize = 8;

@@ -15,16 +15,13 @@
 //! there): caching changes no bit.
 use super::layout::paired_dimension;
 use super::zsobol::{
-    to_unit, value_1d_of, value_2d_of, value_2d_paired_of, PixelDraw, ZSobolSampler, MAX_LOG2_SPP,
+    to_unit, value_1d_of, value_2d_of, value_2d_paired_of, PixelDraw, ZSobolSampler,
+    CACHED_DIMENSIONS, MAX_LOG2_SPP,
 };
 use super::zsobol_lanes::{Group, LANES, MIN_LOG2_SPP};
 use super::Sampler;
 use core::ops::Range;
 use glam::Vec2;
-
-/// Dimensions whose pixel parts are kept (the camera's 2 and 8 bounces of 7 fit with room);
-/// later dimensions are computed per draw, as [`ZSobolSampler`] does.
-pub const CACHED_DIMENSIONS: usize = 64;
 
 /// One pixel's shared draws.
 #[derive(Clone, Debug)]

@@ -2,19 +2,19 @@
 //! the crate's few modules allowed `unsafe`).
 //!
 //! [`test8_avx2`] runs, on the 256-bit register whose low half holds block `a` and high half
-//! block `b`, exactly the operations of [`super::tri4::test4_sse`] in the same order (IEEE
+//! block `b`, exactly the operations of [`super::tri_block::test4_sse`] in the same order (IEEE
 //! subtraction, multiplication, addition and division, no fused multiply-add, `vmaxps` for
 //! `maxps`, and each SSE comparison replaced by the AVX predicate that gives the same result for
 //! every input, NaN included). So lane `i < 4` reports what `test4(a)` reports in its lane `i`,
 //! and lane `4 + i` what `test4(b)` reports in its lane `i`, bit for bit; [`test8_portable`] is
 //! those two four-lane tests. The AVX2 version is reachable only through an
-//! [`super::simd8::Avx2`] token (a CPU that has AVX2).
+//! `slab_simd::Avx2` token (a CPU that has AVX2).
 //!
 //! Why `unsafe` here: the loads read through raw pointers, and calling a `#[target_feature]`
 //! function from code compiled without it is `unsafe` (the token vouches for the CPU).
 #![allow(unsafe_code)]
 
-use super::tri4::{test4, Lanes, Ray4, Tri4};
+use super::tri_block::{test4, Lanes, Ray4, Tri4};
 use crate::math::gamma;
 
 /// What the eight-lane test found: lanes 0-3 are block `a`'s, lanes 4-7 block `b`'s. The fields
@@ -105,7 +105,7 @@ pub fn test8_portable(a: &Tri4, b: &Tri4, r: &Ray4, t_max: f32) -> Lanes8 {
 ///
 /// # Safety
 /// Callable (safely) only from code compiled with AVX2; elsewhere the caller must know the CPU
-/// has AVX2, as an [`super::simd8::Avx2`] token does.
+/// has AVX2, as a `slab_simd::Avx2` token does.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[inline]
@@ -115,7 +115,7 @@ pub fn test8_avx2(a: &Tri4, b: &Tri4, r: &Ray4, t_max: f32) -> Lanes8 {
 }
 
 /// [`test8_avx2`]'s body, always inlined, so the traversal loop compiled for AVX2
-/// ([`super::simd8::Avx2::run`]) holds it rather than a call (the compiler declined to inline
+/// (`slab_simd::Avx2::run`) holds it rather than a call (the compiler declined to inline
 /// the `#[target_feature]` function there: a call, and the result passed through memory).
 ///
 /// # Safety

@@ -8,8 +8,9 @@
 //! glossy lobe; this choice spends them on the light the plate reflects.
 //!
 //! Scenes with one light, or more than [`MAX_VERTEX_LIGHTS`], use the scene-wide choice.
+use super::bound::LightBound;
 use crate::bsdf::Bsdf;
-use crate::emitter::{luminance, LightBound};
+use crate::emitter::luminance;
 use crate::geometry::Interaction;
 use glam::Vec3;
 

@@ -1,7 +1,7 @@
 //! Eight ray-box slab tests at once, for the 8-wide BVH: one of the crate's few modules allowed
 //! `unsafe`.
 //!
-//! Three versions compute the same bits, with the operations and order of [`super::simd`] (IEEE
+//! Three versions compute the same bits, with the operations and order of [`super::slab`] (IEEE
 //! subtraction and multiplication, no fused multiply-add; the distances reduced with integer
 //! `max`/`min` on their bits):
 //! - [`hit8_avx2`]: one 256-bit register per bound, on CPUs that have AVX2, detected at run time
@@ -18,12 +18,12 @@
 //! and SSE intrinsics outside a `#[target_feature]` function. Each block says why it is sound.
 #![allow(unsafe_code)]
 
-use super::simd::{hit_scalar, RayPre, MAX_X, MIN_X};
-use super::tri4::{test4, Lanes, Ray4, Tri4};
-use super::tri8::{test8_portable, Lanes8};
+use super::slab::{hit_scalar, RayPre, MAX_X, MIN_X};
+use super::tri_block::{test4, Lanes, Ray4, Tri4};
+use super::tri_block_pair::{test8_portable, Lanes8};
 
 /// Eight boxes in SoA layout: `b[MIN_X + axis][lane]` and `b[MAX_X + axis][lane]` (the row
-/// indices of [`super::simd`], which a [`RayPre`]'s planes refer to). An unused lane holds the
+/// indices of [`super::slab`], which a [`RayPre`]'s planes refer to). An unused lane holds the
 /// empty box (min `+inf`, max `-inf`), which no ray hits.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C, align(32))]
@@ -199,7 +199,7 @@ pub trait Hit8: Copy {
     }
 
     /// Two blocks' triangle tests at once, `a` in lanes 0-3 and `b` in lanes 4-7
-    /// ([`super::tri8`]).
+    /// ([`super::tri_block_pair`]).
     fn tri8(self, a: &Tri4, b: &Tri4, ray: &Ray4, t_max: f32) -> Lanes8;
 }
 
@@ -324,7 +324,7 @@ impl Hit8 for Avx2 {
         {
             // SAFETY: `self` exists only when `detect` found AVX2 usable on this CPU (the body
             // is fast where it inlines into AVX2 code, as in [`Avx2::run`]).
-            unsafe { super::tri8::test8_avx2_inline(a, b, ray, t_max) }
+            unsafe { super::tri_block_pair::test8_avx2_inline(a, b, ray, t_max) }
         }
         #[cfg(not(target_arch = "x86_64"))]
         {

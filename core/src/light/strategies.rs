@@ -1,29 +1,17 @@
 //! The two ways an integrator finds light, shared by every integrator: sampling an emitter from a
 //! surface point, and reading what a BSDF-sampled ray ran into. Each returns the densities both
-//! strategies would have had, so the caller applies its own weights.
-use super::probe::{Probe, RayKind};
-use super::select::VertexSelection;
+//! strategies would have had, so the caller applies its own weights. Both live with light
+//! selection because each needs the probability with which the light it used was picked.
+use super::sample::LightSample;
+use super::vertex::VertexSelection;
 use crate::bsdf::Bsdf;
 use crate::emitter::Emitter;
 use crate::geometry::Interaction;
+use crate::integrator::{Probe, RayKind};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
 use crate::Color;
 use glam::Vec3;
-
-/// One emitter sample, already tested for visibility.
-#[derive(Clone, Copy, Debug)]
-pub struct LightSample {
-    /// `f(wi, wo) cos * Le / (light pdf * selection probability)`: the unweighted estimate.
-    pub value: Color,
-    /// Density of emitter sampling for this direction, selection included (solid angle).
-    pub light_pdf: f32,
-    /// Density with which the BSDF would have sampled the same direction (0 when the caller
-    /// did not ask for it, or for a delta light).
-    pub bsdf_pdf: f32,
-    /// Whether the light is a delta distribution (BSDF sampling cannot find it).
-    pub delta: bool,
-}
 
 /// Picks a light (by `sel`, the vertex's own selection, else by the scene's), samples it from
 /// `si`, evaluates the BSDF and traces the shadow ray. `None` when
@@ -50,7 +38,7 @@ pub fn sample_light<S: Sampler, P: Probe>(
         sampler.skip_1d();
         (0, 1.0)
     } else {
-        scene.select_emitter(sampler.next_1d())?
+        scene.lights().pick(sampler.next_1d())?
     };
     let u = sampler.next_2d();
     let es = scene.emitters[idx].sample(&scene.emitter_ctx(), si, u);
@@ -145,5 +133,5 @@ pub fn emission_along<P: Probe>(
 /// scene-wide choice where the vertex has none).
 #[inline]
 fn selection_pdf(scene: &Scene, sel: Option<&VertexSelection>, i: usize) -> f32 {
-    sel.map_or_else(|| scene.emitter_select_pdf(i), |s| s.pdf(i))
+    sel.map_or_else(|| scene.lights().pdf(i), |s| s.pdf(i))
 }

@@ -1,5 +1,5 @@
 //! An 8-wide BVH: the binary SAH hierarchy collapsed so each node holds up to eight children,
-//! whose boxes are stored in SoA layout and tested against a ray at once ([`super::simd8`]:
+//! whose boxes are stored in SoA layout and tested against a ray at once ([`super::slab_simd`]:
 //! AVX2 where the CPU has it, detected once per build, else a portable test with the same bits).
 //!
 //! Closest-hit traversal visits the children a ray meets nearest entry first, postponing the
@@ -9,61 +9,12 @@
 //! of the primitive order returned by the build).
 use super::entry::{nearest_first, Entry};
 use super::leaves::FnLeaves;
-use super::simd::{RayPre, MAX_X, MIN_X};
-use super::simd8::{prefetch_in, Avx2, Boxes8, Hit8, Portable, WithHit8};
+use super::slab::RayPre;
+use super::slab_simd::{prefetch_in, Avx2, Hit8, Portable, WithHit8};
+use super::wide_node::Bvh8Node;
 use super::{BuildParams, Bvh, Collapse, Leaves};
 use crate::math::{Aabb, Ray};
 use alloc::vec::Vec;
-use glam::Vec3;
-
-/// A node: eight child boxes, and per child its node index (`count == 0`) or its leaf's first
-/// primitive and primitive count. 256 bytes, four cache lines.
-#[derive(Clone, Copy, Debug)]
-#[repr(C, align(64))]
-pub struct Bvh8Node {
-    /// The children's boxes; unused lanes hold the empty box.
-    pub boxes: Boxes8,
-    /// Interior child: its node index. Leaf: its first primitive. Unused: `u32::MAX`.
-    pub child: [u32; 8],
-    /// Leaf: number of primitives (at least 1). Interior or unused: 0.
-    pub count: [u16; 8],
-    /// Bit `i` set when lane `i` is used (used lanes come first).
-    pub used: u32,
-    /// Bit `i` set when lane `i` is a leaf.
-    pub leaves: u32,
-}
-
-// Four cache lines, as the memory figures assume.
-const _: () = assert!(core::mem::size_of::<Bvh8Node>() == 256);
-// The boxes are the first three lines (what the traversal prefetches of a child node).
-const _: () =
-    assert!(core::mem::offset_of!(Bvh8Node, boxes) == 0 && core::mem::size_of::<Boxes8>() == 192);
-
-impl Bvh8Node {
-    pub(super) const EMPTY: Bvh8Node = Bvh8Node {
-        boxes: Boxes8::EMPTY,
-        child: [u32::MAX; 8],
-        count: [0; 8],
-        used: 0,
-        leaves: 0,
-    };
-
-    pub(super) fn set_box(&mut self, lane: usize, b: Aabb) {
-        for a in 0..3 {
-            self.boxes.b[MIN_X + a][lane] = b.min[a];
-            self.boxes.b[MAX_X + a][lane] = b.max[a];
-        }
-    }
-
-    /// Box of child `lane`.
-    pub fn child_bounds(&self, lane: usize) -> Aabb {
-        let b = &self.boxes.b;
-        Aabb {
-            min: Vec3::new(b[MIN_X][lane], b[MIN_X + 1][lane], b[MIN_X + 2][lane]),
-            max: Vec3::new(b[MAX_X][lane], b[MAX_X + 1][lane], b[MAX_X + 2][lane]),
-        }
-    }
-}
 
 /// The 8-wide hierarchy.
 #[derive(Clone, Debug)]
@@ -99,7 +50,7 @@ const SMALL_STACK: usize = 16;
 
 impl Bvh8 {
     /// The binary build's leaf-size trade-off, for leaves of four-triangle blocks
-    /// ([`super::tri4`]): a leaf of `n` primitives costs `ceil(n / 4)` block tests, one
+    /// ([`super::tri_block`]): a leaf of `n` primitives costs `ceil(n / 4)` block tests, one
     /// traversal step a quarter of one. Measured on the 4-wide BVH that preceded this one
     /// (`BVH_PARAMS` in `--bench bvh_compare`, callgrind and renders of the Cornell box): with
     /// block costs the SAH fills blocks (49-57 bytes per triangle instead of 71-75); costs 0.5

@@ -1,4 +1,5 @@
-//! A bounding volume hierarchy built with the binned surface-area heuristic.
+//! The binary bounding volume hierarchy, built with the binned surface-area heuristic: the tree
+//! the 8-wide one (`wide`) is collapsed from, and a traversal of its own for comparisons.
 //!
 //! Nodes are stored depth first: an interior node's first child follows it, the second child's
 //! index is stored. Traversal visits the near child first (by the ray direction's sign on the

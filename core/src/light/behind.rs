@@ -1,6 +1,6 @@
 //! The half-space behind a flat one-sided area light, where none of its light arrives.
 //!
-//! An area light emits from the front side of its surface only ([`AreaLight`](super::AreaLight)).
+//! An area light emits from the front side of its surface only (`emitter::AreaLight`).
 //! When the surface is a flat mesh with face normals, a point behind its plane cannot receive
 //! any of it: every sample light sampling draws for such a point fails the one-sided test, after
 //! paying for a triangle choice, a point, a distance and a density. [`Behind::contains`] answers

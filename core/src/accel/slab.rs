@@ -1,6 +1,6 @@
 //! The ray-box slab test's common ground: a ray prepared once for it ([`RayPre`]), the row
 //! indices of boxes stored in SoA layout, the widening of the exit distance, and the portable
-//! lane-by-lane test (`hit_scalar`) whose bits the SIMD tests of [`super::simd8`] reproduce.
+//! lane-by-lane test (`hit_scalar`) whose bits the SIMD tests of `slab_simd` reproduce.
 //!
 //! The test uses IEEE subtraction and multiplication (no fused multiply-add) in a fixed order,
 //! and reduces the slab distances with integer `max`/`min` on their bit patterns (`pmaxsd`,
@@ -18,7 +18,7 @@
 //!   whose plane lies exactly on that moved origin) also means "behind" and culls.
 //!
 //! The mask keeps the float test's guarantee: it never drops a box the ray meets within
-//! `[0, t_max]`. No `unsafe` here: the intrinsics are in [`super::simd8`].
+//! `[0, t_max]`. No `unsafe` here: the intrinsics are in `slab_simd`.
 
 use crate::math::{gamma, Ray};
 
@@ -92,7 +92,7 @@ fn key(t: f32) -> i32 {
 /// `rows[MAX_X + axis][lane]`): bit `i` of the mask is set when the ray meets box `i` within
 /// `[0, t_max]`; `t_near[i]` is where it enters (meaningful for set bits only). Lane by lane the
 /// operations of the SSE and AVX2 tests; the eight-box reference
-/// ([`super::simd8::hit8_scalar`]) is this one. NaN distances are handled explicitly (an entry
+/// (`slab_simd::hit8_scalar`) is this one. NaN distances are handled explicitly (an entry
 /// dropped, an exit culls), as the integer reductions handle x86's NaN, whose sign bit is set.
 #[inline]
 pub(super) fn hit_scalar<const N: usize>(

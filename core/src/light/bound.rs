@@ -7,7 +7,7 @@
 //! both capped at a hemisphere), intensity over the squared distance for point and spot lights,
 //! irradiance for directional lights, radiance times pi for environments. It only steers a
 //! choice whose probabilities are exact, so a poor estimate costs variance, never bias.
-use super::{luminance, Emitter, EmitterCtx};
+use crate::emitter::{luminance, Emitter, EmitterCtx};
 use crate::geometry::ShapeKind;
 use crate::math::{sqrt, Norm, PI};
 use glam::Vec3;
