@@ -72,7 +72,7 @@ pub struct BenchArgs {
     #[arg(long)]
     pub ratio_to: Option<String>,
     /// Override a scene `<default>`: -D name=value.
-    #[arg(short = 'D', value_parser = super::parse_define)]
+    #[arg(short = 'D', value_parser = super::define::parse_define)]
     pub defines: Vec<(String, String)>,
     /// The CSV report to write.
     #[arg(short = 'o', long = "output", required_unless_present = "plot_only")]

@@ -1,6 +1,6 @@
 //! What `tessera render` draws on its PNG outputs (`--overlay`, `--overlay-grid`,
 //! `--overlay-crop`) and how it writes an image of the current average.
-use super::render::RenderArgs;
+use super::render_args::RenderArgs;
 use std::path::Path;
 use tessera::image_io::{to_srgb8, write_image, write_png8, Format, RgbImage};
 use tessera::overlay::{self, Overlay};

@@ -5,10 +5,12 @@
 pub mod bench;
 pub mod compare;
 pub mod decor;
+pub mod define;
 pub mod merge;
 pub mod plugins;
 pub mod probe_args;
 pub mod render;
+pub mod render_args;
 pub mod render_once;
 pub mod split_args;
 pub mod test;
@@ -42,12 +44,4 @@ pub enum Command {
     Plugins(plugins::PluginsArgs),
     /// Assemble part files (from a render with --crop, --tiles or --sample-range) into one image.
     Merge(merge::MergeArgs),
-}
-
-/// Parses `name=value` for `-D`.
-pub fn parse_define(s: &str) -> Result<(String, String), String> {
-    match s.split_once('=') {
-        Some((k, v)) if !k.is_empty() => Ok((k.to_string(), v.to_string())),
-        _ => Err(format!("expected name=value, found \"{s}\"")),
-    }
 }

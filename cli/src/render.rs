@@ -8,14 +8,12 @@
 //! `--checkpoint`) and exit 130 / 143; a second signal exits at once without writing.
 //! `--resume FILE` continues a checkpoint to the same bits as an uninterrupted render.
 use super::decor::{spp_text, Decor};
-use clap::Args;
+pub use super::render_args::RenderArgs;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
-use tessera::checkpoint::{
-    load_checkpoint, scene_hash, write_checkpoint, CheckpointMeta, Continuation,
-};
+use tessera::checkpoint::{load_checkpoint, write_checkpoint, CheckpointMeta, Continuation};
 use tessera::image_io::Format;
 use tessera::progressive::bar::{progress_bar, update_bar};
 use tessera::progressive::{self, spp_range, Ending, Job, Plan, Status};
@@ -24,89 +22,6 @@ use tessera_core::adaptive::{AdaptiveParams, ZSOBOL_BLOCK_FACTOR};
 use tessera_core::camera::Perspective;
 use tessera_scene::error::InputError;
 use tessera_scene::{load_scene, MAX_EDGE, MAX_PIXELS};
-
-/// Arguments of `tessera render`.
-#[derive(Args, Debug, Clone)]
-pub struct RenderArgs {
-    /// The scene file (Mitsuba 3 or Nori XML).
-    pub scene: PathBuf,
-    /// Output image; the extension picks the format (.exr, .pfm, .png). May be repeated.
-    #[arg(short = 'o', long = "output", required_unless_present = "debug_pixel")]
-    pub outputs: Vec<PathBuf>,
-    /// Samples per pixel (default: the scene's sampler, or the resumed checkpoint's target).
-    #[arg(long, conflicts_with = "forever")]
-    pub spp: Option<u64>,
-    /// Time budget in seconds: render passes until it is spent (with --spp, whichever first).
-    #[arg(long, conflicts_with = "forever")]
-    pub time: Option<f64>,
-    /// Render until interrupted (Ctrl-C or SIGTERM), writing the outputs on the way out.
-    #[arg(long)]
-    pub forever: bool,
-    /// Write the current average to every output (and the checkpoint) this often, in seconds.
-    #[arg(long)]
-    pub write_every: Option<f64>,
-    /// Checkpoint file, written at every --write-every, at the end and on interrupt.
-    #[arg(long)]
-    pub checkpoint: Option<PathBuf>,
-    /// Continue the render saved in this checkpoint (and keep checkpointing to it unless
-    /// --checkpoint names another file).
-    #[arg(long)]
-    pub resume: Option<PathBuf>,
-    /// Scale the film's width and height (e.g. 0.25 for a quick preview; at least 1 pixel).
-    #[arg(long)]
-    pub resolution_scale: Option<f64>,
-    /// Label PNG outputs with integrator, sampler, spp, time and resolution (EXR/PFM untouched).
-    #[arg(long)]
-    pub overlay: bool,
-    /// Draw the tile grid on PNG outputs.
-    #[arg(long)]
-    pub overlay_grid: bool,
-    /// Draw a rectangle x0,y0,x1,y1 (pixels) on PNG outputs.
-    #[arg(long, value_parser = tessera::overlay::parse_crop)]
-    pub overlay_crop: Option<[u32; 4]>,
-    /// Worker threads (default: all cores). The image does not depend on it.
-    #[arg(long)]
-    pub threads: Option<usize>,
-    /// Seed of every random stream (default: the sampler's `seed`, else 0).
-    #[arg(long)]
-    pub seed: Option<u64>,
-    /// Integrator name (path, path_mis, path_half, path_ems, path_mats, direct, direct_ems,
-    /// direct_mats, direct_mis; a path tracer's name with `+reuse` for path reuse); keeps the
-    /// file's max_depth etc.
-    #[arg(long)]
-    pub integrator: Option<String>,
-    /// Sampler (independent, zsobol), overriding the scene file.
-    #[arg(long)]
-    pub sampler: Option<String>,
-    /// Longest path (-1 = unbounded), overriding the scene file.
-    #[arg(long, allow_hyphen_values = true)]
-    pub max_depth: Option<i64>,
-    /// Tile edge in pixels. The image does not depend on it.
-    #[arg(long, default_value_t = 32)]
-    pub tile_size: u32,
-    /// Override a scene `<default>`: -D name=value.
-    #[arg(short = 'D', value_parser = super::parse_define)]
-    pub defines: Vec<(String, String)>,
-    /// No progress bar.
-    #[arg(short, long)]
-    pub quiet: bool,
-    /// Adaptive sampling: after 2 samples in every pixel, passes doubling the mean sample count
-    /// send each pass's samples where the relative variance is highest; --spp is then the mean
-    /// over pixels. Consistent, not unbiased (see the README).
-    #[arg(long)]
-    pub adaptive: bool,
-    /// Stop at the first power of two spp (with --adaptive: doubling of the mean) whose relative
-    /// MSE, estimated from the two halves of the samples, is at most this (e.g. 1e-3; checked
-    /// from 16 spp on). Without --spp there is no sample limit.
-    #[arg(long, allow_hyphen_values = true, conflicts_with = "forever")]
-    pub target_error: Option<f64>,
-    /// Render a piece of the image (a part, for `tessera merge`).
-    #[command(flatten)]
-    pub split: super::split_args::SplitArgs,
-    /// `--stats`, `--debug-pixel`.
-    #[command(flatten)]
-    pub probe: super::probe_args::ProbeArgs,
-}
 
 fn usage(msg: String) -> i32 {
     eprintln!("error: {msg}");
@@ -206,17 +121,13 @@ pub fn run(args: &RenderArgs) -> i32 {
     if super::render_once::wanted(args) {
         return super::render_once::run(args, &loaded, threads, seed);
     }
-    let scene_bytes = match std::fs::read(&args.scene) {
-        Ok(b) => b,
-        Err(e) => return usage(format!("{}: {e}", args.scene.display())),
-    };
     let (w, h) = (loaded.scene.camera.width, loaded.scene.camera.height);
     let mut meta = CheckpointMeta {
         width: w,
         height: h,
         seed,
         target_spp: 0,
-        scene_hash: scene_hash(&scene_bytes, &args.defines),
+        scene_hash: loaded.source_hash,
         passes: 0,
         seconds: 0.0,
         integrator: format!(

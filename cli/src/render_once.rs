@@ -3,7 +3,7 @@
 //! fixed sample range once, so they do not combine with the progressive flags (`--time`,
 //! `--forever`, `--write-every`, `--checkpoint`, `--resume`, `--adaptive`, `--target-error`).
 use super::decor::Decor;
-use super::render::RenderArgs;
+use super::render_args::RenderArgs;
 use super::split_args::write_render_output;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::time::Instant;
@@ -52,10 +52,7 @@ pub fn run(args: &RenderArgs, loaded: &LoadedScene, threads: usize, seed: u64) -
         pixels: args.split.selection(),
     };
     let spp = opts.samples.end - opts.samples.start;
-    let part = match args
-        .split
-        .part_info(&args.scene, &args.defines, loaded, &opts)
-    {
+    let part = match args.split.part_info(loaded, &opts) {
         Ok(p) => p,
         Err(e) => return usage(e),
     };

@@ -7,7 +7,7 @@ use std::path::Path;
 use tessera::image_io::{write_image, Format, RgbImage};
 use tessera::render::{Framebuffer, RenderOptions, Tile};
 use tessera::split::selection::{parse_crop, parse_sample_range, parse_tile_set};
-use tessera::split::{scene_hash, write_part, PartInfo, PixelSelection};
+use tessera::split::{write_part, PartInfo, PixelSelection};
 use tessera_scene::LoadedScene;
 
 /// Render only a piece of the image.
@@ -49,8 +49,6 @@ impl SplitArgs {
     /// files record. `opts` are the final render options (samples, seed, pixels, tile size).
     pub fn part_info(
         &self,
-        scene_file: &Path,
-        defines: &[(String, String)],
         loaded: &LoadedScene,
         opts: &RenderOptions,
     ) -> Result<Option<PartInfo>, String> {
@@ -70,7 +68,7 @@ impl SplitArgs {
                 "{:?}, sampler {:?}",
                 loaded.integrator_spec, loaded.scene.sampler
             ),
-            scene_hash: scene_hash(scene_file, defines)?,
+            scene_hash: loaded.source_hash,
         }))
     }
 }

@@ -14,6 +14,7 @@ mod render_groups;
 pub mod render_stats;
 pub mod split;
 pub mod text;
+pub mod tile;
 
 pub use api::{load, load_str, render, Image, Options};
 pub use tessera_scene::error::InputError;

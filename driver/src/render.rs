@@ -9,12 +9,13 @@
 //! the others stay empty.
 use crate::render_groups::{render_tile_groups, Sharing};
 pub use crate::split::selection::PixelSelection;
+pub use crate::tile::{tiles, Tile, TileProbe};
 use crossbeam_channel::unbounded;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use tessera_core::film::PixelAccum;
 use tessera_core::integrator::Integrator;
-use tessera_core::integrator::{Counters, NoProbe, Probe};
+use tessera_core::integrator::NoProbe;
 use tessera_core::render::{render_samples_cached, reuses, GroupCache, PixelCache};
 use tessera_core::scene::Scene;
 
@@ -44,19 +45,6 @@ impl Default for RenderOptions {
             pixels: PixelSelection::default(),
         }
     }
-}
-
-/// A rectangle of pixels `[x0, x1) x [y0, y1)`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Tile {
-    /// Left column.
-    pub x0: u32,
-    /// Top row.
-    pub y0: u32,
-    /// One past the right column.
-    pub x1: u32,
-    /// One past the bottom row.
-    pub y1: u32,
 }
 
 /// Accumulated samples of every pixel, row-major.
@@ -93,40 +81,6 @@ impl Framebuffer {
     }
 }
 
-/// The tiles covering a `width x height` image, in scanline order.
-pub fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
-    let size = size.max(1);
-    let mut out = Vec::new();
-    for y0 in (0..height).step_by(size as usize) {
-        for x0 in (0..width).step_by(size as usize) {
-            out.push(Tile {
-                x0,
-                y0,
-                x1: (x0 + size).min(width),
-                y1: (y0 + size).min(height),
-            });
-        }
-    }
-    out
-}
-
-/// A probe each worker thread owns while rendering tiles (see [`render_probed`]); the workers'
-/// probes are combined at the end.
-pub trait TileProbe: Probe + Default + Send {
-    /// Adds what another worker observed.
-    fn absorb(&mut self, other: Self);
-}
-
-impl TileProbe for NoProbe {
-    fn absorb(&mut self, _: Self) {}
-}
-
-impl TileProbe for Counters {
-    fn absorb(&mut self, other: Self) {
-        self.merge(&other);
-    }
-}
-
 /// Renders the selected pixels (`opts.pixels`); `progress(tiles_done, tiles_total)` is called on
 /// the calling thread as tiles arrive.
 pub fn render(
@@ -140,7 +94,7 @@ pub fn render(
     fb
 }
 
-/// [`render`] with a probe per worker thread observing every sample (e.g. [`Counters`] for
+/// [`render`] with a probe per worker thread observing every sample (e.g. [`Counters`](tessera_core::integrator::Counters) for
 /// `--stats`), combined at the end. A probe only observes: the image is the same bits, and sums
 /// of counts do not depend on the thread count or the tile size.
 pub fn render_probed<P: TileProbe>(

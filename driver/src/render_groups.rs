@@ -1,6 +1,6 @@
 //! The tile loop's body when the integrator shares light among groups of pixels (4x2,
 //! `core/src/integrator/reuse.rs`).
-use crate::render::{Tile, TileProbe};
+use crate::tile::{Tile, TileProbe};
 use std::ops::Range;
 use tessera_core::film::PixelAccum;
 use tessera_core::integrator::{Integrator, GROUP, GROUP_H, GROUP_W};

@@ -8,15 +8,11 @@
 //! `{:?}`, which round-trips an `f32` exactly.
 use std::fmt::Write;
 use tessera::render::RenderOptions;
-use tessera_core::bsdf::Bsdf;
-use tessera_core::emitter::Emitter;
 use tessera_core::film::PixelAccum;
-use tessera_core::geometry::ShapeKind;
 use tessera_core::glam::Vec3;
 use tessera_core::integrator::{Event, PathRecord, RayKind};
 use tessera_core::math::Norm;
 use tessera_core::render::render_sample_probed;
-use tessera_core::scene::Scene;
 use tessera_scene::error::InputError;
 use tessera_scene::LoadedScene;
 
@@ -106,7 +102,7 @@ pub fn report(
         );
         acc.add(c);
         let _ = writeln!(out, "sample {index}:");
-        write_events(&mut out, scene, &rec);
+        write_events(&mut out, loaded, &rec);
         let _ = writeln!(out, "  value: {}", v3(c));
     }
     if dp.sample.is_none() {
@@ -125,7 +121,8 @@ fn v3(v: Vec3) -> String {
     format!("[{:?}, {:?}, {:?}]", v.x, v.y, v.z)
 }
 
-fn write_events(out: &mut String, scene: &Scene, rec: &PathRecord) {
+fn write_events(out: &mut String, loaded: &LoadedScene, rec: &PathRecord) {
+    let scene = &loaded.scene;
     let mut vertex = 0;
     let mut env_lookups = 0;
     for e in &rec.events {
@@ -157,9 +154,9 @@ fn write_events(out: &mut String, scene: &Scene, rec: &PathRecord) {
                     si.uv.y,
                     v3(si.wi),
                     si.shape,
-                    shape_name(&shape.kind),
+                    name_of(&loaded.names.shapes, si.shape as usize),
                     shape.bsdf,
-                    bsdf_name(&scene.bsdfs[shape.bsdf as usize]),
+                    name_of(&loaded.names.bsdfs, shape.bsdf as usize),
                 )
             }
             Event::Escaped(d) => writeln!(out, "  escaped along {}", v3(d.unit())),
@@ -187,7 +184,7 @@ fn write_events(out: &mut String, scene: &Scene, rec: &PathRecord) {
                 select_pdf,
                 sample,
             } => {
-                let name = emitter_name(&scene.emitters[*index]);
+                let name = name_of(&loaded.names.emitters, *index);
                 match sample {
                     Some(s) => writeln!(
                         out,
@@ -261,43 +258,7 @@ fn ray_name(k: RayKind) -> &'static str {
     }
 }
 
-fn shape_name(k: &ShapeKind) -> &'static str {
-    match k {
-        ShapeKind::Mesh(_) => "triangle mesh",
-        ShapeKind::Sphere(_) => "sphere",
-        ShapeKind::Disk(_) => "disk",
-    }
-}
-
-fn emitter_name(e: &Emitter) -> &'static str {
-    match e {
-        Emitter::Area(_) => "area",
-        Emitter::Constant(_) => "constant",
-        Emitter::Point(_) => "point",
-        Emitter::Spot(_) => "spot",
-        Emitter::Directional(_) => "directional",
-        Emitter::DistantDisk(_) => "distant disk",
-        Emitter::EnvMap(_) => "envmap",
-    }
-}
-
-/// The plugin name of a BSDF.
-pub fn bsdf_name(b: &Bsdf) -> &'static str {
-    match b {
-        Bsdf::Diffuse(_) => "diffuse",
-        Bsdf::TwoSided(_) => "twosided",
-        Bsdf::Conductor(_) => "conductor",
-        Bsdf::RoughConductor(_) => "roughconductor",
-        Bsdf::Dielectric(_) => "dielectric",
-        Bsdf::RoughDielectric(_) => "roughdielectric",
-        Bsdf::ThinDielectric(_) => "thindielectric",
-        Bsdf::Plastic(_) => "plastic",
-        Bsdf::RoughPlastic(_) => "roughplastic",
-        Bsdf::Mirror(_) => "mirror",
-        Bsdf::WakameMicrofacet(_) => "microfacet",
-        Bsdf::BlinnPhong(_) => "blinnphong",
-        Bsdf::BlinnPhongMetal(_) => "blinnphong_metal",
-        Bsdf::Blend(_) => "blendbsdf",
-        Bsdf::Mask(_) => "mask",
-    }
+/// The plugin name the scene file gave part `i` (as the loader recorded it).
+fn name_of(names: &[String], i: usize) -> &str {
+    names.get(i).map_or("?", String::as_str)
 }

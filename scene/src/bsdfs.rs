@@ -13,6 +13,8 @@ use tessera_core::texture::Texture;
 pub struct Bsdfs {
     /// Built BSDFs.
     pub list: Vec<Bsdf>,
+    /// The plugin name each was built from (as the file wrote it).
+    pub names: Vec<String>,
     by_object: HashMap<*const Object, u32>,
     default: Option<u32>,
     default_emitter: Option<u32>,
@@ -28,12 +30,14 @@ impl Bsdfs {
         let b = build_bsdf(obj)?;
         let i = self.list.len() as u32;
         self.list.push(b);
+        self.names.push(obj.plugin.clone());
         self.by_object.insert(key, i);
         Ok(i)
     }
-    /// Adds a BSDF built elsewhere (an OBJ's MTL material) and returns its index.
-    pub fn push(&mut self, b: Bsdf) -> u32 {
+    /// Adds a BSDF built elsewhere (an OBJ's MTL material, named `name`) and returns its index.
+    pub fn push(&mut self, b: Bsdf, name: String) -> u32 {
         self.list.push(b);
+        self.names.push(name);
         self.list.len() as u32 - 1
     }
     /// The default BSDF of shapes without one: one-sided diffuse, reflectance 0.5, or 0 for a
@@ -50,6 +54,7 @@ impl Bsdfs {
         self.list.push(Bsdf::Diffuse(Diffuse {
             reflectance: Texture::constant(albedo),
         }));
+        self.names.push("diffuse (default)".into());
         let i = self.list.len() as u32 - 1;
         *slot = Some(i);
         i

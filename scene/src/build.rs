@@ -2,11 +2,11 @@
 use super::bsdfs::Bsdfs;
 use super::emitters::build_emitter;
 use super::integrator::read_integrator;
+use super::loaded::{LoadedScene, PluginNames};
 use super::sampler::build_sampler;
 use super::sensor::build_sensor;
 use super::shapes::build_shape;
 use super::util::Result;
-use super::LoadedScene;
 use crate::error::InputError;
 use crate::xml::{Kind, Object};
 use tessera_core::emitter::{AreaLight, Emitter};
@@ -24,6 +24,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
     let mut shapes = Vec::new();
     let mut disks = Vec::new();
     let mut emitters = Vec::new();
+    let mut names = PluginNames::default();
     let mut integrator_obj = None;
     let mut sensor = None;
     let mut scene_sampler = None;
@@ -45,7 +46,10 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
             Kind::Bsdf => {
                 bsdfs.index_of(obj)?;
             }
-            Kind::Emitter => emitters.push(build_emitter(obj, None)?),
+            Kind::Emitter => {
+                emitters.push(build_emitter(obj, None)?);
+                names.emitters.push(obj.plugin.clone());
+            }
             // Declared to be referenced (`<ref>`); built where it is used.
             Kind::Texture => {}
             Kind::Shape => {
@@ -59,6 +63,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
                     let emitter = match parts.emitter {
                         Some(e) => {
                             emitters.push(build_emitter(&e.obj, Some(shape_index))?);
+                            names.emitters.push(e.obj.plugin.clone());
                             Some(emitters.len() as u32 - 1)
                         }
                         None => None,
@@ -76,20 +81,23 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
                         emitter,
                         flip_normals: parts.flip_normals,
                     });
+                    names.shapes.push(obj.plugin.clone());
                 }
                 // OBJ faces with MTL materials: one shape each, with its own BSDF and light.
                 for part in parts.mtl_parts {
                     let shape_index = shapes.len() as u32;
                     let emitter = part.material.emission.map(|radiance| {
                         emitters.push(Emitter::Area(AreaLight::new(shape_index, radiance)));
+                        names.emitters.push("area (MTL Ke)".into());
                         emitters.len() as u32 - 1
                     });
                     shapes.push(Shape {
                         kind: ShapeKind::Mesh(part.mesh),
-                        bsdf: bsdfs.push(part.material.bsdf),
+                        bsdf: bsdfs.push(part.material.bsdf, "MTL material".into()),
                         emitter,
                         flip_normals: parts.flip_normals,
                     });
+                    names.shapes.push(format!("{} (MTL part)", obj.plugin));
                 }
                 parts.plugin.check_unused(obj)?;
             }
@@ -132,6 +140,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
     let mut scene =
         Scene::new(parts).map_err(|e| root.error(format!("cannot build the scene: {e:?}")))?;
     scene.sampler = sampler;
+    names.bsdfs = bsdfs.names;
     Ok(LoadedScene {
         scene,
         integrator,
@@ -139,5 +148,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         spp,
         seed,
         warnings,
+        names,
+        source_hash: 0,
     })
 }

@@ -5,11 +5,9 @@
 //! pixel's exact f64 sums and counts and the settings that made it. [`merge`] checks that parts
 //! belong together and assembles them: spatial parts by copying pixels (bit-identical to one
 //! whole render), sample-range parts by adding sums in order of range start.
-pub mod hash;
 pub mod merge;
 pub mod part;
 pub mod selection;
 
-pub use hash::scene_hash;
 pub use part::{read_part, write_part, Part, PartInfo};
 pub use selection::PixelSelection;

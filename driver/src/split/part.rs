@@ -11,7 +11,7 @@
 //! Text attributes: `tessera.part` (format version, `1`), `tessera.size` (`WxH`),
 //! `tessera.pixels` (`all`, `crop X0,Y0,X1,Y1` or `tiles K/N`), `tessera.tileSize`,
 //! `tessera.samples` (`a..b`), `tessera.seed`, `tessera.integrator`, `tessera.sceneHash` (16 hex
-//! digits, [`super::scene_hash`]). A file without `tessera.part` is not a part.
+//! digits, [`tessera_scene::hash::scene_hash`]). A file without `tessera.part` is not a part.
 use super::selection::PixelSelection;
 use crate::image_io::write_atomic;
 use crate::render::{Framebuffer, Tile};
@@ -40,7 +40,7 @@ pub struct PartInfo {
     pub seed: u64,
     /// The integrator and its parameters (as text; parts to merge must agree exactly).
     pub integrator: String,
-    /// [`super::scene_hash`] of the scene file and its `-D` overrides.
+    /// [`tessera_scene::hash::scene_hash`] of the scene file and its `-D` overrides.
     pub scene_hash: u64,
 }
 

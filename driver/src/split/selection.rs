@@ -4,7 +4,7 @@
 //! The selection only chooses pixels; it never changes their values, because every sample's
 //! random stream is a pure function of (seed, pixel, sample index). A part rendered with any
 //! selection therefore holds exactly the bits the whole render holds for those pixels.
-use crate::render::{tiles, Tile};
+use crate::tile::{tiles, Tile};
 use std::fmt;
 
 /// A set of pixels of a `width x height` image.

@@ -6,7 +6,7 @@
 //! scene's sampler as it is set up: `tessera bench` sets zsobol up for `--max-spp` samples, so
 //! its waves are the first `2^k` samples of every pixel's block of that size). A row's
 //! `seconds` is the wall time spent rendering that image (the sum of its waves), never the time
-//! spent measuring it. [`fresh::run_fresh`] (`tessera bench --fresh`) instead renders each
+//! spent measuring it. `fresh::run_fresh` (`tessera bench --fresh`) instead renders each
 //! wave's image from scratch, the sampler set up for that wave's count, as a user's render and
 //! Mitsuba's bench script do.
 //!

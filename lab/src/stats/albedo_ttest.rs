@@ -16,7 +16,7 @@
 //! channel tests are combined by taking the smallest p-value, Šidák-adjusted for three tests
 //! (`1 - (1 - p_min)^3`).
 //!
-//! The test itself is Student's, as [`t_test_mean_f32`](super::t_test_mean_f32) but with a
+//! The test itself is Student's, as [`t_test_mean_f32`](super::ttest::t_test_mean_f32) but with a
 //! wider floor: the weights are computed in single precision by a chain of operations (a
 //! Fresnel term, a masking term) that the reference (Mitsuba 3, also in single precision)
 //! evaluates in its own order, so [`ROUNDING_ULPS`] f32 ulps of the reference join the standard

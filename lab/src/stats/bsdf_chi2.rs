@@ -7,7 +7,7 @@
 //! `(u1, u2.x, u2.y)` from a [`Pcg32`] are passed to `Bsdf::sample`.
 //!
 //! - A smooth sample (`delta == false`) is counted in one of the equal-solid-angle cells of the
-//!   sphere (as in [`SphereChi2`](super::SphereChi2)); its expected count is `samples` times the
+//!   sphere (as in [`SphereChi2`](super::sphere_chi2::SphereChi2)); its expected count is `samples` times the
 //!   integral of `Bsdf::pdf` over the cell.
 //! - A delta sample is counted in a bin of its own per distinct direction (directions are told
 //!   apart after rounding to 1e-3); its expected count is `samples` times the discrete

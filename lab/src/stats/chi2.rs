@@ -37,7 +37,7 @@ use statrs::distribution::{ChiSquared, ContinuousCDF};
 pub const DEFAULT_MIN_EXPECTED: f64 = 5.0;
 
 /// Largest accepted deviation of a sampler's pdf integral from 1 (when the sampler never
-/// fails) in [`SphereChi2`](super::SphereChi2) and [`PlaneChi2`](super::PlaneChi2). Far above
+/// fails) in `SphereChi2` and `PlaneChi2`. Far above
 /// the cubature error, and below what the chi-square test itself can see at 1e6 samples.
 pub const PDF_INTEGRAL_TOLERANCE: f64 = 1e-3;
 
@@ -56,7 +56,7 @@ pub struct Chi2Result {
     /// Number of original cells merged into the pooled cell (0 if no pooling happened).
     pub pooled_cells: usize,
     /// Numerical integral of the pdf over the whole domain, for the samplers' tests
-    /// ([`SphereChi2`](super::SphereChi2), [`PlaneChi2`](super::PlaneChi2)); `None` from
+    /// (`SphereChi2`, `PlaneChi2`); `None` from
     /// [`chi2_test`] itself.
     pub pdf_integral: Option<f64>,
     /// Why the test failed outright (`p_value` forced to 0), e.g. samples in a cell whose

@@ -1,5 +1,5 @@
 //! The chi-square test of a sampler on a rectangular grid of cells, shared by
-//! [`SphereChi2`](super::SphereChi2) and [`PlaneChi2`](super::PlaneChi2): count the sampler's
+//! `SphereChi2` and `PlaneChi2`: count the sampler's
 //! outputs per cell, integrate the pdf over each cell, compare ([`grid_chi2`]). Each test
 //! supplies only its domain: how a sample maps to a cell, and how a grid coordinate maps to
 //! the point its pdf takes.

@@ -2,11 +2,11 @@
 //!
 //! # Method
 //!
-//! The same test as [`SphereChi2`](super::SphereChi2), on the domain `[0,1]^2` instead of the
+//! The same test as `SphereChi2`, on the domain `[0,1]^2` instead of the
 //! sphere: for position samplers whose output can be mapped to the square (triangle
 //! barycentrics, a parametrized surface's `(u, v)`, a 2-D warp).
 //!
-//! 1. `samples` points `u` uniform in `[0,1)^2` are drawn from a [`Pcg32`](super::Pcg32) seeded with `seed`
+//! 1. `samples` points `u` uniform in `[0,1)^2` are drawn from a [`Pcg32`](super::rng::Pcg32) seeded with `seed`
 //!    and passed to the sampler; the returned points are counted in `bins_x × bins_y` equal
 //!    cells. A failed sample (`None`) lands nowhere; the pdf must then integrate to the
 //!    probability of success.
@@ -14,9 +14,9 @@
 //!    8×8-point Gauss–Legendre cubature (essentially exact for pdfs smooth inside cells; about
 //!    1e-4 of a cell's probability at worst for a jump inside a cell, such as a triangle's
 //!    diagonal; see `quadrature.rs`).
-//! 3. [`chi2_test`](super::chi2_test) compares observed and expected counts with pooling of sparse cells.
+//! 3. [`chi2_test`](super::chi2::chi2_test) compares observed and expected counts with pooling of sparse cells.
 //! 4. The pdf's integral over the square is reported as `pdf_integral` and must be 1 (within
-//!    [`PDF_INTEGRAL_TOLERANCE`](super::PDF_INTEGRAL_TOLERANCE)) if the sampler never failed,
+//!    [`PDF_INTEGRAL_TOLERANCE`](super::chi2::PDF_INTEGRAL_TOLERANCE)) if the sampler never failed,
 //!    at most 1 otherwise.
 //!
 //! Immediate failures (p = 0, with a message): a point outside `[0,1]^2` (beyond 1e-6) or not

@@ -6,7 +6,7 @@
 //! (θ measured from +z) and in `φ ∈ [0, 2π)` (from +x towards +y). Since the solid angle is
 //! `dω = d(cos θ) dφ`, every cell has the same solid angle, `4π / (theta_bins · phi_bins)`.
 //!
-//! 1. `samples` points `u` uniform in `[0,1)^2` are drawn from a [`Pcg32`](super::Pcg32) seeded with
+//! 1. `samples` points `u` uniform in `[0,1)^2` are drawn from a [`Pcg32`](super::rng::Pcg32) seeded with
 //!    `rng_seed`, passed to the sampler and the returned directions are counted per cell.
 //!    A sampler may fail (`None`): such a sample lands nowhere, so the observed counts sum to
 //!    fewer than `samples`, and the pdf must integrate to the probability of success.
@@ -15,10 +15,10 @@
 //!    smooth inside the cells (jumps on cell boundaries, like a hemisphere's edge, are fine),
 //!    and to about 1e-4 of the cell's probability for a jump through a cell (a cone's edge);
 //!    see `quadrature.rs`.
-//! 3. [`chi2_test`](super::chi2_test) compares the two with pooling of sparse cells.
+//! 3. [`chi2_test`](super::chi2::chi2_test) compares the two with pooling of sparse cells.
 //! 4. The integral of the pdf over the sphere is reported as `pdf_integral`. If the sampler
 //!    never failed it must be 1 within
-//!    [`PDF_INTEGRAL_TOLERANCE`](super::PDF_INTEGRAL_TOLERANCE); if it did fail, it must not
+//!    [`PDF_INTEGRAL_TOLERANCE`](super::chi2::PDF_INTEGRAL_TOLERANCE); if it did fail, it must not
 //!    exceed 1. Otherwise the test fails with a message.
 //!
 //! Immediate failures (p = 0, with a message): a sample in a cell where the pdf integrates to

@@ -14,10 +14,8 @@
 //! Each case runs [`albedo_t_test`] at `uv = TEST_UV`: the mean luminance of the sampled
 //! weights (a failed sample counts 0) against the reference; a deterministic weight (zero
 //! variance) must match the reference within f32 rounding.
-use super::{
-    bsdf_children, count, fmt_dir, number_list, significance, CaseResult, MIN_TTEST_SAMPLES,
-    TEST_UV,
-};
+use super::case::{CaseResult, MIN_TTEST_SAMPLES, TEST_UV};
+use super::read::{bsdf_children, count, fmt_dir, number_list, significance};
 use crate::stats::{albedo_t_test, sidak_alpha, AlbedoReference};
 use glam::{Vec2, Vec3};
 use tessera_scene::error::InputError;

@@ -17,7 +17,8 @@
 //!   direction is mirrored below the surface, for two-sided models and glass.
 //!
 //! BSDFs are tested at `uv = TEST_UV`.
-use super::{at_prop, bsdf_children, count, fmt_dir, significance, Case, Chi2Case, TEST_UV};
+use super::case::{Case, Chi2Case, TEST_UV};
+use super::read::{at_prop, bsdf_children, count, fmt_dir, significance};
 use crate::stats::{sidak_alpha, BsdfChi2, Chi2Result, Pcg32, DEFAULT_MIN_EXPECTED};
 use glam::{Vec2, Vec3};
 use tessera_core::bsdf::Bsdf;

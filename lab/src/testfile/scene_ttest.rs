@@ -7,7 +7,8 @@
 //! with the scene's integrator, taking the luminance of each, and testing the mean against the
 //! reference with Student's t-test (with a floor of 4 f32 ulps on the standard error: the
 //! renderer computes in single precision).
-use super::{count, number_list, significance, CaseResult, MIN_TTEST_SAMPLES};
+use super::case::{CaseResult, MIN_TTEST_SAMPLES};
+use super::read::{count, number_list, significance};
 use crate::stats::{luminance, sidak_alpha, t_test_mean_f32, Moments};
 use tessera_core::glam::Vec2;
 use tessera_core::sampling::{IndependentSampler, Sampler};

@@ -1,44 +1,21 @@
-//! The emitter plugins: one [`Plugin`] per `<emitter type=...>` ([`EMITTERS`]): `area` (nested
+//! The emitter plugins: one [`Plugin`] per `<emitter type=...>` (`EMITTERS`): `area` (nested
 //! in a shape) in `area.rs`; the delta lights `point`, `spot`, `directional` in `delta.rs`; the
 //! lights at infinity `constant`, `envmap`, `distantdisk` in `infinite.rs`. The plugin files in
 //! `tessera_core::emitter` give each light's conventions.
 mod area;
 mod delta;
 mod infinite;
+mod table;
 
-use crate::plugin::{self, Plugin};
+pub use table::{build_emitter, EMITTERS};
+
+use crate::plugin::Plugin;
 use crate::util::Result;
 use crate::xml::Object;
 use tessera_core::emitter::Emitter;
 
 /// An emitter plugin, built with the index of the shape that carries it (area lights only).
 pub type EmitterPlugin = Plugin<fn(&Object, Option<u32>) -> Result<Emitter>>;
-
-/// Every `<emitter type=...>` Tessera knows.
-pub static EMITTERS: &[EmitterPlugin] = &[
-    area::AREA,
-    delta::POINT,
-    delta::SPOT,
-    delta::DIRECTIONAL,
-    infinite::CONSTANT,
-    infinite::ENVMAP,
-    infinite::DISTANTDISK,
-];
-
-/// Builds an emitter: at scene level (`shape` is `None`) or nested in shape `shape` (which
-/// only an area light may be), and reports unused parameters.
-pub fn build_emitter(obj: &Object, shape: Option<u32>) -> Result<Emitter> {
-    if shape.is_some() && obj.plugin != area::AREA.name {
-        return Err(obj.error(format!(
-            "a shape can only carry an \"area\" emitter, found \"{}\"",
-            obj.plugin
-        )));
-    }
-    let plugin = plugin::find(EMITTERS, "emitter", obj)?;
-    let e = (plugin.build)(obj, shape)?;
-    plugin.check_unused(obj)?;
-    Ok(e)
-}
 
 #[cfg(test)]
 mod tests {

@@ -3,7 +3,7 @@
 //! `<shape type="rectangle">`: the square `[-1,1]^2` in the z = 0 plane, normal +z, placed by
 //! `to_world`. `<shape type="cube">`: the cube `[-1,1]^3` with outward normals (each face its own
 //! four vertices, so normals are flat). Both take `to_world` and `flip_normals`.
-use super::MeshData;
+use super::data::MeshData;
 
 /// The unit rectangle as two triangles.
 pub fn rectangle() -> MeshData {

@@ -7,8 +7,9 @@
 //! (boolean, default false; a Tessera extension, see `scene/shapes.rs`). Without `use_mtl` all
 //! objects and groups of the file form one mesh and `mtllib` / `usemtl` are ignored, as in
 //! Mitsuba 3; with it, the faces are split by material.
+use super::data::{read_mesh_bytes, MeshData};
 use super::mtl::{load_mtl, MtlMaterial};
-use super::{obj_locate::locate_obj_error, read_mesh_bytes, MeshData};
+use super::obj_locate::locate_obj_error;
 use crate::error::{InputError, Loc};
 use std::cell::RefCell;
 use std::collections::HashMap;

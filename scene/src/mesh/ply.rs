@@ -4,8 +4,8 @@
 //! `face_normals` (boolean, default false), `flip_normals` (boolean, default false). Reads the
 //! `vertex` element's `x y z`, optional `nx ny nz` and `u v` (or `s t`), and the `face` element's
 //! `vertex_indices` (or `vertex_index`) lists, fan-triangulated.
+use super::data::MeshData;
 use super::ply_locate::{parse_error, record_error};
-use super::MeshData;
 use crate::error::InputError;
 use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{DefaultElement, Header, Property, PropertyType};
@@ -51,7 +51,7 @@ fn list_token(header: &Header, prop: &str) -> Option<usize> {
 /// Loads a PLY file.
 pub fn load_ply(path: &Path) -> Result<MeshData, InputError> {
     let err = |m: String| InputError::file(path, m);
-    let bytes = super::read_mesh_bytes(path)?;
+    let bytes = super::data::read_mesh_bytes(path)?;
     let mut r = bytes.as_slice();
     let ply = Parser::<DefaultElement>::new()
         .read_ply(&mut r)

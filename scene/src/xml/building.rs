@@ -4,8 +4,9 @@ use std::collections::HashMap;
 
 use super::dialect::param_name;
 use super::object::{Child, Kind, Prop};
-use super::parse::Result;
 use crate::error::{InputError, Loc};
+
+type Result<T> = std::result::Result<T, InputError>;
 
 /// An object whose element is being read.
 pub(super) struct Building {

@@ -1,6 +1,5 @@
 //! `<include>`: another file's content spliced in place, with depth and cycle checks.
 
-use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use roxmltree::Node;
@@ -8,12 +7,7 @@ use roxmltree::Node;
 use super::attrs::Attrs;
 use super::building::Building;
 use super::parse::{check_version, no_content, strip_bom, Parser, Result, MAX_INCLUDE_DEPTH};
-use super::source::{parse_document, read_text, Source};
-
-/// The canonical form of a path when it exists, else the path itself.
-pub(super) fn canonical(path: &Path) -> PathBuf {
-    std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf())
-}
+use super::source::{canonical, parse_document, read_text, Source};
 
 impl Parser {
     /// Reads an `<include>` element: the included file's root element (or, for a `<scene>`,

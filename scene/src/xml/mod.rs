@@ -38,8 +38,12 @@ use crate::error::InputError;
 /// `defines` are the command line's `-D name=value` pairs; they override `<default>`s.
 /// Included files are resolved relative to the including file's directory.
 pub fn load_file(path: &Path, defines: &[(String, String)]) -> Result<Object, InputError> {
-    let text = source::read_text(path).map_err(|m| InputError::file(path, m))?;
-    parse::Parser::new(defines).load_text(&text, path)
+    parse::Parser::new(defines).load_text(&read_file(path)?, path)
+}
+
+/// Reads a scene file's text (checked: a regular file, at most 64 MiB, UTF-8).
+pub fn read_file(path: &Path) -> Result<String, InputError> {
+    source::read_text(path).map_err(|m| InputError::file(path, m))
 }
 
 /// Loads a scene from text, as if it were read from `virtual_path` (used in locations;

@@ -178,6 +178,12 @@ fn count_chars(bytes: &[u8]) -> u32 {
     bytes.iter().filter(|&&b| (b & 0xC0) != 0x80).count() as u32
 }
 
+/// The canonical form of a path when it exists, else the path itself (how the parser knows a
+/// file it is already reading, to refuse include cycles).
+pub(super) fn canonical(path: &Path) -> PathBuf {
+    std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,0 +1,94 @@
+//! A loaded scene: the core scene with the settings its file asks for (integrator, sample count,
+//! seed), which the command line may change before rendering.
+use crate::integrator::{integrator_names, IntegratorSpec};
+use tessera_core::integrator::Integrator;
+use tessera_core::sampling::{SamplerKind, SAMPLER_NAMES};
+use tessera_core::scene::Scene;
+
+/// A loaded scene with the settings its file asks for.
+#[derive(Debug)]
+pub struct LoadedScene {
+    /// The scene.
+    pub scene: Scene,
+    /// The integrator the file names (default `path`).
+    pub integrator: Integrator,
+    /// Its name and parameters, to rebuild it with command-line changes.
+    pub integrator_spec: IntegratorSpec,
+    /// Samples per pixel from the sampler (default 4, as in Mitsuba 3).
+    pub spp: u64,
+    /// Seed from the sampler (default 0).
+    pub seed: u64,
+    /// Things that load but are not rendered exactly as written (one line each).
+    pub warnings: Vec<String>,
+    /// The plugin each shape, BSDF and emitter was built from, by index.
+    pub names: PluginNames,
+    /// [`crate::hash::scene_hash`] of the text the scene was loaded from and its `-D` defines
+    /// (0 for a scene nested in another file).
+    pub source_hash: u64,
+}
+
+/// The plugin names of a scene's parts, by their index in the core scene, for reports that
+/// name what a path met (`--debug-pixel`).
+#[derive(Clone, Debug, Default)]
+pub struct PluginNames {
+    /// Per shape.
+    pub shapes: Vec<String>,
+    /// Per BSDF.
+    pub bsdfs: Vec<String>,
+    /// Per emitter.
+    pub emitters: Vec<String>,
+}
+
+impl LoadedScene {
+    /// Switches to another sampler by name (`None`: keep the file's) and sets it up for `spp`
+    /// samples per pixel (zsobol's pixel blocks depend on it; see `ZSobolSampler`).
+    pub fn set_sampler(&mut self, name: Option<&str>, spp: u64) -> Result<(), String> {
+        self.scene.sampler = match name {
+            Some(n) => SamplerKind::from_name(n, spp)
+                .ok_or_else(|| format!("unknown sampler \"{n}\" (known: {SAMPLER_NAMES})"))?,
+            None => self.scene.sampler.for_spp(spp),
+        };
+        Ok(())
+    }
+
+    /// Switches to another integrator by name (keeping the file's parameters that apply; a name
+    /// ending in `+reuse` turns on path reuse, any other name turns it off) and/or another
+    /// `max_depth` (-1 = unbounded).
+    pub fn set_integrator(
+        &mut self,
+        name: Option<&str>,
+        max_depth: Option<i64>,
+    ) -> Result<(), String> {
+        let mut spec = self.integrator_spec.clone();
+        if let Some(n) = name {
+            // `NAME+reuse`: the path tracer NAME with path reuse; a name given without it
+            // turns reuse off, whatever the file said.
+            let (base, reuse) = match n.strip_suffix("+reuse") {
+                Some(base) => (base, true),
+                None => (n, false),
+            };
+            if reuse && !base.starts_with("path") {
+                return Err(format!(
+                    "\"+reuse\" needs a path tracer (path, path_mis, ...), found \"{base}\""
+                ));
+            }
+            spec.name = base.to_string();
+            spec.reuse = reuse;
+        }
+        if let Some(d) = max_depth {
+            if d < -1 || d > u32::MAX as i64 {
+                return Err(format!("max depth must be -1 or at least 0, found {d}"));
+            }
+            spec.max_depth = (d >= 0).then_some(d as u32);
+        }
+        self.integrator = spec.build().ok_or_else(|| {
+            format!(
+                "unknown integrator \"{}\" (known: {})",
+                spec.name,
+                integrator_names()
+            )
+        })?;
+        self.integrator_spec = spec;
+        Ok(())
+    }
+}
