@@ -89,13 +89,7 @@ fn build_sphere(obj: &Object) -> Result<Geometry> {
     }))
 }
 
-const FILENAME: Param = Param::new(
-    "filename",
-    ParamType::String,
-    Default::Required,
-    Range::Note("relative to the scene file"),
-    "the mesh file",
-);
+const FILENAME: Param = Param::file("relative to the scene file", "the mesh file");
 const FACE_NORMALS: Param = Param::boolean(
     "face_normals",
     false,

@@ -76,11 +76,8 @@ fn build_distant_disk(obj: &Object, _: Option<u32>) -> Result<Emitter> {
     )))
 }
 
-const FILENAME: Param = Param::new(
-    "filename",
-    ParamType::String,
-    Default::Required,
-    Range::Note("an EXR, PFM or RGBE .hdr image, relative to the scene file, at least 2x3 pixels"),
+const FILENAME: Param = Param::file(
+    "an EXR, PFM or RGBE .hdr image, relative to the scene file, at least 2x3 pixels",
     "the latitude-longitude image of linear radiance",
 );
 const SCALE: Param = Param::float("scale", 1.0, Range::NonNegative, "factor on the radiance");

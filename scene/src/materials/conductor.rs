@@ -32,7 +32,8 @@ const K: Param = Param::texture(
     Range::NonNegative,
     "imaginary part of the index of refraction (only with material \"none\")",
 );
-const SPECULAR_REFLECTANCE: Param = Param::texture(
+/// `specular_reflectance` of the metals and glasses (a tint).
+pub(crate) const SPECULAR_REFLECTANCE: Param = Param::texture(
     "specular_reflectance",
     [1.0; 3],
     Range::Unit,

@@ -1,7 +1,9 @@
 //! `dielectric`, `roughdielectric`, `thindielectric` (Mitsuba 3 names and defaults). The models
 //! use `eta = int_ior / ext_ior`, computed in single precision as Mitsuba does.
 use super::super::util::at_prop;
-use super::conductor::{microfacet, ALPHA, ALPHA_U, ALPHA_V, DISTRIBUTION, SAMPLE_VISIBLE};
+use super::conductor::{
+    microfacet, ALPHA, ALPHA_U, ALPHA_V, DISTRIBUTION, SAMPLE_VISIBLE, SPECULAR_REFLECTANCE,
+};
 use super::ior::read_ior;
 use super::texture::read_texture;
 use super::{BsdfPlugin, Result};
@@ -14,12 +16,6 @@ use tessera_core::texture::Texture;
 pub(crate) const INT_IOR: Param = Param::ior("int_ior", "bk7", "index of refraction inside");
 /// `ext_ior` of the glass plugins.
 pub(crate) const EXT_IOR: Param = Param::ior("ext_ior", "air", "index of refraction outside");
-const SPECULAR_REFLECTANCE: Param = Param::texture(
-    "specular_reflectance",
-    [1.0; 3],
-    Range::Unit,
-    "factor on the reflection (not physical; for artistic control)",
-);
 const SPECULAR_TRANSMITTANCE: Param = Param::texture(
     "specular_transmittance",
     [1.0; 3],
@@ -28,18 +24,10 @@ const SPECULAR_TRANSMITTANCE: Param = Param::texture(
 );
 
 /// `dielectric`.
-pub const DIELECTRIC: BsdfPlugin = Plugin {
-    name: "dielectric",
-    aliases: &[],
-    doc: "Smooth glass: Fresnel-weighted mirror reflection and refraction.",
-    params: &[
-        INT_IOR,
-        EXT_IOR,
-        SPECULAR_REFLECTANCE,
-        SPECULAR_TRANSMITTANCE,
-    ],
-    nested: "",
-    build: |obj| {
+pub const DIELECTRIC: BsdfPlugin = smooth_glass(
+    "dielectric",
+    "Smooth glass: Fresnel-weighted mirror reflection and refraction.",
+    |obj| {
         let g = Glass::read(obj)?;
         Ok(Bsdf::Dielectric(Dielectric {
             eta: g.eta,
@@ -47,22 +35,14 @@ pub const DIELECTRIC: BsdfPlugin = Plugin {
             specular_transmittance: g.transmittance,
         }))
     },
-};
+);
 
 /// `thindielectric`.
-pub const THINDIELECTRIC: BsdfPlugin = Plugin {
-    name: "thindielectric",
-    aliases: &[],
-    doc: "A thin glass sheet (a window pane): reflection and straight-through transmission, with \
-          the inter-reflections inside the sheet summed.",
-    params: &[
-        INT_IOR,
-        EXT_IOR,
-        SPECULAR_REFLECTANCE,
-        SPECULAR_TRANSMITTANCE,
-    ],
-    nested: "",
-    build: |obj| {
+pub const THINDIELECTRIC: BsdfPlugin = smooth_glass(
+    "thindielectric",
+    "A thin glass sheet (a window pane): reflection and straight-through transmission, with the \
+     inter-reflections inside the sheet summed.",
+    |obj| {
         let g = Glass::read(obj)?;
         Ok(Bsdf::ThinDielectric(ThinDielectric {
             eta: g.eta,
@@ -70,7 +50,28 @@ pub const THINDIELECTRIC: BsdfPlugin = Plugin {
             specular_transmittance: g.transmittance,
         }))
     },
-};
+);
+
+/// A smooth glass plugin: the indices and the two tints.
+const fn smooth_glass(
+    name: &'static str,
+    doc: &'static str,
+    build: fn(&Object) -> Result<Bsdf>,
+) -> BsdfPlugin {
+    Plugin {
+        name,
+        aliases: &[],
+        doc,
+        params: &[
+            INT_IOR,
+            EXT_IOR,
+            SPECULAR_REFLECTANCE,
+            SPECULAR_TRANSMITTANCE,
+        ],
+        nested: "",
+        build,
+    }
+}
 
 /// `roughdielectric`.
 pub const ROUGHDIELECTRIC: BsdfPlugin = Plugin {

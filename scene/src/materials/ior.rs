@@ -38,6 +38,27 @@ pub fn read_ior(obj: &Object, p: &Param) -> Result<f64> {
     ior(obj, p.name, default)
 }
 
+/// The indices `int` and `ext` of `obj` and their ratio `int / ext` (computed in double
+/// precision, then rounded), which must be finite and positive.
+pub fn read_eta(obj: &Object, int: &Param, ext: &Param) -> Result<(f64, f64, f32)> {
+    let int_ior = read_ior(obj, int)?;
+    let ext_ior = read_ior(obj, ext)?;
+    let eta = (int_ior / ext_ior) as f32;
+    if !(eta.is_finite() && eta > 0.0) {
+        return Err(at_prop(
+            obj,
+            int.name,
+            format!(
+                "\"{}\" / \"{}\" of {} is out of range",
+                int.name,
+                ext.name,
+                obj.describe()
+            ),
+        ));
+    }
+    Ok((int_ior, ext_ior, eta))
+}
+
 /// The index of refraction `name` of `obj`: a `<float>` or a `<string>` naming a material;
 /// `default` names the value used when absent. Must be finite and positive.
 pub fn ior(obj: &Object, name: &str, default: &str) -> Result<f64> {

@@ -1,8 +1,8 @@
 //! `plastic` and `roughplastic` (Mitsuba 3): a dielectric coating over a diffuse base. The
 //! indices of `roughplastic` must differ, as Mitsuba 3 requires.
 use super::super::util::at_prop;
-use super::conductor::{ALPHA, DISTRIBUTION, SAMPLE_VISIBLE};
-use super::ior::read_ior;
+use super::conductor::{ALPHA, DISTRIBUTION, SAMPLE_VISIBLE, SPECULAR_REFLECTANCE};
+use super::ior::read_eta;
 use super::texture::read_texture;
 use super::{BsdfPlugin, Result};
 use crate::plugin::{Param, Plugin, Range};
@@ -16,12 +16,6 @@ const DIFFUSE_REFLECTANCE: Param = Param::texture(
     [0.5; 3],
     Range::Unit,
     "albedo of the diffuse base",
-);
-const SPECULAR_REFLECTANCE: Param = Param::texture(
-    "specular_reflectance",
-    [1.0; 3],
-    Range::Unit,
-    "factor on the coating's reflection (not physical; for artistic control)",
 );
 const INT_IOR: Param = Param::ior(
     "int_ior",
@@ -136,20 +130,8 @@ impl Coating {
     fn read(obj: &Object) -> Result<Coating> {
         let diffuse = read_texture(obj, &DIFFUSE_REFLECTANCE)?;
         let specular = read_texture(obj, &SPECULAR_REFLECTANCE)?;
-        let int_ior = read_ior(obj, &INT_IOR)?;
-        let ext_ior = read_ior(obj, &EXT_IOR)?;
+        let (int_ior, ext_ior, eta) = read_eta(obj, &INT_IOR, &EXT_IOR)?;
         let nonlinear = NONLINEAR.read_bool(obj)?;
-        let eta = (int_ior / ext_ior) as f32;
-        if !(eta.is_finite() && eta > 0.0) {
-            return Err(at_prop(
-                obj,
-                "int_ior",
-                format!(
-                    "\"int_ior\" / \"ext_ior\" of {} is out of range",
-                    obj.describe()
-                ),
-            ));
-        }
         Ok(Coating {
             diffuse,
             specular,

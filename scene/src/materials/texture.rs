@@ -5,7 +5,7 @@
 //! (which row is `v = 0`, pixel centres, wrapping) are in `tessera_core::texture`'s plugin files.
 use super::super::util::{at_prop, Result};
 use crate::image::read_image;
-use crate::plugin::{self, Default, Param, ParamType, Plugin, Range};
+use crate::plugin::{self, Default, Param, Plugin, Range};
 use crate::xml::{Kind, Object};
 use glam::{DMat4, Vec3};
 use std::path::Path;
@@ -94,11 +94,8 @@ pub const CHECKERBOARD: TexturePlugin = Plugin {
     },
 };
 
-const FILENAME: Param = Param::new(
-    "filename",
-    ParamType::String,
-    Default::Required,
-    Range::Note("a PNG, EXR, PFM or RGBE .hdr file, relative to the scene file"),
+const FILENAME: Param = Param::file(
+    "a PNG, EXR, PFM or RGBE .hdr file, relative to the scene file",
     "the image (a PNG's alpha channel is ignored)",
 );
 const RAW: Param = Param::boolean(

@@ -1,7 +1,6 @@
 //! Nori / Wakame BSDFs: `mirror` and Wakame's `microfacet`.
-use super::super::util::at_prop;
 use super::dielectric::{EXT_IOR, INT_IOR};
-use super::ior::read_ior;
+use super::ior::read_eta;
 use super::{BsdfPlugin, Result};
 use crate::plugin::{Default, Param, Plugin, Range};
 use crate::xml::Object;
@@ -38,20 +37,8 @@ pub const MICROFACET: BsdfPlugin = Plugin {
 
 fn build_microfacet(obj: &Object) -> Result<Bsdf> {
     let alpha = ALPHA.read_f32(obj)?;
-    let int_ior = read_ior(obj, &INT_IOR)?;
-    let ext_ior = read_ior(obj, &EXT_IOR)?;
+    let (_, _, eta) = read_eta(obj, &INT_IOR, &EXT_IOR)?;
     let kd = KD.read_color(obj)?;
-    let eta = (int_ior / ext_ior) as f32;
-    if !(eta.is_finite() && eta > 0.0) {
-        return Err(at_prop(
-            obj,
-            "int_ior",
-            format!(
-                "\"int_ior\" / \"ext_ior\" of {} is out of range",
-                obj.describe()
-            ),
-        ));
-    }
     Ok(Bsdf::WakameMicrofacet(WakameMicrofacet::new(
         alpha, eta, kd,
     )))

@@ -1,7 +1,7 @@
 //! A plugin parameter declared as data: its name, type, default, valid range and one line of
-//! meaning. The loader reads every parameter through its declaration ([`super::read`]), so the
+//! meaning. The loader reads every parameter through its declaration (`plugin::read`), so the
 //! default and the range check it applies, the list of parameters an unused-parameter error
-//! names, and the reference documentation ([`super::doc`]) all come from this one place.
+//! names, and the reference documentation (`plugin::doc`) all come from this one place.
 use std::fmt;
 
 /// What a parameter holds, as a scene file writes it.
@@ -325,6 +325,17 @@ impl Param {
             doc,
             unit: "",
         }
+    }
+
+    /// A required file name, relative to the scene file (`what` says which files).
+    pub const fn file(what: &'static str, doc: &'static str) -> Self {
+        Param::new(
+            "filename",
+            ParamType::String,
+            Default::Required,
+            Range::Note(what),
+            doc,
+        )
     }
 
     /// A transform parameter (identity when absent).
