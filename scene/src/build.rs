@@ -1,6 +1,7 @@
 //! Walks the scene tree and assembles the core scene.
 use super::bsdfs::Bsdfs;
 use super::emitters::build_emitter;
+use super::families::declared_params;
 use super::integrator::read_integrator;
 use super::loaded::{LoadedScene, PluginNames};
 use super::sampler::build_sampler;
@@ -9,6 +10,7 @@ use super::shapes::build_shape;
 use super::util::Result;
 use crate::error::InputError;
 use crate::xml::{Kind, Object};
+use std::collections::HashSet;
 use tessera_core::emitter::{AreaLight, Emitter};
 use tessera_core::geometry::{Shape, ShapeKind};
 use tessera_core::sampling::SamplerKind;
@@ -128,6 +130,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         (None, None) => (4, 0, SamplerKind::Independent),
     };
     root.check_unused()?;
+    warn_ignored(root, &mut warnings, &mut HashSet::new());
     let parts = SceneParts {
         shapes,
         disks,
@@ -151,4 +154,28 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         names,
         source_hash: 0,
     })
+}
+
+/// Adds a located warning for each parameter the file gives that is declared without effect
+/// (`Param::ignored`), once per object however often it is referenced.
+fn warn_ignored(obj: &Object, warnings: &mut Vec<String>, seen: &mut HashSet<*const Object>) {
+    if !seen.insert(obj as *const Object) {
+        return;
+    }
+    if let Some(params) = declared_params(obj.kind, &obj.plugin) {
+        for p in params.iter().filter(|p| p.ignored) {
+            if let Some(prop) = obj.props.iter().find(|q| q.name == p.name) {
+                warnings.push(format!(
+                    "{}: \"{}\" of {} is accepted but ignored ({})",
+                    prop.loc,
+                    p.name,
+                    obj.describe(),
+                    p.doc
+                ));
+            }
+        }
+    }
+    for c in &obj.children {
+        warn_ignored(&c.obj, warnings, seen);
+    }
 }

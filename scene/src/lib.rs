@@ -15,6 +15,7 @@ pub mod xml;
 mod bsdfs;
 mod build;
 mod emitters;
+mod families;
 mod filter;
 mod integrator;
 mod loaded;
@@ -31,7 +32,8 @@ pub use sensor::{MAX_EDGE, MAX_PIXELS};
 use crate::error::InputError;
 use std::path::Path;
 
-/// Loads a scene file (read once: its hash comes from the same bytes); `defines` are `-D name=value` overrides of `<default>`s.
+/// Loads a scene file (read once: its hash comes from the same bytes); `defines` are
+/// `-D name=value` overrides of `<default>`s.
 pub fn load_scene(path: &Path, defines: &[(String, String)]) -> Result<LoadedScene, InputError> {
     let text = crate::xml::read_file(path)?;
     load_scene_str(&text, path, defines)

@@ -44,7 +44,8 @@ const JITTER: Param = Param::boolean(
     "jitter",
     true,
     "Mitsuba's jitter within strata; has no effect (zsobol's points are scrambled)",
-);
+)
+.ignored();
 
 /// The settings every sampler reads, for the sampler `name`.
 fn settings(obj: &Object, name: &str) -> Result<SamplerSettings> {

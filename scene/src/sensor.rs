@@ -53,21 +53,24 @@ const PIXEL_FORMAT: Param = Param::new(
     Default::Str("rgb"),
     Range::Any,
     "has no effect: the output is linear RGB",
-);
+)
+.ignored();
 const COMPONENT_FORMAT: Param = Param::new(
     "component_format",
     ParamType::String,
     Default::Str("float16"),
     Range::Any,
     "has no effect: the output file's format decides",
-);
+)
+.ignored();
 const FILE_FORMAT: Param = Param::new(
     "file_format",
     ParamType::String,
     Default::Str("openexr"),
     Range::Any,
     "has no effect: the output file's extension decides",
-);
+)
+.ignored();
 
 /// `hdrfilm`.
 pub const HDRFILM: FilmPlugin = Plugin {

@@ -85,7 +85,8 @@ const MIS_COMPENSATION: Param = Param::boolean(
     "mis_compensation",
     false,
     "Mitsuba 3's sampling option; has no effect (Tessera samples its own way)",
-);
+)
+.ignored();
 
 /// `envmap`.
 pub const ENVMAP: EmitterPlugin = Plugin {

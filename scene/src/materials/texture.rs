@@ -115,7 +115,8 @@ const WRAP_MODE: Param = Param::choice(
     &["repeat", "mirror", "clamp"],
     "what uv outside [0, 1] reads",
 );
-const ACCEL: Param = Param::boolean("accel", true, "Mitsuba's GPU lookup option; has no effect");
+const ACCEL: Param =
+    Param::boolean("accel", true, "Mitsuba's GPU lookup option; has no effect").ignored();
 
 /// `bitmap`.
 pub const BITMAP: TexturePlugin = Plugin {

@@ -220,6 +220,9 @@ pub struct Param {
     pub doc: &'static str,
     /// The unit of a number (`"degrees"`), or empty.
     pub unit: &'static str,
+    /// Accepted for compatibility but without effect in Tessera: a file that gives it gets a
+    /// located warning.
+    pub ignored: bool,
 }
 
 impl Param {
@@ -232,6 +235,7 @@ impl Param {
             range,
             doc,
             unit: "",
+            ignored: false,
         }
     }
 
@@ -249,6 +253,7 @@ impl Param {
             range,
             doc,
             unit: "",
+            ignored: false,
         }
     }
 
@@ -261,6 +266,7 @@ impl Param {
             range: Range::Any,
             doc,
             unit: "",
+            ignored: false,
         }
     }
 
@@ -278,6 +284,7 @@ impl Param {
             range: Range::OneOf(names),
             doc,
             unit: "",
+            ignored: false,
         }
     }
 
@@ -295,6 +302,7 @@ impl Param {
             range,
             doc,
             unit: "",
+            ignored: false,
         }
     }
 
@@ -307,6 +315,7 @@ impl Param {
             range: Range::Positive,
             doc,
             unit: "",
+            ignored: false,
         }
     }
 
@@ -324,6 +333,7 @@ impl Param {
             range,
             doc,
             unit: "",
+            ignored: false,
         }
     }
 
@@ -347,6 +357,7 @@ impl Param {
             range: Range::Any,
             doc,
             unit: "",
+            ignored: false,
         }
     }
 
@@ -365,12 +376,21 @@ impl Param {
             range,
             doc,
             unit: "",
+            ignored: false,
         }
     }
 
     /// The same parameter with another default.
     pub const fn with_default(self, default: Default) -> Self {
         Param { default, ..self }
+    }
+
+    /// The same parameter, accepted without effect (a file that gives it gets a warning).
+    pub const fn ignored(self) -> Self {
+        Param {
+            ignored: true,
+            ..self
+        }
     }
 
     /// The same parameter with a unit.
