@@ -1,7 +1,7 @@
 //! Walks the scene tree and assembles the core scene.
 use super::bsdfs::Bsdfs;
 use super::emitters::build_emitter;
-use super::families::declared_params;
+use super::families::{declared_params, families, Family};
 use super::integrator::read_integrator;
 use super::loaded::{LoadedScene, PluginNames};
 use super::sampler::build_sampler;
@@ -130,7 +130,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         (None, None) => (4, 0, SamplerKind::Independent),
     };
     root.check_unused()?;
-    warn_ignored(root, &mut warnings, &mut HashSet::new());
+    warn_ignored(root, &families(), &mut warnings, &mut HashSet::new());
     let parts = SceneParts {
         shapes,
         disks,
@@ -158,11 +158,16 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
 
 /// Adds a located warning for each parameter the file gives that is declared without effect
 /// (`Param::ignored`), once per object however often it is referenced.
-fn warn_ignored(obj: &Object, warnings: &mut Vec<String>, seen: &mut HashSet<*const Object>) {
+fn warn_ignored(
+    obj: &Object,
+    families: &[Family],
+    warnings: &mut Vec<String>,
+    seen: &mut HashSet<*const Object>,
+) {
     if !seen.insert(obj as *const Object) {
         return;
     }
-    if let Some(params) = declared_params(obj.kind, &obj.plugin) {
+    if let Some(params) = declared_params(families, obj.kind, &obj.plugin) {
         for p in params.iter().filter(|p| p.ignored) {
             if let Some(prop) = obj.props.iter().find(|q| q.name == p.name) {
                 warnings.push(format!(
@@ -176,6 +181,6 @@ fn warn_ignored(obj: &Object, warnings: &mut Vec<String>, seen: &mut HashSet<*co
         }
     }
     for c in &obj.children {
-        warn_ignored(&c.obj, warnings, seen);
+        warn_ignored(&c.obj, families, warnings, seen);
     }
 }

@@ -1,26 +1,63 @@
-//! Every family's declared parameters by element kind and plugin name, for checks that walk a
-//! whole scene tree after it is built (the parameters a file gives that have no effect).
-use crate::plugin::{Param, Plugin};
+//! Every family of plugins, in the order the reference lists them: the one place that names
+//! them all, for what reads every family alike (the reference, the check for parameters
+//! without effect).
+use crate::plugin::{Declared, Param, Plugin};
 use crate::xml::Kind;
 
-fn params<B>(family: &'static [Plugin<B>], name: &str) -> Option<&'static [Param]> {
-    family.iter().find(|p| p.is(name)).map(|p| p.params)
+/// One family: its element, its title in the reference, its plugins' declarations.
+pub struct Family {
+    /// The element (`<bsdf>`, ...).
+    pub kind: Kind,
+    /// Its section title in the reference.
+    pub title: &'static str,
+    /// Its plugins, in table order.
+    pub plugins: Vec<Declared>,
+}
+
+fn family<B>(kind: Kind, title: &'static str, table: &[Plugin<B>]) -> Family {
+    Family {
+        kind,
+        title,
+        plugins: table.iter().map(Plugin::declared).collect(),
+    }
+}
+
+/// Every family.
+pub fn families() -> Vec<Family> {
+    vec![
+        family(
+            Kind::Integrator,
+            "Integrators",
+            crate::integrator::INTEGRATORS,
+        ),
+        family(Kind::Sampler, "Samplers", crate::sampler::SAMPLERS),
+        family(Kind::Sensor, "Sensors", crate::sensor::SENSORS),
+        family(Kind::Film, "Films", crate::sensor::FILMS),
+        family(
+            Kind::RFilter,
+            "Reconstruction filters",
+            crate::filter::FILTERS,
+        ),
+        family(Kind::Shape, "Shapes", crate::shapes::SHAPES),
+        family(Kind::Bsdf, "BSDFs", crate::materials::BSDFS),
+        family(
+            Kind::Texture,
+            "Textures",
+            crate::materials::texture::TEXTURES,
+        ),
+        family(Kind::Emitter, "Emitters", crate::emitters::EMITTERS),
+    ]
 }
 
 /// The declared parameters of plugin `name` of element kind `kind`, if it is one.
-pub fn declared_params(kind: Kind, name: &str) -> Option<&'static [Param]> {
-    match kind {
-        Kind::Integrator => params(crate::integrator::INTEGRATORS, name),
-        Kind::Sampler => params(crate::sampler::SAMPLERS, name),
-        Kind::Sensor => params(crate::sensor::SENSORS, name),
-        Kind::Film => params(crate::sensor::FILMS, name),
-        Kind::RFilter => params(crate::filter::FILTERS, name),
-        Kind::Shape => params(crate::shapes::SHAPES, name),
-        Kind::Bsdf => params(crate::materials::BSDFS, name),
-        Kind::Texture => params(crate::materials::texture::TEXTURES, name),
-        Kind::Emitter => params(crate::emitters::EMITTERS, name),
-        Kind::Scene | Kind::Test => None,
-    }
+pub fn declared_params(families: &[Family], kind: Kind, name: &str) -> Option<&'static [Param]> {
+    families
+        .iter()
+        .find(|f| f.kind == kind)?
+        .plugins
+        .iter()
+        .find(|p| p.is(name))
+        .map(|p| p.params)
 }
 
 #[cfg(test)]

@@ -224,17 +224,10 @@ fn read_path(obj: &Object, spec: &mut IntegratorSpec) -> Result<()> {
 }
 
 fn read_heuristic(obj: &Object, spec: &mut IntegratorSpec) -> Result<()> {
-    if obj.has(HEURISTIC.name) {
-        spec.heuristic = Some(
-            match HEURISTIC
-                .with_default(crate::plugin::Default::Str("power"))
-                .read_choice(obj)?
-            {
-                "balance" => Heuristic::Balance,
-                _ => Heuristic::Power,
-            },
-        );
-    }
+    spec.heuristic = HEURISTIC.read_choice_opt(obj)?.map(|h| match h {
+        "balance" => Heuristic::Balance,
+        _ => Heuristic::Power,
+    });
     Ok(())
 }
 
@@ -301,8 +294,7 @@ pub const DIRECT: IntegratorPlugin = Plugin {
 
 fn read_direct(obj: &Object, spec: &mut IntegratorSpec) -> Result<()> {
     let count = |p: &Param, default: i64| -> Result<u32> {
-        let p = p.with_default(crate::plugin::Default::Integer(default));
-        Ok(p.read_i64_where(obj, |n| (0..=1 << 20).contains(&n))? as u32)
+        Ok(p.read_i64_or(obj, default, |n| (0..=1 << 20).contains(&n))? as u32)
     };
     let shading = count(&SHADING_SAMPLES, 1)?;
     spec.emitter_samples = count(&EMITTER_SAMPLES, shading as i64)?;

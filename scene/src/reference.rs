@@ -1,72 +1,28 @@
 //! The plugin reference, written from the loader's tables: every plugin of every family with
 //! its parameters. `docs/reference/plugins.md` is this text (a test keeps it so) and
 //! `tessera plugins [NAME]` prints it.
+use crate::families::families;
 use crate::plugin::doc::plugin_markdown;
-use crate::plugin::Plugin;
 
-/// One family's section, or the entries named `only` in it.
-fn family<B>(
-    out: &mut Vec<String>,
-    tag: &str,
-    title: &str,
-    list: &[Plugin<B>],
-    only: Option<&str>,
-) {
-    let entries: Vec<String> = list
-        .iter()
-        .filter(|p| only.is_none_or(|n| p.is(n)))
-        .map(|p| plugin_markdown(tag, p))
-        .collect();
-    if entries.is_empty() {
-        return;
-    }
-    if only.is_none() {
-        out.push(format!("## {title} (`<{tag}>`)\n"));
-    }
-    out.extend(entries);
-}
-
+/// Every family's section, or only the entries named `only` (without section titles).
 fn sections(only: Option<&str>) -> Vec<String> {
     let mut out = Vec::new();
-    family(
-        &mut out,
-        "integrator",
-        "Integrators",
-        crate::integrator::INTEGRATORS,
-        only,
-    );
-    family(
-        &mut out,
-        "sampler",
-        "Samplers",
-        crate::sampler::SAMPLERS,
-        only,
-    );
-    family(&mut out, "sensor", "Sensors", crate::sensor::SENSORS, only);
-    family(&mut out, "film", "Films", crate::sensor::FILMS, only);
-    family(
-        &mut out,
-        "rfilter",
-        "Reconstruction filters",
-        crate::filter::FILTERS,
-        only,
-    );
-    family(&mut out, "shape", "Shapes", crate::shapes::SHAPES, only);
-    family(&mut out, "bsdf", "BSDFs", crate::materials::BSDFS, only);
-    family(
-        &mut out,
-        "texture",
-        "Textures",
-        crate::materials::texture::TEXTURES,
-        only,
-    );
-    family(
-        &mut out,
-        "emitter",
-        "Emitters",
-        crate::emitters::EMITTERS,
-        only,
-    );
+    for f in families() {
+        let tag = f.kind.tag();
+        let entries: Vec<String> = f
+            .plugins
+            .iter()
+            .filter(|p| only.is_none_or(|n| p.is(n)))
+            .map(|p| plugin_markdown(tag, p))
+            .collect();
+        if entries.is_empty() {
+            continue;
+        }
+        if only.is_none() {
+            out.push(format!("## {} (`<{tag}>`)\n", f.title));
+        }
+        out.extend(entries);
+    }
     out
 }
 

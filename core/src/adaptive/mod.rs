@@ -34,67 +34,15 @@
 //! pixel whose first samples happened to be quiet gets fewer later samples. The uniform share,
 //! the smoothing and the growing totals keep that effect small; see the README's measurements.
 use crate::film::PixelAccum;
-use crate::integrator::{Integrator, GROUP_H, GROUP_W};
 use crate::math::sqrt_f64;
 
 mod blocks;
+mod params;
 mod variance;
 use alloc::vec;
 use alloc::vec::Vec;
+pub use params::{AdaptiveParams, ZSOBOL_BLOCK_FACTOR};
 pub use variance::{neighbourhood_variance, relative_variance};
-
-/// How many times the mean sample count an adaptive render's `zsobol` pixel blocks hold
-/// (`tessera render --adaptive` sets the sampler up for this many times the scene's sample
-/// count). Noisy pixels take several times the mean (cbox at a mean of 64: 23 to 325), and
-/// samples past a pixel's block start a fresh randomisation instead of continuing its
-/// stratified sequence. Measured at a mean of 64 spp (128x128, 4 seeds): blocks of 1024 instead
-/// of 64 lowered relMSE from 7.28e-5 to 6.52e-5 on veach_mis and from 2.09e-3 to 2.00e-3 on cbox.
-pub const ZSOBOL_BLOCK_FACTOR: u64 = 16;
-
-/// Settings of [`plan_pass`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct AdaptiveParams {
-    /// Added to `mean^2` in the relative variance (default 0.01).
-    pub floor: f64,
-    /// Share of all samples spread evenly over the pixels, in `[0, 1]` (default 0.25).
-    pub uniform: f64,
-    /// Samples every pixel takes before the first adaptive pass (at least 1; default 1: a
-    /// pixel holding one sample is judged by its neighbourhood, see
-    /// [`neighbourhood_variance`]).
-    pub warmup: u64,
-    /// Width and height of the aligned blocks of pixels that are planned together and take the
-    /// same count in each pass (default `(1, 1)`: every pixel on its own). The reuse group's
-    /// size when the integrator shares light among groups of pixels (path reuse), which then
-    /// finds every pixel of a group at each sample index instead of tracing the others' paths
-    /// only to share them ([`AdaptiveParams::for_integrator`]).
-    pub block: (u32, u32),
-}
-
-impl Default for AdaptiveParams {
-    fn default() -> Self {
-        AdaptiveParams {
-            floor: 0.01,
-            uniform: 0.25,
-            warmup: 1,
-            block: (1, 1),
-        }
-    }
-}
-
-impl AdaptiveParams {
-    /// These settings for rendering with `integrator`: blocks of its reuse groups
-    /// ([`GROUP_W`] x [`GROUP_H`]) when it shares light among them ([`crate::render::reuses`]),
-    /// so that each pass finds every pixel of a group at each sample index.
-    pub fn for_integrator(self, integrator: &Integrator) -> Self {
-        if !crate::render::reuses(integrator) {
-            return self;
-        }
-        AdaptiveParams {
-            block: (GROUP_W, GROUP_H),
-            ..self
-        }
-    }
-}
 
 /// How many samples each pixel of a `width x height` image (row-major `pixels`) takes in the
 /// next pass, `budget` in all (see the module notes). Pixels are counted by samples attempted

@@ -164,13 +164,18 @@ fn complex_ior(obj: &Object) -> Result<(Texture, Texture)> {
     }
 }
 
+/// The `distribution` of a rough plugin.
+pub(crate) fn read_distribution(obj: &Object) -> Result<MicrofacetKind> {
+    Ok(match DISTRIBUTION.read_choice(obj)? {
+        "ggx" => MicrofacetKind::Ggx,
+        _ => MicrofacetKind::Beckmann,
+    })
+}
+
 /// The microfacet distribution of a rough plugin: `distribution`, `alpha` or
 /// `alpha_u`/`alpha_v`, `sample_visible` (Mitsuba 3's names, defaults and rules).
 pub(crate) fn microfacet(obj: &Object) -> Result<Microfacet> {
-    let kind = match DISTRIBUTION.read_choice(obj)? {
-        "ggx" => MicrofacetKind::Ggx,
-        _ => MicrofacetKind::Beckmann,
-    };
+    let kind = read_distribution(obj)?;
     let (alpha_u, alpha_v) = if obj.has("alpha_u") || obj.has("alpha_v") {
         for (name, other) in [("alpha_u", "alpha_v"), ("alpha_v", "alpha_u")] {
             if !obj.has(name) {

@@ -4,7 +4,7 @@ use super::super::util::at_prop;
 use super::conductor::{
     microfacet, ALPHA, ALPHA_U, ALPHA_V, DISTRIBUTION, SAMPLE_VISIBLE, SPECULAR_REFLECTANCE,
 };
-use super::ior::read_ior;
+use super::ior::{indices_differ, read_ior};
 use super::texture::read_texture;
 use super::{BsdfPlugin, Result};
 use crate::plugin::{Param, Plugin, Range};
@@ -97,17 +97,7 @@ pub const ROUGHDIELECTRIC: BsdfPlugin = Plugin {
 
 fn build_rough(obj: &Object) -> Result<Bsdf> {
     let g = Glass::read(obj)?;
-    if g.int_ior == g.ext_ior {
-        return Err(at_prop(
-            obj,
-            "int_ior",
-            format!(
-                "{}: \"int_ior\" and \"ext_ior\" must differ (both {})",
-                obj.describe(),
-                g.int_ior
-            ),
-        ));
-    }
+    indices_differ(obj, g.int_ior, g.ext_ior)?;
     Ok(Bsdf::RoughDielectric(RoughDielectric {
         distribution: microfacet(obj)?,
         eta: g.eta,

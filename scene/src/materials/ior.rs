@@ -59,6 +59,26 @@ pub fn read_eta(obj: &Object, int: &Param, ext: &Param) -> Result<(f64, f64, f32
     Ok((int_ior, ext_ior, eta))
 }
 
+/// Refuses equal indices `int_ior` and `ext_ior` (a rough interface between equal media has
+/// no reflection and an undefined refraction; Mitsuba 3 refuses it too).
+pub fn indices_differ<T: PartialEq + std::fmt::Display>(
+    obj: &Object,
+    int_ior: T,
+    ext_ior: T,
+) -> Result<()> {
+    if int_ior == ext_ior {
+        return Err(at_prop(
+            obj,
+            "int_ior",
+            format!(
+                "\"int_ior\" and \"ext_ior\" of {} must differ (both are {int_ior})",
+                obj.describe()
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// The index of refraction `name` of `obj`: a `<float>` or a `<string>` naming a material;
 /// `default` names the value used when absent. Must be finite and positive.
 pub fn ior(obj: &Object, name: &str, default: &str) -> Result<f64> {

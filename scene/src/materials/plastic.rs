@@ -1,13 +1,14 @@
 //! `plastic` and `roughplastic` (Mitsuba 3): a dielectric coating over a diffuse base. The
 //! indices of `roughplastic` must differ, as Mitsuba 3 requires.
 use super::super::util::at_prop;
-use super::conductor::{ALPHA, DISTRIBUTION, SAMPLE_VISIBLE, SPECULAR_REFLECTANCE};
-use super::ior::read_eta;
+use super::conductor::{
+    read_distribution, ALPHA, DISTRIBUTION, SAMPLE_VISIBLE, SPECULAR_REFLECTANCE,
+};
+use super::ior::{indices_differ, read_eta};
 use super::texture::read_texture;
 use super::{BsdfPlugin, Result};
 use crate::plugin::{Param, Plugin, Range};
 use crate::xml::Object;
-use tessera_core::bsdf::microfacet::MicrofacetKind;
 use tessera_core::bsdf::{Bsdf, Plastic, RoughPlastic};
 use tessera_core::texture::Texture;
 
@@ -88,21 +89,8 @@ pub const ROUGHPLASTIC: BsdfPlugin = Plugin {
 
 fn build_rough(obj: &Object) -> Result<Bsdf> {
     let c = Coating::read(obj)?;
-    if c.int_ior == c.ext_ior {
-        return Err(at_prop(
-            obj,
-            "int_ior",
-            format!(
-                "\"int_ior\" and \"ext_ior\" of {} must differ (both are {})",
-                obj.describe(),
-                c.int_ior
-            ),
-        ));
-    }
-    let kind = match DISTRIBUTION.read_choice(obj)? {
-        "ggx" => MicrofacetKind::Ggx,
-        _ => MicrofacetKind::Beckmann,
-    };
+    indices_differ(obj, c.int_ior, c.ext_ior)?;
+    let kind = read_distribution(obj)?;
     let alpha = roughness(obj)?;
     let sample_visible = SAMPLE_VISIBLE.read_bool(obj)?;
     Ok(Bsdf::RoughPlastic(RoughPlastic::new(

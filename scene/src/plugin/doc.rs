@@ -1,11 +1,11 @@
 //! The reference text of a plugin, written from its declaration: a heading, its paragraph, and a
 //! table of its parameters (type, default, range, meaning). The committed reference and
 //! `tessera plugins` print this, so neither can drift from what the loader reads.
-use super::Plugin;
+use super::Declared;
 use std::fmt::Write;
 
 /// The Markdown reference of one plugin of family `family` (`"bsdf"`, ...).
-pub fn plugin_markdown<B>(family: &str, p: &Plugin<B>) -> String {
+pub fn plugin_markdown(family: &str, p: &Declared) -> String {
     let mut s = format!("### `{family}` `{}`", p.name);
     if !p.aliases.is_empty() {
         let a: Vec<String> = p.aliases.iter().map(|a| format!("`{a}`")).collect();

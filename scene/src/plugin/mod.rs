@@ -29,10 +29,44 @@ pub struct Plugin<B: 'static> {
     pub build: B,
 }
 
-impl<B> Plugin<B> {
+/// What a plugin declares, without its builder: the part all families share, for what reads
+/// every family alike (the reference, the check for parameters without effect).
+#[derive(Clone, Copy, Debug)]
+pub struct Declared {
+    /// Name in the scene file.
+    pub name: &'static str,
+    /// Other names that build the same plugin.
+    pub aliases: &'static [&'static str],
+    /// What it is.
+    pub doc: &'static str,
+    /// Its parameters.
+    pub params: &'static [Param],
+    /// The nested objects it takes, in words (empty: none).
+    pub nested: &'static str,
+}
+
+impl Declared {
     /// Whether `name` names this plugin.
     pub fn is(&self, name: &str) -> bool {
         self.name == name || self.aliases.contains(&name)
+    }
+}
+
+impl<B> Plugin<B> {
+    /// Whether `name` names this plugin.
+    pub fn is(&self, name: &str) -> bool {
+        self.declared().is(name)
+    }
+
+    /// Its declaration without the builder.
+    pub fn declared(&self) -> Declared {
+        Declared {
+            name: self.name,
+            aliases: self.aliases,
+            doc: self.doc,
+            params: self.params,
+            nested: self.nested,
+        }
     }
 
     /// Rejects the parameters of `obj` nobody read, naming this plugin's declared ones.
@@ -46,11 +80,6 @@ impl<B> Plugin<B> {
             };
             e
         })
-    }
-
-    /// The declared parameter called `name`.
-    pub fn param(&self, name: &str) -> Option<&'static Param> {
-        self.params.iter().find(|p| p.name == name)
     }
 }
 

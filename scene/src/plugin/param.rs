@@ -228,15 +228,7 @@ pub struct Param {
 impl Param {
     /// A float parameter.
     pub const fn float(name: &'static str, default: f64, range: Range, doc: &'static str) -> Self {
-        Param {
-            name,
-            ty: ParamType::Float,
-            default: Default::Float(default),
-            range,
-            doc,
-            unit: "",
-            ignored: false,
-        }
+        Param::new(name, ParamType::Float, Default::Float(default), range, doc)
     }
 
     /// An integer parameter.
@@ -246,28 +238,24 @@ impl Param {
         range: Range,
         doc: &'static str,
     ) -> Self {
-        Param {
+        Param::new(
             name,
-            ty: ParamType::Integer,
-            default: Default::Integer(default),
+            ParamType::Integer,
+            Default::Integer(default),
             range,
             doc,
-            unit: "",
-            ignored: false,
-        }
+        )
     }
 
     /// A boolean parameter.
     pub const fn boolean(name: &'static str, default: bool, doc: &'static str) -> Self {
-        Param {
+        Param::new(
             name,
-            ty: ParamType::Boolean,
-            default: Default::Boolean(default),
-            range: Range::Any,
+            ParamType::Boolean,
+            Default::Boolean(default),
+            Range::Any,
             doc,
-            unit: "",
-            ignored: false,
-        }
+        )
     }
 
     /// A string naming one of `names` (`default` among them).
@@ -277,15 +265,13 @@ impl Param {
         names: &'static [&'static str],
         doc: &'static str,
     ) -> Self {
-        Param {
+        Param::new(
             name,
-            ty: ParamType::Choice,
-            default: Default::Str(default),
-            range: Range::OneOf(names),
+            ParamType::Choice,
+            Default::Str(default),
+            Range::OneOf(names),
             doc,
-            unit: "",
-            ignored: false,
-        }
+        )
     }
 
     /// A colour or texture parameter with a constant default.
@@ -295,28 +281,18 @@ impl Param {
         range: Range,
         doc: &'static str,
     ) -> Self {
-        Param {
-            name,
-            ty: ParamType::Texture,
-            default: Default::Rgb(default),
-            range,
-            doc,
-            unit: "",
-            ignored: false,
-        }
+        Param::new(name, ParamType::Texture, Default::Rgb(default), range, doc)
     }
 
     /// An index of refraction whose default is a named material.
     pub const fn ior(name: &'static str, default: &'static str, doc: &'static str) -> Self {
-        Param {
+        Param::new(
             name,
-            ty: ParamType::Ior,
-            default: Default::Str(default),
-            range: Range::Positive,
+            ParamType::Ior,
+            Default::Str(default),
+            Range::Positive,
             doc,
-            unit: "",
-            ignored: false,
-        }
+        )
     }
 
     /// A colour parameter.
@@ -326,15 +302,7 @@ impl Param {
         range: Range,
         doc: &'static str,
     ) -> Self {
-        Param {
-            name,
-            ty: ParamType::Rgb,
-            default,
-            range,
-            doc,
-            unit: "",
-            ignored: false,
-        }
+        Param::new(name, ParamType::Rgb, default, range, doc)
     }
 
     /// A required file name, relative to the scene file (`what` says which files).
@@ -350,15 +318,13 @@ impl Param {
 
     /// A transform parameter (identity when absent).
     pub const fn transform(name: &'static str, doc: &'static str) -> Self {
-        Param {
+        Param::new(
             name,
-            ty: ParamType::Transform,
-            default: Default::Identity,
-            range: Range::Any,
+            ParamType::Transform,
+            Default::Identity,
+            Range::Any,
             doc,
-            unit: "",
-            ignored: false,
-        }
+        )
     }
 
     /// Any parameter, spelled out.
@@ -378,11 +344,6 @@ impl Param {
             unit: "",
             ignored: false,
         }
-    }
-
-    /// The same parameter with another default.
-    pub const fn with_default(self, default: Default) -> Self {
-        Param { default, ..self }
     }
 
     /// The same parameter, accepted without effect (a file that gives it gets a warning).
@@ -405,11 +366,6 @@ impl Param {
         } else {
             format!("{} {}", self.range.describe(), self.unit)
         }
-    }
-
-    /// The same parameter with another line of meaning.
-    pub const fn with_doc(self, doc: &'static str) -> Self {
-        Param { doc, ..self }
     }
 }
 

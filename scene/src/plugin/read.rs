@@ -94,10 +94,16 @@ impl Param {
 
     /// An integer that must pass `ok` ([`Range::Note`] says the rule).
     pub fn read_i64_where(&self, obj: &Object, ok: impl Fn(i64) -> bool) -> Result<i64> {
-        let v = match self.default {
-            Default::Integer(d) => obj.integer(self.name, d)?,
+        match self.default {
+            Default::Integer(d) => self.read_i64_or(obj, d, ok),
             other => unreachable!("\"{}\" has no integer default ({other:?})", self.name),
-        };
+        }
+    }
+
+    /// An integer with a default computed by the builder (a [`Default::Note`]), which must
+    /// pass `ok`.
+    pub fn read_i64_or(&self, obj: &Object, default: i64, ok: impl Fn(i64) -> bool) -> Result<i64> {
+        let v = obj.integer(self.name, default)?;
         if !ok(v) {
             return Err(self.out_of_range(obj, &self.describe_range(), v));
         }
@@ -125,7 +131,20 @@ impl Param {
 
     /// One of the declared names: the file's value (or the default), returned as declared.
     pub fn read_choice(&self, obj: &Object) -> Result<&'static str> {
-        let s = self.read_string(obj)?;
+        match (self.read_choice_opt(obj)?, self.default) {
+            (Some(name), _) => Ok(name),
+            (None, Default::Str(d)) => Ok(d),
+            (None, Default::Required) => Err(obj.missing(self.name)),
+            (None, other) => unreachable!("\"{}\" has no string default ({other:?})", self.name),
+        }
+    }
+
+    /// One of the declared names as the file gives it, `None` when absent (the builder then
+    /// applies a default of its own, a [`Default::Note`]).
+    pub fn read_choice_opt(&self, obj: &Object) -> Result<Option<&'static str>> {
+        let Some(s) = obj.string_opt(self.name)? else {
+            return Ok(None);
+        };
         let (names, any_case) = match self.range {
             Range::OneOf(n) => (n, false),
             Range::OneOfAnyCase(n) => (n, true),
@@ -138,7 +157,7 @@ impl Param {
                 **n == s
             }
         });
-        found.copied().ok_or_else(|| {
+        found.copied().map(Some).ok_or_else(|| {
             at_prop(
                 obj,
                 self.name,
