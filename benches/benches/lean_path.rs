@@ -52,6 +52,7 @@ use tessera_core::emitter::Emitter;
 use tessera_core::geometry::{interpolate_point, Prim, ShapeKind, SHADOW_EPSILON};
 use tessera_core::integrator::Integrator;
 use tessera_core::math::{offset_ray_origin, Norm, Ray};
+use tessera_core::render::RenderJob;
 use tessera_core::sampling::zsobol::{log2_spp_for, to_unit};
 use tessera_core::sampling::{dimension_of, Sampler, SamplerKind, Stage, ZSobolPixel};
 use tessera_core::scene::Scene;
@@ -582,10 +583,10 @@ fn main() {
         spp,
     };
     let integrator: &Integrator = &loaded.integrator;
-    let opts = RenderOptions {
-        samples: 0..u64::from(spp),
-        ..RenderOptions::default()
-    };
+    let opts = RenderOptions::default();
+    let samples = 0..u64::from(spp);
+    let job = RenderJob::new(scene, integrator, 0);
+    let zsobol_job = RenderJob::new(&zsobol_scene, integrator, 0);
     let pixels = res * res;
     let names = [
         "tessera",
@@ -624,10 +625,10 @@ fn main() {
             }
             let start = Instant::now();
             let img = match j {
-                0 => render(scene, integrator, &opts, &mut |_, _| {}).rgb(),
+                0 => render(&job, samples.clone(), &opts, &mut |_, _| {}).rgb(),
                 1 => lean.render::<1, false>(pixels, &mut HashDraws([0; 1])),
                 2 => lean.render::<8, false>(pixels, &mut HashDraws([0; 8])),
-                3 => render(&zsobol_scene, integrator, &opts, &mut |_, _| {}).rgb(),
+                3 => render(&zsobol_job, samples.clone(), &opts, &mut |_, _| {}).rgb(),
                 4 => lean.render::<1, false>(pixels, &mut zsobol()),
                 5 => lean.render::<1, true>(pixels, &mut zsobol()),
                 6 => lean.render::<2, false>(pixels, &mut HashDraws([0; 2])),

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use tessera::image_io::{read_image, Format};
 use tessera::render::RenderOptions;
 use tessera_core::adaptive::AdaptiveParams;
+use tessera_core::render::RenderJob;
 use tessera_lab::bench::fresh::{fresh_name, run_fresh};
 use tessera_lab::bench::mean::mean_curve;
 use tessera_lab::bench::plot::write_plot;
@@ -262,12 +263,11 @@ pub fn run(args: &BenchArgs) -> i32 {
         }
     }
     let opts = RenderOptions {
-        samples: 0..1,
         threads,
         tile_size: args.tile_size,
-        seed: args.seed.unwrap_or(loaded.seed),
         pixels: Default::default(),
     };
+    let first_seed = args.seed.unwrap_or(loaded.seed);
     let limits = WaveLimits {
         max_seconds: args.max_seconds,
         max_spp: args.max_spp,
@@ -301,18 +301,15 @@ pub fn run(args: &BenchArgs) -> i32 {
         };
         let mut runs = Vec::new();
         for k in 0..args.seeds {
-            let seed = opts.seed.wrapping_add(k);
-            let seeded = RenderOptions {
-                seed,
-                ..opts.clone()
-            };
+            let seed = first_seed.wrapping_add(k);
             let label = format!("{n} ({sampler}");
             match fastest_of_repeats(
                 args,
                 &mut loaded,
                 n,
                 &label,
-                &seeded,
+                seed,
+                &opts,
                 &reference,
                 limits,
                 adaptive,
@@ -364,6 +361,7 @@ fn fastest_of_repeats(
     loaded: &mut tessera_scene::LoadedScene,
     integrator: &str,
     label: &str,
+    seed: u64,
     opts: &RenderOptions,
     reference: &tessera::image_io::RgbImage,
     limits: WaveLimits,
@@ -373,7 +371,7 @@ fn fastest_of_repeats(
     for rep in 0..args.repeats {
         let mut note = String::new();
         if args.seeds > 1 {
-            note.push_str(&format!(" seed {}", opts.seed));
+            note.push_str(&format!(" seed {seed}"));
         }
         if args.repeats > 1 {
             note.push_str(&format!(" run {}", rep + 1));
@@ -395,6 +393,7 @@ fn fastest_of_repeats(
             run_fresh(
                 &mut loaded.scene,
                 &loaded.integrator,
+                seed,
                 integrator,
                 opts,
                 reference,
@@ -403,15 +402,9 @@ fn fastest_of_repeats(
                 &mut print,
             )
         } else {
+            let job = RenderJob::new(&loaded.scene, &loaded.integrator, seed);
             let (r, _) = run_waves(
-                &loaded.scene,
-                &loaded.integrator,
-                integrator,
-                opts,
-                reference,
-                limits,
-                adaptive,
-                &mut print,
+                &job, integrator, opts, reference, limits, adaptive, &mut print,
             );
             r
         };

@@ -16,10 +16,12 @@ use std::time::{Duration, Instant};
 use tessera::checkpoint::{load_checkpoint, write_checkpoint, CheckpointMeta, Continuation};
 use tessera::image_io::Format;
 use tessera::progressive::bar::{progress_bar, update_bar};
-use tessera::progressive::{self, spp_range, Ending, Job, Plan, Status};
+use tessera::progressive::{self, spp_range, Ending, Plan, Status};
 use tessera::render::Framebuffer;
+use tessera::render::RenderOptions;
 use tessera_core::adaptive::{AdaptiveParams, ZSOBOL_BLOCK_FACTOR};
 use tessera_core::camera::Perspective;
+use tessera_core::render::RenderJob;
 use tessera_scene::error::InputError;
 use tessera_scene::{load_scene, MAX_EDGE, MAX_PIXELS};
 
@@ -194,12 +196,11 @@ pub fn run(args: &RenderArgs) -> i32 {
         return 1;
     }
     let (bar, mode) = progress_bar(args.quiet, target, budget, w as u64 * h as u64);
-    let job = Job {
-        scene: &loaded.scene,
-        integrator: &loaded.integrator,
-        seed: meta.seed,
+    let job = RenderJob::new(&loaded.scene, &loaded.integrator, meta.seed);
+    let opts = RenderOptions {
         threads,
         tile_size: args.tile_size,
+        ..Default::default()
     };
     let plan = Plan {
         target,
@@ -222,7 +223,8 @@ pub fn run(args: &RenderArgs) -> i32 {
         write_all(&args.outputs, checkpoint.as_deref(), &m, fb, more, &decor)
     };
     let result = progressive::run(
-        job,
+        &job,
+        &opts,
         &mut fb,
         &plan,
         &stop,

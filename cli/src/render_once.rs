@@ -9,6 +9,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use std::time::Instant;
 use tessera::render::RenderOptions;
 use tessera::render_stats::render_maybe_stats;
+use tessera_core::render::RenderJob;
 use tessera_scene::error::InputError;
 use tessera_scene::LoadedScene;
 
@@ -44,20 +45,20 @@ pub fn run(args: &RenderArgs, loaded: &LoadedScene, threads: usize, seed: u64) -
              --debug-pixel (those render one fixed sample range in one pass)"
         ));
     }
+    let job = RenderJob::new(&loaded.scene, &loaded.integrator, seed);
+    let samples = args.split.samples(args.spp.unwrap_or(loaded.spp));
     let opts = RenderOptions {
-        samples: args.split.samples(args.spp.unwrap_or(loaded.spp)),
         threads,
         tile_size: args.tile_size,
-        seed,
         pixels: args.split.selection(),
     };
-    let spp = opts.samples.end - opts.samples.start;
-    let part = match args.split.part_info(loaded, &opts) {
+    let spp = samples.end - samples.start;
+    let part = match args.split.part_info(loaded, &job, samples.clone(), &opts) {
         Ok(p) => p,
         Err(e) => return usage(e),
     };
     if let Some(dp) = args.probe.debug_pixel {
-        return tessera_lab::debug_pixel::run(loaded, &opts, dp);
+        return tessera_lab::debug_pixel::run(loaded, &job, samples, dp);
     }
     let bar = if args.quiet {
         ProgressBar::hidden()
@@ -71,8 +72,8 @@ pub fn run(args: &RenderArgs, loaded: &LoadedScene, threads: usize, seed: u64) -
     let start = Instant::now();
     let fb = render_maybe_stats(
         args.probe.stats,
-        &loaded.scene,
-        &loaded.integrator,
+        &job,
+        samples,
         &opts,
         &mut |done, total| {
             bar.set_length(total as u64);

@@ -8,6 +8,7 @@ use tessera::image_io::{write_image, Format, RgbImage};
 use tessera::render::{Framebuffer, RenderOptions, Tile};
 use tessera::split::selection::{parse_crop, parse_sample_range, parse_tile_set};
 use tessera::split::{write_part, PartInfo, PixelSelection};
+use tessera_core::render::RenderJob;
 use tessera_scene::LoadedScene;
 
 /// Render only a piece of the image.
@@ -46,10 +47,13 @@ impl SplitArgs {
     }
 
     /// Checks the selection against the scene and, for a split render, returns what its part
-    /// files record. `opts` are the final render options (samples, seed, pixels, tile size).
+    /// files record: the job's seed, the samples rendered and the final render options (pixels,
+    /// tile size).
     pub fn part_info(
         &self,
         loaded: &LoadedScene,
+        job: &RenderJob,
+        samples: Range<u64>,
         opts: &RenderOptions,
     ) -> Result<Option<PartInfo>, String> {
         let (w, h) = (loaded.scene.camera.width, loaded.scene.camera.height);
@@ -62,8 +66,8 @@ impl SplitArgs {
             height: h,
             selection: opts.pixels,
             tile_size: opts.tile_size,
-            samples: opts.samples.clone(),
-            seed: opts.seed,
+            samples,
+            seed: job.seed,
             integrator: format!(
                 "{:?}, sampler {:?}",
                 loaded.integrator_spec, loaded.scene.sampler

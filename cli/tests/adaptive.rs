@@ -10,6 +10,7 @@ use tessera::image_io::read_image;
 use tessera::progressive::{Ending, Plan};
 use tessera::render::{render, Framebuffer, RenderOptions};
 use tessera_core::adaptive::{AdaptiveParams, ZSOBOL_BLOCK_FACTOR};
+use tessera_core::render::RenderJob;
 use tessera_lab::bench::errors;
 use tessera_scene::{load_scene, LoadedScene};
 
@@ -53,13 +54,12 @@ fn adaptive(
 
 fn plain(l: &LoadedScene, spp: u64, seed: u64) -> Framebuffer {
     let opts = RenderOptions {
-        samples: 0..spp,
         threads: 2,
         tile_size: 16,
-        seed,
         pixels: Default::default(),
     };
-    render(&l.scene, &l.integrator, &opts, &mut |_, _| {})
+    let job = RenderJob::new(&l.scene, &l.integrator, seed);
+    render(&job, 0..spp, &opts, &mut |_, _| {})
 }
 
 fn counts(fb: &Framebuffer) -> Vec<u64> {

@@ -8,9 +8,10 @@
 use std::path::Path;
 use tessera::image_io::read_image;
 use tessera::progressive::{Ending, Plan};
-use tessera::render::{render, render_into_targets, Framebuffer, RenderOptions};
+use tessera::render::{render, render_span, Framebuffer, RenderOptions, Span};
 use tessera_core::adaptive::AdaptiveParams;
-use tessera_core::integrator::{GROUP_H, GROUP_W};
+use tessera_core::integrator::{NoProbe, GROUP_H, GROUP_W};
+use tessera_core::render::RenderJob;
 use tessera_lab::bench::errors;
 use tessera_scene::{load_scene, LoadedScene};
 
@@ -56,13 +57,12 @@ fn adaptive_with(
 
 fn plain(l: &LoadedScene, spp: u64, seed: u64) -> Framebuffer {
     let opts = RenderOptions {
-        samples: 0..spp,
         threads: 2,
         tile_size: 16,
-        seed,
         pixels: Default::default(),
     };
-    render(&l.scene, &l.integrator, &opts, &mut |_, _| {})
+    let job = RenderJob::new(&l.scene, &l.integrator, seed);
+    render(&job, 0..spp, &opts, &mut |_, _| {})
 }
 
 /// Each pixel's sample count (`count + dropped`).
@@ -100,18 +100,11 @@ fn uneven_targets_give_the_same_bits_for_any_tile_size() {
         let opts = RenderOptions {
             threads,
             tile_size,
-            seed: 4,
             ..Default::default()
         };
-        render_into_targets(
-            &l.scene,
-            &l.integrator,
-            &opts,
-            &mut fb,
-            &targets,
-            None,
-            &mut |_, _| {},
-        );
+        let job = RenderJob::new(&l.scene, &l.integrator, 4);
+        let span = Span::Targets(&targets);
+        render_span::<NoProbe>(&job, &opts, &mut fb, span, None, &mut |_, _| {});
         fb
     };
     let a = pass(1, 32);

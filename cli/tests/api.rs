@@ -42,14 +42,13 @@ fn render_from_a_string_matches_the_tile_renderer_for_any_thread_count() {
     assert_eq!((one.width, one.height), (24, 16));
     assert_eq!(bits(&one), bits(&two));
 
+    let job = tessera_core::render::RenderJob::new(&scene.scene, &scene.integrator, 0);
     let fb = tessera::render::render(
-        &scene.scene,
-        &scene.integrator,
+        &job,
+        0..8,
         &RenderOptions {
-            samples: 0..8,
             threads: 1,
             tile_size: 32,
-            seed: 0,
             ..Default::default()
         },
         &mut |_, _| {},

@@ -7,7 +7,9 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use tessera::image_io::{read_image, write_image, RgbImage};
-use tessera::render::{render, render_into, Framebuffer, RenderOptions};
+use tessera::render::{render, render_span, Framebuffer, RenderOptions, Span};
+use tessera_core::integrator::NoProbe;
+use tessera_core::render::RenderJob;
 use tessera_lab::bench::{errors, read_csv, run_waves, WaveLimits, CSV_HEADER};
 use tessera_scene::{load_scene, LoadedScene};
 
@@ -28,14 +30,23 @@ fn small_cbox() -> LoadedScene {
     load_scene(&cbox(), &defines()).expect("cbox loads")
 }
 
-fn opts(samples: std::ops::Range<u64>, threads: usize) -> RenderOptions {
+fn opts(threads: usize) -> RenderOptions {
     RenderOptions {
-        samples,
         threads,
         tile_size: 5,
-        seed: 3,
         pixels: Default::default(),
     }
+}
+
+/// Samples `samples` of `l` with `seed` on `threads` threads (tiles of 5 pixels).
+fn render_seeded(
+    l: &LoadedScene,
+    samples: std::ops::Range<u64>,
+    threads: usize,
+    seed: u64,
+) -> Framebuffer {
+    let job = RenderJob::new(&l.scene, &l.integrator, seed);
+    render(&job, samples, &opts(threads), &mut |_, _| {})
 }
 
 /// A fresh directory, removed on drop.
@@ -92,9 +103,7 @@ fn bench_small(reference: &Path, rest: &[&std::ffi::OsStr]) -> Output {
 
 /// A reference of the small box: its own 16 spp render with another seed.
 fn write_reference(dir: &Path, l: &LoadedScene) -> PathBuf {
-    let mut o = opts(0..16, 2);
-    o.seed = 99;
-    let fb = render(&l.scene, &l.integrator, &o, &mut |_, _| {});
+    let fb = render_seeded(l, 0..16, 2, 99);
     let p = dir.join("ref.exr");
     let img = RgbImage {
         width: fb.width,
@@ -108,16 +117,12 @@ fn write_reference(dir: &Path, l: &LoadedScene) -> PathBuf {
 #[test]
 fn waves_continue_the_sample_sequence_bit_for_bit() {
     let l = small_cbox();
-    let whole = render(&l.scene, &l.integrator, &opts(0..4, 1), &mut |_, _| {});
+    let whole = render_seeded(&l, 0..4, 1, 3);
     let mut fb = Framebuffer::new(whole.width, whole.height);
+    let job = RenderJob::new(&l.scene, &l.integrator, 3);
     for (range, threads) in [(0..1, 2), (1..2, 1), (2..4, 3)] {
-        render_into(
-            &l.scene,
-            &l.integrator,
-            &opts(range, threads),
-            &mut fb,
-            &mut |_, _| {},
-        );
+        let span = Span::Fixed(range);
+        render_span::<NoProbe>(&job, &opts(threads), &mut fb, span, None, &mut |_, _| {});
     }
     assert_eq!(
         fb, whole,
@@ -136,11 +141,11 @@ fn waves_continue_the_sample_sequence_bit_for_bit() {
         max_spp: 4,
     };
     let mut seen = 0;
+    let job = RenderJob::new(&l.scene, &l.integrator, 3);
     let (rows, last) = run_waves(
-        &l.scene,
-        &l.integrator,
+        &job,
         "path",
-        &opts(0..1, 2),
+        &opts(2),
         &reference,
         limits,
         None,
@@ -150,7 +155,7 @@ fn waves_continue_the_sample_sequence_bit_for_bit() {
     assert_eq!(seen, 3);
     assert_eq!(rows.iter().map(|r| r.spp).collect::<Vec<_>>(), [1, 2, 4]);
     for r in &rows {
-        let plain = render(&l.scene, &l.integrator, &opts(0..r.spp, 2), &mut |_, _| {});
+        let plain = render_seeded(&l, 0..r.spp, 2, 3);
         assert_eq!(
             r.errors,
             errors(&plain.rgb(), &reference.data),
@@ -228,7 +233,7 @@ fn cli_writes_the_report_and_plots() {
     );
     // The last path_mis row measures exactly the 4 spp image (the CSV keeps every bit of f64).
     let refimg = read_image(&reference).unwrap();
-    let plain = render(&l.scene, &l.integrator, &opts(0..4, 1), &mut |_, _| {});
+    let plain = render_seeded(&l, 0..4, 1, 3);
     assert_eq!(rows[2].errors, errors(&plain.rgb(), &refimg.data));
     let plot = image::open(&png).expect("the plot is a PNG");
     assert_eq!((plot.width(), plot.height()), (800, 560));
@@ -341,11 +346,7 @@ fn seeds_average_the_errors_of_each_seeds_images() {
         let e: Vec<_> = [3u64, 4]
             .iter()
             .map(|&seed| {
-                let o = RenderOptions {
-                    seed,
-                    ..opts(0..r.spp, 1)
-                };
-                let img = render(&l.scene, &l.integrator, &o, &mut |_, _| {});
+                let img = render_seeded(&l, 0..r.spp, 1, seed);
                 errors(&img.rgb(), &refimg.data)
             })
             .collect();

@@ -7,8 +7,9 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use tessera::image_io::{read_image, write_image, RgbImage};
-use tessera::render::{render, RenderOptions};
+use tessera::render::{render, Framebuffer, RenderOptions};
 use tessera_core::adaptive::{AdaptiveParams, ZSOBOL_BLOCK_FACTOR};
+use tessera_core::render::RenderJob;
 use tessera_lab::bench::fresh::run_fresh;
 use tessera_lab::bench::{errors, read_csv, run_waves, Row, WaveLimits};
 use tessera_scene::{load_scene, LoadedScene};
@@ -30,14 +31,18 @@ fn small_cbox(sampler: &str) -> LoadedScene {
     l
 }
 
-fn opts(samples: std::ops::Range<u64>) -> RenderOptions {
+fn opts() -> RenderOptions {
     RenderOptions {
-        samples,
         threads: 2,
         tile_size: 5,
-        seed: 3,
         pixels: Default::default(),
     }
+}
+
+/// Samples `samples` of `l` with seed 3.
+fn plain_render(l: &LoadedScene, samples: std::ops::Range<u64>) -> Framebuffer {
+    let job = RenderJob::new(&l.scene, &l.integrator, 3);
+    render(&job, samples, &opts(), &mut |_, _| {})
 }
 
 fn flat_reference(l: &LoadedScene) -> RgbImage {
@@ -69,11 +74,11 @@ fn continuing(
     limits: WaveLimits,
     adaptive: Option<&AdaptiveParams>,
 ) -> Vec<Row> {
+    let job = RenderJob::new(&l.scene, &l.integrator, 3);
     let (rows, _) = run_waves(
-        &l.scene,
-        &l.integrator,
+        &job,
         "path",
-        &opts(0..1),
+        &opts(),
         reference,
         limits,
         adaptive,
@@ -90,8 +95,9 @@ fn fresh(l: &mut LoadedScene, adaptive: Option<&AdaptiveParams>) -> Vec<Row> {
     let rows = run_fresh(
         &mut l.scene,
         &l.integrator,
+        3,
         "path",
-        &opts(0..1),
+        &opts(),
         &reference,
         LIMITS,
         adaptive,
@@ -112,7 +118,7 @@ fn fresh_waves_are_plain_renders_set_up_for_their_count() {
     for (r, c) in rows.iter().zip(&continuing(&l, &reference, LIMITS, None)) {
         assert_eq!(r.sampler, "zsobol+fresh");
         l.scene.sampler = base.for_spp(r.spp);
-        let plain = render(&l.scene, &l.integrator, &opts(0..r.spp), &mut |_, _| {});
+        let plain = plain_render(&l, 0..r.spp);
         assert_eq!(
             r.errors,
             errors(&plain.rgb(), &reference.data),
@@ -164,7 +170,7 @@ fn adaptive_fresh_waves_run_the_schedule_from_scratch() {
     }
     // Past the warm-up the schedule adapts: the 8 spp image is not the uniform one.
     l.scene.sampler = base.for_spp(8 * ZSOBOL_BLOCK_FACTOR);
-    let plain = render(&l.scene, &l.integrator, &opts(0..8), &mut |_, _| {});
+    let plain = plain_render(&l, 0..8);
     assert_ne!(rows[3].errors, errors(&plain.rgb(), &reference.data));
 }
 

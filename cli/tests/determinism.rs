@@ -6,7 +6,7 @@ use std::ops::Range;
 use tessera::render::{render, Framebuffer, RenderOptions};
 use tessera_core::camera::Filter;
 use tessera_core::film::PixelAccum;
-use tessera_core::render::render_sample;
+use tessera_core::render::RenderJob;
 use tessera_scene::LoadedScene;
 
 mod scenes;
@@ -20,14 +20,13 @@ fn render_with(
     seed: u64,
 ) -> Framebuffer {
     let opts = RenderOptions {
-        samples,
         threads,
         tile_size,
-        seed,
         pixels: Default::default(),
     };
+    let job = RenderJob::new(&l.scene, &l.integrator, seed);
     let mut last = (0, 0);
-    let fb = render(&l.scene, &l.integrator, &opts, &mut |done, total| {
+    let fb = render(&job, samples, &opts, &mut |done, total| {
         assert!(done > last.0 && done <= total);
         last = (done, total);
     });
@@ -153,7 +152,7 @@ fn one_sample_replayed_alone_matches_the_render() {
     for index in [0u64, 7] {
         let fb = render_with(&l, index..index + 1, 2, 5, l.seed);
         for (x, y) in pixels {
-            let c = render_sample(&l.scene, &l.integrator, l.seed, x, y, index);
+            let c = RenderJob::new(&l.scene, &l.integrator, l.seed).sample(x, y, index);
             let acc = fb.at(x, y);
             let mut want = PixelAccum::default();
             want.add(c);

@@ -4,7 +4,7 @@
 //! means finite. Crash inputs are also checked against the message they must now give.
 use std::path::{Path, PathBuf};
 use tessera_core::film::PixelAccum;
-use tessera_core::render::render_pixel;
+use tessera_core::render::RenderJob;
 
 #[path = "../../fuzz/fuzz_targets/common.rs"]
 mod common;
@@ -72,7 +72,7 @@ fn xml_scene_inputs() {
             for (x, y) in [(0, 0), (w / 2, h / 2), (w - 1, h - 1)] {
                 let mut acc = PixelAccum::default();
                 let (scene, integrator) = (&loaded.scene, &loaded.integrator);
-                render_pixel(scene, integrator, loaded.seed, x, y, 0..1, &mut acc);
+                RenderJob::new(scene, integrator, loaded.seed).accumulate(x, y, 0..1, &mut acc);
                 assert!(
                     acc.mean().iter().all(|c| c.is_finite()),
                     "{}: non-finite pixel",

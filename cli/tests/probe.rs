@@ -6,7 +6,7 @@ use std::process::Command;
 use tessera::render::{render, Framebuffer, RenderOptions};
 use tessera::render_stats::render_with_stats;
 use tessera_core::integrator::Counters;
-use tessera_core::render::render_sample;
+use tessera_core::render::RenderJob;
 use tessera_scene::LoadedScene;
 
 const BIN: &str = env!("CARGO_BIN_EXE_tessera");
@@ -14,23 +14,23 @@ const BIN: &str = env!("CARGO_BIN_EXE_tessera");
 mod scenes;
 use scenes::{load, scene_path};
 
-fn opts(l: &LoadedScene, threads: usize, tile_size: u32) -> RenderOptions {
+fn opts(threads: usize, tile_size: u32) -> RenderOptions {
     RenderOptions {
-        samples: 0..l.spp,
         threads,
         tile_size,
-        seed: l.seed,
         ..Default::default()
     }
 }
 
+/// `l`'s own samples and seed, rendered on `threads` threads in tiles of `tile_size`.
+fn plain(l: &LoadedScene, threads: usize, tile_size: u32) -> Framebuffer {
+    let job = RenderJob::new(&l.scene, &l.integrator, l.seed);
+    render(&job, 0..l.spp, &opts(threads, tile_size), &mut |_, _| {})
+}
+
 fn stats(l: &LoadedScene, threads: usize, tile_size: u32) -> (Framebuffer, Counters) {
-    render_with_stats(
-        &l.scene,
-        &l.integrator,
-        &opts(l, threads, tile_size),
-        &mut |_, _| {},
-    )
+    let job = RenderJob::new(&l.scene, &l.integrator, l.seed);
+    render_with_stats(&job, 0..l.spp, &opts(threads, tile_size), &mut |_, _| {})
 }
 
 #[test]
@@ -43,7 +43,7 @@ fn stats_render_is_the_same_image_with_the_same_counts_for_any_threads() {
     ] {
         let mut l = load(name, &[("res", "24"), ("spp", "3")]);
         l.set_integrator(integrator, None).unwrap();
-        let plain = render(&l.scene, &l.integrator, &opts(&l, 2, 7), &mut |_, _| {});
+        let plain = plain(&l, 2, 7);
         assert!(plain.pixels.iter().any(|p| p.sum[0] > 0.0), "{name}");
         let (fb, reference) = stats(&l, 1, 32);
         assert!(
@@ -109,14 +109,14 @@ fn debug_pixel(args: &[&str]) -> (i32, String, String) {
 fn debug_pixel_prints_exactly_what_the_render_accumulates() {
     let mut l = load("cbox.xml", &[("res", "24")]);
     l.spp = 5;
-    let fb = render(&l.scene, &l.integrator, &opts(&l, 2, 8), &mut |_, _| {});
+    let fb = plain(&l, 2, 8);
     for (x, y) in [(12, 12), (3, 20), (23, 0)] {
         let (code, out, err) = debug_pixel(&["--debug-pixel", &format!("{x},{y}")]);
         assert_eq!(code, 0, "{err}");
         let values = triples(&out, "value:");
         assert_eq!(values.len(), 5, "{out}");
         for (i, v) in values.iter().enumerate() {
-            let c = render_sample(&l.scene, &l.integrator, l.seed, x, y, i as u64);
+            let c = RenderJob::new(&l.scene, &l.integrator, l.seed).sample(x, y, i as u64);
             assert_eq!(
                 v.map(f32::to_bits),
                 c.to_array().map(f32::to_bits),
@@ -137,7 +137,7 @@ fn debug_pixel_prints_exactly_what_the_render_accumulates() {
     }
     // Control: the parse is exact, so another pixel's value does not pass for this one.
     let (_, out, _) = debug_pixel(&["--debug-pixel", "12,12,0"]);
-    let c = render_sample(&l.scene, &l.integrator, l.seed, 12, 13, 0);
+    let c = RenderJob::new(&l.scene, &l.integrator, l.seed).sample(12, 13, 0);
     assert_ne!(triples(&out, "value:"), vec![c.to_array()]);
 }
 

@@ -16,8 +16,9 @@ use tessera::checkpoint::{
     load_checkpoint, read_checkpoint, write_checkpoint, CheckpointMeta, Continuation,
 };
 use tessera::image_io::{write_image, RgbImage};
-use tessera::render::{render, render_into_until, Framebuffer, RenderOptions};
-use tessera_core::render::render_pixel;
+use tessera::render::{render, render_span, Framebuffer, RenderOptions, Span};
+use tessera_core::integrator::NoProbe;
+use tessera_core::render::RenderJob;
 use tessera_scene::{load_scene, LoadedScene};
 
 const BIN: &str = env!("CARGO_BIN_EXE_tessera");
@@ -135,13 +136,12 @@ fn interrupted(extra: &[&str], ckpt: &Path, sig: &str) -> Option<i32> {
 fn reference(spp: u64) -> Framebuffer {
     let l = load();
     let opts = RenderOptions {
-        samples: 0..spp,
         threads: 2,
         tile_size: 4,
-        seed: l.seed,
         ..Default::default()
     };
-    render(&l.scene, &l.integrator, &opts, &mut |_, _| {})
+    let job = RenderJob::new(&l.scene, &l.integrator, l.seed);
+    render(&job, 0..spp, &opts, &mut |_, _| {})
 }
 
 fn pfm_bytes(fb: &Framebuffer, dir: &Tmp) -> Vec<u8> {
@@ -260,13 +260,12 @@ fn interrupted_and_resumed_render_is_bit_identical() {
 fn mixed_counts_continue_to_one_render() {
     let l = load();
     let (w, h) = (l.scene.camera.width, l.scene.camera.height);
-    let opts = |end| RenderOptions {
-        samples: 0..end,
+    let opts = RenderOptions {
         threads: 2,
         tile_size: 4,
-        seed: l.seed,
         ..Default::default()
     };
+    let job = RenderJob::new(&l.scene, &l.integrator, l.seed);
     let mut fb = reference(8);
     // Tiles of 4x4: some pixels back to 3 samples, some to none, the rest keep 8.
     for (i, p) in fb.pixels.iter_mut().enumerate() {
@@ -274,20 +273,15 @@ fn mixed_counts_continue_to_one_render() {
         if x < 4 {
             *p = Default::default();
             if y >= 4 {
-                render_pixel(&l.scene, &l.integrator, l.seed, x, y, 0..3, p);
+                RenderJob::new(&l.scene, &l.integrator, l.seed).accumulate(x, y, 0..3, p);
             }
         }
     }
     let stop = AtomicBool::new(true);
     let before = fb.clone();
-    let complete = render_into_until(
-        &l.scene,
-        &l.integrator,
-        &opts(24),
-        &mut fb,
-        &stop,
-        &mut |_, _| {},
-    );
+    let span = Span::UpTo(24);
+    let complete =
+        render_span::<NoProbe>(&job, &opts, &mut fb, span, Some(&stop), &mut |_, _| {}).complete;
     assert!(!complete, "a set stop flag did not stop the pass");
     assert!(fb == before, "a stopped pass changed pixels");
     let dir = Tmp::new("mixed");
@@ -310,14 +304,9 @@ fn mixed_counts_continue_to_one_render() {
         pixels: back.pixels,
     };
     stop.store(false, Ordering::SeqCst);
-    let complete = render_into_until(
-        &l.scene,
-        &l.integrator,
-        &opts(24),
-        &mut fb2,
-        &stop,
-        &mut |_, _| {},
-    );
+    let span = Span::UpTo(24);
+    let complete =
+        render_span::<NoProbe>(&job, &opts, &mut fb2, span, Some(&stop), &mut |_, _| {}).complete;
     assert!(complete);
     assert!(
         fb2.pixels == reference(24).pixels,

@@ -5,7 +5,7 @@
 use std::ops::Range;
 use tessera::render::{render, Framebuffer, RenderOptions};
 use tessera_core::film::PixelAccum;
-use tessera_core::render::render_sample;
+use tessera_core::render::RenderJob;
 use tessera_scene::LoadedScene;
 
 mod scenes;
@@ -18,13 +18,12 @@ fn render_with(
     tile_size: u32,
 ) -> Framebuffer {
     let opts = RenderOptions {
-        samples,
         threads,
         tile_size,
-        seed: l.seed,
         pixels: Default::default(),
     };
-    render(&l.scene, &l.integrator, &opts, &mut |_, _| {})
+    let job = RenderJob::new(&l.scene, &l.integrator, l.seed);
+    render(&job, samples, &opts, &mut |_, _| {})
 }
 
 fn bits(p: &PixelAccum) -> [u64; 8] {
@@ -106,7 +105,7 @@ fn one_sample_replayed_alone_matches_the_render() {
                 (13, 22),
                 (9, 4),
             ] {
-                let c = render_sample(&l.scene, &l.integrator, l.seed, x, y, index);
+                let c = RenderJob::new(&l.scene, &l.integrator, l.seed).sample(x, y, index);
                 let mut want = PixelAccum::default();
                 want.add(c);
                 assert_eq!(

@@ -16,7 +16,7 @@ use tessera_core::glam::{Mat4, Vec3, Vec4};
 use tessera_core::integrator::{Integrator, PathIntegrator};
 use tessera_core::light::LightSelection;
 use tessera_core::math::{Norm, Transform};
-use tessera_core::render::render_pixel;
+use tessera_core::render::RenderJob;
 use tessera_core::scene::{Scene, SceneParts};
 use tessera_core::texture::Texture;
 use tessera_core::Color;
@@ -70,10 +70,11 @@ fn main() {
     };
     let scene = Scene::new(parts).expect("the parts refer to each other correctly");
     let integrator = Integrator::Path(PathIntegrator::default());
-    let (seed, spp) = (7, 4096);
+    let spp = 4096;
+    let job = RenderJob::new(&scene, &integrator, 7);
     for (name, x, y, expected) in [("centre", 16, 16, 0.5), ("corner", 0, 0, 1.0)] {
         let mut acc = PixelAccum::default();
-        render_pixel(&scene, &integrator, seed, x, y, 0..spp, &mut acc);
+        job.accumulate(x, y, 0..spp, &mut acc);
         let mean = acc.mean();
         let n = acc.count as f64;
         let var = acc.sum_sq[1] / n - (acc.sum[1] / n).powi(2);

@@ -1,92 +1,270 @@
-//! The per-sample entry point: one camera sample of one pixel, replayable alone.
+//! The render entry: [`RenderJob`], the one value every sample of a render is a function of.
+//!
+//! A job is built once from the scene (which holds the sampler kind), the integrator and the
+//! seed. Every value it gives is a pure function of the job, the pixel and the sample index
+//! (and, with path reuse, of which pixels of the pixel's group take that index), so any loop
+//! over pixels and sample ranges, in any order and on any thread, gives the same bits.
 use crate::film::PixelAccum;
 use crate::integrator::{Integrator, NoProbe, PathIntegrator, Probe, GROUP, GROUP_H, GROUP_W};
-use crate::sampling::{IndependentSampler, Sampler, SamplerKind, ZSobolPixel, ZSobolSampler};
+use crate::sampling::{IndependentSampler, Sampler, SamplerKind, ZSobolPixel};
 use crate::scene::Scene;
 use crate::Color;
 use core::ops::Range;
 use glam::Vec2;
 
-/// Radiance of sample `index` of pixel `(x, y)`: a pure function of its arguments (and of
-/// `scene.sampler`, which picks the sampler).
-#[inline]
-pub fn render_sample(
-    scene: &Scene,
-    integrator: &Integrator,
-    seed: u64,
-    x: u32,
-    y: u32,
-    index: u64,
-) -> Color {
-    render_sample_probed(scene, integrator, seed, x, y, index, &mut NoProbe)
+/// What a render's samples depend on: the scene (geometry, camera, filter, sampler kind), the
+/// integrator and the seed of every random stream. Cheap to copy.
+#[derive(Clone, Copy, Debug)]
+pub struct RenderJob<'a> {
+    /// The scene.
+    pub scene: &'a Scene,
+    /// The integrator.
+    pub integrator: &'a Integrator,
+    /// Seed of every random stream.
+    pub seed: u64,
 }
 
-/// [`render_sample`], telling `probe` about the work done: the same value for any probe.
-#[inline]
-pub fn render_sample_probed<P: Probe>(
-    scene: &Scene,
-    integrator: &Integrator,
-    seed: u64,
-    x: u32,
-    y: u32,
-    index: u64,
-    probe: &mut P,
-) -> Color {
-    if reuses(integrator) {
-        let mut c = Color::ZERO;
-        let mut cache = PixelCache::default();
-        render_samples_cached(
+impl<'a> RenderJob<'a> {
+    /// A job rendering `scene` with `integrator` from `seed`.
+    pub fn new(scene: &'a Scene, integrator: &'a Integrator, seed: u64) -> Self {
+        RenderJob {
             scene,
             integrator,
             seed,
-            x,
-            y,
-            index..index + 1,
-            &mut cache,
-            probe,
-            |v| c = v,
-        );
-        return c;
+        }
     }
-    match scene.sampler {
-        SamplerKind::Independent => trace(
-            scene,
-            integrator,
-            x,
-            y,
-            IndependentSampler::new(seed, x, y, index),
+
+    /// The image's width and height in pixels.
+    pub fn size(&self) -> (u32, u32) {
+        (self.scene.camera.width, self.scene.camera.height)
+    }
+
+    /// Whether the integrator shares light among the pixels of a group ([`GROUP`] pixels,
+    /// 4x2): then a pixel's values depend on its group's paths, and render loops go group by
+    /// group ([`RenderJob::group_of`], [`RenderJob::group`]).
+    #[inline]
+    pub fn reuses(&self) -> bool {
+        reuses(self.integrator)
+    }
+
+    /// Radiance of sample `index` of pixel `(x, y)`.
+    #[inline]
+    pub fn sample(&self, x: u32, y: u32, index: u64) -> Color {
+        self.sample_probed(x, y, index, &mut NoProbe)
+    }
+
+    /// [`RenderJob::sample`], telling `probe` about the work done: the same value for any
+    /// probe.
+    #[inline]
+    pub fn sample_probed<P: Probe>(&self, x: u32, y: u32, index: u64, probe: &mut P) -> Color {
+        let mut c = Color::ZERO;
+        let mut cache = PixelCache::default();
+        self.pixel(x, y, index..index + 1, &mut cache, probe, |v| c = v);
+        c
+    }
+
+    /// Adds samples `samples` of pixel `(x, y)` to `acc`, in index order.
+    pub fn accumulate(&self, x: u32, y: u32, samples: Range<u64>, acc: &mut PixelAccum) {
+        let mut cache = PixelCache::default();
+        self.pixel(x, y, samples, &mut cache, &mut NoProbe, |c| acc.add(c));
+    }
+
+    /// Samples `samples` of pixel `(x, y)` in index order, each value passed to `add`: the
+    /// values of [`RenderJob::sample_probed`] for those indices, bit for bit, for any `cache`
+    /// (fresh or used by other pixels, seeds or sample counts). The cache, kept from pixel to
+    /// pixel by the caller, spares the zsobol sampler's per-pixel work ([`ZSobolPixel`]).
+    #[inline]
+    pub fn pixel<P: Probe>(
+        &self,
+        x: u32,
+        y: u32,
+        samples: Range<u64>,
+        cache: &mut PixelCache,
+        probe: &mut P,
+        mut add: impl FnMut(Color),
+    ) {
+        if self.reuses() {
+            // The pixel's values depend on its group's paths: trace the group, keep this pixel's.
+            let (pixels, n) = self.group_of(x, y);
+            let me = pixels[..n].iter().position(|&p| p == (x, y)).unwrap_or(0);
+            let mut caches = GroupCache::default();
+            let all: [Range<u64>; GROUP] = core::array::from_fn(|_| samples.clone());
+            self.group(&pixels[..n], &all[..n], &mut caches, probe, |k, _, c| {
+                if k == me {
+                    add(c)
+                }
+            });
+            return;
+        }
+        self.pixel_alone(x, y, samples, cache, probe, add);
+    }
+
+    /// [`RenderJob::pixel`] for an integrator that does not reuse.
+    #[inline]
+    fn pixel_alone<P: Probe>(
+        &self,
+        x: u32,
+        y: u32,
+        samples: Range<u64>,
+        cache: &mut PixelCache,
+        probe: &mut P,
+        mut add: impl FnMut(Color),
+    ) {
+        match self.scene.sampler {
+            SamplerKind::Independent => {
+                for index in samples {
+                    let s = IndependentSampler::new(self.seed, x, y, index);
+                    add(self.trace(x, y, s, probe));
+                }
+            }
+            SamplerKind::ZSobol { log2_spp } => {
+                if samples.is_empty() {
+                    return;
+                }
+                let pixel = cache.zsobol_for(self.seed, x, y, log2_spp, samples.clone());
+                for index in samples {
+                    add(self.trace(x, y, pixel.sampler(index), probe));
+                }
+            }
+        }
+    }
+
+    /// The pixels of the group that holds pixel `(x, y)`: the `GROUP_W x GROUP_H` block at
+    /// multiples of those, clipped to the image, in row order; the second value is how many
+    /// there are.
+    pub fn group_of(&self, x: u32, y: u32) -> ([(u32, u32); GROUP], usize) {
+        let (w, h) = self.size();
+        let (x0, y0) = (x - x % GROUP_W, y - y % GROUP_H);
+        let mut pixels = [(x0, y0); GROUP];
+        let mut n = 0;
+        for py in (y0..y0 + GROUP_H).filter(|&py| py < h) {
+            for px in (x0..x0 + GROUP_W).filter(|&px| px < w) {
+                pixels[n] = (px, py);
+                n += 1;
+            }
+        }
+        (pixels, n)
+    }
+
+    /// Every pixel of a group (`pixels`, as [`RenderJob::group_of`] gives them) takes its
+    /// samples `samples[k]`, sample index by sample index over their union: `add(k, index,
+    /// value)` gets pixel `k`'s value of each of its samples in index order. At each index the
+    /// pixels that take it share their light (with an integrator that [`reuses`]); so each value
+    /// is a pure function of the job, the group, the pixel, the sample index and which of the
+    /// group's pixels take that index (all of them when the ranges are equal, as in every render
+    /// but an adaptive pass). With an integrator that does not reuse, it is
+    /// [`RenderJob::sample_probed`]'s.
+    pub fn group<P: Probe>(
+        &self,
+        pixels: &[(u32, u32)],
+        samples: &[Range<u64>],
+        caches: &mut GroupCache,
+        probe: &mut P,
+        mut add: impl FnMut(usize, u64, Color),
+    ) {
+        let n = pixels.len().min(GROUP).min(samples.len());
+        let Integrator::Path(path) = self.integrator else {
+            for (k, &(x, y)) in pixels[..n].iter().enumerate() {
+                let cache = &mut caches.pixels[k];
+                let mut index = samples[k].start;
+                self.pixel_alone(x, y, samples[k].clone(), cache, probe, |c| {
+                    add(k, index, c);
+                    index += 1;
+                });
+            }
+            return;
+        };
+        let live = samples[..n].iter().filter(|r| !r.is_empty());
+        let lo = live.clone().map(|r| r.start).min();
+        let hi = live.map(|r| r.end).max();
+        let (Some(lo), Some(hi)) = (lo, hi) else {
+            return;
+        };
+        let group = &pixels[..n];
+        match self.scene.sampler {
+            SamplerKind::Independent => {
+                for index in lo..hi {
+                    let mut samplers = core::array::from_fn::<_, GROUP, _>(|k| {
+                        let (x, y) = pixels[k.min(n - 1)];
+                        IndependentSampler::new(self.seed, x, y, index)
+                    });
+                    self.group_sample(path, group, samples, index, &mut samplers, probe, &mut add);
+                }
+            }
+            SamplerKind::ZSobol { log2_spp } => {
+                for k in 0..GROUP {
+                    let (x, y) = pixels[k.min(n - 1)];
+                    caches.pixels[k].zsobol_for(self.seed, x, y, log2_spp, lo..hi);
+                }
+                for index in lo..hi {
+                    let mut samplers = caches.pixels.each_mut().map(|p| match &mut p.zsobol {
+                        Some(z) => z.sampler(index),
+                        None => unreachable!("every pixel cache was set above"),
+                    });
+                    self.group_sample(path, group, samples, index, &mut samplers, probe, &mut add);
+                }
+            }
+        }
+    }
+
+    /// Sample `index` of each pixel of a group (`pixels`) whose range in `samples` holds it:
+    /// camera rays drawn from those pixels' samplers (`samplers[k]` is pixel `k`'s; the others,
+    /// and any past the group's size, are not touched), then the group estimator; each value
+    /// goes to `add(k, index, value)`.
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    fn group_sample<S: Sampler, P: Probe>(
+        &self,
+        path: &PathIntegrator,
+        pixels: &[(u32, u32)],
+        samples: &[Range<u64>],
+        index: u64,
+        samplers: &mut [S; GROUP],
+        probe: &mut P,
+        add: &mut impl FnMut(usize, u64, Color),
+    ) {
+        let n = pixels.len();
+        let mut rays = [None; GROUP];
+        for (k, s) in samplers[..n].iter_mut().enumerate() {
+            if !samples[k].contains(&index) {
+                continue;
+            }
+            let (x, y) = pixels[k];
+            let offset = self.scene.filter.sample(s.next_2d());
+            let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
+            let ray = self.scene.camera.generate_ray(pos);
+            probe.camera(pos, &ray);
+            rays[k] = Some(ray);
+        }
+        let mut out = [Color::ZERO; GROUP];
+        path.li_group(
+            self.scene,
+            &rays[..n],
+            &mut samplers[..n],
             probe,
-        ),
-        SamplerKind::ZSobol { log2_spp } => trace(
-            scene,
-            integrator,
-            x,
-            y,
-            ZSobolSampler::new(seed, x, y, index, log2_spp),
-            probe,
-        ),
+            &mut out[..n],
+        );
+        for k in (0..n).filter(|&k| rays[k].is_some()) {
+            add(k, index, out[k]);
+        }
+    }
+
+    /// One camera sample of pixel `(x, y)` drawn from `sampler`.
+    #[inline]
+    fn trace<S: Sampler, P: Probe>(&self, x: u32, y: u32, mut sampler: S, probe: &mut P) -> Color {
+        let offset = self.scene.filter.sample(sampler.next_2d());
+        let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
+        let ray = self.scene.camera.generate_ray(pos);
+        probe.camera(pos, &ray);
+        self.integrator
+            .li_probed(self.scene, ray, &mut sampler, probe)
     }
 }
 
-/// Samples `samples` of pixel `(x, y)` in index order, each value passed to `add`: the values
-/// of [`render_sample_probed`] for those indices, bit for bit, with the zsobol sampler's
-/// per-pixel work done once for the pixel instead of once per sample ([`ZSobolPixel`]).
+/// Whether `integrator` shares light among the pixels of a group (see [`RenderJob::reuses`]).
 #[inline]
-#[allow(clippy::too_many_arguments)]
-pub fn render_samples_probed<P: Probe>(
-    scene: &Scene,
-    integrator: &Integrator,
-    seed: u64,
-    x: u32,
-    y: u32,
-    samples: Range<u64>,
-    probe: &mut P,
-    add: impl FnMut(Color),
-) {
-    let mut cache = PixelCache::default();
-    render_samples_cached(
-        scene, integrator, seed, x, y, samples, &mut cache, probe, add,
-    );
+pub fn reuses(integrator: &Integrator) -> bool {
+    matches!(integrator, Integrator::Path(p) if p.reuses())
 }
 
 /// What the pixels one worker renders one after another share: the zsobol sampler's table of
@@ -120,266 +298,8 @@ impl PixelCache {
     }
 }
 
-/// [`render_samples_probed`] with a cache kept from pixel to pixel by the caller: the same
-/// values, bit for bit, for any cache (fresh or used by other pixels, seeds or sample counts).
-#[inline]
-#[allow(clippy::too_many_arguments)]
-pub fn render_samples_cached<P: Probe>(
-    scene: &Scene,
-    integrator: &Integrator,
-    seed: u64,
-    x: u32,
-    y: u32,
-    samples: Range<u64>,
-    cache: &mut PixelCache,
-    probe: &mut P,
-    mut add: impl FnMut(Color),
-) {
-    if reuses(integrator) {
-        // The pixel's values depend on its group's paths: trace the group, keep this pixel's.
-        let (pixels, n) = group_of(scene, x, y);
-        let me = pixels[..n].iter().position(|&p| p == (x, y)).unwrap_or(0);
-        let mut caches = GroupCache::default();
-        let all: [Range<u64>; GROUP] = core::array::from_fn(|_| samples.clone());
-        render_group_cached(
-            scene,
-            integrator,
-            seed,
-            &pixels[..n],
-            &all[..n],
-            &mut caches,
-            probe,
-            |k, _, c| {
-                if k == me {
-                    add(c)
-                }
-            },
-        );
-        return;
-    }
-    render_samples_plain(scene, integrator, seed, x, y, samples, cache, probe, add);
-}
-
-/// [`render_samples_cached`] for an integrator that does not reuse.
-#[inline]
-#[allow(clippy::too_many_arguments)]
-fn render_samples_plain<P: Probe>(
-    scene: &Scene,
-    integrator: &Integrator,
-    seed: u64,
-    x: u32,
-    y: u32,
-    samples: Range<u64>,
-    cache: &mut PixelCache,
-    probe: &mut P,
-    mut add: impl FnMut(Color),
-) {
-    match scene.sampler {
-        SamplerKind::Independent => {
-            for index in samples {
-                let s = IndependentSampler::new(seed, x, y, index);
-                add(trace(scene, integrator, x, y, s, probe));
-            }
-        }
-        SamplerKind::ZSobol { log2_spp } => {
-            if samples.is_empty() {
-                return;
-            }
-            let pixel = cache.zsobol_for(seed, x, y, log2_spp, samples.clone());
-            for index in samples {
-                add(trace(scene, integrator, x, y, pixel.sampler(index), probe));
-            }
-        }
-    }
-}
-
-/// Whether `integrator` shares light among the pixels of a group ([`GROUP`] pixels, 4x2): then
-/// a pixel's values depend on its group's paths, and render loops go group by group
-/// ([`group_of`], [`render_group_cached`]).
-#[inline]
-pub fn reuses(integrator: &Integrator) -> bool {
-    matches!(integrator, Integrator::Path(p) if p.reuses())
-}
-
-/// The pixels of the group that holds pixel `(x, y)`: the `GROUP_W x GROUP_H` block at
-/// multiples of those, clipped to the image, in row order; the second value is how many there
-/// are.
-pub fn group_of(scene: &Scene, x: u32, y: u32) -> ([(u32, u32); GROUP], usize) {
-    let (w, h) = (scene.camera.width, scene.camera.height);
-    let (x0, y0) = (x - x % GROUP_W, y - y % GROUP_H);
-    let mut pixels = [(x0, y0); GROUP];
-    let mut n = 0;
-    for py in (y0..y0 + GROUP_H).filter(|&py| py < h) {
-        for px in (x0..x0 + GROUP_W).filter(|&px| px < w) {
-            pixels[n] = (px, py);
-            n += 1;
-        }
-    }
-    (pixels, n)
-}
-
 /// One sampler cache per pixel of a group.
 #[derive(Clone, Debug, Default)]
 pub struct GroupCache {
     pixels: [PixelCache; GROUP],
-}
-
-/// Every pixel of a group (`pixels`, as [`group_of`] gives them) takes its samples
-/// `samples[k]`, sample index by sample index over their union: `add(k, index, value)` gets pixel
-/// `k`'s value of each of its samples in index order. At each index the pixels that take it
-/// share their light (with an integrator that [`reuses`]); so each value is a pure function of
-/// the seed, the group, the pixel, the sample index and which of the group's pixels take that
-/// index (all of them when the ranges are equal, as in every render but an adaptive pass). With
-/// an integrator that does not reuse, it is [`render_sample_probed`]'s.
-#[allow(clippy::too_many_arguments)]
-pub fn render_group_cached<P: Probe>(
-    scene: &Scene,
-    integrator: &Integrator,
-    seed: u64,
-    pixels: &[(u32, u32)],
-    samples: &[Range<u64>],
-    caches: &mut GroupCache,
-    probe: &mut P,
-    mut add: impl FnMut(usize, u64, Color),
-) {
-    let n = pixels.len().min(GROUP).min(samples.len());
-    let Integrator::Path(path) = integrator else {
-        for (k, &(x, y)) in pixels[..n].iter().enumerate() {
-            let cache = &mut caches.pixels[k];
-            let mut index = samples[k].start;
-            render_samples_plain(
-                scene,
-                integrator,
-                seed,
-                x,
-                y,
-                samples[k].clone(),
-                cache,
-                probe,
-                |c| {
-                    add(k, index, c);
-                    index += 1;
-                },
-            );
-        }
-        return;
-    };
-    let live = samples[..n].iter().filter(|r| !r.is_empty());
-    let lo = live.clone().map(|r| r.start).min();
-    let hi = live.map(|r| r.end).max();
-    let (Some(lo), Some(hi)) = (lo, hi) else {
-        return;
-    };
-    match scene.sampler {
-        SamplerKind::Independent => {
-            for index in lo..hi {
-                let mut samplers = core::array::from_fn::<_, GROUP, _>(|k| {
-                    let (x, y) = pixels[k.min(n - 1)];
-                    IndependentSampler::new(seed, x, y, index)
-                });
-                let group = &pixels[..n];
-                group_sample(
-                    scene,
-                    path,
-                    group,
-                    samples,
-                    index,
-                    &mut samplers,
-                    probe,
-                    &mut add,
-                );
-            }
-        }
-        SamplerKind::ZSobol { log2_spp } => {
-            for k in 0..GROUP {
-                let (x, y) = pixels[k.min(n - 1)];
-                caches.pixels[k].zsobol_for(seed, x, y, log2_spp, lo..hi);
-            }
-            for index in lo..hi {
-                let mut samplers = caches.pixels.each_mut().map(|p| match &mut p.zsobol {
-                    Some(z) => z.sampler(index),
-                    None => unreachable!("every pixel cache was set above"),
-                });
-                let group = &pixels[..n];
-                group_sample(
-                    scene,
-                    path,
-                    group,
-                    samples,
-                    index,
-                    &mut samplers,
-                    probe,
-                    &mut add,
-                );
-            }
-        }
-    }
-}
-
-/// Sample `index` of each pixel of a group (`pixels`) whose range in `samples` holds it: camera
-/// rays drawn from those pixels' samplers (`samplers[k]` is pixel `k`'s; the others, and any
-/// past the group's size, are not touched), then the group estimator; each value goes to
-/// `add(k, index, value)`.
-#[inline]
-#[allow(clippy::too_many_arguments)]
-fn group_sample<S: Sampler, P: Probe>(
-    scene: &Scene,
-    path: &PathIntegrator,
-    pixels: &[(u32, u32)],
-    samples: &[Range<u64>],
-    index: u64,
-    samplers: &mut [S; GROUP],
-    probe: &mut P,
-    add: &mut impl FnMut(usize, u64, Color),
-) {
-    let n = pixels.len();
-    let mut rays = [None; GROUP];
-    for (k, s) in samplers[..n].iter_mut().enumerate() {
-        if !samples[k].contains(&index) {
-            continue;
-        }
-        let (x, y) = pixels[k];
-        let offset = scene.filter.sample(s.next_2d());
-        let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
-        let ray = scene.camera.generate_ray(pos);
-        probe.camera(pos, &ray);
-        rays[k] = Some(ray);
-    }
-    let mut out = [Color::ZERO; GROUP];
-    path.li_group(scene, &rays[..n], &mut samplers[..n], probe, &mut out[..n]);
-    for k in (0..n).filter(|&k| rays[k].is_some()) {
-        add(k, index, out[k]);
-    }
-}
-
-/// One camera sample of pixel `(x, y)` drawn from `sampler`.
-#[inline]
-fn trace<S: Sampler, P: Probe>(
-    scene: &Scene,
-    integrator: &Integrator,
-    x: u32,
-    y: u32,
-    mut sampler: S,
-    probe: &mut P,
-) -> Color {
-    let offset = scene.filter.sample(sampler.next_2d());
-    let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
-    let ray = scene.camera.generate_ray(pos);
-    probe.camera(pos, &ray);
-    integrator.li_probed(scene, ray, &mut sampler, probe)
-}
-
-/// Adds samples `samples` of pixel `(x, y)` to `acc`, in index order.
-pub fn render_pixel(
-    scene: &Scene,
-    integrator: &Integrator,
-    seed: u64,
-    x: u32,
-    y: u32,
-    samples: Range<u64>,
-    acc: &mut PixelAccum,
-) {
-    render_samples_probed(scene, integrator, seed, x, y, samples, &mut NoProbe, |c| {
-        acc.add(c)
-    });
 }

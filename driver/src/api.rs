@@ -10,6 +10,7 @@
 use crate::image_io::RgbImage;
 use crate::render::RenderOptions;
 use std::path::Path;
+use tessera_core::render::RenderJob;
 use tessera_scene::error::InputError;
 use tessera_scene::{load_scene, load_scene_str, LoadedScene};
 
@@ -56,16 +57,20 @@ pub fn load_str(xml: &str, base_dir: impl AsRef<Path>) -> Result<LoadedScene, In
 /// for any thread count and tile size.
 pub fn render(scene: &LoadedScene, options: &Options) -> Image {
     let opts = RenderOptions {
-        samples: 0..options.spp.unwrap_or(scene.spp),
         threads: options
             .threads
             .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
             .max(1),
         tile_size: options.tile_size.max(1),
-        seed: options.seed.unwrap_or(scene.seed),
         ..Default::default()
     };
-    let fb = crate::render::render(&scene.scene, &scene.integrator, &opts, &mut |_, _| {});
+    let job = RenderJob::new(
+        &scene.scene,
+        &scene.integrator,
+        options.seed.unwrap_or(scene.seed),
+    );
+    let samples = 0..options.spp.unwrap_or(scene.spp);
+    let fb = crate::render::render(&job, samples, &opts, &mut |_, _| {});
     RgbImage {
         width: fb.width,
         height: fb.height,

@@ -1,10 +1,11 @@
-//! Renders a whole image: a fixed list of tiles handed to worker threads by an atomic cursor.
+//! The tile loop: a fixed list of tiles handed to worker threads by an atomic cursor, each
+//! pixel taking the samples of a [`Span`] from the core's [`RenderJob`].
 //!
 //! Each pixel belongs to exactly one tile and each tile to exactly one worker, which adds the
 //! pixel's samples in sample-index order; composition only copies tiles into place. The result
 //! is therefore the same bits for any thread count and any tile size.
 //!
-//! `RenderOptions::pixels` restricts the render to a crop window or a tile set (see
+//! [`RenderOptions::pixels`] restricts the render to a crop window or a tile set (see
 //! [`PixelSelection`]); the selected pixels get exactly the bits the whole render gives them and
 //! the others stay empty.
 use crate::render_groups::{render_tile_groups, Sharing};
@@ -14,37 +15,67 @@ use crossbeam_channel::unbounded;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use tessera_core::film::PixelAccum;
-use tessera_core::integrator::Integrator;
 use tessera_core::integrator::NoProbe;
-use tessera_core::render::{render_samples_cached, reuses, GroupCache, PixelCache};
-use tessera_core::scene::Scene;
+use tessera_core::render::{GroupCache, PixelCache, RenderJob};
 
-/// How to render.
+/// How to split a render over threads and which pixels to render: nothing here changes a bit
+/// of the selected pixels.
 #[derive(Clone, Debug)]
 pub struct RenderOptions {
-    /// Samples per pixel (the sample indices rendered are `samples`).
-    pub samples: Range<u64>,
     /// Worker threads (at least 1).
     pub threads: usize,
     /// Tile edge in pixels (never derived from the thread count).
     pub tile_size: u32,
-    /// Scene seed.
-    pub seed: u64,
     /// Which pixels to render (the rest of the framebuffer stays empty).
     pub pixels: PixelSelection,
 }
 
 impl Default for RenderOptions {
-    /// One sample per pixel (index 0), one thread, 32-pixel tiles, seed 0, the whole image.
+    /// One thread, 32-pixel tiles, the whole image.
     fn default() -> Self {
         RenderOptions {
-            samples: 0..1,
             threads: 1,
             tile_size: 32,
-            seed: 0,
             pixels: PixelSelection::default(),
         }
     }
+}
+
+/// Which samples each selected pixel takes in one call of [`render_span`].
+#[derive(Clone, Debug)]
+pub enum Span<'a> {
+    /// Sample indices `a..b` for every pixel, added to the sums already there: rendering `0..a`
+    /// and then `a..b` into the same buffer gives the same bits as `0..b` at once.
+    Fixed(Range<u64>),
+    /// Each pixel continues from its own count (`count + dropped`) up to this many samples, so
+    /// pixels may start at different indices (a pass of a progressive render, or one resumed).
+    UpTo(u64),
+    /// Each pixel continues from its own count up to its own target (row-major, one per pixel
+    /// of the image): adaptive passes. With path reuse, a sample's value also depends on which
+    /// pixels of its group take it in this call; tile edges are then rounded up so that tiles
+    /// hold whole groups (see `render_groups.rs`).
+    Targets(&'a [u64]),
+}
+
+impl Span<'_> {
+    /// The samples pixel `(x, y)`, holding `a`, takes (`width` is the image's).
+    fn of(&self, a: &PixelAccum, x: u32, y: u32, width: u32) -> Range<u64> {
+        let own = a.count + a.dropped;
+        match self {
+            Span::Fixed(r) => r.clone(),
+            Span::UpTo(end) => own..*end,
+            Span::Targets(t) => own..t[y as usize * width as usize + x as usize],
+        }
+    }
+}
+
+/// What a call of [`render_span`] did.
+#[derive(Clone, Debug)]
+pub struct Rendered<P> {
+    /// Whether every tile was rendered (false only when the stop flag cut the call short).
+    pub complete: bool,
+    /// The workers' probes, combined.
+    pub probe: P,
 }
 
 /// Accumulated samples of every pixel, row-major.
@@ -67,6 +98,11 @@ impl Framebuffer {
             pixels: vec![PixelAccum::default(); width as usize * height as usize],
         }
     }
+    /// An empty buffer of `job`'s image size.
+    pub fn for_job(job: &RenderJob) -> Self {
+        let (w, h) = job.size();
+        Framebuffer::new(w, h)
+    }
     /// Mean of each pixel.
     pub fn rgb(&self) -> Vec<[f32; 3]> {
         self.pixels.iter().map(|p| p.mean()).collect()
@@ -81,158 +117,60 @@ impl Framebuffer {
     }
 }
 
-/// Renders the selected pixels (`opts.pixels`); `progress(tiles_done, tiles_total)` is called on
-/// the calling thread as tiles arrive.
+/// Renders samples `samples` of the selected pixels into a new framebuffer; `progress(tiles_done,
+/// tiles_total)` is called on the calling thread as tiles arrive.
 pub fn render(
-    scene: &Scene,
-    integrator: &Integrator,
+    job: &RenderJob,
+    samples: Range<u64>,
     opts: &RenderOptions,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Framebuffer {
-    let mut fb = Framebuffer::new(scene.camera.width, scene.camera.height);
-    render_tiles::<NoProbe>(scene, integrator, opts, &mut fb, None, None, progress);
+    let mut fb = Framebuffer::for_job(job);
+    render_span::<NoProbe>(job, opts, &mut fb, Span::Fixed(samples), None, progress);
     fb
 }
 
-/// [`render`] with a probe per worker thread observing every sample (e.g. [`Counters`](tessera_core::integrator::Counters) for
-/// `--stats`), combined at the end. A probe only observes: the image is the same bits, and sums
-/// of counts do not depend on the thread count or the tile size.
-pub fn render_probed<P: TileProbe>(
-    scene: &Scene,
-    integrator: &Integrator,
+/// The tile loop: every selected pixel of `fb` takes the samples `span` gives it, added to its
+/// sums in sample-index order; pixels outside the selection keep their sums. With `stop`, no tile
+/// is started once it is set (the tiles not rendered keep their sums, and the result says the
+/// call was not complete). A probe per worker thread (e.g.
+/// [`Counters`](tessera_core::integrator::Counters) for `--stats`) observes every sample; they
+/// are combined at the end. A probe only observes: the image is the same bits, and sums of
+/// counts do not depend on the thread count or the tile size.
+///
+/// The bits of each pixel depend only on the job, the pixel and the samples it took, never on
+/// the thread count, the tile size, the tile order or how the work was split into calls.
+///
+/// # Panics
+/// If `fb` is not the job's image size, or `Span::Targets` has another length (a caller's
+/// mistake: start from [`Framebuffer::for_job`]).
+pub fn render_span<P: TileProbe>(
+    job: &RenderJob,
     opts: &RenderOptions,
+    fb: &mut Framebuffer,
+    span: Span,
+    stop: Option<&AtomicBool>,
     progress: &mut dyn FnMut(usize, usize),
-) -> (Framebuffer, P) {
-    let mut fb = Framebuffer::new(scene.camera.width, scene.camera.height);
-    let probe = render_tiles(scene, integrator, opts, &mut fb, None, None, progress);
-    (fb, probe)
-}
-
-/// Panics unless `fb` is the scene's size (a caller's mistake: start from `Framebuffer::new`).
-fn check_size(scene: &Scene, fb: &Framebuffer, what: &str) {
-    let (w, h) = (scene.camera.width, scene.camera.height);
+) -> Rendered<P> {
+    let (w, h) = job.size();
     assert!(
         (fb.width, fb.height) == (w, h) && fb.pixels.len() == w as usize * h as usize,
-        "{what}: the framebuffer is {}x{}, the scene {w}x{h}",
+        "render_span: the framebuffer is {}x{}, the scene {w}x{h}",
         fb.width,
         fb.height
     );
-}
-
-/// Adds the samples `opts.samples` of every selected pixel to the sums already in `fb`, as if
-/// the render had gone on: rendering `0..a` and then `a..b` into the same buffer gives the same
-/// bits as rendering `0..b` at once (each pixel continues its own sum, in sample-index order).
-///
-/// # Panics
-/// If `fb` is not the scene's size (a caller's mistake: start from `Framebuffer::new`).
-pub fn render_into(
-    scene: &Scene,
-    integrator: &Integrator,
-    opts: &RenderOptions,
-    fb: &mut Framebuffer,
-    progress: &mut dyn FnMut(usize, usize),
-) {
-    check_size(scene, fb, "render_into");
-    render_tiles::<NoProbe>(scene, integrator, opts, fb, None, None, progress);
-}
-
-/// Brings every selected pixel of `fb` to `targets[i]` samples (`targets` row-major, one per
-/// pixel of the image), each pixel continuing from its own count (`count + dropped`);
-/// `opts.samples` is not used. Used by adaptive sampling, where pixels hold different counts:
-/// a pixel's bits equal a plain render of its first `targets[i]` samples. (With path reuse, a
-/// sample's value also depends on which pixels of its group take it in this call, those whose
-/// range holds its index; tile edges are then rounded up so that tiles hold whole groups, see
-/// `render_groups.rs`.) With `stop`, no tile
-/// is started once it is set (the tiles not rendered keep their sums); returns whether every
-/// tile was rendered.
-///
-/// # Panics
-/// If `fb` is not the scene's size or `targets` has another length.
-pub fn render_into_targets(
-    scene: &Scene,
-    integrator: &Integrator,
-    opts: &RenderOptions,
-    fb: &mut Framebuffer,
-    targets: &[u64],
-    stop: Option<&AtomicBool>,
-    progress: &mut dyn FnMut(usize, usize),
-) -> bool {
-    check_size(scene, fb, "render_into_targets");
-    assert_eq!(
-        targets.len(),
-        fb.pixels.len(),
-        "render_into_targets: one target per pixel"
-    );
-    let (w, h) = (scene.camera.width, scene.camera.height);
-    // The tile count is the loop's own (it may round the tile edge), told with each tile.
-    let mut complete = opts.pixels.rects(w, h, opts.tile_size).is_empty();
-    render_tiles::<NoProbe>(
-        scene,
-        integrator,
-        opts,
-        fb,
-        stop,
-        Some(targets),
-        &mut |d, t| {
-            complete = d == t;
-            progress(d, t)
-        },
-    );
-    complete
-}
-
-/// Brings every selected pixel of `fb` to `opts.samples.end` samples, each pixel continuing from
-/// its own count (`count + dropped`, so pixels may start at different sample indices;
-/// `opts.samples.start` is not used). Workers check `stop` before each tile and take no new tile
-/// once it is set; the tiles not rendered keep their sums. Returns whether every tile was
-/// rendered. The bits equal a single render of `0..opts.samples.end`, however the work was split
-/// or interrupted.
-///
-/// # Panics
-/// If `fb` is not the scene's size.
-pub fn render_into_until(
-    scene: &Scene,
-    integrator: &Integrator,
-    opts: &RenderOptions,
-    fb: &mut Framebuffer,
-    stop: &AtomicBool,
-    progress: &mut dyn FnMut(usize, usize),
-) -> bool {
-    check_size(scene, fb, "render_into_until");
-    let (w, h) = (scene.camera.width, scene.camera.height);
-    let total = opts.pixels.rects(w, h, opts.tile_size).len();
-    let mut done = 0;
-    render_tiles::<NoProbe>(
-        scene,
-        integrator,
-        opts,
-        fb,
-        Some(stop),
-        None,
-        &mut |d, t| {
-            done = d;
-            progress(d, t)
-        },
-    );
-    done == total
-}
-
-/// The tile loop, in place: each tile's accumulators start from the sums in `fb` and take the
-/// samples `opts.samples` in order. With `stop` (resumable mode), each pixel instead continues
-/// from its own count up to `opts.samples.end`, and no tile is started once `stop` is set (the
-/// tiles not rendered keep their sums). With `targets`, each pixel continues from its own count
-/// up to its own target instead. Pixels outside the selection keep their sums.
-fn render_tiles<P: TileProbe>(
-    scene: &Scene,
-    integrator: &Integrator,
-    opts: &RenderOptions,
-    fb: &mut Framebuffer,
-    stop: Option<&AtomicBool>,
-    targets: Option<&[u64]>,
-    progress: &mut dyn FnMut(usize, usize),
-) -> P {
-    let (w, h) = (scene.camera.width, scene.camera.height);
-    let reuse = reuses(integrator);
+    let targets = match span {
+        Span::Targets(t) => {
+            assert_eq!(
+                t.len(),
+                fb.pixels.len(),
+                "render_span: one target per pixel"
+            );
+            Some(t)
+        }
+        _ => None,
+    };
+    let reuse = job.reuses();
     let (sharing, tile_size) = Sharing::choose(reuse, targets.is_some(), opts.tile_size);
     let mut list = opts.pixels.rects(w, h, tile_size);
     if let Some(targets) = targets {
@@ -250,7 +188,7 @@ fn render_tiles<P: TileProbe>(
         let mut workers = Vec::with_capacity(threads);
         for _ in 0..threads {
             let tx = tx.clone();
-            let (list, cursor) = (&list, &cursor);
+            let (list, cursor, span) = (&list, &cursor, &span);
             workers.push(s.spawn(move || {
                 let mut probe = P::default();
                 let mut cache = PixelCache::default();
@@ -266,19 +204,10 @@ fn render_tiles<P: TileProbe>(
                         let row = y as usize * w as usize;
                         acc.extend_from_slice(&start[row + t.x0 as usize..row + t.x1 as usize]);
                     }
-                    let range = |a: &PixelAccum, x: u32, y: u32| {
-                        let own = a.count + a.dropped;
-                        match (targets, stop) {
-                            (Some(t), _) => own..t[y as usize * w as usize + x as usize],
-                            (None, Some(_)) => own..opts.samples.end,
-                            (None, None) => opts.samples.clone(),
-                        }
-                    };
+                    let range = |a: &PixelAccum, x: u32, y: u32| span.of(a, x, y, w);
                     if reuse {
                         render_tile_groups(
-                            scene,
-                            integrator,
-                            opts.seed,
+                            job,
                             t,
                             &mut acc,
                             &range,
@@ -286,28 +215,15 @@ fn render_tiles<P: TileProbe>(
                             &mut groups,
                             &mut probe,
                         );
-                        if tx.send((i, acc)).is_err() {
-                            break;
-                        }
-                        continue;
-                    }
-                    let mut k = 0;
-                    for y in t.y0..t.y1 {
-                        for x in t.x0..t.x1 {
-                            let a = &mut acc[k];
-                            let samples = range(a, x, y);
-                            render_samples_cached(
-                                scene,
-                                integrator,
-                                opts.seed,
-                                x,
-                                y,
-                                samples,
-                                &mut cache,
-                                &mut probe,
-                                |c| a.add(c),
-                            );
-                            k += 1;
+                    } else {
+                        let mut k = 0;
+                        for y in t.y0..t.y1 {
+                            for x in t.x0..t.x1 {
+                                let a = &mut acc[k];
+                                let samples = range(a, x, y);
+                                job.pixel(x, y, samples, &mut cache, &mut probe, |c| a.add(c));
+                                k += 1;
+                            }
                         }
                     }
                     if tx.send((i, acc)).is_err() {
@@ -331,6 +247,7 @@ fn render_tiles<P: TileProbe>(
             }
         }
     });
+    let complete = finished.len() == list.len();
     for (i, acc) in finished {
         let t = list[i];
         let tw = (t.x1 - t.x0) as usize;
@@ -339,7 +256,10 @@ fn render_tiles<P: TileProbe>(
             fb.pixels[dst..dst + tw].copy_from_slice(&acc[row * tw..(row + 1) * tw]);
         }
     }
-    total
+    Rendered {
+        complete,
+        probe: total,
+    }
 }
 
 /// Orders `tiles` by the samples they still take to reach `targets` (row-major, `width` wide),

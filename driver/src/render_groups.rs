@@ -3,9 +3,8 @@
 use crate::tile::{Tile, TileProbe};
 use std::ops::Range;
 use tessera_core::film::PixelAccum;
-use tessera_core::integrator::{Integrator, GROUP, GROUP_H, GROUP_W};
-use tessera_core::render::{group_of, render_group_cached, GroupCache};
-use tessera_core::scene::Scene;
+use tessera_core::integrator::{GROUP, GROUP_H, GROUP_W};
+use tessera_core::render::{GroupCache, RenderJob};
 
 /// Which of a group's pixels take part in each of the group's samples.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -49,11 +48,8 @@ fn lcm(a: u32, b: u32) -> u32 {
 
 /// A tile's pixels when the integrator shares light among groups, group by group (see
 /// [`Sharing`] for which pixels take part in each sample).
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn render_tile_groups<P: TileProbe>(
-    scene: &Scene,
-    integrator: &Integrator,
-    seed: u64,
+    job: &RenderJob,
     t: &Tile,
     acc: &mut [PixelAccum],
     range: &dyn Fn(&PixelAccum, u32, u32) -> Range<u64>,
@@ -64,7 +60,7 @@ pub(crate) fn render_tile_groups<P: TileProbe>(
     let tw = (t.x1 - t.x0) as usize;
     for gy in (t.y0 - t.y0 % GROUP_H..t.y1).step_by(GROUP_H as usize) {
         for gx in (t.x0 - t.x0 % GROUP_W..t.x1).step_by(GROUP_W as usize) {
-            let (pixels, n) = group_of(scene, gx, gy);
+            let (pixels, n) = job.group_of(gx, gy);
             // Each pixel's index into `acc` and its samples, for the pixels in the tile.
             let mut mine: [Option<(usize, Range<u64>)>; GROUP] = Default::default();
             let (mut lo, mut hi) = (u64::MAX, 0);
@@ -86,22 +82,13 @@ pub(crate) fn render_tile_groups<P: TileProbe>(
                 (Some((_, r)), Sharing::OwnRanges) => r.clone(),
                 _ => lo..hi,
             });
-            render_group_cached(
-                scene,
-                integrator,
-                seed,
-                &pixels[..n],
-                &samples[..n],
-                groups,
-                probe,
-                |k, index, c| {
-                    if let Some((i, r)) = &mine[k] {
-                        if r.contains(&index) {
-                            acc[*i].add(c);
-                        }
+            job.group(&pixels[..n], &samples[..n], groups, probe, |k, index, c| {
+                if let Some((i, r)) = &mine[k] {
+                    if r.contains(&index) {
+                        acc[*i].add(c);
                     }
-                },
-            );
+                }
+            });
         }
     }
 }

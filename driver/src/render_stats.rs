@@ -1,38 +1,42 @@
 //! `tessera render --stats`: the tile render of [`crate::render`] with a [`Counters`] probe per
-//! worker thread ([`crate::render::render_probed`]), summed at the end.
+//! worker thread, summed at the end.
 //!
-//! Each sample is `render_sample_probed`, which returns the same value as `render_sample` (a
-//! probe only observes), added to its pixel in sample-index order as in the ordinary render: the
-//! image is the same bits. The counts are sums over samples, so they do not depend on the thread
-//! count or the tile size either.
-use crate::render::{render, render_probed, Framebuffer, RenderOptions};
-use tessera_core::integrator::{Counters, Integrator};
+//! A probe only observes: each sample has the same value as without it, added to its pixel in
+//! sample-index order as in the ordinary render, so the image is the same bits. The counts are
+//! sums over samples, so they do not depend on the thread count or the tile size either.
+use crate::render::{render_span, Framebuffer, RenderOptions, Span};
+use std::ops::Range;
+use tessera_core::integrator::Counters;
+use tessera_core::render::RenderJob;
 use tessera_core::scene::Scene;
 
-/// Renders the selected pixels like [`crate::render::render`] and counts the work done.
+/// Renders samples `samples` of the selected pixels like [`crate::render::render`] and counts
+/// the work done.
 pub fn render_with_stats(
-    scene: &Scene,
-    integrator: &Integrator,
+    job: &RenderJob,
+    samples: Range<u64>,
     opts: &RenderOptions,
     progress: &mut dyn FnMut(usize, usize),
 ) -> (Framebuffer, Counters) {
-    render_probed(scene, integrator, opts, progress)
+    let mut fb = Framebuffer::for_job(job);
+    let done = render_span(job, opts, &mut fb, Span::Fixed(samples), None, progress);
+    (fb, done.probe)
 }
 
 /// The ordinary render, or with `stats` the counting one, whose counts are printed to stdout
 /// (the image is the same bits either way).
 pub fn render_maybe_stats(
     stats: bool,
-    scene: &Scene,
-    integrator: &Integrator,
+    job: &RenderJob,
+    samples: Range<u64>,
     opts: &RenderOptions,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Framebuffer {
     if !stats {
-        return render(scene, integrator, opts, progress);
+        return crate::render::render(job, samples, opts, progress);
     }
-    let (fb, counters) = render_with_stats(scene, integrator, opts, progress);
-    print!("{}", format_stats(scene, &counters, fb.dropped()));
+    let (fb, counters) = render_with_stats(job, samples, opts, progress);
+    print!("{}", format_stats(job.scene, &counters, fb.dropped()));
     fb
 }
 

@@ -32,7 +32,7 @@ pub fn tiles(width: u32, height: u32, size: u32) -> Vec<Tile> {
     out
 }
 
-/// A probe each worker thread owns while rendering tiles (see `render::render_probed`); the
+/// A probe each worker thread owns while rendering tiles (see `render::render_span`); the
 /// workers' probes are combined at the end.
 pub trait TileProbe: Probe + Default + Send {
     /// Adds what another worker observed.

@@ -7,7 +7,7 @@
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 use tessera_core::film::PixelAccum;
-use tessera_core::render::render_pixel;
+use tessera_core::render::RenderJob;
 
 #[path = "common.rs"]
 mod common;
@@ -29,15 +29,7 @@ fuzz_target!(|data: &[u8]| {
     assert!(w >= 1 && h >= 1, "empty film {w}x{h}");
     for (x, y) in [(0, 0), (w / 2, h / 2), (w - 1, h - 1)] {
         let mut acc = PixelAccum::default();
-        render_pixel(
-            &loaded.scene,
-            &loaded.integrator,
-            loaded.seed,
-            x,
-            y,
-            0..1,
-            &mut acc,
-        );
+        RenderJob::new(&loaded.scene, &loaded.integrator, loaded.seed).accumulate(x, y, 0..1, &mut acc);
         assert!(
             acc.mean().iter().all(|c| c.is_finite()),
             "non-finite pixel ({x}, {y})"

@@ -3,16 +3,16 @@
 //! throughput) and its value.
 //!
 //! The values printed are those the full render accumulates: each sample is
-//! `render_sample_probed` (the same value as `render_sample`; the recorder only observes), the
+//! `RenderJob::sample_probed` (the same value as `RenderJob::sample`; the recorder only observes), the
 //! pixel mean is a [`PixelAccum`] fed in sample-index order, and every float is printed with
 //! `{:?}`, which round-trips an `f32` exactly.
 use std::fmt::Write;
-use tessera::render::RenderOptions;
+use std::ops::Range;
 use tessera_core::film::PixelAccum;
 use tessera_core::glam::Vec3;
 use tessera_core::integrator::{Event, PathRecord, RayKind};
 use tessera_core::math::Norm;
-use tessera_core::render::render_sample_probed;
+use tessera_core::render::RenderJob;
 use tessera_scene::error::InputError;
 use tessera_scene::LoadedScene;
 
@@ -45,8 +45,8 @@ pub fn parse_debug_pixel(s: &str) -> Result<DebugPixel, String> {
 
 /// Traces the pixel and prints its report to stdout; returns the exit code (2 for a pixel or
 /// sample outside the render).
-pub fn run(loaded: &LoadedScene, opts: &RenderOptions, dp: DebugPixel) -> i32 {
-    match report(loaded, opts, dp) {
+pub fn run(loaded: &LoadedScene, job: &RenderJob, samples: Range<u64>, dp: DebugPixel) -> i32 {
+    match report(loaded, job, samples, dp) {
         Ok(text) => {
             print!("{text}");
             0
@@ -61,7 +61,8 @@ pub fn run(loaded: &LoadedScene, opts: &RenderOptions, dp: DebugPixel) -> i32 {
 /// The report of [`run`], or why the pixel cannot be traced.
 pub fn report(
     loaded: &LoadedScene,
-    opts: &RenderOptions,
+    job: &RenderJob,
+    render: Range<u64>,
     dp: DebugPixel,
 ) -> Result<String, String> {
     let scene = &loaded.scene;
@@ -73,33 +74,25 @@ pub fn report(
         ));
     }
     let samples = match dp.sample {
-        Some(s) if !opts.samples.contains(&s) => {
+        Some(s) if !render.contains(&s) => {
             return Err(format!(
                 "--debug-pixel sample {s} is outside the render's samples {}..{}",
-                opts.samples.start, opts.samples.end
+                render.start, render.end
             ))
         }
         Some(s) => s..s + 1,
-        None => opts.samples.clone(),
+        None => render,
     };
     let mut out = String::new();
     let _ = writeln!(
         out,
         "pixel ({}, {}), samples {}..{}, seed {}, integrator {}",
-        dp.x, dp.y, samples.start, samples.end, opts.seed, loaded.integrator_spec.name
+        dp.x, dp.y, samples.start, samples.end, job.seed, loaded.integrator_spec.name
     );
     let mut acc = PixelAccum::default();
     for index in samples {
         let mut rec = PathRecord::default();
-        let c = render_sample_probed(
-            scene,
-            &loaded.integrator,
-            opts.seed,
-            dp.x,
-            dp.y,
-            index,
-            &mut rec,
-        );
+        let c = job.sample_probed(dp.x, dp.y, index, &mut rec);
         acc.add(c);
         let _ = writeln!(out, "sample {index}:");
         write_events(&mut out, loaded, &rec);

@@ -40,13 +40,12 @@ fn render_two_threads(
     seed: u64,
 ) -> Framebuffer {
     let opts = RenderOptions {
-        samples: 0..spp,
         threads: 2,
         tile_size: 16,
-        seed,
         pixels: Default::default(),
     };
-    render(scene, integrator, &opts, &mut |_, _| {})
+    let job = tessera_core::render::RenderJob::new(scene, integrator, seed);
+    render(&job, 0..spp, &opts, &mut |_, _| {})
 }
 
 /// Mean and variance of the mean of a block of pixels, per channel. Pixels are strata: the

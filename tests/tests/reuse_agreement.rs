@@ -9,7 +9,9 @@
 //!
 //! Adaptive passes share light only among the pixels of a group that take each sample index;
 //! that estimator is checked with fixed targets that differ inside every group.
-use tessera::render::{render_into_targets, Framebuffer, RenderOptions};
+use tessera::render::{render_span, Framebuffer, RenderOptions, Span};
+use tessera_core::integrator::NoProbe;
+use tessera_core::render::RenderJob;
 use tessera_lab::stats::{sidak_alpha, welch_test, Moments};
 use tessera_scene::LoadedScene;
 use tessera_tests::{load_file, render_loaded};
@@ -130,19 +132,12 @@ fn reuse_with_uneven_targets_agrees_with_plain_paths() {
         let opts = RenderOptions {
             threads: 2,
             tile_size: 16,
-            seed,
             ..Default::default()
         };
+        let job = RenderJob::new(&l.scene, &l.integrator, seed);
         let mut fb = Framebuffer::new(RES, RES);
-        render_into_targets(
-            &l.scene,
-            &l.integrator,
-            &opts,
-            &mut fb,
-            &targets,
-            None,
-            &mut |_, _| {},
-        );
+        let span = Span::Targets(&targets);
+        render_span::<NoProbe>(&job, &opts, &mut fb, span, None, &mut |_, _| {});
         fb
     });
     let plain = replicates("cbox.xml", "path", 32, 600, 1.0);

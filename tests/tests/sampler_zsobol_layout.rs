@@ -84,7 +84,7 @@ impl Sampler for LayoutChecker {
 }
 
 /// Traces `spp` samples of every pixel of `scene` with `integrator` through the checker, the
-/// way `render_sample` does (camera 2D, then the integrator).
+/// way `RenderJob::sample` does (camera 2D, then the integrator).
 fn check(scene: &Scene, integrator: &Integrator, spp: u32, s: &mut LayoutChecker) {
     for y in 0..scene.camera.height {
         for x in 0..scene.camera.width {

@@ -6,7 +6,9 @@
 //! their sample variance is not the estimate's variance; the spread across seeds is. A control
 //! shows the test rejects a reference 2% off, and the image is also bit for bit the same for
 //! any thread count and tile size and when its samples are rendered in two ranges.
-use tessera::render::{render, render_into, Framebuffer, RenderOptions};
+use tessera::render::{render_span, Framebuffer, RenderOptions, Span};
+use tessera_core::integrator::NoProbe;
+use tessera_core::render::RenderJob;
 use tessera_core::sampling::SamplerKind;
 use tessera_lab::stats::sidak_alpha;
 use tessera_scene::LoadedScene;
@@ -72,19 +74,35 @@ fn load_zsobol(xml: &str, integrator: &str, depth: i64, spp: u64) -> LoadedScene
     l
 }
 
-fn render_opts(
+/// Samples `samples` of `l` with `seed`, added to `fb`, on `threads` threads in tiles of `tile`.
+fn render_into(
+    l: &LoadedScene,
+    fb: &mut Framebuffer,
     samples: std::ops::Range<u64>,
     threads: usize,
     tile: u32,
     seed: u64,
-) -> RenderOptions {
-    RenderOptions {
-        samples,
+) {
+    let opts = RenderOptions {
         threads,
         tile_size: tile,
-        seed,
         ..Default::default()
-    }
+    };
+    let job = RenderJob::new(&l.scene, &l.integrator, seed);
+    render_span::<NoProbe>(&job, &opts, fb, Span::Fixed(samples), None, &mut |_, _| {});
+}
+
+/// A new render of samples `samples` of `l` (see [`render_into`]).
+fn render(
+    l: &LoadedScene,
+    samples: std::ops::Range<u64>,
+    threads: usize,
+    tile: u32,
+    seed: u64,
+) -> Framebuffer {
+    let mut fb = Framebuffer::new(l.scene.camera.width, l.scene.camera.height);
+    render_into(l, &mut fb, samples, threads, tile, seed);
+    fb
 }
 
 /// Image mean per channel.
@@ -116,10 +134,7 @@ fn zsobol_renders_are_unbiased() {
     for (label, xml, integ, depth, expected) in cases {
         let l = load_zsobol(&xml, integ, depth, SPP);
         let means: Vec<[f64; 3]> = (0..SEEDS)
-            .map(|seed| {
-                let o = render_opts(0..SPP, 2, 16, 1000 + seed);
-                image_mean(&render(&l.scene, &l.integrator, &o, &mut |_, _| {}))
-            })
+            .map(|seed| image_mean(&render(&l, 0..SPP, 2, 16, 1000 + seed)))
             .collect();
         for k in 0..3 {
             let xs: Vec<f64> = means.iter().map(|m| m[k]).collect();
@@ -139,39 +154,18 @@ fn zsobol_renders_are_unbiased() {
 #[test]
 fn zsobol_images_do_not_depend_on_threads_tiles_or_splits() {
     let l = load_zsobol(&closed_sphere(30.0, 4), "path_mis", -1, 64);
-    let whole = render(
-        &l.scene,
-        &l.integrator,
-        &render_opts(0..64, 1, 16, 5),
-        &mut |_, _| {},
-    );
+    let whole = render(&l, 0..64, 1, 16, 5);
     assert!(image_mean(&whole)[0] > 0.5);
     for (threads, tile) in [(2, 1), (3, 3), (4, 2)] {
-        let fb = render(
-            &l.scene,
-            &l.integrator,
-            &render_opts(0..64, threads, tile, 5),
-            &mut |_, _| {},
-        );
+        let fb = render(&l, 0..64, threads, tile, 5);
         assert_eq!(fb, whole, "{threads} threads, tile {tile}");
     }
     let mut split = Framebuffer::new(whole.width, whole.height);
     for r in [0..20, 20..64] {
-        render_into(
-            &l.scene,
-            &l.integrator,
-            &render_opts(r, 2, 3, 5),
-            &mut split,
-            &mut |_, _| {},
-        );
+        render_into(&l, &mut split, r, 2, 3, 5);
     }
     assert_eq!(split, whole, "samples rendered in two ranges");
     // Another seed gives another image.
-    let other = render(
-        &l.scene,
-        &l.integrator,
-        &render_opts(0..64, 2, 16, 6),
-        &mut |_, _| {},
-    );
+    let other = render(&l, 0..64, 2, 16, 6);
     assert_ne!(other, whole);
 }

@@ -4,6 +4,7 @@
 use tessera::render::RenderOptions;
 use tessera::render_stats::render_with_stats;
 use tessera_core::integrator::Counters;
+use tessera_core::render::RenderJob;
 use tessera_scene::LoadedScene;
 use tessera_tests::load_xml;
 
@@ -46,13 +47,12 @@ fn load(parts: &[&str], integrator: Option<&str>, max_depth: Option<i64>) -> Loa
 
 fn stats(l: &LoadedScene) -> Counters {
     let opts = RenderOptions {
-        samples: 0..l.spp,
         threads: 2,
         tile_size: 8,
-        seed: 1,
         ..Default::default()
     };
-    let (fb, c) = render_with_stats(&l.scene, &l.integrator, &opts, &mut |_, _| {});
+    let job = RenderJob::new(&l.scene, &l.integrator, 1);
+    let (fb, c) = render_with_stats(&job, 0..l.spp, &opts, &mut |_, _| {});
     assert_eq!(c.samples, 16 * 16 * l.spp);
     assert_eq!(c.camera_rays, c.samples);
     assert_eq!(fb.dropped(), 0);

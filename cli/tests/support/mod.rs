@@ -2,16 +2,26 @@
 //! test of its own).
 use std::process::{Command, Output};
 use std::sync::atomic::{AtomicBool, Ordering};
-use tessera::progressive::{self, Job, Outcome, Plan};
-use tessera::render::Framebuffer;
+use tessera::progressive::{self, Outcome, Plan};
+use tessera::render::{Framebuffer, RenderOptions};
+use tessera_core::render::RenderJob;
 use tessera_scene::LoadedScene;
+
+/// A render job with its threads and tile edge.
+#[derive(Clone, Copy)]
+pub struct Job<'a> {
+    /// What is rendered.
+    pub render: RenderJob<'a>,
+    /// Worker threads.
+    pub threads: usize,
+    /// Tile edge in pixels.
+    pub tile_size: u32,
+}
 
 /// The job of rendering `l` with `seed` on `threads` threads in tiles of `tile_size` pixels.
 pub fn job(l: &LoadedScene, seed: u64, threads: usize, tile_size: u32) -> Job<'_> {
     Job {
-        scene: &l.scene,
-        integrator: &l.integrator,
-        seed,
+        render: RenderJob::new(&l.scene, &l.integrator, seed),
         threads,
         tile_size,
     }
@@ -30,8 +40,14 @@ pub fn run_stopped_in_pass(job: Job, fb: &mut Framebuffer, plan: &Plan, pass: u6
 
 fn run_passes(job: Job, fb: &mut Framebuffer, plan: &Plan, stop_in: Option<u64>) -> Outcome {
     let stop = AtomicBool::new(false);
+    let opts = RenderOptions {
+        threads: job.threads,
+        tile_size: job.tile_size,
+        ..Default::default()
+    };
     progressive::run(
-        job,
+        &job.render,
+        &opts,
         fb,
         plan,
         &stop,

@@ -1,5 +1,5 @@
 //! Which sampler renders a scene: a closed enum, chosen by the scene file or the command line
-//! and stored in the `Scene`; `render::render_sample` dispatches on it.
+//! and stored in the `Scene`; `render::RenderJob` dispatches on it.
 use super::zsobol::log2_spp_for;
 
 /// The samplers.

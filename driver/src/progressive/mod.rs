@@ -2,7 +2,7 @@
 //! budget or a stop request, with the current average written out every so often.
 //!
 //! Every pass brings each pixel from its own sample count up to the pass's end
-//! ([`render_into_until`]), so the image is the same bits as one render of the same total
+//! ([`Span::UpTo`]), so the image is the same bits as one render of the same total
 //! samples, however many passes it took, wherever it was interrupted and resumed. A stop request
 //! (signal or time budget) is honoured at the next tile boundary; pixels of tiles not yet
 //! rendered in that pass keep their earlier sums.
@@ -23,32 +23,17 @@
 pub mod bar;
 pub mod check;
 
-use crate::render::{render_into_targets, render_into_until, Framebuffer, RenderOptions};
+use crate::render::{render_span, Framebuffer, RenderOptions, Span};
 use check::{clamp_to_check_point, CheckState, ErrorCheck};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 use tessera_core::adaptive::{pass_targets, AdaptiveParams};
-use tessera_core::integrator::Integrator;
-use tessera_core::scene::Scene;
+use tessera_core::integrator::NoProbe;
+use tessera_core::render::RenderJob;
 
 /// Longest pass aimed for (seconds): short enough for a responsive stop and timely writes, long
 /// enough that copying the sums between passes costs little.
 pub const PASS_SECONDS: f64 = 10.0;
-
-/// What to render with.
-#[derive(Clone, Copy)]
-pub struct Job<'a> {
-    /// The scene.
-    pub scene: &'a Scene,
-    /// The integrator.
-    pub integrator: &'a Integrator,
-    /// Seed of every random stream.
-    pub seed: u64,
-    /// Worker threads.
-    pub threads: usize,
-    /// Tile edge in pixels.
-    pub tile_size: u32,
-}
 
 /// When to stop and when to write.
 #[derive(Clone, Debug, Default)]
@@ -134,7 +119,8 @@ pub type Writer<'a> = dyn FnMut(&Framebuffer, u64, Option<&CheckState>) -> Resul
 /// is due (its error ends the render). Returns why it ended, the passes completed and the last
 /// error estimate.
 pub fn run(
-    job: Job,
+    job: &RenderJob,
+    opts: &RenderOptions,
     fb: &mut Framebuffer,
     plan: &Plan,
     stop: &AtomicBool,
@@ -167,6 +153,7 @@ pub fn run(
         let mut pending = None;
         let out = passes(
             job,
+            opts,
             fb,
             plan,
             deadline,
@@ -193,7 +180,8 @@ pub fn run(
 
 #[allow(clippy::too_many_arguments)]
 fn passes(
-    job: Job,
+    job: &RenderJob,
+    opts: &RenderOptions,
     fb: &mut Framebuffer,
     plan: &Plan,
     deadline: Option<Instant>,
@@ -207,7 +195,7 @@ fn passes(
     if let Some(a) = &plan.adaptive {
         *pending = plan.pending.clone();
         return adaptive_passes(
-            job, fb, plan, a, stop, progress, write, start, check, pending,
+            job, opts, fb, plan, a, stop, progress, write, start, check, pending,
         );
     }
     let target = plan.target.unwrap_or(u64::MAX);
@@ -249,25 +237,20 @@ fn passes(
             end = clamp_to_check_point(low, end);
         }
         let estimate = check.as_ref().and_then(|c| c.last);
-        let opts = RenderOptions {
-            samples: low..end,
-            threads: job.threads,
-            tile_size: job.tile_size,
-            seed: job.seed,
-            ..Default::default()
-        };
         let t0 = Instant::now();
+        let mut report = |d: usize, t: usize| {
+            progress(&Status {
+                passes: done,
+                spp_low: low,
+                pass_end: end,
+                spp_done: low as f64 + (end - low) as f64 * d as f64 / t.max(1) as f64,
+                elapsed: start.elapsed(),
+                estimate,
+            })
+        };
         let complete =
-            render_into_until(job.scene, job.integrator, &opts, fb, stop, &mut |d, t| {
-                progress(&Status {
-                    passes: done,
-                    spp_low: low,
-                    pass_end: end,
-                    spp_done: low as f64 + (end - low) as f64 * d as f64 / t.max(1) as f64,
-                    elapsed: start.elapsed(),
-                    estimate,
-                })
-            });
+            render_span::<NoProbe>(job, opts, fb, Span::UpTo(end), Some(stop), &mut report)
+                .complete;
         if !complete {
             continue; // the stop flag is set: the loop's top returns
         }
@@ -297,7 +280,8 @@ pub fn taken(fb: &Framebuffer) -> u64 {
 /// only stops a pass (at a tile boundary); it never changes a pass's size.
 #[allow(clippy::too_many_arguments)]
 fn adaptive_passes(
-    job: Job,
+    job: &RenderJob,
+    opts: &RenderOptions,
     fb: &mut Framebuffer,
     plan: &Plan,
     params: &AdaptiveParams,
@@ -327,13 +311,6 @@ fn adaptive_passes(
         if mean >= target && low >= first && pending.is_none() {
             return Ok((Ending::Target, done));
         }
-        let opts = RenderOptions {
-            samples: 0..first,
-            threads: job.threads,
-            tile_size: job.tile_size,
-            seed: job.seed,
-            ..Default::default()
-        };
         let warming = low < first && pending.is_none();
         let (from, end) = if let Some(t) = pending.as_ref() {
             // The interrupted pass: it ends at the mean its targets add up to.
@@ -359,7 +336,8 @@ fn adaptive_passes(
             })
         };
         let complete = if warming {
-            render_into_until(job.scene, job.integrator, &opts, fb, stop, &mut report)
+            let span = Span::UpTo(first);
+            render_span::<NoProbe>(job, opts, fb, span, Some(stop), &mut report).complete
         } else {
             let targets = match pending.take() {
                 Some(t) => t,
@@ -368,15 +346,9 @@ fn adaptive_passes(
                     pass_targets(&fb.pixels, fb.width, fb.height, budget, params)
                 }
             };
-            let complete = render_into_targets(
-                job.scene,
-                job.integrator,
-                &opts,
-                fb,
-                &targets,
-                Some(stop),
-                &mut report,
-            );
+            let span = Span::Targets(&targets);
+            let complete =
+                render_span::<NoProbe>(job, opts, fb, span, Some(stop), &mut report).complete;
             if !complete {
                 *pending = Some(targets);
             }

@@ -19,21 +19,23 @@
 use super::{errors, run_waves, Row, WaveLimits};
 use std::time::Instant;
 use tessera::image_io::RgbImage;
-use tessera::render::{render_into, Framebuffer, RenderOptions};
+use tessera::render::{render, RenderOptions};
 use tessera_core::adaptive::{AdaptiveParams, ZSOBOL_BLOCK_FACTOR};
 use tessera_core::integrator::Integrator;
+use tessera_core::render::RenderJob;
 use tessera_core::sampling::SamplerKind;
 use tessera_core::scene::Scene;
 
 /// Renders `integrator` afresh at 1, 2, 4, ... spp until a limit is reached (no render starts
 /// whose predicted time, twice the last one's, passes `limits.max_seconds`; the first always
-/// runs), calling `on_wave` with each row; returns the rows. `scene.sampler` is set up for each
+/// runs), calling `on_wave` with each row; returns the rows. Every render is seeded with `seed`. `scene.sampler` is set up for each
 /// wave's count in turn (as `render --adaptive` sets it up, with `adaptive`) and restored before
 /// returning.
 #[allow(clippy::too_many_arguments)]
 pub fn run_fresh(
     scene: &mut Scene,
     integrator: &Integrator,
+    seed: u64,
     label: &str,
     opts: &RenderOptions,
     reference: &RgbImage,
@@ -56,33 +58,21 @@ pub fn run_fresh(
             None => spp,
         };
         scene.sampler = base.for_spp(block);
+        let job = RenderJob::new(scene, integrator, seed);
         let (seconds, rgb) = match adaptive {
             Some(a) => {
                 let to_spp = WaveLimits {
                     max_seconds: f64::INFINITY,
                     max_spp: spp,
                 };
-                let (waves, fb) = run_waves(
-                    scene,
-                    integrator,
-                    label,
-                    opts,
-                    reference,
-                    to_spp,
-                    Some(a),
-                    &mut |_| {},
-                );
+                let (waves, fb) =
+                    run_waves(&job, label, opts, reference, to_spp, Some(a), &mut |_| {});
                 let seconds = waves.last().map_or(0.0, |r| r.seconds);
                 (seconds, fb.rgb())
             }
             None => {
-                let whole = RenderOptions {
-                    samples: 0..spp,
-                    ..opts.clone()
-                };
-                let mut fb = Framebuffer::new(w, h);
                 let start = Instant::now();
-                render_into(scene, integrator, &whole, &mut fb, &mut |_, _| {});
+                let fb = render(&job, 0..spp, opts, &mut |_, _| {});
                 (start.elapsed().as_secs_f64(), fb.rgb())
             }
         };

@@ -22,10 +22,10 @@ pub mod repeat;
 use std::path::Path;
 use std::time::Instant;
 use tessera::image_io::{write_atomic, RgbImage};
-use tessera::render::{render_into, render_into_targets, Framebuffer, RenderOptions};
+use tessera::render::{render_span, Framebuffer, RenderOptions, Span};
 use tessera_core::adaptive::{pass_targets, AdaptiveParams};
-use tessera_core::integrator::Integrator;
-use tessera_core::scene::Scene;
+use tessera_core::integrator::NoProbe;
+use tessera_core::render::RenderJob;
 
 /// The header line of a report.
 pub const CSV_HEADER: &str =
@@ -101,8 +101,7 @@ pub struct WaveLimits {
 /// wave's seconds.
 #[allow(clippy::too_many_arguments)]
 pub fn run_waves(
-    scene: &Scene,
-    integrator: &Integrator,
+    job: &RenderJob,
     label: &str,
     opts: &RenderOptions,
     reference: &RgbImage,
@@ -110,7 +109,7 @@ pub fn run_waves(
     adaptive: Option<&AdaptiveParams>,
     on_wave: &mut dyn FnMut(&Row),
 ) -> (Vec<Row>, Framebuffer) {
-    let (w, h) = (scene.camera.width, scene.camera.height);
+    let (w, h) = job.size();
     let mut fb = Framebuffer::new(w, h);
     let mut rows = Vec::new();
     let (mut done, mut seconds) = (0u64, 0.0f64);
@@ -119,33 +118,25 @@ pub fn run_waves(
         if next > limits.max_spp.max(1) || (done > 0 && 2.0 * seconds > limits.max_seconds) {
             break;
         }
-        let wave = RenderOptions {
-            samples: done..next,
-            ..opts.clone()
-        };
         let start = Instant::now();
         match adaptive {
             Some(a) if done >= a.warmup.max(1) => {
                 let pixels = w as u64 * h as u64;
-                let a = &a.for_integrator(integrator);
+                let a = &a.for_integrator(job.integrator);
                 let targets = pass_targets(&fb.pixels, w, h, pixels * (next - done), a);
-                render_into_targets(
-                    scene,
-                    integrator,
-                    &wave,
-                    &mut fb,
-                    &targets,
-                    None,
-                    &mut |_, _| {},
-                );
+                let span = Span::Targets(&targets);
+                render_span::<NoProbe>(job, opts, &mut fb, span, None, &mut |_, _| {});
             }
-            _ => render_into(scene, integrator, &wave, &mut fb, &mut |_, _| {}),
+            _ => {
+                let span = Span::Fixed(done..next);
+                render_span::<NoProbe>(job, opts, &mut fb, span, None, &mut |_, _| {});
+            }
         }
         seconds += start.elapsed().as_secs_f64();
         done = next;
         let sampler = match adaptive {
-            Some(_) => format!("{}+adaptive", scene.sampler.name()),
-            None => scene.sampler.name().into(),
+            Some(_) => format!("{}+adaptive", job.scene.sampler.name()),
+            None => job.scene.sampler.name().into(),
         };
         let row = Row {
             integrator: label.to_string(),
