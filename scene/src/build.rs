@@ -116,7 +116,8 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         c.mark_used();
     }
     let sensor = sensor.ok_or_else(|| root.error("the scene has no sensor (camera)"))?;
-    let integrator_spec = read_integrator(integrator_obj.map(|o| &**o))?;
+    let mut integrator_spec = read_integrator(integrator_obj.map(|o| &**o))?;
+    warnings.append(&mut integrator_spec.warnings);
     let integrator = integrator_spec
         .build()
         .expect("read_integrator checks the name");

@@ -4,7 +4,7 @@
 //! may change (another name, another depth) before the core integrator is made from it.
 use crate::plugin::{self, Param, Plugin, Range};
 use crate::util::Result;
-use crate::xml::Object;
+use crate::xml::{Kind, Object};
 use tessera_core::integrator::{DirectIntegrator, Heuristic, Integrator, PathIntegrator, Strategy};
 use tessera_core::light::LightSelection;
 
@@ -30,6 +30,9 @@ pub struct IntegratorSpec {
     pub bsdf_samples: u32,
     /// How emitter sampling picks a light.
     pub light_selection: LightSelection,
+    /// Located warnings about what the file asks and the integrator does not do (a wrapper's
+    /// extra outputs), reported with the scene's other warnings.
+    pub warnings: Vec<String>,
 }
 
 impl Default for IntegratorSpec {
@@ -44,15 +47,17 @@ impl Default for IntegratorSpec {
             emitter_samples: 1,
             bsdf_samples: 1,
             light_selection: LightSelection::Contribution,
+            warnings: Vec::new(),
         }
     }
 }
 
 impl IntegratorSpec {
-    /// The integrator, or `None` for an unknown name.
+    /// The integrator, or `None` for a name that is not an integrator of its own (unknown, or
+    /// a wrapper such as `moment`).
     pub fn build(&self) -> Option<Integrator> {
         let plugin = INTEGRATORS.iter().find(|p| p.is(&self.name))?;
-        Some((plugin.build.make)(self))
+        Some((plugin.build.make?)(self))
     }
 }
 
@@ -61,8 +66,9 @@ impl IntegratorSpec {
 pub struct IntegratorBuild {
     /// Reads the parameters (the spec's name is already set).
     pub read: fn(&Object, &mut IntegratorSpec) -> Result<()>,
-    /// Makes the core integrator.
-    pub make: fn(&IntegratorSpec) -> Integrator,
+    /// Makes the core integrator (`None` for a wrapper, whose spec is its nested
+    /// integrator's).
+    pub make: Option<fn(&IntegratorSpec) -> Integrator>,
 }
 
 /// An integrator plugin.
@@ -109,6 +115,7 @@ pub static INTEGRATORS: &[IntegratorPlugin] = &[
         |s| direct(s, 0, 1, Heuristic::Balance),
     ),
     DIRECT_MIS,
+    MOMENT,
 ];
 
 /// Reads the integrator element (or the default `path`) and reports unused parameters.
@@ -209,7 +216,7 @@ const fn path_plugin(
         nested: "",
         build: IntegratorBuild {
             read: read_path,
-            make,
+            make: Some(make),
         },
     }
 }
@@ -281,14 +288,14 @@ pub const DIRECT: IntegratorPlugin = Plugin {
     nested: "",
     build: IntegratorBuild {
         read: read_direct,
-        make: |s| {
+        make: Some(|s| {
             direct(
                 s,
                 s.emitter_samples,
                 s.bsdf_samples,
                 s.heuristic.unwrap_or(Heuristic::Power),
             )
-        },
+        }),
     },
 };
 
@@ -320,7 +327,7 @@ const fn fixed_direct(
         nested: "",
         build: IntegratorBuild {
             read: read_common,
-            make,
+            make: Some(make),
         },
     }
 }
@@ -338,19 +345,110 @@ pub const DIRECT_MIS: IntegratorPlugin = Plugin {
             read_heuristic(obj, spec)?;
             read_common(obj, spec)
         },
-        make: |s| direct(s, 1, 1, s.heuristic.unwrap_or(Heuristic::Balance)),
+        make: Some(|s| direct(s, 1, 1, s.heuristic.unwrap_or(Heuristic::Balance))),
     },
 };
 
+/// `moment`: Mitsuba 3's wrapper that renders its first nested integrator and also records,
+/// per nested integrator, the mean of each sample's XYZ and of its square as extra channels.
+/// The image is the first nested integrator's, which is what Tessera renders: the spec read is
+/// that integrator's own (so the command line changes it as usual), with a located warning that
+/// the extra channels are not written.
+pub const MOMENT: IntegratorPlugin = Plugin {
+    name: "moment",
+    aliases: &[],
+    doc: "Mitsuba 3's second-moment wrapper: renders the image of its first nested integrator \
+          (the extra moment channels are not written; a warning says so).",
+    params: &[],
+    nested: "one or more `<integrator>`; the first makes the image",
+    build: IntegratorBuild {
+        read: read_moment,
+        make: None,
+    },
+};
+
+fn read_moment(obj: &Object, spec: &mut IntegratorSpec) -> Result<()> {
+    let mut nested = obj.children_of(Kind::Integrator);
+    let first = nested
+        .next()
+        .ok_or_else(|| obj.error("a moment integrator needs a nested <integrator>"))?;
+    first.mark_used();
+    *spec = read_integrator(Some(&first.obj))?;
+    for other in nested {
+        other.mark_used();
+        // Read for its errors, as Mitsuba builds it.
+        read_integrator(Some(&other.obj))?;
+        spec.warnings.push(format!(
+            "{}: {} nested in moment is not rendered (only the first nested integrator makes \
+             the image)",
+            other.loc,
+            other.obj.describe()
+        ));
+    }
+    spec.warnings.push(format!(
+        "{}: {} renders its first nested integrator's image; its moment channels are not \
+         written",
+        obj.loc,
+        obj.describe()
+    ));
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
+    use std::path::Path;
+
+    fn load(integrator: &str) -> Result<crate::LoadedScene, crate::error::InputError> {
+        let text = format!(
+            "<scene version=\"3.0.0\">\n{integrator}\n<sensor type=\"perspective\"/>\n</scene>\n"
+        );
+        crate::load_scene_str(&text, Path::new("/nowhere/m.xml"), &[])
+    }
+
+    /// `moment` renders its first nested integrator, parameters and all, and says in located
+    /// warnings what it leaves out; without a nested integrator it is a located error.
+    #[test]
+    fn moment_renders_its_first_nested_integrator_with_a_warning() {
+        let l = load(
+            "<integrator type=\"moment\">\n  <integrator type=\"path\" name=\"a\">\n    \
+             <integer name=\"max_depth\" value=\"3\"/>\n  </integrator>\n  \
+             <integrator type=\"direct\" name=\"b\"/>\n</integrator>",
+        )
+        .expect("moment loads");
+        assert_eq!(l.integrator_spec.name, "path");
+        assert_eq!(l.integrator_spec.max_depth, Some(3));
+        let w: Vec<&String> = l.warnings.iter().filter(|w| w.contains("moment")).collect();
+        assert_eq!(w.len(), 2, "{:?}", l.warnings);
+        assert!(w.iter().any(|w| w.starts_with("/nowhere/m.xml:2:1:")), "{w:?}");
+        assert!(w.iter().any(|w| w.starts_with("/nowhere/m.xml:6:3:") && w.contains("direct")));
+        // On the command line it names no integrator of its own.
+        let mut l = l;
+        let e = l.set_integrator(Some("moment"), None).unwrap_err();
+        assert!(e.contains("wraps another integrator"), "{e}");
+        l.set_integrator(Some("direct"), None).expect("control: a real integrator");
+        // The nested integrator's own errors keep their location.
+        let e = load(
+            "<integrator type=\"moment\">\n  <integrator type=\"path\">\n    \
+             <integer name=\"max_depth\" value=\"-7\"/>\n  </integrator>\n</integrator>",
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.starts_with("/nowhere/m.xml:4:5:"), "{e}");
+        // Control: nothing nested.
+        let e = load("<integrator type=\"moment\"/>").unwrap_err().to_string();
+        assert!(e.starts_with("/nowhere/m.xml:2:1:") && e.contains("nested"), "{e}");
+    }
+
     #[test]
     fn declarations_match_what_the_builders_read() {
         crate::plugin::check::check_family(
             super::INTEGRATORS,
             crate::xml::Kind::Integrator,
             |obj| super::read_integrator(Some(obj)),
-            |_| String::new(),
+            |name| match name {
+                "moment" => "<integrator type=\"path\"/>".into(),
+                _ => String::new(),
+            },
             &[],
         );
     }

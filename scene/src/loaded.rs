@@ -81,12 +81,11 @@ impl LoadedScene {
             }
             spec.max_depth = (d >= 0).then_some(d as u32);
         }
-        self.integrator = spec.build().ok_or_else(|| {
-            format!(
-                "unknown integrator \"{}\" (known: {})",
-                spec.name,
-                integrator_names()
-            )
+        self.integrator = spec.build().ok_or_else(|| match spec.name.as_str() {
+            "moment" => "\"moment\" wraps another integrator in a scene file; name the \
+                         integrator to render"
+                .to_string(),
+            name => format!("unknown integrator \"{name}\" (known: {})", integrator_names()),
         })?;
         self.integrator_spec = spec;
         Ok(())
