@@ -3,10 +3,16 @@
 //! `path`. Each plugin reads its parameters into an [`IntegratorSpec`], which the command line
 //! may change (another name, another depth) before the core integrator is made from it.
 use crate::plugin::{self, Param, Plugin, Range};
+use crate::util::vec3;
 use crate::util::Result;
 use crate::xml::{Kind, Object};
-use tessera_core::integrator::{DirectIntegrator, Heuristic, Integrator, PathIntegrator, Strategy};
+use tessera_core::glam::Vec3;
+use tessera_core::integrator::{
+    DirectIntegrator, Heuristic, Integrator, NormalsIntegrator, PathIntegrator, SimpleIntegrator,
+    Strategy, Visibility, WhittedIntegrator,
+};
 use tessera_core::light::LightSelection;
+use tessera_core::Color;
 
 /// An integrator's name and parameters as the scene file gives them; the command line may
 /// change the name or the depth and build again.
@@ -30,6 +36,10 @@ pub struct IntegratorSpec {
     pub bsdf_samples: u32,
     /// How emitter sampling picks a light.
     pub light_selection: LightSelection,
+    /// The point light of Nori's `simple`: position and energy.
+    pub point_light: Option<(Vec3, Color)>,
+    /// Segment length of `av`.
+    pub visibility_length: f32,
     /// Located warnings about what the file asks and the integrator does not do (a wrapper's
     /// extra outputs), reported with the scene's other warnings.
     pub warnings: Vec<String>,
@@ -47,16 +57,21 @@ impl Default for IntegratorSpec {
             emitter_samples: 1,
             bsdf_samples: 1,
             light_selection: LightSelection::Contribution,
+            point_light: None,
+            visibility_length: 1.0,
             warnings: Vec::new(),
         }
     }
 }
 
 impl IntegratorSpec {
-    /// The integrator, or `None` for a name that is not an integrator of its own (unknown, or
-    /// a wrapper such as `moment`).
+    /// The integrator, or `None` for a name that is not an integrator of its own (unknown, a
+    /// wrapper such as `moment`, or `simple` without the light its file must give).
     pub fn build(&self) -> Option<Integrator> {
         let plugin = INTEGRATORS.iter().find(|p| p.is(&self.name))?;
+        if plugin.name == SIMPLE.name && self.point_light.is_none() {
+            return None;
+        }
         Some((plugin.build.make?)(self))
     }
 }
@@ -116,6 +131,11 @@ pub static INTEGRATORS: &[IntegratorPlugin] = &[
     ),
     DIRECT_MIS,
     MOMENT,
+    WHITTED,
+    SIMPLE,
+    AO,
+    AV,
+    NORMALS,
 ];
 
 /// Reads the integrator element (or the default `path`) and reports unused parameters.
@@ -349,6 +369,118 @@ pub const DIRECT_MIS: IntegratorPlugin = Plugin {
     },
 };
 
+/// A course integrator without parameters.
+const fn course(
+    name: &'static str,
+    doc: &'static str,
+    make: fn(&IntegratorSpec) -> Integrator,
+) -> IntegratorPlugin {
+    Plugin {
+        name,
+        aliases: &[],
+        doc,
+        params: &[],
+        nested: "",
+        build: IntegratorBuild {
+            read: |_, _| Ok(()),
+            make: Some(make),
+        },
+    }
+}
+
+/// `whitted`.
+pub const WHITTED: IntegratorPlugin = course(
+    "whitted",
+    "Nori's Whitted-style ray tracer: direct light by one emitter sample at surfaces with a \
+     smooth BSDF; at mirrors and smooth glass one specular direction followed with probability \
+     0.95 (weighted by 1/0.95).",
+    |_| Integrator::Whitted(WhittedIntegrator),
+);
+
+/// `normals`.
+pub const NORMALS: IntegratorPlugin = course(
+    "normals",
+    "Nori's normals view: the absolute shading normal at the first hit as a colour, black \
+     where nothing is hit.",
+    |_| Integrator::Normals(NormalsIntegrator),
+);
+
+/// `ao`.
+pub const AO: IntegratorPlugin = course(
+    "ao",
+    "Nori's ambient occlusion: the cosine-weighted fraction of the hemisphere above the first \
+     hit from which a ray escapes (one ray per sample), black where nothing is hit.",
+    |_| Integrator::Visibility(Visibility::AmbientOcclusion),
+);
+
+const LENGTH: Param = Param::float(
+    "length",
+    1.0,
+    Range::Positive,
+    "length of each visibility segment",
+);
+
+/// `av`.
+pub const AV: IntegratorPlugin = Plugin {
+    name: "av",
+    aliases: &[],
+    doc: "The Wakame assignment's average visibility: the uniformly weighted fraction of the \
+          hemisphere above the first hit in which a segment of the given length meets nothing \
+          (one segment per sample), white where nothing is hit.",
+    params: &[LENGTH],
+    nested: "",
+    build: IntegratorBuild {
+        read: |obj, spec| {
+            spec.visibility_length = LENGTH.read_f32(obj)?;
+            Ok(())
+        },
+        make: Some(|s| {
+            Integrator::Visibility(Visibility::Average {
+                length: s.visibility_length,
+            })
+        }),
+    },
+};
+
+const LIGHT_POSITION: Param = Param::new(
+    "position",
+    crate::plugin::ParamType::Point,
+    crate::plugin::Default::Required,
+    Range::Any,
+    "the point light's position",
+);
+const ENERGY: Param = Param::rgb(
+    "energy",
+    crate::plugin::Default::Required,
+    Range::NonNegative,
+    "the point light's power (flux)",
+);
+
+/// `simple`.
+pub const SIMPLE: IntegratorPlugin = Plugin {
+    name: "simple",
+    aliases: &[],
+    doc: "Nori's point-light integrator: every surface is a white diffuse reflector lit by one \
+          point light with shadows, energy / (4 pi^2) * cos / distance^2; nothing else counts.",
+    params: &[LIGHT_POSITION, ENERGY],
+    nested: "",
+    build: IntegratorBuild {
+        read: |obj, spec| {
+            let position = obj
+                .point_opt(LIGHT_POSITION.name)?
+                .ok_or_else(|| obj.missing(LIGHT_POSITION.name))?;
+            spec.point_light = Some((vec3(position), ENERGY.read_color(obj)?));
+            Ok(())
+        },
+        // `IntegratorSpec::build` makes nothing without the light (a command line naming
+        // `simple` for a file that does not give it).
+        make: Some(|s| {
+            let (position, energy) = s.point_light.unwrap_or((Vec3::ZERO, Color::ZERO));
+            Integrator::Simple(SimpleIntegrator { position, energy })
+        }),
+    },
+};
+
 /// `moment`: Mitsuba 3's wrapper that renders its first nested integrator and also records,
 /// per nested integrator, the mean of each sample's XYZ and of its square as extra channels.
 /// The image is the first nested integrator's, which is what Tessera renders: the spec read is
@@ -419,13 +551,19 @@ mod tests {
         assert_eq!(l.integrator_spec.max_depth, Some(3));
         let w: Vec<&String> = l.warnings.iter().filter(|w| w.contains("moment")).collect();
         assert_eq!(w.len(), 2, "{:?}", l.warnings);
-        assert!(w.iter().any(|w| w.starts_with("/nowhere/m.xml:2:1:")), "{w:?}");
-        assert!(w.iter().any(|w| w.starts_with("/nowhere/m.xml:6:3:") && w.contains("direct")));
+        assert!(
+            w.iter().any(|w| w.starts_with("/nowhere/m.xml:2:1:")),
+            "{w:?}"
+        );
+        assert!(w
+            .iter()
+            .any(|w| w.starts_with("/nowhere/m.xml:6:3:") && w.contains("direct")));
         // On the command line it names no integrator of its own.
         let mut l = l;
         let e = l.set_integrator(Some("moment"), None).unwrap_err();
         assert!(e.contains("wraps another integrator"), "{e}");
-        l.set_integrator(Some("direct"), None).expect("control: a real integrator");
+        l.set_integrator(Some("direct"), None)
+            .expect("control: a real integrator");
         // The nested integrator's own errors keep their location.
         let e = load(
             "<integrator type=\"moment\">\n  <integrator type=\"path\">\n    \
@@ -435,8 +573,13 @@ mod tests {
         .to_string();
         assert!(e.starts_with("/nowhere/m.xml:4:5:"), "{e}");
         // Control: nothing nested.
-        let e = load("<integrator type=\"moment\"/>").unwrap_err().to_string();
-        assert!(e.starts_with("/nowhere/m.xml:2:1:") && e.contains("nested"), "{e}");
+        let e = load("<integrator type=\"moment\"/>")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("/nowhere/m.xml:2:1:") && e.contains("nested"),
+            "{e}"
+        );
     }
 
     #[test]
@@ -447,6 +590,9 @@ mod tests {
             |obj| super::read_integrator(Some(obj)),
             |name| match name {
                 "moment" => "<integrator type=\"path\"/>".into(),
+                "simple" => "<point name=\"position\" value=\"0, 1, 0\"/>\
+                             <rgb name=\"energy\" value=\"1\"/>"
+                    .into(),
                 _ => String::new(),
             },
             &[],

@@ -85,7 +85,13 @@ impl LoadedScene {
             "moment" => "\"moment\" wraps another integrator in a scene file; name the \
                          integrator to render"
                 .to_string(),
-            name => format!("unknown integrator \"{name}\" (known: {})", integrator_names()),
+            "simple" => "\"simple\" needs the point light (position, energy) that only its \
+                         scene file can give"
+                .to_string(),
+            name => format!(
+                "unknown integrator \"{name}\" (known: {})",
+                integrator_names()
+            ),
         })?;
         self.integrator_spec = spec;
         Ok(())

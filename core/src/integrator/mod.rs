@@ -1,18 +1,26 @@
 //! Integrators: a closed enum; each estimates the radiance arriving along one camera ray.
 mod direct;
 mod mis;
+mod normals;
 mod path;
 mod path_state;
 mod probe;
 mod record;
 mod reuse;
+mod simple;
+mod visibility;
+mod whitted;
 
 pub use direct::DirectIntegrator;
 pub use mis::{balance_heuristic, power_heuristic, Heuristic};
+pub use normals::NormalsIntegrator;
 pub use path::{PathIntegrator, Strategy};
 pub use probe::{Counters, NoProbe, PathEnd, Probe, RayKind};
 pub use record::{Event, PathRecord};
 pub use reuse::{GROUP, GROUP_H, GROUP_W};
+pub use simple::SimpleIntegrator;
+pub use visibility::Visibility;
+pub use whitted::WhittedIntegrator;
 
 use crate::math::Ray;
 use crate::sampling::Sampler;
@@ -26,6 +34,14 @@ pub enum Integrator {
     Path(PathIntegrator),
     /// Direct illumination (`direct`, `direct_ems`, `direct_mats`, `direct_mis`).
     Direct(DirectIntegrator),
+    /// Nori's shading normals view (`normals`).
+    Normals(NormalsIntegrator),
+    /// Nori's point light with shadows (`simple`).
+    Simple(SimpleIntegrator),
+    /// Ambient occlusion and average visibility (`ao`, `av`).
+    Visibility(Visibility),
+    /// Nori's Whitted-style ray tracer (`whitted`).
+    Whitted(WhittedIntegrator),
 }
 
 impl Integrator {
@@ -36,6 +52,7 @@ impl Integrator {
         match self {
             Integrator::Path(p) => p.li(scene, ray, sampler),
             Integrator::Direct(d) => d.li(scene, ray, sampler),
+            _ => self.li_probed(scene, ray, sampler, &mut NoProbe),
         }
     }
 
@@ -51,6 +68,10 @@ impl Integrator {
         match self {
             Integrator::Path(p) => p.li_probed(scene, ray, sampler, probe),
             Integrator::Direct(d) => d.li_probed(scene, ray, sampler, probe),
+            Integrator::Normals(n) => n.li_probed(scene, ray, probe),
+            Integrator::Simple(s) => s.li_probed(scene, ray, probe),
+            Integrator::Visibility(v) => v.li_probed(scene, ray, sampler, probe),
+            Integrator::Whitted(w) => w.li_probed(scene, ray, sampler, probe),
         }
     }
 }
