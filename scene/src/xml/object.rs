@@ -6,6 +6,7 @@
 
 use std::cell::Cell;
 use std::fmt;
+use std::path::PathBuf;
 use std::rc::Rc;
 
 use glam::DMat4;
@@ -212,6 +213,9 @@ pub struct Object {
     pub props: Vec<Prop>,
     /// Nested objects and resolved `<ref>`s, in file order.
     pub children: Vec<Child>,
+    /// The folders relative file names are looked up in, first to last (see
+    /// [`Object::resolve_file`]); shared by every object of a load.
+    pub(crate) search: Rc<[PathBuf]>,
     referenced: Cell<bool>,
 }
 
@@ -234,6 +238,7 @@ impl Object {
             loc,
             props,
             children,
+            search: Rc::new([]),
             referenced: Cell::new(false),
         }
     }
