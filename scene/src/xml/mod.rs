@@ -8,6 +8,7 @@
 
 mod attrs;
 mod building;
+mod cie;
 mod dialect;
 mod draft;
 mod getters;
@@ -20,6 +21,7 @@ mod property;
 mod refs;
 mod search;
 pub(crate) mod source;
+pub(crate) mod spectrum;
 mod subst;
 mod transform;
 mod values;

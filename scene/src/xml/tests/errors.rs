@@ -106,22 +106,22 @@ fn value_errors() {
         "has 2 numbers",
     );
     assert_err(
-        "<scene>\n  <spectrum name=\"a\" value=\"400:0.1, 500:0.2\"/>\n</scene>",
+        "<scene>\n  <spectrum name=\"a\" value=\"400:0.1, 500\"/>\n</scene>",
         2,
         22,
-        "spectra are not supported",
+        "\"500\" is not a wavelength:value pair",
     );
     assert_err(
         "<scene>\n  <spectrum name=\"a\" value=\"0.1 0.2\"/>\n</scene>",
         2,
         22,
-        "spectra are not supported",
+        "is not a wavelength:value pair",
     );
     assert_err(
         "<scene>\n  <spectrum name=\"a\" filename=\"x.spd\"/>\n</scene>",
         2,
         22,
-        "spectra are not supported",
+        "x.spd\": cannot read file",
     );
     assert_err(
         "<scene>\n  <point name=\"p\"/>\n</scene>",

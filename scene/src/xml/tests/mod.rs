@@ -395,3 +395,4 @@ fn nori_tests() {
 mod errors;
 mod includes;
 mod search;
+mod spectra;
