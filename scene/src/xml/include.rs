@@ -9,7 +9,7 @@ use roxmltree::Node;
 
 use super::attrs::Attrs;
 use super::building::Building;
-use super::parse::{check_version, no_content, strip_bom, Parser, Result, MAX_INCLUDE_DEPTH};
+use super::parse::{check_version, file_version, no_content, strip_bom, Parser, Result, MAX_INCLUDE_DEPTH};
 use super::search::lookup;
 use super::source::{canonical, parse_document, read_text, Source};
 
@@ -70,18 +70,22 @@ impl Parser {
         let isrc = Source::new(file, text);
         let root = doc.root_element();
         self.files.push(key);
+        self.versions.push(None);
         let result = if root.tag_name().name() == "scene" {
             // The included scene's content is spliced in place of the <include>.
             Attrs::read(root, &isrc, &self.params)
                 .and_then(|ra| {
                     ra.allow(&["version"])?;
-                    check_version(&ra)
+                    check_version(&ra)?;
+                    *self.versions.last_mut().expect("pushed above") = file_version(&ra);
+                    Ok(())
                 })
                 .and_then(|()| self.parse_body(&isrc, root, b, depth + 1))
         } else {
             self.parse_item(&isrc, root, b, depth + 1)
         };
         self.files.pop();
+        self.versions.pop();
         result
     }
 }

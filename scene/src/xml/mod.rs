@@ -24,6 +24,7 @@ pub(crate) mod source;
 pub(crate) mod spectrum;
 mod subst;
 mod transform;
+mod upgrade;
 mod values;
 
 #[cfg(test)]

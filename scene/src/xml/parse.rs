@@ -25,6 +25,7 @@ use super::search::folder_of;
 use super::source::canonical;
 use super::source::{check_size, parse_document, Source};
 use super::transform;
+use super::upgrade::{needs_upgrade, parse_version, upgrade, Version};
 use crate::error::{InputError, Loc};
 
 pub(super) type Result<T> = std::result::Result<T, InputError>;
@@ -81,6 +82,8 @@ pub struct Parser {
     pub(super) open_ids: HashMap<String, Loc>,
     /// Files being read, outermost first (canonical paths when they exist).
     pub(super) files: Vec<PathBuf>,
+    /// The version attribute of each file in `files` (`None`: none, as in Nori files).
+    pub(super) versions: Vec<Option<Version>>,
 }
 
 pub(super) fn strip_bom(text: &str) -> &str {
@@ -103,6 +106,11 @@ pub(super) fn check_version(a: &Attrs) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The version a root element declares (checked by [`check_version`] first).
+pub(super) fn file_version(a: &Attrs) -> Option<Version> {
+    a.get("version").and_then(|v| parse_version(&v.value))
 }
 
 /// Fails when a non-object element contains elements or text.
@@ -162,6 +170,7 @@ impl Parser {
             resolver: Vec::new(),
             open_ids: HashMap::new(),
             files: Vec::new(),
+            versions: Vec::new(),
         }
     }
 
@@ -188,9 +197,11 @@ impl Parser {
         self.note_mentions(text);
         let attrs = Attrs::read(root, &src, &self.params)?;
         self.files.push(canonical(path));
+        self.versions.push(file_version(&attrs));
         self.resolver = vec![folder_of(path)];
         let draft = self.build_object(&src, root, root_kind, &attrs, None, 1)?;
         self.files.pop();
+        self.versions.pop();
         self.check_defines(path)?;
         let root = self.drafts.len();
         self.drafts.push(Some(draft));
@@ -249,6 +260,9 @@ impl Parser {
             self.open_ids.remove(id);
         }
         body?;
+        if needs_upgrade(self.versions.last().copied().flatten()) {
+            upgrade(&mut b)?;
+        }
         Ok(Draft {
             kind,
             plugin: b.plugin,

@@ -396,3 +396,4 @@ mod errors;
 mod includes;
 mod search;
 mod spectra;
+mod upgrade;
