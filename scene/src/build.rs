@@ -21,7 +21,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
     if root.kind != Kind::Scene {
         return Err(root.error("the root element must be <scene>"));
     }
-    let mut warnings = Vec::new();
+    let mut warnings = root.load_warnings.clone();
     let mut bsdfs = Bsdfs::default();
     let mut shapes = Vec::new();
     let mut disks = Vec::new();

@@ -216,6 +216,8 @@ pub struct Object {
     /// The folders relative file names are looked up in, first to last (see
     /// [`Object::resolve_file`]); shared by every object of a load.
     pub(crate) search: Rc<[PathBuf]>,
+    /// On the root of a load: located warnings about the files themselves.
+    pub(crate) load_warnings: Vec<String>,
     referenced: Cell<bool>,
 }
 
@@ -239,6 +241,7 @@ impl Object {
             props,
             children,
             search: Rc::new([]),
+            load_warnings: Vec::new(),
             referenced: Cell::new(false),
         }
     }

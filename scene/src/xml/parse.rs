@@ -82,6 +82,8 @@ pub struct Parser {
     pub(super) open_ids: HashMap<String, Loc>,
     /// Files being read, outermost first (canonical paths when they exist).
     pub(super) files: Vec<PathBuf>,
+    /// Located warnings about the files (handed to the root object).
+    pub(super) warnings: Vec<String>,
     /// The version attribute of each file in `files` (`None`: none, as in Nori files).
     pub(super) versions: Vec<Option<Version>>,
 }
@@ -171,6 +173,7 @@ impl Parser {
             open_ids: HashMap::new(),
             files: Vec::new(),
             versions: Vec::new(),
+            warnings: Vec::new(),
         }
     }
 
@@ -206,7 +209,9 @@ impl Parser {
         let root = self.drafts.len();
         self.drafts.push(Some(draft));
         let search: Rc<[PathBuf]> = std::mem::take(&mut self.resolver).into();
-        finalize(&mut self.drafts, &self.ids, root, &search)
+        let mut obj = finalize(&mut self.drafts, &self.ids, root, &search)?;
+        obj.load_warnings = std::mem::take(&mut self.warnings);
+        Ok(obj)
     }
 
     /// Reads an object element into a [`Draft`] (registering nothing).

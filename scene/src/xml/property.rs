@@ -85,7 +85,7 @@ impl Parser {
 
     /// The value of a `<spectrum>`: one value (grey, or for emitted light Mitsuba's flat
     /// spectrum colour), a wavelength:value list, or a file of them, converted to RGB.
-    fn spectrum_value(&self, src: &Source<'_>, a: &Attrs, how: SpectrumUse) -> Result<Value> {
+    fn spectrum_value(&mut self, src: &Source<'_>, a: &Attrs, how: SpectrumUse) -> Result<Value> {
         let t = a.tag.as_str();
         a.allow(&["name", "value", "filename"])?;
         let (w, v) = match (a.get("value"), a.get("filename")) {
@@ -122,7 +122,15 @@ impl Parser {
                 return Err(a.error(format!("<{t}> needs a \"value\" or a \"filename\"")))
             }
         };
-        Ok(Value::Rgb(list_to_rgb(&w, &v, how)))
+        let (rgb, unclamped) = list_to_rgb(&w, &v, how);
+        if let Some(c) = unclamped {
+            self.warnings.push(format!(
+                "{}: the spectrum's colour [{:.4}, {:.4}, {:.4}] is out of gamut; clamped to \
+                 [{:.4}, {:.4}, {:.4}] as Mitsuba does",
+                a.loc, c[0], c[1], c[2], rgb[0], rgb[1], rgb[2]
+            ));
+        }
+        Ok(Value::Rgb(rgb))
     }
 
     /// Composes the operations inside a `<transform>` element (`M = op * M`).

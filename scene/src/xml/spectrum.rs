@@ -96,9 +96,14 @@ pub fn uniform_to_rgb(v: f64, how: SpectrumUse) -> [f64; 3] {
     }
 }
 
-/// The RGB of a spectrum given as increasing `wavelengths` (nm) and `values`, used as `how`.
+/// The RGB of a spectrum given as increasing `wavelengths` (nm) and `values`, used as `how`,
+/// and, when that colour had to be clamped (out of gamut), the colour before clamping.
 /// Needs at least two entries (checked by [`check_list`]).
-pub fn list_to_rgb(wavelengths: &[f64], values: &[f64], how: SpectrumUse) -> [f64; 3] {
+pub fn list_to_rgb(
+    wavelengths: &[f64],
+    values: &[f64],
+    how: SpectrumUse,
+) -> ([f64; 3], Option<[f64; 3]>) {
     const STEPS: usize = 1000;
     let (first, last) = (wavelengths[0], wavelengths[wavelengths.len() - 1]);
     let mut xyz = [0.0; 3];
@@ -120,10 +125,11 @@ pub fn list_to_rgb(wavelengths: &[f64], values: &[f64], how: SpectrumUse) -> [f6
     }
     let scale = (CIE_MAX - CIE_MIN) * CIE_Y_NORMALIZATION / STEPS as f64;
     let rgb = xyz_to_srgb(xyz.map(|c| c * scale));
-    match how {
+    let clamped = match how {
         SpectrumUse::Bounded => rgb.map(|c| c.clamp(0.0, 1.0)),
         _ => rgb.map(|c| c.max(0.0)),
-    }
+    };
+    (clamped, (clamped != rgb).then_some(rgb))
 }
 
 /// Checks a wavelength list as Mitsuba does: at least two entries, increasing wavelengths.
@@ -191,12 +197,13 @@ mod tests {
     fn flat_reflectance_is_grey_and_flat_light_is_not() {
         // D65-weighted integration of a flat spectrum gives D65's own colour: white.
         let w = [360.0, 830.0];
-        let rgb = list_to_rgb(&w, &[0.5, 0.5], SpectrumUse::Bounded);
+        let (rgb, clamped) = list_to_rgb(&w, &[0.5, 0.5], SpectrumUse::Bounded);
+        assert_eq!(clamped, None);
         for c in rgb {
             assert!((c - 0.5).abs() < 2e-3, "{rgb:?}");
         }
         // Emitted light is not weighted: XYZ (v, v, v) in sRGB, as a single value is.
-        let e = list_to_rgb(&w, &[2.0, 2.0], SpectrumUse::Emitted);
+        let (e, _) = list_to_rgb(&w, &[2.0, 2.0], SpectrumUse::Emitted);
         let u = uniform_to_rgb(2.0, SpectrumUse::Emitted);
         for i in 0..3 {
             assert!((e[i] - u[i]).abs() < 2e-2 * u[i], "{e:?} vs {u:?}");

@@ -113,3 +113,19 @@ fn spectrum_files_and_errors() {
     let e = at("<spectrum name=\"reflectance\" filename=\"none.spd\"/>");
     assert!(e.starts_with(&here(51)) && e.contains("none.spd"), "{e}");
 }
+
+#[test]
+fn clamping_is_warned_where_the_spectrum_is() {
+    let warnings = |list: &str| {
+        let text = format!(
+            "<scene version=\"3.0.0\">\n<bsdf type=\"diffuse\"><spectrum name=\"reflectance\" value=\"{list}\"/></bsdf>\n</scene>"
+        );
+        load(&text).load_warnings.clone()
+    };
+    let w = warnings(SATURATED_S);
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(w[0].starts_with(&format!("{P}:2:22: the spectrum's colour [1.3186")), "{w:?}");
+    assert!(w[0].contains("clamped to [1.0000, 0.1240, 0.0000]"), "{w:?}");
+    // Control: an in-gamut spectrum warns of nothing.
+    assert!(warnings(REFLECTANCE_S).is_empty());
+}
