@@ -42,6 +42,8 @@ pub const CIE_SAMPLES: usize = 95;
 """)
 for name, i in (("X", 0), ("Y", 1), ("Z", 2)):
     print(f"/// CIE 1931 {name} colour matching function.")
+    print("#[rustfmt::skip]")
     print(f"pub const CIE_{name}: [f32; CIE_SAMPLES] = [\n{rows([c[i] for c in xyz])}\n];\n")
 print("/// CIE D65 illuminant, relative spectral power.")
+print("#[rustfmt::skip]")
 print(f"pub const D65: [f32; CIE_SAMPLES] = [\n{rows([mi.cie_d65(w) * D65_NORMALIZATION for w in waves])}\n];")

@@ -31,14 +31,23 @@ fn error_of(text: &str, path: &Path) -> String {
 #[test]
 fn every_listed_real_scene_loads() {
     let scenes = manifest();
-    assert!(scenes.len() >= 15, "the manifest lists {} scenes", scenes.len());
+    assert!(
+        scenes.len() >= 15,
+        "the manifest lists {} scenes",
+        scenes.len()
+    );
     let mut failures = Vec::new();
     for path in &scenes {
         if let Err(e) = load_scene(path, &[]) {
             failures.push(e.to_string());
         }
     }
-    assert!(failures.is_empty(), "{} failed:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} failed:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }
 
 #[test]
@@ -63,9 +72,15 @@ fn control_the_scenes_need_what_they_exercise() {
     // Without its <path>, the meshes in ../../common are not found (at the first one).
     let path = real_dir().join("mitsuba-data/docs/scenes/integrator_depth_1.xml");
     let text = std::fs::read_to_string(&path).unwrap();
-    let e = error_of(&text.replacen("<path value=\"../../common\"/>", "", 1), &path);
+    let e = error_of(
+        &text.replacen("<path value=\"../../common\"/>", "", 1),
+        &path,
+    );
     assert!(e.starts_with(&format!("{}:", path.display())), "{e}");
-    assert!(e.contains("meshes/cbox/") && e.contains("cannot read mesh"), "{e}");
+    assert!(
+        e.contains("meshes/cbox/") && e.contains("cannot read mesh"),
+        "{e}"
+    );
 
     // cbox-rgb.xml declares the area emitter after fragments/shapes.xml refers to it; with
     // another id, the reference in the included file is reported where it is.

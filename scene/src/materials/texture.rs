@@ -186,7 +186,8 @@ fn bitmap(obj: &Object, unit: bool) -> Result<Bitmap> {
         to_uv,
         scale: Vec3::ONE,
     };
-    load_bitmap(&obj.resolve_file(&name), &name, settings).map_err(|msg| at_prop(obj, "filename", msg))
+    load_bitmap(&obj.resolve_file(&name), &name, settings)
+        .map_err(|msg| at_prop(obj, "filename", msg))
 }
 
 /// How to read and look up an image texture.

@@ -86,7 +86,10 @@ pub(super) fn finalize(
                 continue;
             }
             if on_stack[to] {
-                let id = drafts[to].as_ref().and_then(|d| d.id.clone()).unwrap_or_default();
+                let id = drafts[to]
+                    .as_ref()
+                    .and_then(|d| d.id.clone())
+                    .unwrap_or_default();
                 return Err(InputError::at(
                     &c.loc,
                     format!(

@@ -9,7 +9,9 @@ use roxmltree::Node;
 
 use super::attrs::Attrs;
 use super::building::Building;
-use super::parse::{check_version, file_version, no_content, strip_bom, Parser, Result, MAX_INCLUDE_DEPTH};
+use super::parse::{
+    check_version, file_version, no_content, strip_bom, Parser, Result, MAX_INCLUDE_DEPTH,
+};
 use super::search::lookup;
 use super::source::{canonical, parse_document, read_text, Source};
 

@@ -215,10 +215,15 @@ mod tests {
     #[test]
     fn bad_lists() {
         assert!(parse_pairs("400:0.1").unwrap_err().contains("at least two"));
-        assert!(parse_pairs("500:0.1, 400:0.2").unwrap_err().contains("increase"));
+        assert!(parse_pairs("500:0.1, 400:0.2")
+            .unwrap_err()
+            .contains("increase"));
         assert!(parse_pairs("400:0.1, 500").unwrap_err().contains("pair"));
         assert!(parse_pairs("400:x, 500:1").unwrap_err().contains("\"x\""));
-        assert_eq!(parse_pairs("400:1 500:2").unwrap(), (vec![400.0, 500.0], vec![1.0, 2.0]));
+        assert_eq!(
+            parse_pairs("400:1 500:2").unwrap(),
+            (vec![400.0, 500.0], vec![1.0, 2.0])
+        );
         let (w, v) = parse_file("# comment\n400 0.5 extra\n\n500\t0.25\n").unwrap();
         assert_eq!((w, v), (vec![400.0, 500.0], vec![0.5, 0.25]));
         assert!(parse_file("400 0.5\n500\n").unwrap_err().contains("line 2"));

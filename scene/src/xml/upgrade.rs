@@ -77,7 +77,11 @@ fn rename(b: &mut Building, from: &str, to: &str) -> Result<(), InputError> {
     for p in b.props.iter_mut().filter(|p| p.name == from) {
         p.name = to.to_string();
     }
-    for c in b.children.iter_mut().filter(|c| c.name.as_deref() == Some(from)) {
+    for c in b
+        .children
+        .iter_mut()
+        .filter(|c| c.name.as_deref() == Some(from))
+    {
         c.name = Some(to.to_string());
     }
     Ok(())

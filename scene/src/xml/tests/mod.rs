@@ -284,7 +284,10 @@ fn forward_refs_resolve_to_the_later_declaration() {
     assert!(std::rc::Rc::ptr_eq(&shape.children[1].obj, white));
     assert!(shape.children[0].is_ref && light.is_referenced() && white.is_referenced());
     assert_eq!(shape.children[1].name.as_deref(), Some("bsdf"));
-    assert_eq!((shape.children[0].loc.line, shape.children[0].loc.col), (3, 5));
+    assert_eq!(
+        (shape.children[0].loc.line, shape.children[0].loc.col),
+        (3, 5)
+    );
     // Control: an id declared nowhere is still an error, at the reference.
     assert_err(
         "<scene>\n  <shape type=\"sphere\"><ref id=\"m\"/></shape>\n  <bsdf type=\"diffuse\" id=\"n\"/>\n</scene>",

@@ -8,7 +8,11 @@ fn folder() -> PathBuf {
     for sub in ["assets", "sub", "meshes"] {
         std::fs::create_dir_all(d.join(sub)).unwrap();
     }
-    std::fs::write(d.join("assets/frag.xml"), "<bsdf type=\"diffuse\" id=\"m\"/>").unwrap();
+    std::fs::write(
+        d.join("assets/frag.xml"),
+        "<bsdf type=\"diffuse\" id=\"m\"/>",
+    )
+    .unwrap();
     std::fs::write(d.join("assets/tex.png"), "").unwrap();
     std::fs::write(d.join("meshes/m.obj"), "").unwrap();
     std::fs::write(
@@ -25,7 +29,10 @@ fn path_folders_hold_includes_and_files() {
     let main = d.join("main.xml");
     let text = "<scene version=\"3.0.0\">\n  <path value=\"assets\"/>\n  <include filename=\"frag.xml\"/>\n  <include filename=\"sub/inc.xml\"/>\n</scene>";
     let s = load_str(text, &main, &[]).unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(s.children[0].obj.loc.file.as_path(), d.join("assets/frag.xml"));
+    assert_eq!(
+        s.children[0].obj.loc.file.as_path(),
+        d.join("assets/frag.xml")
+    );
     // Files named by objects: the <path> folder, then the main file's folder (also for an
     // object declared in an included file in another folder), then beside the object's file.
     let bsdf = &s.children[0].obj;
@@ -61,7 +68,10 @@ fn a_path_in_an_included_file_ends_with_it() {
     )
     .unwrap_or_else(|e| panic!("{e}"));
     let found = std::fs::canonicalize(s.children[0].obj.loc.file.as_path()).unwrap();
-    assert_eq!(found, std::fs::canonicalize(d.join("assets/frag.xml")).unwrap());
+    assert_eq!(
+        found,
+        std::fs::canonicalize(d.join("assets/frag.xml")).unwrap()
+    );
     // Mitsuba drops an included file's <path>s when the include ends.
     let e = load_str(
         "<scene version=\"3.0.0\">\n  <include filename=\"sub/paths.xml\"/>\n  <include filename=\"frag.xml\"/>\n</scene>",
@@ -70,7 +80,10 @@ fn a_path_in_an_included_file_ends_with_it() {
     )
     .unwrap_err()
     .to_string();
-    assert!(e.starts_with(&format!("{}:3:3: cannot include", main.display())), "{e}");
+    assert!(
+        e.starts_with(&format!("{}:3:3: cannot include", main.display())),
+        "{e}"
+    );
 }
 
 #[test]
@@ -80,11 +93,17 @@ fn path_errors_are_located() {
     let err = |text: &str| load_str(text, &main, &[]).unwrap_err().to_string();
     let at = |line: u32, col: u32| format!("{}:{line}:{col}: ", main.display());
     let e = err("<scene version=\"3.0.0\">\n  <path value=\"nowhere\"/>\n</scene>");
-    assert!(e.starts_with(&at(2, 9)) && e.contains("folder") && e.contains("not found"), "{e}");
+    assert!(
+        e.starts_with(&at(2, 9)) && e.contains("folder") && e.contains("not found"),
+        "{e}"
+    );
     let e = err("<scene version=\"3.0.0\">\n  <path value=\"meshes/m.obj\"/>\n</scene>");
     assert!(e.starts_with(&at(2, 9)) && e.contains("not found"), "{e}");
     let e = err("<scene version=\"3.0.0\">\n  <shape type=\"obj\">\n    <path value=\"assets\"/>\n  </shape>\n</scene>");
-    assert!(e.starts_with(&at(3, 5)) && e.contains("only allowed at the top level"), "{e}");
+    assert!(
+        e.starts_with(&at(3, 5)) && e.contains("only allowed at the top level"),
+        "{e}"
+    );
     let e = err("<scene version=\"3.0.0\">\n  <path/>\n</scene>");
     assert!(e.starts_with(&at(2, 3)) && e.contains("value"), "{e}");
     let e = err("<scene version=\"3.0.0\">\n  <path value=\"assets\" x=\"1\"/>\n</scene>");

@@ -3,7 +3,8 @@
 //! `scripts/mitsuba_spectrum_rgb.py`, which loads each case through Mitsuba itself).
 use super::*;
 
-const REFLECTANCE_S: &str = "400:0.092, 450:0.104, 500:0.285, 550:0.4, 600:0.16, 650:0.118, 700:0.159";
+const REFLECTANCE_S: &str =
+    "400:0.092, 450:0.104, 500:0.285, 550:0.4, 600:0.16, 650:0.118, 700:0.159";
 const SATURATED_S: &str = "400:0, 560:0, 580:1, 700:1";
 const LIGHT_S: &str = "400:0, 500:8, 600:15.6, 700:18.4";
 const ETA_S: &str = "300:1.8, 400:1.65, 500:0.9, 600:0.2, 700:0.16, 800:0.18";
@@ -20,7 +21,12 @@ const K: [f64; 3] = [3.38869143, 2.34904099, 1.87515724];
 fn value_of(body: &str, name: &str) -> Value {
     let s = load(&format!("<scene version=\"3.0.0\">\n{body}\n</scene>"));
     let obj = &s.children[0].obj;
-    obj.props.iter().find(|p| p.name == name).unwrap().value.clone()
+    obj.props
+        .iter()
+        .find(|p| p.name == name)
+        .unwrap()
+        .value
+        .clone()
 }
 
 fn rgb_of(body: &str, name: &str) -> [f64; 3] {
@@ -50,7 +56,10 @@ fn spectra_convert_as_mitsuba_does() {
         assert!(agrees(got, *want), "{body}: got {got:?}, Mitsuba {want:?}");
     }
     // A single value is grey except for emitted light.
-    let grey = value_of("<bsdf type=\"diffuse\"><spectrum name=\"reflectance\" value=\"0.5\"/></bsdf>", "reflectance");
+    let grey = value_of(
+        "<bsdf type=\"diffuse\"><spectrum name=\"reflectance\" value=\"0.5\"/></bsdf>",
+        "reflectance",
+    );
     assert_eq!(grey, Value::Float(0.5));
 }
 
@@ -60,7 +69,9 @@ fn control_the_context_matters() {
     // emitted colour, and the reflectance read as light (unweighted) is far from Mitsuba's
     // reflectance colour: a conversion that ignored the context would fail the test above.
     let as_reflectance = rgb_of(
-        &format!("<bsdf type=\"diffuse\"><spectrum name=\"reflectance\" value=\"{LIGHT_S}\"/></bsdf>"),
+        &format!(
+            "<bsdf type=\"diffuse\"><spectrum name=\"reflectance\" value=\"{LIGHT_S}\"/></bsdf>"
+        ),
         "reflectance",
     );
     assert!(!agrees(as_reflectance, LIGHT), "{as_reflectance:?}");
@@ -98,18 +109,28 @@ fn spectrum_files_and_errors() {
         other => panic!("{other:?}"),
     }
     let at = |body: &str| {
-        let text = format!("<scene version=\"3.0.0\">\n<bsdf type=\"diffuse\">{body}</bsdf>\n</scene>");
+        let text =
+            format!("<scene version=\"3.0.0\">\n<bsdf type=\"diffuse\">{body}</bsdf>\n</scene>");
         load_str(&text, &main, &[]).unwrap_err().to_string()
     };
     let here = |col: u32| format!("{}:2:{col}: ", main.display());
     let e = at("<spectrum name=\"reflectance\" value=\"500:0.1, 400:0.2\"/>");
-    assert!(e.starts_with(&here(51)) && e.contains("wavelengths must increase"), "{e}");
+    assert!(
+        e.starts_with(&here(51)) && e.contains("wavelengths must increase"),
+        "{e}"
+    );
     let e = at("<spectrum name=\"reflectance\" value=\"400:0.1\"/>");
-    assert!(e.starts_with(&here(51)) && e.contains("at least two"), "{e}");
+    assert!(
+        e.starts_with(&here(51)) && e.contains("at least two"),
+        "{e}"
+    );
     let e = at("<spectrum name=\"reflectance\" value=\"0.1\" filename=\"r.spd\"/>");
     assert!(e.starts_with(&here(63)) && e.contains("not both"), "{e}");
     let e = at("<spectrum name=\"reflectance\"/>");
-    assert!(e.starts_with(&here(22)) && e.contains("needs a \"value\""), "{e}");
+    assert!(
+        e.starts_with(&here(22)) && e.contains("needs a \"value\""),
+        "{e}"
+    );
     let e = at("<spectrum name=\"reflectance\" filename=\"none.spd\"/>");
     assert!(e.starts_with(&here(51)) && e.contains("none.spd"), "{e}");
 }
@@ -124,8 +145,14 @@ fn clamping_is_warned_where_the_spectrum_is() {
     };
     let w = warnings(SATURATED_S);
     assert_eq!(w.len(), 1, "{w:?}");
-    assert!(w[0].starts_with(&format!("{P}:2:22: the spectrum's colour [1.3186")), "{w:?}");
-    assert!(w[0].contains("clamped to [1.0000, 0.1240, 0.0000]"), "{w:?}");
+    assert!(
+        w[0].starts_with(&format!("{P}:2:22: the spectrum's colour [1.3186")),
+        "{w:?}"
+    );
+    assert!(
+        w[0].contains("clamped to [1.0000, 0.1240, 0.0000]"),
+        "{w:?}"
+    );
     // Control: an in-gamut spectrum warns of nothing.
     assert!(warnings(REFLECTANCE_S).is_empty());
 }

@@ -30,8 +30,12 @@ fn old_files_are_upgraded() {
     let Value::Transform(m) = to_uv.value else {
         panic!("{:?}", to_uv.value)
     };
-    assert!(m.transform_point3(DVec3::ZERO).abs_diff_eq(DVec3::new(0.5, 0.0, 0.0), 1e-12));
-    assert!(m.transform_point3(DVec3::ONE).abs_diff_eq(DVec3::new(2.5, 4.0, 1.0), 1e-12));
+    assert!(m
+        .transform_point3(DVec3::ZERO)
+        .abs_diff_eq(DVec3::new(0.5, 0.0, 0.0), 1e-12));
+    assert!(m
+        .transform_point3(DVec3::ONE)
+        .abs_diff_eq(DVec3::new(2.5, 4.0, 1.0), 1e-12));
     // Only a diffuse BSDF's diffuse_reflectance is renamed (as in Mitsuba).
     assert_eq!(s.children[1].obj.props[0].name, "diffuse_reflectance");
 }
@@ -40,8 +44,16 @@ fn old_files_are_upgraded() {
 fn control_new_files_are_not_upgraded() {
     let s = load(&OLD.replace("0.6.0", "3.0.0"));
     let diffuse = &s.children[0].obj;
-    assert_eq!(diffuse.children[0].name.as_deref(), Some("diffuse_reflectance"));
-    let names: Vec<&str> = diffuse.children[0].obj.props.iter().map(|p| p.name.as_str()).collect();
+    assert_eq!(
+        diffuse.children[0].name.as_deref(),
+        Some("diffuse_reflectance")
+    );
+    let names: Vec<&str> = diffuse.children[0]
+        .obj
+        .props
+        .iter()
+        .map(|p| p.name.as_str())
+        .collect();
     assert_eq!(names, ["filename", "uoffset", "uscale", "vscale"]);
 }
 
