@@ -1,6 +1,6 @@
 //! Walks the scene tree and assembles the core scene.
 use super::bsdfs::Bsdfs;
-use super::emitters::build_emitter;
+use super::emitters::{build_emitter, AREA};
 use super::families::{declared_params, families, Family};
 use super::integrator::read_integrator;
 use super::loaded::{LoadedScene, PluginNames};
@@ -21,7 +21,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
     if root.kind != Kind::Scene {
         return Err(root.error("the root element must be <scene>"));
     }
-    let mut warnings = Vec::new();
+    let mut warnings = root.load_warnings.clone();
     let mut bsdfs = Bsdfs::default();
     let mut shapes = Vec::new();
     let mut disks = Vec::new();
@@ -48,6 +48,9 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
             Kind::Bsdf => {
                 bsdfs.index_of(obj)?;
             }
+            // An area emitter declared to be referenced is built on each shape that refers
+            // to it (Mitsuba adds surface emitters to the scene through their shapes).
+            Kind::Emitter if obj.plugin == AREA.name && obj.is_referenced() => {}
             Kind::Emitter => {
                 emitters.push(build_emitter(obj, None)?);
                 names.emitters.push(obj.plugin.clone());

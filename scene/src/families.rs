@@ -89,5 +89,12 @@ mod tests {
         // Control: the same scene without the parameter warns of nothing.
         let w = warnings("<film type=\"hdrfilm\"/><sampler type=\"independent\"/>");
         assert!(w.is_empty(), "{w:?}");
+        // A perspective camera's focus distance (Mitsuba's cbox sets it) loads, with a warning.
+        let w = warnings("<float name=\"focus_distance\" value=\"10\"/>");
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(
+            w[0].starts_with("/nowhere/w.xml:2:28: \"focus_distance\" of sensor \"perspective\""),
+            "{w:?}"
+        );
     }
 }

@@ -132,6 +132,14 @@ const FOCAL_LENGTH: Param = Param::new(
     Range::Note("a positive length like \"50mm\""),
     "focal length on a 36x24 mm frame (a diagonal field of view), when fov is absent",
 );
+const FOCUS_DISTANCE: Param = Param::new(
+    "focus_distance",
+    ParamType::Float,
+    Default::Note("far_clip"),
+    Range::Any,
+    "has no effect: a pinhole camera is in focus everywhere",
+)
+.ignored();
 const NORI_WIDTH: Param = Param::new(
     "width",
     ParamType::Integer,
@@ -159,6 +167,7 @@ pub const PERSPECTIVE: SensorPlugin = Plugin {
         FOCAL_LENGTH,
         NEAR_CLIP,
         FAR_CLIP,
+        FOCUS_DISTANCE,
         NORI_WIDTH,
         NORI_HEIGHT,
     ],
@@ -172,6 +181,7 @@ fn build_perspective(obj: &Object, warnings: &mut Vec<String>) -> Result<SensorP
     let nori = obj.has("width") || obj.has("height");
     let near = NEAR_CLIP.read_f32_or(obj, if nori { 1e-4 } else { 0.01 })?;
     let far = FAR_CLIP.read_f32_where(obj, 10000.0, |v| v > near as f64)?;
+    FOCUS_DISTANCE.read_f32_opt(obj)?;
     let (fov, axis) = match FOV.read_f32_opt(obj)? {
         Some(fov) => {
             let axis = match FOV_AXIS.read_choice(obj)? {

@@ -128,13 +128,7 @@ fn build_mesh_file(obj: &Object) -> Result<Geometry> {
     let name = obj
         .string_opt(FILENAME.name)?
         .ok_or_else(|| obj.error(format!("{} needs \"filename\"", obj.describe())))?;
-    let base = obj
-        .loc
-        .file
-        .parent()
-        .map(|p| p.to_path_buf())
-        .unwrap_or_default();
-    let path = base.join(&name);
+    let path = obj.resolve_file(&name);
     let use_mtl = obj.plugin == OBJ.name && USE_MTL.read_bool(obj)?;
     let face_normals = FACE_NORMALS.read_bool(obj)?;
     let tf = TO_WORLD.read_transform(obj)?;

@@ -14,12 +14,15 @@ const RADIANCE: Param = Param::rgb(
 pub const AREA: EmitterPlugin = Plugin {
     name: "area",
     aliases: &[],
-    doc: "A diffuse area light on a shape's front side; only nested in a `<shape>`.",
+    doc: "A diffuse area light on a shape's front side; nested in a `<shape>`, or declared \
+          with an id and `<ref>`'d from shapes (each shape that refers to it emits).",
     params: &[RADIANCE],
     nested: "",
     build: |obj, shape| {
         let Some(shape) = shape else {
-            return Err(obj.error("an area emitter must be nested in a shape"));
+            return Err(obj.error(
+                "an area emitter must be nested in a shape or referenced from one with <ref>",
+            ));
         };
         Ok(Emitter::Area(AreaLight::new(
             shape,

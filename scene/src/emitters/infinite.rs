@@ -105,13 +105,7 @@ fn build_envmap(obj: &Object, _: Option<u32>) -> Result<Emitter> {
             obj.describe()
         ))
     })?;
-    let base = obj
-        .loc
-        .file
-        .parent()
-        .map(|p| p.to_path_buf())
-        .unwrap_or_default();
-    let path = base.join(&name);
+    let path = obj.resolve_file(&name);
     let file_error = |msg: String| -> InputError { at_prop(obj, "filename", msg) };
     let ext = path
         .extension()

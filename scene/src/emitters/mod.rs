@@ -2,11 +2,12 @@
 //! in a shape) in `area.rs`; the delta lights `point`, `spot`, `directional` in `delta.rs`; the
 //! lights at infinity `constant`, `envmap`, `distantdisk` in `infinite.rs`. The plugin files in
 //! `tessera_core::emitter` give each light's conventions.
-mod area;
+pub(crate) mod area;
 mod delta;
 mod infinite;
 mod table;
 
+pub use area::AREA;
 pub use table::{build_emitter, EMITTERS};
 
 use crate::plugin::Plugin;
@@ -196,5 +197,26 @@ mod tests {
         ));
         crate::load_scene_str(&text, Path::new("/nowhere/test.xml"), &[]).expect("loads");
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn an_area_emitter_can_be_declared_apart_and_referenced() {
+        // Referenced before its declaration (as Mitsuba's cbox fragments do), by two shapes:
+        // each shape emits.
+        let text = scene(
+            "<shape type=\"sphere\"><ref id=\"light\"/></shape>\n\
+             <shape type=\"sphere\"><point name=\"center\" value=\"3 0 0\"/><ref id=\"light\"/></shape>\n\
+             <emitter type=\"area\" id=\"light\"><rgb name=\"radiance\" value=\"2\"/></emitter>",
+        );
+        let l = crate::load_scene_str(&text, Path::new("/nowhere/test.xml"), &[])
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(l.scene.emitters.len(), 2);
+        assert!(l.scene.shapes.iter().all(|s| s.emitter.is_some()));
+        // Control: declared apart but referenced by no shape, it is refused where it is.
+        check(
+            "<shape type=\"sphere\"/>\n<emitter type=\"area\" id=\"light\"><rgb name=\"radiance\" value=\"2\"/></emitter>",
+            "<emitter",
+            "must be nested in a shape or referenced from one",
+        );
     }
 }

@@ -178,12 +178,6 @@ fn bitmap(obj: &Object, unit: bool) -> Result<Bitmap> {
     };
     let to_uv = to_uv(obj)?;
     ACCEL.read_bool(obj)?;
-    let base = obj
-        .loc
-        .file
-        .parent()
-        .map(|p| p.to_path_buf())
-        .unwrap_or_default();
     let settings = BitmapSettings {
         raw,
         unit,
@@ -192,7 +186,8 @@ fn bitmap(obj: &Object, unit: bool) -> Result<Bitmap> {
         to_uv,
         scale: Vec3::ONE,
     };
-    load_bitmap(&base.join(&name), &name, settings).map_err(|msg| at_prop(obj, "filename", msg))
+    load_bitmap(&obj.resolve_file(&name), &name, settings)
+        .map_err(|msg| at_prop(obj, "filename", msg))
 }
 
 /// How to read and look up an image texture.

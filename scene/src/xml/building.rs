@@ -3,7 +3,8 @@
 use std::collections::HashMap;
 
 use super::dialect::param_name;
-use super::object::{Child, Kind, Prop};
+use super::draft::DraftChild;
+use super::object::{Kind, Prop};
 use crate::error::{InputError, Loc};
 
 type Result<T> = std::result::Result<T, InputError>;
@@ -13,7 +14,7 @@ pub(super) struct Building {
     pub(super) kind: Kind,
     pub(super) plugin: String,
     pub(super) props: Vec<Prop>,
-    pub(super) children: Vec<Child>,
+    pub(super) children: Vec<DraftChild>,
     /// Parameter names (properties and named children) seen so far, for duplicates.
     pub(super) names: HashMap<String, Loc>,
 }
@@ -62,7 +63,7 @@ impl Building {
         Ok(())
     }
 
-    pub(super) fn add_child(&mut self, child: Child) -> Result<()> {
+    pub(super) fn add_child(&mut self, child: DraftChild) -> Result<()> {
         if let Some(n) = &child.name {
             self.claim_name(n, &child.loc)?;
         }

@@ -2,23 +2,29 @@
 //! normalized, located object tree ([`Object`]).
 //!
 //! This layer knows the file syntax only: properties, objects, `<default>`/`$name`
-//! parameters, `<ref>`, `<alias>`, `<include>`, transforms, and the Nori dialect (mapped onto
+//! parameters, `<ref>`, `<alias>`, `<include>`, `<path>`, transforms, and the Nori dialect (mapped onto
 //! Mitsuba 3 vocabulary). What the objects mean is the scene builder's business; it reads the
 //! tree through the typed getters of [`Object`] and finally calls [`Object::check_unused`].
 
 mod attrs;
 mod building;
+mod cie;
 mod dialect;
+mod draft;
 mod getters;
 mod include;
 mod object;
 mod params;
 mod parse;
+mod path;
 mod property;
 mod refs;
+mod search;
 pub(crate) mod source;
+pub(crate) mod spectrum;
 mod subst;
 mod transform;
+mod upgrade;
 mod values;
 
 #[cfg(test)]
@@ -36,7 +42,8 @@ use crate::error::InputError;
 /// Loads the scene file at `path` (root element `<scene>`).
 ///
 /// `defines` are the command line's `-D name=value` pairs; they override `<default>`s.
-/// Included files are resolved relative to the including file's directory.
+/// Included files are looked up beside the including file, then as Mitsuba's file resolver
+/// does (the main file's folder and `<path>` folders).
 pub fn load_file(path: &Path, defines: &[(String, String)]) -> Result<Object, InputError> {
     parse::Parser::new(defines).load_text(&read_file(path)?, path)
 }

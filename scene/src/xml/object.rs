@@ -6,6 +6,7 @@
 
 use std::cell::Cell;
 use std::fmt;
+use std::path::PathBuf;
 use std::rc::Rc;
 
 use glam::DMat4;
@@ -212,6 +213,11 @@ pub struct Object {
     pub props: Vec<Prop>,
     /// Nested objects and resolved `<ref>`s, in file order.
     pub children: Vec<Child>,
+    /// The folders relative file names are looked up in, first to last (see
+    /// [`Object::resolve_file`]); shared by every object of a load.
+    pub(crate) search: Rc<[PathBuf]>,
+    /// On the root of a load: located warnings about the files themselves.
+    pub(crate) load_warnings: Vec<String>,
     referenced: Cell<bool>,
 }
 
@@ -234,6 +240,8 @@ impl Object {
             loc,
             props,
             children,
+            search: Rc::new([]),
+            load_warnings: Vec::new(),
             referenced: Cell::new(false),
         }
     }

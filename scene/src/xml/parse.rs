@@ -19,10 +19,13 @@ use roxmltree::Node;
 use super::attrs::Attrs;
 use super::building::Building;
 use super::dialect::element_alias;
-use super::object::{Child, Kind, Object};
+use super::draft::{finalize, Draft, DraftChild, Target};
+use super::object::{Kind, Object};
+use super::search::folder_of;
 use super::source::canonical;
 use super::source::{check_size, parse_document, Source};
 use super::transform;
+use super::upgrade::{needs_upgrade, parse_version, upgrade, Version};
 use crate::error::{InputError, Loc};
 
 pub(super) type Result<T> = std::result::Result<T, InputError>;
@@ -34,7 +37,7 @@ pub const MAX_DEPTH: usize = 64;
 pub const MAX_INCLUDE_DEPTH: usize = 32;
 
 /// Mitsuba elements this renderer does not implement (a clearer error than "unknown").
-const UNSUPPORTED: &[&str] = &["medium", "phase", "volume", "path", "tensor"];
+const UNSUPPORTED: &[&str] = &["medium", "phase", "volume", "tensor"];
 
 /// Property element names (after dialect aliasing).
 const PROPERTY_TAGS: &[&str] = &[
@@ -57,6 +60,7 @@ enum Item<'a> {
     Include,
     Default,
     Alias,
+    Path,
 }
 
 /// The state of one load.
@@ -67,12 +71,21 @@ pub struct Parser {
     pub(super) define_names: Vec<String>,
     /// Parameter names the files declare (`<default>`) or mention (`$name`).
     pub(super) known_params: std::collections::HashSet<String>,
-    /// Objects declared with an `id` (or aliased), and where.
-    pub(super) ids: HashMap<String, (Rc<Object>, Loc)>,
+    /// Objects declared with an `id` (or aliased): their index in `drafts`, and where.
+    pub(super) ids: HashMap<String, (usize, Loc)>,
+    /// Every object read so far (taken out when the tree is finalized).
+    pub(super) drafts: Vec<Option<Draft>>,
+    /// Mitsuba's file resolver as it is now: the folders relative names resolve in, first
+    /// to last (see `search.rs`).
+    pub(super) resolver: Vec<PathBuf>,
     /// Ids of objects whose element is still being read.
     pub(super) open_ids: HashMap<String, Loc>,
     /// Files being read, outermost first (canonical paths when they exist).
     pub(super) files: Vec<PathBuf>,
+    /// Located warnings about the files (handed to the root object).
+    pub(super) warnings: Vec<String>,
+    /// The version attribute of each file in `files` (`None`: none, as in Nori files).
+    pub(super) versions: Vec<Option<Version>>,
 }
 
 pub(super) fn strip_bom(text: &str) -> &str {
@@ -95,6 +108,11 @@ pub(super) fn check_version(a: &Attrs) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The version a root element declares (checked by [`check_version`] first).
+pub(super) fn file_version(a: &Attrs) -> Option<Version> {
+    a.get("version").and_then(|v| parse_version(&v.value))
 }
 
 /// Fails when a non-object element contains elements or text.
@@ -150,8 +168,12 @@ impl Parser {
             define_names: defines.iter().map(|(k, _)| k.clone()).collect(),
             known_params: std::collections::HashSet::new(),
             ids: HashMap::new(),
+            drafts: Vec::new(),
+            resolver: Vec::new(),
             open_ids: HashMap::new(),
             files: Vec::new(),
+            versions: Vec::new(),
+            warnings: Vec::new(),
         }
     }
 
@@ -178,13 +200,21 @@ impl Parser {
         self.note_mentions(text);
         let attrs = Attrs::read(root, &src, &self.params)?;
         self.files.push(canonical(path));
-        let obj = self.build_object(&src, root, root_kind, &attrs, None, 1)?;
+        self.versions.push(file_version(&attrs));
+        self.resolver = vec![folder_of(path)];
+        let draft = self.build_object(&src, root, root_kind, &attrs, None, 1)?;
         self.files.pop();
+        self.versions.pop();
         self.check_defines(path)?;
+        let root = self.drafts.len();
+        self.drafts.push(Some(draft));
+        let search: Rc<[PathBuf]> = std::mem::take(&mut self.resolver).into();
+        let mut obj = finalize(&mut self.drafts, &self.ids, root, &search)?;
+        obj.load_warnings = std::mem::take(&mut self.warnings);
         Ok(obj)
     }
 
-    /// Reads an object element into an [`Object`] (registering nothing).
+    /// Reads an object element into a [`Draft`] (registering nothing).
     pub(super) fn build_object(
         &mut self,
         src: &Source<'_>,
@@ -193,7 +223,7 @@ impl Parser {
         attrs: &Attrs,
         parent: Option<&Building>,
         depth: usize,
-    ) -> Result<Object> {
+    ) -> Result<Draft> {
         let (plugin, id, name) = if kind == Kind::Scene {
             attrs.allow(&["version"])?;
             check_version(attrs)?;
@@ -235,15 +265,18 @@ impl Parser {
             self.open_ids.remove(id);
         }
         body?;
-        Ok(Object::new(
+        if needs_upgrade(self.versions.last().copied().flatten()) {
+            upgrade(&mut b)?;
+        }
+        Ok(Draft {
             kind,
-            b.plugin,
+            plugin: b.plugin,
             id,
             name,
-            attrs.loc.clone(),
-            b.props,
-            b.children,
-        ))
+            loc: attrs.loc.clone(),
+            props: b.props,
+            children: b.children,
+        })
     }
 
     /// Reads the content of an object element into `b`.
@@ -282,6 +315,7 @@ impl Parser {
             "include" => Ok(Item::Include),
             "default" => Ok(Item::Default),
             "alias" => Ok(Item::Alias),
+            "path" => Ok(Item::Path),
             t if PROPERTY_TAGS.contains(&t) => Ok(Item::Property(tag)),
             t if transform::is_op(t) => {
                 err(format!("<{written}> is only allowed inside <transform>"))
@@ -311,14 +345,19 @@ impl Parser {
         let attrs = Attrs::read(node, src, &self.params)?;
         match item {
             Item::Object(kind) => {
-                let obj = self.build_object(src, node, kind, &attrs, Some(b), depth)?;
-                let name = obj.name.clone();
-                let obj = Rc::new(obj);
-                if let Some(id) = &obj.id {
-                    self.ids
-                        .insert(id.clone(), (obj.clone(), attrs.loc.clone()));
+                let draft = self.build_object(src, node, kind, &attrs, Some(b), depth)?;
+                let name = draft.name.clone();
+                let at = self.drafts.len();
+                if let Some(id) = &draft.id {
+                    self.ids.insert(id.clone(), (at, attrs.loc.clone()));
                 }
-                b.add_child(Child::new(name, obj, attrs.loc.clone(), false))
+                self.drafts.push(Some(draft));
+                b.add_child(DraftChild {
+                    name,
+                    target: Target::Node(at),
+                    loc: attrs.loc.clone(),
+                    is_ref: false,
+                })
             }
             Item::Property(tag) => {
                 let prop = self.parse_property(src, node, tag, &attrs, b, depth)?;
@@ -328,6 +367,7 @@ impl Parser {
             Item::Include => self.parse_include(src, node, &attrs, b, depth),
             Item::Default => self.parse_default(src, node, &attrs),
             Item::Alias => self.parse_alias(src, node, &attrs),
+            Item::Path => self.parse_path(src, node, &attrs, b),
         }
     }
 }

@@ -1,4 +1,7 @@
-//! Property elements (`<float>`, `<rgb>`, `<point>`, `<transform>`, ...) to [`Prop`]s.
+//! Property elements (`<float>`, `<rgb>`, `<spectrum>`, `<point>`, `<transform>`, ...) to
+//! [`Prop`]s.
+
+use std::path::Path;
 
 use glam::DMat4;
 use roxmltree::Node;
@@ -7,7 +10,9 @@ use super::attrs::Attrs;
 use super::building::Building;
 use super::object::{Prop, Value};
 use super::parse::{check_text, no_content, Parser, Result, MAX_DEPTH};
-use super::source::Source;
+use super::search::lookup;
+use super::source::{read_text, Source};
+use super::spectrum::{list_to_rgb, parse_file, parse_pairs, uniform_to_rgb, SpectrumUse};
 use super::transform;
 use crate::error::InputError;
 
@@ -33,7 +38,12 @@ impl Parser {
             }
             _ => {
                 no_content(src, node)?;
-                self.simple_value(tag, a)?
+                if tag == "spectrum" {
+                    let how = SpectrumUse::of(b.kind, &b.plugin, &b.param_name(&name.value));
+                    self.spectrum_value(src, a, how)?
+                } else {
+                    self.simple_value(tag, a)?
+                }
             }
         };
         Ok(Prop::new(b.param_name(&name.value), value, a.loc.clone()))
@@ -54,21 +64,6 @@ impl Parser {
                     _ => Value::Rgb(v.vec3(t, true)?),
                 }
             }
-            "spectrum" => {
-                a.allow(&["name", "value", "filename"])?;
-                if let Some(f) = a.get("filename") {
-                    return Err(f.error(t, "spectra are not supported (only <spectrum value=\"v\"/>, meaning grey): use <rgb>"));
-                }
-                let v = a.require("value")?;
-                let items: Vec<&str> = super::values::split_list(&v.value).collect();
-                match items.as_slice() {
-                    [one] if !one.contains(':') => Value::Float(v.float(t)?),
-                    _ => return Err(v.error(
-                        t,
-                        "spectra are not supported (only a single value, meaning grey): use <rgb>",
-                    )),
-                }
-            }
             "point" | "vector" => {
                 a.allow(&["name", "value", "x", "y", "z"])?;
                 let v = transform::xyz(a, &["value"], 0.0, true)?
@@ -86,6 +81,56 @@ impl Parser {
             }
             _ => unreachable!("not a simple property tag: {tag}"),
         })
+    }
+
+    /// The value of a `<spectrum>`: one value (grey, or for emitted light Mitsuba's flat
+    /// spectrum colour), a wavelength:value list, or a file of them, converted to RGB.
+    fn spectrum_value(&mut self, src: &Source<'_>, a: &Attrs, how: SpectrumUse) -> Result<Value> {
+        let t = a.tag.as_str();
+        a.allow(&["name", "value", "filename"])?;
+        let (w, v) = match (a.get("value"), a.get("filename")) {
+            (Some(_), Some(f)) => {
+                return Err(f.error(t, "give either \"value\" or \"filename\", not both"))
+            }
+            (Some(v), None) => {
+                let items: Vec<&str> = super::values::split_list(&v.value).collect();
+                if let [one] = items.as_slice() {
+                    if !one.contains(':') {
+                        let x = v.float(t)?;
+                        return Ok(match how {
+                            SpectrumUse::Emitted => Value::Rgb(uniform_to_rgb(x, how)),
+                            _ => Value::Float(x),
+                        });
+                    }
+                }
+                parse_pairs(&v.value).map_err(|m| v.error(t, &m))?
+            }
+            (None, Some(f)) => {
+                if f.value.is_empty() {
+                    return Err(f.error(t, "must not be empty"));
+                }
+                let name = Path::new(&f.value);
+                let path = lookup(&self.resolver, name)
+                    .or_else(|| lookup(std::slice::from_ref(&src.dir), name))
+                    .unwrap_or_else(|| src.dir.join(name));
+                let text = read_text(&path)
+                    .map_err(|m| f.error(t, &format!("\"{}\": {m}", path.display())))?;
+                parse_file(&text)
+                    .map_err(|m| f.error(t, &format!("in \"{}\": {m}", path.display())))?
+            }
+            (None, None) => {
+                return Err(a.error(format!("<{t}> needs a \"value\" or a \"filename\"")))
+            }
+        };
+        let (rgb, unclamped) = list_to_rgb(&w, &v, how);
+        if let Some(c) = unclamped {
+            self.warnings.push(format!(
+                "{}: the spectrum's colour [{:.4}, {:.4}, {:.4}] is out of gamut; clamped to \
+                 [{:.4}, {:.4}, {:.4}] as Mitsuba does",
+                a.loc, c[0], c[1], c[2], rgb[0], rgb[1], rgb[2]
+            ));
+        }
+        Ok(Value::Rgb(rgb))
     }
 
     /// Composes the operations inside a `<transform>` element (`M = op * M`).

@@ -1,12 +1,10 @@
 //! Object ids: declaring them, `<ref>` to a declared object and `<alias>` for another id.
 
-use std::rc::Rc;
-
 use roxmltree::Node;
 
 use super::attrs::Attrs;
 use super::building::Building;
-use super::object::{Child, Object};
+use super::draft::{DraftChild, Target};
 use super::parse::{no_content, Parser, Result};
 use super::source::Source;
 use crate::error::{InputError, Loc};
@@ -28,17 +26,19 @@ impl Parser {
         }
     }
 
-    /// The object declared with `id`.
-    fn resolve(&self, id: &str, loc: &Loc) -> Result<Rc<Object>> {
-        if let Some((obj, _)) = self.ids.get(id) {
-            return Ok(obj.clone());
+    /// What a `<ref>` to `id` points to: the object declared with it, or the id itself when
+    /// it is not declared yet (it may be declared later; resolved when the load ends).
+    fn ref_target(&self, id: &str, loc: &Loc) -> Result<Target> {
+        if self.open_ids.contains_key(id) {
+            return Err(InputError::at(
+                loc,
+                format!("id \"{id}\" refers to an object that contains this reference"),
+            ));
         }
-        let msg = if self.open_ids.contains_key(id) {
-            format!("id \"{id}\" refers to an object that contains this reference")
-        } else {
-            format!("unknown id \"{id}\" (objects must be declared before they are referenced)")
-        };
-        Err(InputError::at(loc, msg))
+        Ok(match self.ids.get(id) {
+            Some((at, _)) => Target::Node(*at),
+            None => Target::Id(id.to_string()),
+        })
     }
 
     /// Reads a `<ref>` element: the referenced object becomes a child of `b`.
@@ -52,14 +52,21 @@ impl Parser {
         no_content(src, node)?;
         attrs.allow(&["id", "name"])?;
         let id = attrs.require("id")?;
-        let obj = self.resolve(&id.value, &attrs.loc)?;
-        obj.mark_referenced();
+        if id.value.is_empty() {
+            return Err(id.error(&attrs.tag, "must not be empty"));
+        }
+        let target = self.ref_target(&id.value, &attrs.loc)?;
         let name = match attrs.get("name") {
             Some(a) if a.value.is_empty() => return Err(a.error(&attrs.tag, "must not be empty")),
             Some(a) => Some(b.param_name(&a.value)),
             None => None,
         };
-        b.add_child(Child::new(name, obj, attrs.loc.clone(), true))
+        b.add_child(DraftChild {
+            name,
+            target,
+            loc: attrs.loc.clone(),
+            is_ref: true,
+        })
     }
 
     /// Reads an `<alias>` element: the object declared as `id` also becomes known `as` another id.
@@ -73,12 +80,20 @@ impl Parser {
         attrs.allow(&["id", "as"])?;
         let id = attrs.require("id")?;
         let new = attrs.require("as")?;
-        let obj = self.resolve(&id.value, &id.loc)?;
+        let Some(&(at, _)) = self.ids.get(&id.value) else {
+            return Err(id.error(
+                &attrs.tag,
+                &format!(
+                    "unknown id \"{}\" (an alias needs its object declared before it)",
+                    id.value
+                ),
+            ));
+        };
         if new.value.is_empty() {
             return Err(new.error(&attrs.tag, "must not be empty"));
         }
         self.check_new_id(&new.value, &new.loc)?;
-        self.ids.insert(new.value.clone(), (obj, attrs.loc.clone()));
+        self.ids.insert(new.value.clone(), (at, attrs.loc.clone()));
         Ok(())
     }
 }

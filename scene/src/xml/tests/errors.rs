@@ -106,22 +106,22 @@ fn value_errors() {
         "has 2 numbers",
     );
     assert_err(
-        "<scene>\n  <spectrum name=\"a\" value=\"400:0.1, 500:0.2\"/>\n</scene>",
+        "<scene>\n  <spectrum name=\"a\" value=\"400:0.1, 500\"/>\n</scene>",
         2,
         22,
-        "spectra are not supported",
+        "\"500\" is not a wavelength:value pair",
     );
     assert_err(
         "<scene>\n  <spectrum name=\"a\" value=\"0.1 0.2\"/>\n</scene>",
         2,
         22,
-        "spectra are not supported",
+        "is not a wavelength:value pair",
     );
     assert_err(
         "<scene>\n  <spectrum name=\"a\" filename=\"x.spd\"/>\n</scene>",
         2,
         22,
-        "spectra are not supported",
+        "x.spd\": cannot read file",
     );
     assert_err(
         "<scene>\n  <point name=\"p\"/>\n</scene>",
@@ -192,11 +192,19 @@ fn ref_and_id_errors() {
         5,
         "unknown id \"nope\"",
     );
+    // A reference may come before its declaration, but a cycle through one is refused at
+    // the reference that closes it.
     assert_err(
-        "<scene>\n  <shape type=\"sphere\"><ref id=\"m\"/></shape>\n  <bsdf type=\"diffuse\" id=\"m\"/>\n</scene>",
+        "<scene>\n  <shape type=\"s\" id=\"a\"><ref id=\"b\"/></shape>\n  <bsdf type=\"d\" id=\"b\">\n    <ref id=\"a\"/>\n  </bsdf>\n</scene>",
+        4,
+        5,
+        "reference cycle: id \"a\"",
+    );
+    assert_err(
+        "<scene>\n  <alias id=\"later\" as=\"x\"/>\n  <bsdf type=\"d\" id=\"later\"/>\n</scene>",
         2,
-        24,
-        "unknown id \"m\"",
+        10,
+        "unknown id \"later\" (an alias needs its object declared before it)",
     );
     assert_err(
         "<scene>\n  <bsdf type=\"diffuse\" id=\"m\"/>\n  <bsdf type=\"conductor\" id=\"m\"/>\n</scene>",

@@ -267,6 +267,37 @@ fn refs_and_aliases() {
 }
 
 #[test]
+fn forward_refs_resolve_to_the_later_declaration() {
+    let s = load(
+        r#"<scene version="3.0.0">
+  <shape type="sphere">
+    <ref id="light"/>
+    <ref id="white" name="bsdf"/>
+  </shape>
+  <bsdf type="diffuse" id="white"/>
+  <emitter type="area" id="light"/>
+</scene>"#,
+    );
+    let shape = &s.children[0].obj;
+    let (white, light) = (&s.children[1].obj, &s.children[2].obj);
+    assert!(std::rc::Rc::ptr_eq(&shape.children[0].obj, light));
+    assert!(std::rc::Rc::ptr_eq(&shape.children[1].obj, white));
+    assert!(shape.children[0].is_ref && light.is_referenced() && white.is_referenced());
+    assert_eq!(shape.children[1].name.as_deref(), Some("bsdf"));
+    assert_eq!(
+        (shape.children[0].loc.line, shape.children[0].loc.col),
+        (3, 5)
+    );
+    // Control: an id declared nowhere is still an error, at the reference.
+    assert_err(
+        "<scene>\n  <shape type=\"sphere\"><ref id=\"m\"/></shape>\n  <bsdf type=\"diffuse\" id=\"n\"/>\n</scene>",
+        2,
+        24,
+        "unknown id \"m\" (no object is declared with it)",
+    );
+}
+
+#[test]
 fn nori_dialect() {
     let s = load(
         r#"<?xml version="1.0" encoding="utf-8"?>
@@ -366,3 +397,6 @@ fn nori_tests() {
 
 mod errors;
 mod includes;
+mod search;
+mod spectra;
+mod upgrade;
