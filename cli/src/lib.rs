@@ -6,6 +6,7 @@ pub mod bench;
 pub mod compare;
 pub mod decor;
 pub mod define;
+pub mod info;
 pub mod merge;
 pub mod plugins;
 pub mod probe_args;
@@ -42,6 +43,9 @@ pub enum Command {
     /// Print the plugin reference: every plugin a scene file can name, with its parameters
     /// (or only the plugins called NAME).
     Plugins(plugins::PluginsArgs),
+    /// Load a scene without rendering it and print what it holds (settings, shapes, primitives,
+    /// BSDFs, emitters, textures and their memory, the acceleration structure, warnings).
+    Info(info::InfoArgs),
     /// Assemble part files (from a render with --crop, --tiles or --sample-range) into one image.
     Merge(merge::MergeArgs),
 }

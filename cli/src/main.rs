@@ -43,6 +43,7 @@ fn main() {
         Command::Compare(args) => tessera_cli::compare::run(&args),
         Command::Merge(args) => tessera_cli::merge::run(&args),
         Command::Plugins(args) => tessera_cli::plugins::run(&args),
+        Command::Info(args) => tessera_cli::info::run(&args),
     };
     std::process::exit(code);
 }

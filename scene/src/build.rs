@@ -144,8 +144,10 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         filter: sensor.filter,
         light_selection: integrator_spec.light_selection,
     };
+    let accel_start = std::time::Instant::now();
     let mut scene =
         Scene::new(parts).map_err(|e| root.error(format!("cannot build the scene: {e:?}")))?;
+    let accel_seconds = accel_start.elapsed().as_secs_f64();
     scene.sampler = sampler;
     names.bsdfs = bsdfs.names;
     Ok(LoadedScene {
@@ -157,6 +159,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         warnings,
         names,
         source_hash: 0,
+        accel_seconds,
     })
 }
 

@@ -25,6 +25,8 @@ pub struct LoadedScene {
     /// [`crate::hash::scene_hash`] of the text the scene was loaded from and its `-D` defines
     /// (0 for a scene nested in another file).
     pub source_hash: u64,
+    /// Seconds spent building the core scene (its acceleration structure, mostly).
+    pub accel_seconds: f64,
 }
 
 /// The plugin names of a scene's parts, by their index in the core scene, for reports that

@@ -116,7 +116,7 @@ impl Lobe {
 #[derive(Clone, Debug)]
 pub struct BlinnPhong {
     lobe: Lobe,
-    base: Option<Box<Bsdf>>,
+    pub(super) base: Option<Box<Bsdf>>,
 }
 
 impl BlinnPhong {

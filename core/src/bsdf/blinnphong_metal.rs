@@ -17,7 +17,7 @@ use glam::{Vec2, Vec3};
 /// Chalmers' tinted Blinn-Phong metal (`blinnphong_metal`).
 #[derive(Clone, Debug)]
 pub struct BlinnPhongMetal {
-    color: Texture,
+    pub(super) color: Texture,
     lobe: Lobe,
 }
 

@@ -22,6 +22,7 @@ mod roughconductor;
 mod roughdielectric;
 mod roughplastic;
 mod sample;
+mod textures;
 mod thindielectric;
 mod traits;
 mod twosided;

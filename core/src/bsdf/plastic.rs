@@ -26,8 +26,8 @@ use glam::{Vec2, Vec3};
 /// Smooth coating over a diffuse base.
 #[derive(Clone, Debug)]
 pub struct Plastic {
-    diffuse: Texture,
-    specular: Texture,
+    pub(super) diffuse: Texture,
+    pub(super) specular: Texture,
     eta: f32,
     nonlinear: bool,
     inv_eta_2: f32,

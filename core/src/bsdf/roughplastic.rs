@@ -27,8 +27,8 @@ use glam::{Vec2, Vec3};
 /// Rough coating over a diffuse base.
 #[derive(Clone, Debug)]
 pub struct RoughPlastic {
-    diffuse: Texture,
-    specular: Texture,
+    pub(super) diffuse: Texture,
+    pub(super) specular: Texture,
     distr: Microfacet,
     eta: f32,
     nonlinear: bool,

@@ -133,6 +133,13 @@ impl EnvMap {
         })
     }
 
+    /// Bytes of the image and its sampling tables.
+    pub fn memory_bytes(&self) -> usize {
+        core::mem::size_of_val(&*self.pixels)
+            + core::mem::size_of_val(&*self.weights)
+            + self.dist.as_ref().map_or(0, Distribution2D::memory_bytes)
+    }
+
     /// Width in pixels.
     pub fn width(&self) -> usize {
         self.width

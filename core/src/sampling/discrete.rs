@@ -13,6 +13,11 @@ pub struct Discrete1D {
 }
 
 impl Discrete1D {
+    /// Bytes of its table.
+    pub fn memory_bytes(&self) -> usize {
+        core::mem::size_of_val(&*self.cdf)
+    }
+
     /// Builds from non-negative weights; `None` if the sum is not positive and finite.
     pub fn new(weights: impl IntoIterator<Item = f32>) -> Option<Self> {
         let mut sums = alloc::vec![0.0f64];

@@ -23,6 +23,16 @@ pub struct Distribution2D {
 }
 
 impl Distribution2D {
+    /// Bytes of its tables.
+    pub fn memory_bytes(&self) -> usize {
+        self.marginal.memory_bytes()
+            + self
+                .conditional
+                .iter()
+                .map(|c| c.as_ref().map_or(0, Discrete1D::memory_bytes))
+                .sum::<usize>()
+    }
+
     /// Builds from row-major weights (`weights[j * nx + i]` for column `i`, row `j`); `None` when
     /// the sizes do not match, a weight is negative or not finite, or all weights are zero.
     pub fn new(weights: &[f32], nx: usize, ny: usize) -> Option<Self> {

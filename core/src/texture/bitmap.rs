@@ -93,6 +93,16 @@ impl Bitmap {
         (self.width, self.height)
     }
 
+    /// Bytes of the pixels (shared with every texture made from the same image).
+    pub fn memory_bytes(&self) -> usize {
+        core::mem::size_of_val(&*self.pixels)
+    }
+
+    /// Identifies the pixel storage: equal for textures that share one image.
+    pub fn storage_id(&self) -> usize {
+        Arc::as_ptr(&self.pixels) as *const Color as usize
+    }
+
     fn wrap_index(&self, i: i64, n: usize) -> usize {
         let n = n as i64;
         let k = match self.wrap {

@@ -26,6 +26,14 @@ pub enum Texture {
 }
 
 impl Texture {
+    /// The image this texture reads, if it is one.
+    pub fn bitmap(&self) -> Option<&Bitmap> {
+        match self {
+            Texture::Bitmap(b) => Some(b),
+            _ => None,
+        }
+    }
+
     /// A constant grey value.
     pub fn constant(v: f32) -> Self {
         Texture::Constant(Color::splat(v))

@@ -1,0 +1,51 @@
+//! Walks the textures a BSDF reads (nested models included), for reports of what a scene holds
+//! and how much memory its images take.
+use super::Bsdf;
+use crate::texture::Texture;
+
+impl Bsdf {
+    /// Calls `f` with every texture this model reads, nested models' included, in a fixed
+    /// order.
+    pub fn for_each_texture(&self, f: &mut dyn FnMut(&Texture)) {
+        match self {
+            Bsdf::Diffuse(b) => f(&b.reflectance),
+            Bsdf::TwoSided(b) => {
+                b.front.for_each_texture(f);
+                b.back.for_each_texture(f);
+            }
+            Bsdf::Conductor(b) => [&b.eta, &b.k, &b.specular_reflectance]
+                .into_iter()
+                .for_each(f),
+            Bsdf::RoughConductor(b) => [&b.eta, &b.k, &b.specular_reflectance]
+                .into_iter()
+                .for_each(f),
+            Bsdf::Dielectric(b) => [&b.specular_reflectance, &b.specular_transmittance]
+                .into_iter()
+                .for_each(f),
+            Bsdf::RoughDielectric(b) => [&b.specular_reflectance, &b.specular_transmittance]
+                .into_iter()
+                .for_each(f),
+            Bsdf::ThinDielectric(b) => [&b.specular_reflectance, &b.specular_transmittance]
+                .into_iter()
+                .for_each(f),
+            Bsdf::Plastic(b) => [&b.diffuse, &b.specular].into_iter().for_each(f),
+            Bsdf::RoughPlastic(b) => [&b.diffuse, &b.specular].into_iter().for_each(f),
+            Bsdf::Mirror(_) | Bsdf::WakameMicrofacet(_) => {}
+            Bsdf::BlinnPhong(b) => {
+                if let Some(base) = &b.base {
+                    base.for_each_texture(f);
+                }
+            }
+            Bsdf::BlinnPhongMetal(b) => f(&b.color),
+            Bsdf::Blend(b) => {
+                f(&b.weight);
+                b.first.for_each_texture(f);
+                b.second.for_each_texture(f);
+            }
+            Bsdf::Mask(b) => {
+                f(&b.opacity);
+                b.nested.for_each_texture(f);
+            }
+        }
+    }
+}
