@@ -334,12 +334,14 @@ fn group_sample<S: Sampler, P: Probe>(
 ) {
     let n = pixels.len();
     let mut rays = [None; GROUP];
+    let mut weights = [None; GROUP];
     for (k, s) in samplers[..n].iter_mut().enumerate() {
         if !samples[k].contains(&index) {
             continue;
         }
         let (x, y) = pixels[k];
-        let offset = scene.filter.sample(s.next_2d());
+        let (offset, weight) = scene.filter.sample_weighted(s.next_2d());
+        weights[k] = weight;
         let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
         let ray = scene.camera.generate_ray(pos);
         probe.camera(pos, &ray);
@@ -348,7 +350,7 @@ fn group_sample<S: Sampler, P: Probe>(
     let mut out = [Color::ZERO; GROUP];
     path.li_group(scene, &rays[..n], &mut samplers[..n], probe, &mut out[..n]);
     for k in (0..n).filter(|&k| rays[k].is_some()) {
-        add(k, index, out[k]);
+        add(k, index, weights[k].map_or(out[k], |w| out[k] * w));
     }
 }
 
@@ -362,11 +364,12 @@ fn trace<S: Sampler, P: Probe>(
     mut sampler: S,
     probe: &mut P,
 ) -> Color {
-    let offset = scene.filter.sample(sampler.next_2d());
+    let (offset, weight) = scene.filter.sample_weighted(sampler.next_2d());
     let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
     let ray = scene.camera.generate_ray(pos);
     probe.camera(pos, &ray);
-    integrator.li_probed(scene, ray, &mut sampler, probe)
+    let l = integrator.li_probed(scene, ray, &mut sampler, probe);
+    weight.map_or(l, |w| l * w)
 }
 
 /// Adds samples `samples` of pixel `(x, y)` to `acc`, in index order.
