@@ -75,9 +75,14 @@ pub fn read_image(path: &Path) -> Result<RgbImage, String> {
     }
 }
 
-/// Reads a format the `image` crate decodes (EXR, PNG, JPEG, BMP, TGA) as RGB f32.
+/// Reads a format the `image` crate decodes (EXR, PNG, JPEG, BMP, TGA) as RGB f32. The format
+/// is recognised by the file's first bytes where it has a signature, as Mitsuba 3 does (a JPEG
+/// named `.png` still loads), and by the extension otherwise (TGA has none).
 fn read_decoded(path: &Path) -> Result<RgbImage, String> {
-    to_rgb_image(image::open(path).map_err(|e| e.to_string())?)
+    let reader = image::ImageReader::open(path)
+        .and_then(|r| r.with_guessed_format())
+        .map_err(|e| e.to_string())?;
+    to_rgb_image(reader.decode().map_err(|e| e.to_string())?)
 }
 
 /// Reads an RGBE (Radiance) image. Both signatures of the format are accepted: `#?RADIANCE`
@@ -221,6 +226,24 @@ mod tests {
         ] {
             assert_eq!(is_srgb_coded(Path::new(name)), srgb, "{name}");
         }
+    }
+
+    #[test]
+    fn eight_bit_formats_are_recognised_by_content() {
+        // A JPEG named .png (and a PNG named .jpg) reads as the file it is.
+        let dir = std::env::temp_dir().join(format!("tessera-sniff-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        for (from, to) in [("tess_rgb.jpg", "jpeg.png"), ("tess_rgb.png", "png.jpg")] {
+            std::fs::copy(texture(from), dir.join(to)).unwrap();
+            let want = read_image(&texture(from)).unwrap();
+            let got = read_image(&dir.join(to)).unwrap_or_else(|e| panic!("{to}: {e}"));
+            assert_eq!(got, want, "{to}");
+        }
+        // Control: bytes of no format named .png are an error naming the file.
+        std::fs::write(dir.join("junk.png"), b"not an image at all").unwrap();
+        let e = read_image(&dir.join("junk.png")).unwrap_err();
+        assert!(e.contains("junk.png") && !e.contains('\n'), "{e}");
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]
