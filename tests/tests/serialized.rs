@@ -8,8 +8,9 @@
 //! - The same rectangles as OBJ files (from the same source) load to the same mesh through the
 //!   OBJ reader. Control: a different rectangle.
 //! - Several shapes in one file are found through the end-of-file dictionary, in both its
-//!   version 4 (`u64` offsets) and version 3 (`u32`) forms; files written here from the
-//!   documented layout, since the Mitsuba-written ones hold one shape each.
+//!   version 4 (`u64` offsets) and version 3 (`u32`) forms, and double precision and vertex
+//!   colours are read; files written here from the documented layout, since the
+//!   Mitsuba-written ones hold one single-precision shape each.
 //! - Corrupt files (bad magic or version, truncated, a bad shape_index) are one-line errors
 //!   naming the file at the shape's `filename`; every truncation and random byte changes never
 //!   panic, and a truncated file never yields a different mesh.
@@ -212,6 +213,12 @@ fn same_mesh_as_the_obj_file() {
 /// A `.serialized` file of `shapes` in format `version` (3 or 4), as the documented layout
 /// says: per shape the header and a zlib stream, then the dictionary of offsets and the count.
 fn write_serialized(shapes: &[MeshData], version: u16) -> Vec<u8> {
+    write_serialized_as(shapes, version, false, false)
+}
+
+/// [`write_serialized`] with numbers in double precision (`double`) and with vertex colours
+/// (`colours`, which a reader must skip).
+fn write_serialized_as(shapes: &[MeshData], version: u16, double: bool, colours: bool) -> Vec<u8> {
     let mut file = Vec::new();
     let mut offsets = Vec::new();
     for (k, s) in shapes.iter().enumerate() {
@@ -219,21 +226,36 @@ fn write_serialized(shapes: &[MeshData], version: u16) -> Vec<u8> {
         file.extend_from_slice(&0x041Cu16.to_le_bytes());
         file.extend_from_slice(&version.to_le_bytes());
         let mut raw = Vec::new();
-        let flags = u32::from(!s.normals.is_empty()) | (u32::from(!s.uvs.is_empty()) << 1) | 0x1000;
+        let flags = u32::from(!s.normals.is_empty())
+            | (u32::from(!s.uvs.is_empty()) << 1)
+            | (u32::from(colours) << 3)
+            | if double { 0x2000 } else { 0x1000 };
         raw.extend_from_slice(&flags.to_le_bytes());
         if version == 4 {
             raw.extend_from_slice(format!("shape{k}\0").as_bytes());
         }
         raw.extend_from_slice(&(s.positions.len() as u64).to_le_bytes());
         raw.extend_from_slice(&(s.indices.len() as u64).to_le_bytes());
+        let colour_values: Vec<f32> = if colours {
+            (0..s.positions.len() * 3)
+                .map(|i| i as f32 * 0.125)
+                .collect()
+        } else {
+            Vec::new()
+        };
         let floats = s
             .positions
             .iter()
             .flatten()
             .chain(s.normals.iter().flatten())
-            .chain(s.uvs.iter().flatten());
+            .chain(s.uvs.iter().flatten())
+            .chain(colour_values.iter());
         for v in floats {
-            raw.extend_from_slice(&v.to_le_bytes());
+            if double {
+                raw.extend_from_slice(&f64::from(*v).to_le_bytes());
+            } else {
+                raw.extend_from_slice(&v.to_le_bytes());
+            }
         }
         for i in s.indices.iter().flatten() {
             raw.extend_from_slice(&i.to_le_bytes());
@@ -278,6 +300,41 @@ fn shape_index_reads_the_dictionary() {
         let e = parse_serialized(&file, 3).unwrap_err();
         assert!(e.contains("shape_index 3 is out of range"), "{e}");
         assert!(e.contains("3 shapes"), "{e}");
+    }
+}
+
+#[test]
+fn double_precision_and_vertex_colours() {
+    let shapes = three_shapes();
+    for double in [false, true] {
+        for colours in [false, true] {
+            let file = write_serialized_as(&shapes, 4, double, colours);
+            for (k, s) in shapes.iter().enumerate() {
+                let got = parse_serialized(&file, k as u64)
+                    .unwrap_or_else(|e| panic!("double {double}, colours {colours}: {e}"));
+                assert!(
+                    same_data(&got, s),
+                    "double {double}, colours {colours}, shape {k}"
+                );
+            }
+        }
+    }
+    // Control: double-precision data read as single precision is not the mesh.
+    let mut file = write_serialized_as(&shapes[2..], 4, true, false);
+    let data = miniz_oxide::inflate::decompress_to_vec_zlib(&file[4..]).unwrap();
+    let mut single = data.clone();
+    single[..4].copy_from_slice(
+        &(u32::from_le_bytes(data[..4].try_into().unwrap()) & !0x2000).to_le_bytes(),
+    );
+    let dictionary = file.split_off(file.len() - 12);
+    file.truncate(4);
+    file.extend(miniz_oxide::deflate::compress_to_vec_zlib(&single, 6));
+    file.extend(dictionary);
+    if let Ok(m) = parse_serialized(&file, 0) {
+        assert!(
+            !same_data(&m, &shapes[2]),
+            "double precision read as single gave the mesh"
+        );
     }
 }
 
