@@ -225,12 +225,14 @@ impl<'a> RenderJob<'a> {
     ) {
         let n = pixels.len();
         let mut rays = [None; GROUP];
+        let mut weights = [None; GROUP];
         for (k, s) in samplers[..n].iter_mut().enumerate() {
             if !samples[k].contains(&index) {
                 continue;
             }
             let (x, y) = pixels[k];
-            let offset = self.scene.filter.sample(s.next_2d());
+            let (offset, weight) = self.scene.filter.sample_weighted(s.next_2d());
+            weights[k] = weight;
             let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
             let ray = self.scene.camera.generate_ray(pos);
             probe.camera(pos, &ray);
@@ -245,19 +247,20 @@ impl<'a> RenderJob<'a> {
             &mut out[..n],
         );
         for k in (0..n).filter(|&k| rays[k].is_some()) {
-            add(k, index, out[k]);
+            add(k, index, weights[k].map_or(out[k], |w| out[k] * w));
         }
     }
 
     /// One camera sample of pixel `(x, y)` drawn from `sampler`.
     #[inline]
     fn trace<S: Sampler, P: Probe>(&self, x: u32, y: u32, mut sampler: S, probe: &mut P) -> Color {
-        let offset = self.scene.filter.sample(sampler.next_2d());
+        let (offset, weight) = self.scene.filter.sample_weighted(sampler.next_2d());
         let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
         let ray = self.scene.camera.generate_ray(pos);
         probe.camera(pos, &ray);
-        self.integrator
-            .li_probed(self.scene, ray, &mut sampler, probe)
+        let l = self.integrator.li_probed(self.scene, ray, &mut sampler, probe);
+        // Filters with negative lobes weight their samples; the others give no weight.
+        weight.map_or(l, |w| l * w)
     }
 }
 

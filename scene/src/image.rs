@@ -1,5 +1,6 @@
-//! Reading images: EXR and PFM (linear float RGB), RGBE `.hdr` (Radiance, linear) and PNG (8-bit
-//! codes scaled to [0, 1]), for textures and environment maps. Writing lives in the driver.
+//! Reading images: EXR and PFM (linear float RGB), RGBE `.hdr` (Radiance, linear), and the 8-bit
+//! formats PNG, JPEG, BMP and TGA (codes scaled to [0, 1], not decoded: see [`is_srgb_coded`]),
+//! for textures and environment maps. Writing lives in the driver.
 use std::io::Read;
 use std::path::Path;
 
@@ -44,21 +45,44 @@ fn is_rgbe(path: &Path) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("hdr"))
 }
 
-/// Reads an EXR, PFM or RGBE `.hdr` image as linear RGB (a PNG is read as its 8-bit sRGB codes
-/// scaled to [0, 1], not linearized).
+/// The extensions of the 8-bit formats read but never written, besides PNG.
+const EIGHT_BIT_READ_ONLY: [&str; 4] = ["jpg", "jpeg", "bmp", "tga"];
+
+/// Whether a path names an 8-bit image (PNG, JPEG, BMP, TGA): Mitsuba 3 marks every such file
+/// sRGB-encoded, so a texture decodes its values to linear unless told they are raw.
+pub fn is_srgb_coded(path: &Path) -> bool {
+    Format::from_path(path) == Some(Format::Png) || is_eight_bit_read_only(path)
+}
+
+fn is_eight_bit_read_only(path: &Path) -> bool {
+    path.extension().and_then(|e| e.to_str()).is_some_and(|e| {
+        EIGHT_BIT_READ_ONLY
+            .iter()
+            .any(|x| e.eq_ignore_ascii_case(x))
+    })
+}
+
+/// Reads an EXR, PFM or RGBE `.hdr` image as linear RGB; a PNG, JPEG, BMP or TGA is read as its
+/// 8-bit codes scaled to [0, 1], not linearized (greyscale is spread to RGB, alpha dropped).
 pub fn read_image(path: &Path) -> Result<RgbImage, String> {
     let err = |e: String| format!("{}: cannot read image: {e}", path.display());
     match Format::from_path(path) {
         Some(Format::Pfm) => read_pfm(path).map_err(err),
         Some(Format::Exr | Format::Png) => read_decoded(path).map_err(err),
         None if is_rgbe(path) => read_rgbe(path).map_err(err),
+        None if is_eight_bit_read_only(path) => read_decoded(path).map_err(err),
         None => Err(err("unknown image format".into())),
     }
 }
 
-/// Reads a format the `image` crate decodes (EXR, PNG) as RGB f32.
+/// Reads a format the `image` crate decodes (EXR, PNG, JPEG, BMP, TGA) as RGB f32. The format
+/// is recognised by the file's first bytes where it has a signature, as Mitsuba 3 does (a JPEG
+/// named `.png` still loads), and by the extension otherwise (TGA has none).
 fn read_decoded(path: &Path) -> Result<RgbImage, String> {
-    to_rgb_image(image::open(path).map_err(|e| e.to_string())?)
+    let reader = image::ImageReader::open(path)
+        .and_then(|r| r.with_guessed_format())
+        .map_err(|e| e.to_string())?;
+    to_rgb_image(reader.decode().map_err(|e| e.to_string())?)
 }
 
 /// Reads an RGBE (Radiance) image. Both signatures of the format are accepted: `#?RADIANCE`
@@ -151,6 +175,75 @@ mod tests {
             }
         }
         b
+    }
+
+    fn texture(name: &str) -> std::path::PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../scenes/textures")
+            .join(name)
+    }
+
+    #[test]
+    fn eight_bit_formats_read_their_codes() {
+        // tess_rgb.{bmp,tga,jpg} hold tess_rgb.png's pixels (scripts/make_8bit_textures.py):
+        // the lossless ones exactly, the JPEG (quality 100) within a few codes.
+        let png = read_image(&texture("tess_rgb.png")).unwrap();
+        assert_eq!((png.width, png.height), (5, 4));
+        // Known codes: the red channel of the top row is 17, 70, 123, 176, 229.
+        let top: Vec<f32> = png.data[..5].iter().map(|p| p[0] * 255.0).collect();
+        assert_eq!(top, [17.0, 70.0, 123.0, 176.0, 229.0]);
+        for (name, codes) in [
+            ("tess_rgb.bmp", 0.0),
+            ("tess_rgb.tga", 0.0),
+            ("tess_rgb.jpg", 3.0),
+        ] {
+            let img = read_image(&texture(name)).unwrap_or_else(|e| panic!("{e}"));
+            assert_eq!((img.width, img.height), (png.width, png.height), "{name}");
+            let worst = img
+                .data
+                .iter()
+                .zip(&png.data)
+                .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs() * 255.0))
+                .fold(0.0f32, f32::max);
+            assert!(worst <= codes + 1e-3, "{name}: off by {worst} codes");
+            // Control: the image upside down is not the PNG.
+            let flipped = (0..img.data.len()).any(|i| {
+                let (x, y) = (i % 5, i / 5);
+                let j = (3 - y) * 5 + x;
+                (0..3).any(|c| (img.data[j][c] - png.data[i][c]).abs() * 255.0 > codes + 1.0)
+            });
+            assert!(flipped, "{name}: flipping it changes nothing");
+        }
+        for (name, srgb) in [
+            ("a.png", true),
+            ("a.JPG", true),
+            ("a.jpeg", true),
+            ("a.bmp", true),
+            ("a.tga", true),
+            ("a.exr", false),
+            ("a.hdr", false),
+            ("a.pfm", false),
+        ] {
+            assert_eq!(is_srgb_coded(Path::new(name)), srgb, "{name}");
+        }
+    }
+
+    #[test]
+    fn eight_bit_formats_are_recognised_by_content() {
+        // A JPEG named .png (and a PNG named .jpg) reads as the file it is.
+        let dir = std::env::temp_dir().join(format!("tessera-sniff-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        for (from, to) in [("tess_rgb.jpg", "jpeg.png"), ("tess_rgb.png", "png.jpg")] {
+            std::fs::copy(texture(from), dir.join(to)).unwrap();
+            let want = read_image(&texture(from)).unwrap();
+            let got = read_image(&dir.join(to)).unwrap_or_else(|e| panic!("{to}: {e}"));
+            assert_eq!(got, want, "{to}");
+        }
+        // Control: bytes of no format named .png are an error naming the file.
+        std::fs::write(dir.join("junk.png"), b"not an image at all").unwrap();
+        let e = read_image(&dir.join("junk.png")).unwrap_err();
+        assert!(e.contains("junk.png") && !e.contains('\n'), "{e}");
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]

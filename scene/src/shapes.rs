@@ -36,7 +36,7 @@ impl Geometry {
 pub type ShapePlugin = Plugin<fn(&Object) -> Result<Geometry>>;
 
 /// Every `<shape type=...>` Tessera knows.
-pub static SHAPES: &[ShapePlugin] = &[SPHERE, OBJ, PLY, RECTANGLE, CUBE, DISK];
+pub static SHAPES: &[ShapePlugin] = &[SPHERE, OBJ, PLY, SERIALIZED, RECTANGLE, CUBE, DISK];
 
 const TO_WORLD: Param = Param::transform("to_world", "object to world");
 const FLIP_NORMALS: Param = Param::boolean(
@@ -124,6 +124,25 @@ pub const PLY: ShapePlugin = Plugin {
     build: build_mesh_file,
 };
 
+const SHAPE_INDEX: Param = Param::integer(
+    "shape_index",
+    0,
+    Range::NonNegative,
+    "which mesh of the file to load (a file may hold several; 0 is the first)",
+);
+
+/// `serialized`.
+pub const SERIALIZED: ShapePlugin = Plugin {
+    name: "serialized",
+    aliases: &[],
+    doc: "A mesh of a Mitsuba `.serialized` file (zlib-compressed, format versions 3 and 4, as \
+          Mitsuba 0.x writes them). Vertex colours in the file are skipped, and so is its \
+          face-normal flag, as in Mitsuba 3: face_normals decides.",
+    params: &[FILENAME, SHAPE_INDEX, FACE_NORMALS, TO_WORLD, FLIP_NORMALS],
+    nested: "an optional `<bsdf>` and `<emitter type=\"area\">`",
+    build: build_mesh_file,
+};
+
 fn build_mesh_file(obj: &Object) -> Result<Geometry> {
     let name = obj
         .string_opt(FILENAME.name)?
@@ -135,6 +154,8 @@ fn build_mesh_file(obj: &Object) -> Result<Geometry> {
     if !use_mtl {
         let data = if obj.plugin == OBJ.name {
             mesh::load_obj(&path)
+        } else if obj.plugin == SERIALIZED.name {
+            mesh::load_serialized(&path, SHAPE_INDEX.read_i64(obj)? as u64)
         } else {
             mesh::load_ply(&path)
         }
@@ -341,6 +362,10 @@ mod tests {
                 "ply" => format!(
                     "<string name=\"filename\" \
                      value=\"{root}/../fuzz/corpus/ply/ascii_normals_uv.ply\"/>"
+                ),
+                "serialized" => format!(
+                    "<string name=\"filename\" \
+                     value=\"{root}/../tests/real/mitsuba-data/rectangle_normals_uv.serialized\"/>"
                 ),
                 _ => String::new(),
             },

@@ -15,7 +15,7 @@ use std::f64::consts::TAU;
 use tessera_core::math::{Norm, Ray, Transform};
 
 use glam::{DMat4, DVec2, DVec3, Vec2, Vec3};
-use tessera_core::camera::{Filter, GaussianFilter, TentFilter};
+use tessera_core::camera::{Filter, GaussianFilter, LanczosFilter, MitchellFilter, TentFilter};
 use tessera_core::geometry::{Disk, Mesh, Shape, ShapeKind, Sphere};
 use tessera_core::sampling::{warp, Discrete1D};
 use tessera_lab::stats::{
@@ -29,8 +29,8 @@ use tessera_tests::cap::{cap_coords, cap_dir, frame_around};
 ///  9 sphere cone far, 10 sphere cone near, 11 mesh directions, 12 mesh triangle choice,
 ///  13 mesh barycentrics in one triangle, 14 ellipse (disk) directions,
 ///  15 Discrete1D indices, 16 Discrete1D rescaled u, 17 box filter, 18 Gaussian filter,
-///  19 tent filter.
-const N_TESTS: usize = 19;
+///  19 tent filter, 20 Mitchell filter, 21 Lanczos filter.
+const N_TESTS: usize = 21;
 
 /// Samples per test.
 const SAMPLES: usize = 1_000_000;
@@ -849,4 +849,128 @@ fn t19_tent_filter() {
     // Control: the same samples against a tent 10% wider must be rejected.
     let wrong = tent_chi2(1.25, 1.375);
     assert!(!wrong.passes(alpha()), "a wrong radius passed: {wrong}");
+}
+
+/// A filter with negative lobes as its documented 1-D step table: the filter `f` at the start
+/// of each of 31 steps over `|x| ∈ [0, r]` (as Mitsuba 3 tabulates it), mirrored. Evaluated in
+/// f64, independently of the core.
+struct SignedSteps {
+    r: f64,
+    values: Vec<f64>,
+}
+
+impl SignedSteps {
+    fn new(r: f64, f: impl Fn(f64) -> f64) -> Self {
+        let values = (0..G_STEPS)
+            .map(|i| f(r * i as f64 / G_STEPS as f64))
+            .collect();
+        SignedSteps { r, values }
+    }
+
+    /// The 1-D density of the samples, `g(f(x))` normalized over [-r, r]: `g = abs` is what the
+    /// sampler claims; `g = max(0, .)` (negative lobes never drawn) is a control.
+    fn density(&self, g: impl Fn(f64) -> f64, x: f64) -> f64 {
+        let h = self.r / G_STEPS as f64;
+        if x.abs() > self.r {
+            return 0.0;
+        }
+        let total: f64 = 2.0 * h * self.values.iter().map(|&v| g(v)).sum::<f64>();
+        g(self.values[((x.abs() / h) as usize).min(G_STEPS - 1)]) / total
+    }
+}
+
+/// The Mitchell-Netravali cubic with parameters `b`, `c` (radius 2).
+fn mitchell(b: f64, c: f64, x: f64) -> f64 {
+    let x = x.abs();
+    let v = if x < 1.0 {
+        (12.0 - 9.0 * b - 6.0 * c) * x.powi(3) + (-18.0 + 12.0 * b + 6.0 * c) * x * x + 6.0
+            - 2.0 * b
+    } else if x < 2.0 {
+        (-b - 6.0 * c) * x.powi(3)
+            + (6.0 * b + 30.0 * c) * x * x
+            + (-12.0 * b - 48.0 * c) * x
+            + 8.0 * b
+            + 24.0 * c
+    } else {
+        0.0
+    };
+    v / 6.0
+}
+
+/// The Lanczos filter with `lobes` lobes.
+fn lanczos(lobes: f64, x: f64) -> f64 {
+    let x = x.abs();
+    if x < 1e-7 {
+        return 1.0;
+    }
+    if x > lobes {
+        return 0.0;
+    }
+    let (a, b) = (std::f64::consts::PI * x, std::f64::consts::PI * x / lobes);
+    a.sin() * b.sin() / (a * b)
+}
+
+/// Chi-square of `filter`'s offsets against the density `g(f(x)) g(f(y))` of `steps`.
+fn signed_chi2(filter: &Filter, steps: &SignedSteps, g: fn(f64) -> f64, seed: u64) -> Chi2Result {
+    // [-r, r]^2 mapped to [0, 1]^2 (density × 4 r²), one cell per step.
+    let r = steps.r;
+    PlaneChi2 {
+        bins_x: 2 * G_STEPS,
+        bins_y: 2 * G_STEPS,
+        samples: SAMPLES,
+    }
+    .run(
+        |u| {
+            let s = filter.sample(u).as_dvec2();
+            Some(((s + DVec2::splat(r)) / (2.0 * r)).as_vec2())
+        },
+        |p| {
+            let (x, y) = (
+                (2.0 * f64::from(p.x) - 1.0) * r,
+                (2.0 * f64::from(p.y) - 1.0) * r,
+            );
+            4.0 * r * r * steps.density(g, x) * steps.density(g, y)
+        },
+        seed,
+    )
+}
+
+#[test]
+fn t20_mitchell_filter() {
+    let third = 1.0 / 3.0;
+    let filter = Filter::Mitchell(MitchellFilter::new(third as f32, third as f32).unwrap());
+    let steps = SignedSteps::new(2.0, |x| mitchell(third, third, x));
+    check(
+        "Mitchell filter (B = C = 1/3)",
+        &signed_chi2(&filter, &steps, f64::abs, 20),
+    );
+    // Controls: the same filter with its negative lobes dropped, and Catmull-Rom, must be
+    // rejected.
+    let dropped = signed_chi2(&filter, &steps, |v| v.max(0.0), 20);
+    assert!(
+        !dropped.passes(alpha()),
+        "negative lobes dropped passed: {dropped}"
+    );
+    let catmull = SignedSteps::new(2.0, |x| mitchell(0.0, 0.5, x));
+    let wrong = signed_chi2(&filter, &catmull, f64::abs, 20);
+    assert!(
+        !wrong.passes(alpha()),
+        "Catmull-Rom's density passed: {wrong}"
+    );
+}
+
+#[test]
+fn t21_lanczos_filter() {
+    let filter = Filter::Lanczos(LanczosFilter::new(3).unwrap());
+    let steps = SignedSteps::new(3.0, |x| lanczos(3.0, x));
+    check(
+        "Lanczos filter (3 lobes)",
+        &signed_chi2(&filter, &steps, f64::abs, 21),
+    );
+    // Control: the same filter with its negative lobes dropped must be rejected.
+    let dropped = signed_chi2(&filter, &steps, |v| v.max(0.0), 21);
+    assert!(
+        !dropped.passes(alpha()),
+        "negative lobes dropped passed: {dropped}"
+    );
 }

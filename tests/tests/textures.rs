@@ -6,8 +6,9 @@
 //! included) and pdf for one fixed pair of directions at 369 surface points inside and outside
 //! the unit square (a grid and random points), which exercises the row order (`v = 0` is the
 //! top row), pixel centres, bilinear and nearest filtering, the three wrap modes, `to_uv`, sRGB
-//! decoding and `raw`, grey and EXR images, nested textures, and the scalar reading of a
-//! texture as a weight (luminance) or opacity. Tolerance: 1e-3 relative plus 1e-5 absolute, as
+//! decoding and `raw`, grey and EXR images, the other 8-bit formats (BMP, TGA and JPEG, made by
+//! `scripts/make_8bit_textures.py`; sRGB-decoded unless `raw`, as PNG), nested textures, and
+//! the scalar reading of a texture as a weight (luminance) or opacity. Tolerance: 1e-3 relative plus 1e-5 absolute, as
 //! in `bsdf_mitsuba_eval.rs`.
 
 use std::path::{Path, PathBuf};
@@ -92,6 +93,12 @@ fn a_wrong_lookup_is_caught() {
         let bad = check(&d.join(other), &table);
         assert!(bad.len() > 100, "{other}: only {} mismatches", bad.len());
     }
+    // Raw JPEG codes against the decoded JPEG table.
+    let bad = check(
+        &d.join("bitmap_jpeg_raw_mirror.xml"),
+        &d.join("bitmap_jpeg.csv"),
+    );
+    assert!(bad.len() > 100, "raw JPEG: only {} mismatches", bad.len());
     // The checkerboard with its colours swapped.
     let swapped = std::env::temp_dir().join(format!("tessera_cb_{}.xml", std::process::id()));
     std::fs::write(

@@ -1,10 +1,14 @@
 //! Pixel reconstruction filters, applied by filter importance sampling: each camera sample is
-//! offset from its pixel's centre with density proportional to the filter and keeps unit weight,
-//! so every sample lands in exactly one pixel (the tile that owns the pixel owns the sample).
+//! offset from its pixel's centre with density proportional to the filter, so every sample
+//! lands in exactly one pixel (the tile that owns the pixel owns the sample). Samples of the
+//! non-negative filters (`box`, `gaussian`, `tent`) weigh exactly 1; those of the filters with
+//! negative lobes (`mitchell`, `catmullrom`, `lanczos`) are drawn proportionally to `|f|` and
+//! carry a weight ([`Filter::sample_weighted`]).
 //!
 //! The filters other than `box` are tabulated as step functions as Mitsuba 3 tabulates them
 //! ([`StepProfile`]). Their scene parameters are declared with the loader, in
 //! `scene/src/filter.rs`.
+use super::negative_lobes::{LanczosFilter, MitchellFilter};
 use super::step_profile::{StepProfile, STEPS};
 use glam::Vec2;
 
@@ -66,16 +70,44 @@ pub enum Filter {
     Gaussian(GaussianFilter),
     /// Tent.
     Tent(TentFilter),
+    /// Mitchell-Netravali cubic (`mitchell`, `catmullrom`): weighted samples.
+    Mitchell(MitchellFilter),
+    /// Lanczos-windowed sinc: weighted samples.
+    Lanczos(LanczosFilter),
 }
 
 impl Filter {
-    /// Offset of a sample from its pixel's centre, in pixels.
+    /// Offset of a sample from its pixel's centre, in pixels (its weight dropped: see
+    /// [`Filter::sample_weighted`]).
     #[inline]
     pub fn sample(&self, u: Vec2) -> Vec2 {
+        self.sample_weighted(u).0
+    }
+
+    /// Offset of a sample from its pixel's centre, in pixels, and the weight its radiance must
+    /// be multiplied by: `None` for the filters whose samples weigh exactly 1 (nothing to
+    /// multiply, so their images stay bit for bit what they were), else
+    /// `sign(f(x) f(y)) * (∫|f| / ∫f)^2` for the separable filter `f(x) f(y)`.
+    #[inline]
+    pub fn sample_weighted(&self, u: Vec2) -> (Vec2, Option<f32>) {
         match self {
-            Filter::Box => u - Vec2::splat(0.5),
-            Filter::Gaussian(g) => Vec2::new(g.profile.sample(u.x), g.profile.sample(u.y)),
-            Filter::Tent(t) => Vec2::new(t.profile.sample(u.x), t.profile.sample(u.y)),
+            Filter::Box => (u - Vec2::splat(0.5), None),
+            Filter::Gaussian(g) => (
+                Vec2::new(g.profile.sample(u.x), g.profile.sample(u.y)),
+                None,
+            ),
+            Filter::Tent(t) => (
+                Vec2::new(t.profile.sample(u.x), t.profile.sample(u.y)),
+                None,
+            ),
+            Filter::Mitchell(MitchellFilter { profile, .. })
+            | Filter::Lanczos(LanczosFilter { profile, .. }) => {
+                let (x, nx) = profile.sample(u.x);
+                let (y, ny) = profile.sample(u.y);
+                let r = profile.ratio();
+                let w = r * r;
+                (Vec2::new(x, y), Some(if nx != ny { -w } else { w }))
+            }
         }
     }
 }

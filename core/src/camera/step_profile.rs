@@ -37,6 +37,12 @@ impl StepProfile {
 
     /// An offset in `[-radius, radius]` with density proportional to the steps, from `u`.
     pub fn sample(&self, u: f32) -> f32 {
+        self.sample_step(u).1
+    }
+
+    /// [`StepProfile::sample`], with the index of the step the offset lies in (0 for the step
+    /// starting at `-radius`, `2 * STEPS - 1` for the last).
+    pub fn sample_step(&self, u: f32) -> (usize, f32) {
         let n = 2 * STEPS;
         let i = self.cdf.partition_point(|&c| c <= u).clamp(1, n) - 1;
         let (c0, c1) = (self.cdf[i], self.cdf[i + 1]);
@@ -45,6 +51,9 @@ impl StepProfile {
         } else {
             0.5
         };
-        -self.radius + 2.0 * self.radius * (i as f32 + t) / n as f32
+        (
+            i,
+            -self.radius + 2.0 * self.radius * (i as f32 + t) / n as f32,
+        )
     }
 }

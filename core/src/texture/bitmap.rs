@@ -2,9 +2,9 @@
 //! `scripts/mitsuba_texture_eval.py`).
 //!
 //! Scene parameters (`<texture type="bitmap">`, read by the driver): `filename` (string,
-//! required: PNG, EXR, PFM or RGBE `.hdr`, relative to the scene file), `raw` (boolean, default
-//! false: when false, PNG values are sRGB-decoded to linear; EXR, PFM and `.hdr` are linear
-//! already), `filter_type` (`bilinear` (default) | `nearest`), `wrap_mode` (`repeat` (default) |
+//! required: PNG, JPEG, BMP, TGA, EXR, PFM or RGBE `.hdr`, relative to the scene file), `raw`
+//! (boolean, default false: when false, 8-bit values are sRGB-decoded to linear; EXR, PFM and
+//! `.hdr` are linear already), `filter_type` (`bilinear` (default) | `nearest`), `wrap_mode` (`repeat` (default) |
 //! `mirror` | `clamp`), `to_uv` (transform, see [`UvTransform`]).
 //!
 //! Conventions: the first (top) image row is at `v = 0`; pixel `(i, j)` covers

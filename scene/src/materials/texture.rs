@@ -4,7 +4,7 @@
 //! non-negative, and in [0, 1] where the parameter is a reflectance or weight. The conventions
 //! (which row is `v = 0`, pixel centres, wrapping) are in `tessera_core::texture`'s plugin files.
 use super::super::util::{at_prop, Result};
-use crate::image::read_image;
+use crate::image::{is_srgb_coded, read_image};
 use crate::plugin::{self, Default, Param, Plugin, Range};
 use crate::xml::{Kind, Object};
 use glam::{DMat4, Vec3};
@@ -95,13 +95,14 @@ pub const CHECKERBOARD: TexturePlugin = Plugin {
 };
 
 const FILENAME: Param = Param::file(
-    "a PNG, EXR, PFM or RGBE .hdr file, relative to the scene file",
-    "the image (a PNG's alpha channel is ignored)",
+    "a PNG, JPEG, BMP, TGA, EXR, PFM or RGBE .hdr file, relative to the scene file",
+    "the image (an alpha channel is ignored)",
 );
 const RAW: Param = Param::boolean(
     "raw",
     false,
-    "keep a PNG's 8-bit values as they are; when false they are sRGB-decoded to linear values",
+    "keep an 8-bit image's (PNG, JPEG, BMP, TGA) values as they are; when false they are \
+     sRGB-decoded to linear values",
 );
 const FILTER_TYPE: Param = Param::choice(
     "filter_type",
@@ -193,7 +194,7 @@ fn bitmap(obj: &Object, unit: bool) -> Result<Bitmap> {
 /// How to read and look up an image texture.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct BitmapSettings {
-    /// Keep PNG values as stored (no sRGB decoding).
+    /// Keep 8-bit values as stored (no sRGB decoding).
     pub raw: bool,
     /// Require values in [0, 1].
     pub unit: bool,
@@ -215,11 +216,7 @@ pub(crate) fn load_bitmap(
     s: BitmapSettings,
 ) -> std::result::Result<Bitmap, String> {
     let img = read_image(path)?;
-    let png = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
-    let decode = png && !s.raw;
+    let decode = is_srgb_coded(path) && !s.raw;
     let mut pixels = Vec::with_capacity(img.data.len());
     for (i, p) in img.data.iter().enumerate() {
         let mut c = Vec3::from(*p);

@@ -1,5 +1,5 @@
-//! Triangle mesh sources: OBJ (with MTL materials) and PLY files, and Mitsuba's built-in
-//! `rectangle` and `cube`.
+//! Triangle mesh sources: OBJ (with MTL materials), PLY and Mitsuba `.serialized` files, and
+//! Mitsuba's built-in `rectangle` and `cube`.
 mod builtin;
 mod data;
 pub mod mtl;
@@ -8,17 +8,19 @@ mod obj;
 mod obj_locate;
 mod ply;
 mod ply_locate;
+mod serialized;
 
 pub use builtin::{cube, rectangle};
 pub use data::{read_mesh_bytes, MeshData, MAX_MESH_BYTES};
 pub use mtl_material::{mtl_bsdf, MtlBsdf};
 pub use obj::{load_obj, load_obj_with_materials, ObjParts};
 pub use ply::load_ply;
+pub use serialized::{load_serialized, parse_serialized};
 
 use crate::error::InputError;
 use std::path::Path;
 
-/// Reads a mesh file by extension (`.obj`, `.ply`).
+/// Reads a mesh file by extension (`.obj`, `.ply`, `.serialized`: its first shape).
 pub fn load_mesh_file(path: &Path) -> Result<MeshData, InputError> {
     match path
         .extension()
@@ -28,9 +30,10 @@ pub fn load_mesh_file(path: &Path) -> Result<MeshData, InputError> {
     {
         Some("obj") => load_obj(path),
         Some("ply") => load_ply(path),
+        Some("serialized") => load_serialized(path, 0),
         _ => Err(InputError::file(
             path,
-            "unknown mesh format (use .obj or .ply)",
+            "unknown mesh format (use .obj, .ply or .serialized)",
         )),
     }
 }

@@ -2,9 +2,9 @@
 //!
 //! Element aliases: `<mesh>` is `<shape>`, `<camera>` is `<sensor>`, `<color>` is `<rgb>`.
 //! Parameter names are converted from camelCase to snake_case (`toWorld` -> `to_world`,
-//! `intIOR` -> `int_ior`), which is also what Mitsuba 3 does when it upgrades 0.x files; no
-//! Mitsuba 3 plugin has an upper-case parameter name, so this is safe for all files. Nori's
-//! `albedo` on a diffuse BSDF is Mitsuba's `reflectance`.
+//! `intIOR` -> `int_ior`), which is also what Mitsuba 3 does when it upgrades 0.x files. One
+//! Mitsuba 3 plugin has upper-case parameter names, the `mitchell` filter's `B` and `C`: those
+//! are kept. Nori's `albedo` on a diffuse BSDF is Mitsuba's `reflectance`.
 
 use super::object::Kind;
 
@@ -43,6 +43,9 @@ pub fn snake_case(name: &str) -> String {
 /// The normalized name of a parameter (property or named child) of an object of `kind` with
 /// plugin type `plugin`.
 pub fn param_name(name: &str, kind: Kind, plugin: &str) -> String {
+    if kind == Kind::RFilter && plugin == "mitchell" && matches!(name, "B" | "C") {
+        return name.to_string();
+    }
     let name = snake_case(name);
     if kind == Kind::Bsdf && plugin == "diffuse" && name == "albedo" {
         return "reflectance".to_string();
