@@ -134,7 +134,12 @@ impl Parser {
     }
 
     /// Composes the operations inside a `<transform>` element (`M = op * M`).
-    fn parse_transform(&self, src: &Source<'_>, node: Node<'_, '_>, depth: usize) -> Result<DMat4> {
+    fn parse_transform(
+        &mut self,
+        src: &Source<'_>,
+        node: Node<'_, '_>,
+        depth: usize,
+    ) -> Result<DMat4> {
         let mut m = DMat4::IDENTITY;
         for ch in node.children() {
             if !ch.is_element() {
@@ -159,7 +164,7 @@ impl Parser {
             }
             let a = Attrs::read(ch, src, &self.params)?;
             no_content(src, ch)?;
-            m = transform::op_matrix(&a)? * m;
+            m = transform::op_matrix(&a, &mut self.warnings)? * m;
         }
         Ok(m)
     }

@@ -48,8 +48,34 @@ pub fn xyz(
     Ok(Some(DVec3::from_array(out)))
 }
 
-/// The matrix of one operation element (its attributes already read).
-pub fn op_matrix(a: &Attrs) -> Result<DMat4> {
+/// Rodrigues' rotation matrix `cos I + (1 - cos) a a^T + sin [a]x` with the axis `a` as
+/// given: a rotation when `a` has unit length, and what Mitsuba 3 builds from a `<rotate>`
+/// element whatever its length (it does not normalise the axis).
+fn rotation_as_given(a: DVec3, radians: f64) -> DMat4 {
+    let (s, c) = radians.sin_cos();
+    let k = 1.0 - c;
+    // Columns of the 3x3 part.
+    let x = DVec3::new(
+        c + k * a.x * a.x,
+        k * a.x * a.y + s * a.z,
+        k * a.x * a.z - s * a.y,
+    );
+    let y = DVec3::new(
+        k * a.x * a.y - s * a.z,
+        c + k * a.y * a.y,
+        k * a.y * a.z + s * a.x,
+    );
+    let z = DVec3::new(
+        k * a.x * a.z + s * a.y,
+        k * a.y * a.z - s * a.x,
+        c + k * a.z * a.z,
+    );
+    DMat4::from_mat3(DMat3::from_cols(x, y, z))
+}
+
+/// The matrix of one operation element (its attributes already read); located warnings go to
+/// `warnings`.
+pub fn op_matrix(a: &Attrs, warnings: &mut Vec<String>) -> Result<DMat4> {
     let tag = a.tag.as_str();
     match tag {
         "translate" => {
@@ -78,7 +104,18 @@ pub fn op_matrix(a: &Attrs) -> Result<DMat4> {
             if axis.length_squared() == 0.0 {
                 return Err(a.error("<rotate> has a zero rotation axis"));
             }
-            Ok(DMat4::from_axis_angle(axis.unit(), angle.to_radians()))
+            let unit = (axis.length_squared() - 1.0).abs() <= 1e-9;
+            if unit {
+                return Ok(DMat4::from_axis_angle(axis.unit(), angle.to_radians()));
+            }
+            warnings.push(format!(
+                "{}: the <rotate> axis {:?} is not of unit length; as Mitsuba 3 does, it is used \
+                 as given, so the matrix also scales and shears (normalise the axis for a \
+                 rotation)",
+                a.loc,
+                axis.to_array()
+            ));
+            Ok(rotation_as_given(axis, angle.to_radians()))
         }
         "matrix" => {
             a.allow(&["value"])?;
