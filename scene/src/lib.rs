@@ -20,6 +20,7 @@ mod filter;
 mod integrator;
 mod loaded;
 pub(crate) mod materials;
+mod mitsuba_names;
 mod sampler;
 mod sensor;
 mod shapes;

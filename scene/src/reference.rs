@@ -36,6 +36,24 @@ pub fn reference() -> String {
          the ones it does.\n\n",
     );
     s.push_str(&sections(None).join("\n"));
+    s.push_str(
+        "\n## Mitsuba 3 plugins Tessera does not read\n\nMitsuba 3.9.1's plugins of the \
+         families above that the loader has no entry for; a scene file naming one is refused \
+         with a located error that says so. (Media, phase functions and volumes, `<medium>`, \
+         `<phase>` and `<volume>`, are refused as elements.)\n\n",
+    );
+    for f in families() {
+        let missing = crate::mitsuba_names::not_read(&f);
+        if !missing.is_empty() {
+            let list: Vec<String> = missing.iter().map(|n| format!("`{n}`")).collect();
+            s.push_str(&format!(
+                "- {} (`<{}>`): {}\n",
+                f.title,
+                f.kind.tag(),
+                list.join(", ")
+            ));
+        }
+    }
     s
 }
 

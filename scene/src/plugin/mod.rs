@@ -90,8 +90,16 @@ pub fn find<'a, B>(
     obj: &Object,
 ) -> Result<&'a Plugin<B>, InputError> {
     family.iter().find(|p| p.is(&obj.plugin)).ok_or_else(|| {
+        let kind = match crate::mitsuba_names::is_mitsuba_plugin(obj.kind, &obj.plugin) {
+            true => "Mitsuba 3's",
+            false => "unknown",
+        };
+        let not_yet = match kind {
+            "unknown" => "",
+            _ => ", which Tessera does not read yet",
+        };
         obj.error(format!(
-            "unknown {what} \"{}\" (known: {})",
+            "{kind} {what} \"{}\"{not_yet} (Tessera reads: {})",
             obj.plugin,
             names(family)
         ))
