@@ -13,6 +13,13 @@ const INTENSITY: Param = Param::rgb(
     Range::NonNegative,
     "radiant intensity (W/sr)",
 );
+const POWER: Param = Param::rgb(
+    "power",
+    Default::Absent,
+    Range::NonNegative,
+    "total power (W), the Nori and Wakame way to give a point light's strength: the \
+     intensity is power / (4 pi); not together with intensity",
+);
 const POSITION: Param = Param::new(
     "position",
     ParamType::Point,
@@ -27,10 +34,16 @@ pub const POINT: EmitterPlugin = Plugin {
     name: "point",
     aliases: &[],
     doc: "An isotropic point light.",
-    params: &[INTENSITY, POSITION, TO_WORLD],
+    params: &[INTENSITY, POWER, POSITION, TO_WORLD],
     nested: "",
     build: |obj, _| {
-        let intensity = INTENSITY.read_color(obj)?;
+        let intensity = match obj.has(POWER.name) {
+            true if obj.has(INTENSITY.name) => {
+                return Err(obj.error("a point light takes \"intensity\" or \"power\", not both"))
+            }
+            true => POWER.read_color_opt(obj)?.unwrap_or_default() / (4.0 * std::f32::consts::PI),
+            false => INTENSITY.read_color(obj)?,
+        };
         let position = match obj.point_opt(POSITION.name)? {
             Some(p) => vec3(p),
             None => TO_WORLD.read_transform(obj)?.point(glam::Vec3::ZERO),

@@ -219,4 +219,38 @@ mod tests {
             "must be nested in a shape or referenced from one",
         );
     }
+
+    /// Nori's and Wakame's point light gives its power; the intensity is power / (4 pi).
+    #[test]
+    fn a_point_light_power_is_four_pi_times_its_intensity() {
+        let emitter = |params: &str| {
+            let text = scene(&format!(
+                "<emitter type=\"point\"><point name=\"position\" value=\"0, 1, 0\"/>{params}</emitter>"
+            ));
+            let l = crate::load_scene_str(&text, Path::new("/nowhere/test.xml"), &[]).unwrap();
+            format!("{:?}", l.scene.emitters[0])
+        };
+        let power = 4.0 * std::f64::consts::PI;
+        let given = emitter(&format!(
+            "<rgb name=\"power\" value=\"{power}, {}, 0\"/>",
+            2.0 * power
+        ));
+        assert_eq!(
+            given,
+            emitter("<rgb name=\"intensity\" value=\"1, 2, 0\"/>")
+        );
+        // Control: power read as if it were the intensity.
+        assert_ne!(
+            given,
+            emitter(&format!(
+                "<rgb name=\"intensity\" value=\"{power}, {}, 0\"/>",
+                2.0 * power
+            ))
+        );
+        check(
+            "<emitter type=\"point\"><rgb name=\"power\" value=\"1\"/><rgb name=\"intensity\" value=\"1\"/></emitter>",
+            "<emitter",
+            "not both",
+        );
+    }
 }

@@ -191,6 +191,18 @@ impl Param {
         Ok(c)
     }
 
+    /// A colour the file may leave out (`None` then), checked as [`Param::read_color`] checks.
+    pub fn read_color_opt(&self, obj: &Object) -> Result<Option<Color>> {
+        let Some(c) = obj.rgb_opt(self.name)? else {
+            return Ok(None);
+        };
+        let c = check_color(obj, self.name, c)?;
+        if self.range == Range::Unit && c.max_element() > 1.0 {
+            return Err(self.out_of_range(obj, "in [0, 1]", c));
+        }
+        Ok(Some(c))
+    }
+
     /// A transform, checked invertible and finite (identity when absent).
     pub fn read_transform(&self, obj: &Object) -> Result<Transform> {
         transform(obj, self.name)
