@@ -20,8 +20,8 @@ use tessera_tests::{load_xml, render_loaded, t_test_f32};
 
 /// Statistical tests in this file (each at the Šidák-corrected level): aperture chi-square
 /// (through `generate_ray_through`, through the render path's sampler), blur in front of and
-/// behind the plane in focus, orthographic silhouette.
-const N_TESTS: usize = 5;
+/// behind the plane in focus with each sampler, orthographic silhouette.
+const N_TESTS: usize = 7;
 
 fn alpha() -> f64 {
     sidak_alpha(0.01, N_TESTS)
@@ -34,8 +34,20 @@ const FOV: f64 = 45.0;
 
 /// A scene seeing, from the origin along +z, a 100 x 100 emitting rectangle at depth `depth`
 /// that covers world x > 0 (`vertical`) or y > 0; `sensor` is the sensor's type and extra
-/// elements.
+/// elements; the `independent` sampler.
 fn edge_scene(sensor: &str, extra: &str, depth: f64, vertical: bool, spp: u32) -> String {
+    edge_scene_sampled(sensor, extra, depth, vertical, spp, "independent")
+}
+
+/// [`edge_scene`] with the sampler `sampler`.
+fn edge_scene_sampled(
+    sensor: &str,
+    extra: &str,
+    depth: f64,
+    vertical: bool,
+    spp: u32,
+    sampler: &str,
+) -> String {
     let (cx, cy) = if vertical { (50.0, 0.0) } else { (0.0, 50.0) };
     format!(
         r#"<scene version="3.0.0">
@@ -44,7 +56,7 @@ fn edge_scene(sensor: &str, extra: &str, depth: f64, vertical: bool, spp: u32) -
     {extra}
     <transform name="to_world"><lookat origin="0, 0, 0" target="0, 0, 1" up="0, 1, 0"/></transform>
     <film type="hdrfilm"><integer name="width" value="{RES}"/><integer name="height" value="{RES}"/><rfilter type="box"/></film>
-    <sampler type="independent"><integer name="sample_count" value="{spp}"/></sampler>
+    <sampler type="{sampler}"><integer name="sample_count" value="{spp}"/></sampler>
   </sensor>
   <shape type="rectangle">
     <transform name="to_world">
@@ -288,14 +300,21 @@ fn predicted_width(r: f64, depth: f64, focus: f64) -> f64 {
 }
 
 /// Out of focus, the edge is spread by the predicted circle of confusion, in front of the
-/// plane in focus (a vertical edge) and behind it (a horizontal one). Controls: a circle 10%
+/// plane in focus (a vertical edge) and behind it (a horizontal one), with either sampler (with
+/// `zsobol` the lens's samples come from their own stratified dimensions; pixels are scrambled
+/// independently, so rows stay independent estimates). Controls: a circle 10%
 /// smaller, and the radius `r |depth - focus| / focus` (the blur measured on the plane in
 /// focus instead of the plane of the edge), must be rejected.
 #[test]
 fn thin_lens_blur_matches_the_circle_of_confusion() {
     let r = 0.5;
     let fov = format!(r#"<float name="fov" value="{FOV}"/>"#);
-    for (depth, focus, vertical, seed) in [(2.0, 4.0, true, 3), (4.0, 2.0, false, 4)] {
+    for (depth, focus, vertical, seed, sampler) in [
+        (2.0, 4.0, true, 3, "independent"),
+        (4.0, 2.0, false, 4, "independent"),
+        (2.0, 4.0, false, 5, "zsobol"),
+        (4.0, 2.0, true, 6, "zsobol"),
+    ] {
         let pinhole = render(
             &edge_scene("perspective", &fov, depth, vertical, 4),
             4,
@@ -305,11 +324,8 @@ fn thin_lens_blur_matches_the_circle_of_confusion() {
         let extra = format!(
             r#"{fov}<float name="aperture_radius" value="{r}"/><float name="focus_distance" value="{focus}"/>"#
         );
-        let fb = render(
-            &edge_scene("thinlens", &extra, depth, vertical, 64),
-            64,
-            seed + 10,
-        );
+        let xml = edge_scene_sampled("thinlens", &extra, depth, vertical, 64, sampler);
+        let fb = render(&xml, 64, seed + 10);
         let widths = edge_widths(&fb, &step, vertical);
         let predicted = predicted_width(r, depth, focus);
         let wrong = 4.0 * r * (depth - focus).abs() / focus * pixels_per_unit() / (3.0 * PI);
@@ -319,7 +335,7 @@ fn thin_lens_blur_matches_the_circle_of_confusion() {
             p_value(&widths, wrong),
         );
         println!(
-            "depth {depth}, focus {focus}: width {:.3} px, predicted {predicted:.3} (p = {p:.3}); \
+            "{sampler}, depth {depth}, focus {focus}: width {:.3} px, predicted {predicted:.3} (p = {p:.3}); \
              controls: 0.9x p = {p_small:.2e}, r|z-f|/f ({wrong:.3}) p = {p_wrong:.2e}",
             mean(&widths)
         );
