@@ -20,6 +20,17 @@ pub enum Projection {
     Orthographic(Orthographic),
 }
 
+impl Projection {
+    /// The sensor plugin's name in a scene file.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Projection::Perspective(_) => "perspective",
+            Projection::ThinLens(_) => "thinlens",
+            Projection::Orthographic(_) => "orthographic",
+        }
+    }
+}
+
 /// A camera producing rays through continuous film positions.
 #[derive(Clone, Debug)]
 pub struct Camera {
