@@ -174,7 +174,7 @@ fn disk_density(p: Vec2) -> f64 {
 /// the unit disk, mapped the same way.
 fn polar_density(p: Vec2) -> f64 {
     let q = 2.0 * p - Vec2::ONE;
-    let rho = q.length() as f64;
+    let rho = (q.x as f64).hypot(q.y as f64);
     if rho <= 1.0 {
         4.0 / (2.0 * PI * rho.max(1e-9))
     } else {
