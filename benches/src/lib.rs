@@ -8,7 +8,7 @@ use tessera_core::accel::{
     AnyLeaves, BuildParams, Bvh, Bvh8, ClosestLeaves, Collapse, LeafRanges, TriBlocks,
 };
 use tessera_core::bsdf::{Bsdf, Diffuse};
-use tessera_core::camera::{Filter, FovAxis, Perspective};
+use tessera_core::camera::{Camera, Filter, FovAxis};
 use tessera_core::geometry::{intersect_triangle, Hit, Mesh, Shape, ShapeKind};
 use tessera_core::math::{Aabb, Norm, Ray, Transform};
 use tessera_core::scene::{Scene, SceneParts};
@@ -149,7 +149,7 @@ pub fn mesh_parts(positions: Vec<Vec3>, indices: Vec<[u32; 3]>) -> SceneParts {
             reflectance: Texture::constant(0.5),
         })],
         emitters: vec![],
-        camera: Perspective::new(Transform::IDENTITY, 4, 4, 40.0, FovAxis::X, 0.01, 1e4),
+        camera: Camera::perspective(Transform::IDENTITY, 4, 4, 40.0, FovAxis::X, 0.01, 1e4),
         filter: Filter::Box,
         light_selection: Default::default(),
     }

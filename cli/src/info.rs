@@ -7,6 +7,7 @@ use std::collections::{BTreeMap, HashSet};
 use std::fmt::Write;
 use std::path::PathBuf;
 use std::time::Instant;
+use tessera_core::camera::Projection;
 use tessera_core::emitter::Emitter;
 use tessera_core::geometry::Prim;
 use tessera_scene::{load_scene, LoadedScene};
@@ -79,6 +80,14 @@ pub fn report(file: &str, loaded: &LoadedScene, seconds: f64) -> String {
             s.camera.width, s.camera.height, loaded.spp, loaded.seed
         ),
     );
+    let camera = match &s.camera.projection {
+        Projection::ThinLens(l) => format!(
+            "thinlens (aperture_radius {}, focus_distance {})",
+            l.aperture_radius, l.focus_distance
+        ),
+        p => p.name().to_string(),
+    };
+    row("camera", camera);
     let depth = spec.max_depth.map_or("unbounded".into(), |d| d.to_string());
     row("integrator", format!("{} (max_depth {depth})", spec.name));
     row("sampler", s.sampler.name().to_string());

@@ -20,7 +20,7 @@ use tessera::progressive::{self, spp_range, Ending, Plan, Status};
 use tessera::render::Framebuffer;
 use tessera::render::RenderOptions;
 use tessera_core::adaptive::{AdaptiveParams, ZSOBOL_BLOCK_FACTOR};
-use tessera_core::camera::Perspective;
+use tessera_core::camera::Camera;
 use tessera_core::render::RenderJob;
 use tessera_scene::error::InputError;
 use tessera_scene::{load_scene, MAX_EDGE, MAX_PIXELS};
@@ -312,7 +312,7 @@ fn write_all(
 
 /// `--resolution-scale`: multiplies the film's width and height (rounded, at least 1 pixel)
 /// keeping the field of view (the camera maps the film to the same view whatever its size).
-fn scale_resolution(camera: &mut Perspective, f: f64) -> Result<(), String> {
+fn scale_resolution(camera: &mut Camera, f: f64) -> Result<(), String> {
     if !(f.is_finite() && f > 0.0 && f <= 16.0) {
         return Err(format!("--resolution-scale must be in (0, 16], found {f}"));
     }

@@ -31,6 +31,7 @@ fn info_counts_what_the_material_scene_holds() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let out = String::from_utf8_lossy(&o.stdout).into_owned();
     assert_eq!(row(&out, "image"), "256 x 256, 64 spp, seed 0");
+    assert_eq!(row(&out, "camera"), "perspective");
     assert_eq!(
         row(&out, "primitives"),
         "4 triangles, 10 spheres, 0 disks; no instances"

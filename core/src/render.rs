@@ -234,7 +234,7 @@ impl<'a> RenderJob<'a> {
             let (offset, weight) = self.scene.filter.sample_weighted(s.next_2d());
             weights[k] = weight;
             let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
-            let ray = self.scene.camera.generate_ray(pos);
+            let ray = self.scene.camera.sample_ray(pos, s);
             probe.camera(pos, &ray);
             rays[k] = Some(ray);
         }
@@ -256,7 +256,7 @@ impl<'a> RenderJob<'a> {
     fn trace<S: Sampler, P: Probe>(&self, x: u32, y: u32, mut sampler: S, probe: &mut P) -> Color {
         let (offset, weight) = self.scene.filter.sample_weighted(sampler.next_2d());
         let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
-        let ray = self.scene.camera.generate_ray(pos);
+        let ray = self.scene.camera.sample_ray(pos, &mut sampler);
         probe.camera(pos, &ray);
         let l = self
             .integrator

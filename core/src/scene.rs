@@ -2,7 +2,7 @@
 use crate::accel::tri_block::Ray4;
 use crate::accel::{AnyLeaves, BuildParams, Bvh8, ClosestLeaves, TriBlocks};
 use crate::bsdf::{Bsdf, BsdfTraits};
-use crate::camera::{Filter, Perspective};
+use crate::camera::{Camera, Filter};
 use crate::emitter::{Emitter, EmitterCtx};
 use crate::geometry::{Disk, Hit, Interaction, Prim, Shape, ShapeKind, TriRay};
 use crate::light::{Behind, LightBound, LightSampler, LightSelection};
@@ -42,7 +42,7 @@ pub struct SceneParts {
     /// Lights.
     pub emitters: Vec<Emitter>,
     /// The camera.
-    pub camera: Perspective,
+    pub camera: Camera,
     /// The pixel filter.
     pub filter: Filter,
     /// How emitter sampling picks a light.
@@ -76,7 +76,7 @@ pub struct Scene {
     /// How emitter sampling picks a light (built from `emitters`).
     lights: LightSampler,
     /// The camera.
-    pub camera: Perspective,
+    pub camera: Camera,
     /// The pixel filter.
     pub filter: Filter,
     /// The sampler pixels are rendered with (default independent; the driver sets it).

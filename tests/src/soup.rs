@@ -4,7 +4,7 @@
 //! every primitive) that the scene's casts are checked against.
 use crate::rng::SplitMix;
 use tessera_core::bsdf::{Bsdf, Diffuse};
-use tessera_core::camera::{Filter, FovAxis, Perspective};
+use tessera_core::camera::{Camera, Filter, FovAxis};
 use tessera_core::geometry::{Disk, Mesh, Shape, ShapeKind, Sphere, TriRay};
 use tessera_core::glam::Vec3;
 use tessera_core::math::{Norm, Ray, Transform};
@@ -59,7 +59,7 @@ pub fn scene_of(shapes: Vec<Shape>, disks: Vec<Disk>) -> Scene {
             reflectance: Texture::constant(0.5),
         })],
         emitters: vec![],
-        camera: Perspective::new(Transform::IDENTITY, 4, 4, 40.0, FovAxis::X, 0.01, 1e4),
+        camera: Camera::perspective(Transform::IDENTITY, 4, 4, 40.0, FovAxis::X, 0.01, 1e4),
         filter: Filter::Box,
         light_selection: Default::default(),
     })

@@ -1,7 +1,7 @@
 //! The BVH finds exactly what a brute-force loop over every primitive finds: closest hits
 //! (distance and primitive) and occlusion, on random triangle soups with spheres and disks.
 use tessera_core::bsdf::{Bsdf, Diffuse};
-use tessera_core::camera::{Filter, FovAxis, Perspective};
+use tessera_core::camera::{Camera, Filter, FovAxis};
 use tessera_core::geometry::{Disk, Mesh, Shape, ShapeKind, Sphere};
 use tessera_core::glam::{Mat4, Vec2, Vec3};
 use tessera_core::math::{Norm, Ray, Transform};
@@ -52,7 +52,7 @@ fn random_scene(rng: &mut Rng, triangles: usize) -> Scene {
             flip_normals: false,
         });
     }
-    let camera = Perspective::new(Transform::IDENTITY, 4, 4, 40.0, FovAxis::X, 0.01, 1e4);
+    let camera = Camera::perspective(Transform::IDENTITY, 4, 4, 40.0, FovAxis::X, 0.01, 1e4);
     let parts = SceneParts {
         shapes,
         disks,

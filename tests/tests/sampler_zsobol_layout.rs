@@ -1,12 +1,16 @@
 //! Every integrator reads its sample dimensions by the fixed per-bounce layout
 //! (`tessera_core::sampling::dimension_of`): each draw is preceded by a `start_stage` and stays
 //! within that stage's budget, no dimension is read twice in one sample, and the camera reads
-//! only the camera dimensions. Checked exactly, by a sampler that records what it is asked for,
+//! only the camera dimensions (and a thin lens its two lens dimensions). Checked exactly, by a sampler that records what it is asked for,
 //! on the repository's scenes (mirrors, glass, delta and area lights, environments) with every
-//! integrator and Russian roulette from the first bounce. Control: the checker flags a draw past
+//! integrator and Russian roulette from the first bounce, and on `cbox.xml` seen through a thin
+//! lens. Control: the checker flags a draw past
 //! a stage's budget, a stage started twice and a start inside a stage.
+use tessera_core::camera::{Projection, ThinLens};
 use tessera_core::integrator::{DirectIntegrator, Heuristic, Integrator};
-use tessera_core::sampling::{dimension_of, Sampler, Stage, BOUNCE_DIMENSIONS, CAMERA_DIMENSIONS};
+use tessera_core::sampling::{
+    dimension_of, Sampler, Stage, BOUNCE_DIMENSIONS, CAMERA_DIMENSIONS, LENS_DIMENSION,
+};
 use tessera_core::scene::Scene;
 use tessera_lab::stats::rng::Pcg32;
 use tessera_tests::load_file;
@@ -20,8 +24,8 @@ struct LayoutChecker {
     end: u32,
     /// Dimensions read in this sample.
     read: Vec<u32>,
-    /// Draws per stage (camera, light, BSDF, roulette), to show the check is not vacuous.
-    draws: [u64; 4],
+    /// Draws per stage (camera, light, BSDF, roulette, lens), to show the check is not vacuous.
+    draws: [u64; 5],
     stage: usize,
     errors: Vec<String>,
 }
@@ -33,7 +37,7 @@ impl LayoutChecker {
             dim: 0,
             end: CAMERA_DIMENSIONS,
             read: Vec::new(),
-            draws: [0; 4],
+            draws: [0; 5],
             stage: 0,
             errors: Vec::new(),
         }
@@ -68,6 +72,7 @@ impl Sampler for LayoutChecker {
 
     fn start_dimension(&mut self, dim: u32) {
         let (stage, width) = match dim.checked_sub(CAMERA_DIMENSIONS) {
+            _ if dim == LENS_DIMENSION => (4, 2),
             Some(d) if d % BOUNCE_DIMENSIONS == 0 => (1, 3),
             Some(d) if d % BOUNCE_DIMENSIONS == 3 => (2, 3),
             Some(d) if d % BOUNCE_DIMENSIONS == 6 => (3, 1),
@@ -84,7 +89,7 @@ impl Sampler for LayoutChecker {
 }
 
 /// Traces `spp` samples of every pixel of `scene` with `integrator` through the checker, the
-/// way `RenderJob::sample` does (camera 2D, then the integrator).
+/// way `RenderJob::sample` does (camera 2D, the lens's 2D for a thin lens, then the integrator).
 fn check(scene: &Scene, integrator: &Integrator, spp: u32, s: &mut LayoutChecker) {
     for y in 0..scene.camera.height {
         for x in 0..scene.camera.width {
@@ -92,7 +97,7 @@ fn check(scene: &Scene, integrator: &Integrator, spp: u32, s: &mut LayoutChecker
                 s.start_sample();
                 let offset = scene.filter.sample(s.next_2d());
                 let pos = glam::Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
-                let ray = scene.camera.generate_ray(pos);
+                let ray = scene.camera.sample_ray(pos, s);
                 let _ = integrator.li(scene, ray, s);
             }
         }
@@ -146,7 +151,30 @@ fn every_integrator_follows_the_dimension_layout() {
             &s.errors[..1]
         );
     }
-    eprintln!("draws (camera, light, bsdf, roulette): {:?}", s.draws);
+    // The Cornell box through a thin lens focused on the far wall.
+    let mut l = load_file(
+        "cbox.xml",
+        &[("res", "12"), ("rfilter", "box"), ("rr_depth", "1")],
+    );
+    let Projection::Perspective(pinhole) = l.scene.camera.projection.clone() else {
+        unreachable!("cbox has a pinhole camera")
+    };
+    l.scene.camera.projection = Projection::ThinLens(ThinLens {
+        pinhole,
+        aperture_radius: 0.3,
+        focus_distance: 10.0,
+    });
+    for integ in ["path_mis", "path_ems", "path_mats", "direct_mis"] {
+        l.set_integrator(Some(integ), None)
+            .expect("known integrator");
+        check(&l.scene, &l.integrator, 16, &mut s);
+        assert!(
+            s.errors.is_empty(),
+            "thin lens {integ}: {:?}",
+            &s.errors[..1]
+        );
+    }
+    eprintln!("draws (camera, light, bsdf, roulette, lens): {:?}", s.draws);
     assert!(s.draws.iter().all(|&n| n > 10_000), "{:?}", s.draws);
 }
 

@@ -1,11 +1,13 @@
-//! Pinhole perspective camera with Mitsuba 3's conventions.
+//! The pinhole projection of Mitsuba 3's `perspective` sensor (and the one under `thinlens`'s
+//! lens): film positions to directions in camera space, where the camera looks along local +z
+//! with +y up and local +x to the image's left.
 //!
-//! Scene parameters (`<sensor type="perspective">`): `fov` (float, degrees, required unless
-//! `focal_length`), `fov_axis` (string x|y|diagonal|smaller|larger, default x), `to_world`
-//! (transform, usually a lookat; the camera looks along local +z with +y up and local +x to the
-//! image's left), `near_clip` (float, default 0.01), `far_clip` (float, default 10000). The film
-//! (`width`, `height`) and filter live in `<film>`; Nori puts width/height on the camera.
-use crate::math::{sqrt, Norm, Ray, Transform};
+//! Scene parameters are declared with the loader, in `scene/src/sensor.rs`: `fov` and
+//! `fov_axis` (or `focal_length`), `near_clip`, `far_clip` and the principal point offsets,
+//! which shift the image plane by a fraction of the film's size as Mitsuba 3 does (a positive
+//! `principal_point_offset_x` makes pixel `x` see what pixel `x + offset * width` saw without
+//! it).
+use crate::math::sqrt;
 use glam::{Vec2, Vec3};
 
 /// Which image extent the field of view spans.
@@ -23,32 +25,22 @@ pub enum FovAxis {
     Larger,
 }
 
-/// A perspective camera producing rays through continuous film positions.
+/// A pinhole projection: the frustum of a film of a given aspect ratio.
 #[derive(Clone, Debug)]
 pub struct Perspective {
-    /// Camera to world (rigid part used; scale is ignored).
-    pub to_world: Transform,
-    /// Image width in pixels.
-    pub width: u32,
-    /// Image height in pixels.
-    pub height: u32,
     tan_x: f32,
     tan_y: f32,
-    near: f32,
-    far: f32,
+    /// Principal point offset, in units of the film's width and height.
+    offset: Vec2,
+    /// Distance to the near clip plane (along the view axis).
+    pub near: f32,
+    /// Distance to the far clip plane (along the view axis).
+    pub far: f32,
 }
 
 impl Perspective {
-    /// A camera with field of view `fov_deg` along `axis`.
-    pub fn new(
-        to_world: Transform,
-        width: u32,
-        height: u32,
-        fov_deg: f32,
-        axis: FovAxis,
-        near: f32,
-        far: f32,
-    ) -> Self {
+    /// The projection of a `width` x `height` film with field of view `fov_deg` along `axis`.
+    pub fn new(width: u32, height: u32, fov_deg: f32, axis: FovAxis, near: f32, far: f32) -> Self {
         let (w, h) = (width as f32, height as f32);
         let t = libm::tanf(0.5 * fov_deg.to_radians());
         let axis = match axis {
@@ -74,31 +66,28 @@ impl Perspective {
             _ => t,
         };
         Perspective {
-            to_world,
-            width,
-            height,
             tan_x,
             tan_y: tan_x * h / w,
+            offset: Vec2::ZERO,
             near,
             far,
         }
     }
 
-    /// The ray through film position `pos` (pixels, continuous; `(0,0)` is the top-left corner).
+    /// The same projection with its principal point moved by `offset` (Mitsuba 3's
+    /// `principal_point_offset_x`/`_y`: fractions of the film's width and height).
+    pub fn with_principal_point_offset(self, offset: Vec2) -> Self {
+        Perspective { offset, ..self }
+    }
+
+    /// The point at depth 1 on the ray through film position `pos` of a `width` x `height`
+    /// film (pixels, continuous; `(0,0)` is the top-left corner), in camera space.
     #[inline]
-    pub fn generate_ray(&self, pos: Vec2) -> Ray {
-        let x = (1.0 - 2.0 * pos.x / self.width as f32) * self.tan_x;
-        let y = (1.0 - 2.0 * pos.y / self.height as f32) * self.tan_y;
-        let local = Vec3::new(x, y, 1.0);
-        // Distance along the unit direction to the clip planes z = near and z = far.
-        let len = local.norm();
-        let d = self.to_world.vector(local / len).unit();
-        let o = self.to_world.point(Vec3::ZERO);
-        let (near_t, far_t) = (self.near * len, self.far * len);
-        Ray {
-            o: o + d * near_t,
-            d,
-            t_max: far_t - near_t,
-        }
+    pub fn image_point(&self, pos: Vec2, width: u32, height: u32) -> Vec3 {
+        // Subtracting a zero offset is exact: without one, the directions are bit for bit those
+        // of the plain pinhole.
+        let x = (1.0 - 2.0 * pos.x / width as f32 - 2.0 * self.offset.x) * self.tan_x;
+        let y = (1.0 - 2.0 * pos.y / height as f32 - 2.0 * self.offset.y) * self.tan_y;
+        Vec3::new(x, y, 1.0)
     }
 }

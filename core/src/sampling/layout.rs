@@ -7,12 +7,22 @@
 //! layout as pbrt-v4: camera dimensions first, then per bounce emitter selection (1), emitter
 //! position (2), BSDF component (1), BSDF direction (2) and Russian roulette (1).
 //!
+//! A thin lens draws its aperture point from its own 2D dimension, [`LENS_DIMENSION`], far past
+//! the camera's and the first bounces': the pinhole cameras draw nothing there, so adding the
+//! lens left every dimension a pinhole image reads where it was.
+//!
 //! The integrators call `Sampler::start_stage` before each stage;
 //! a stage that draws fewer values than its budget leaves the rest unused, one that would draw
 //! more runs into the next stage's dimensions (still unbiased, only less stratified).
 
 /// Dimensions the camera reads before the first bounce: the filter's 2D offset.
 pub const CAMERA_DIMENSIONS: u32 = 2;
+
+/// First of the two dimensions a thin lens reads its aperture point from (after the filter's
+/// offset, before the integrator's first stage). A path would only reach it at a depth of
+/// about 3 * 10^8; it is the 1D emitter selection of that bounce, so it is never paired with
+/// another draw.
+pub const LENS_DIMENSION: u32 = 1 << 31;
 
 /// Dimensions reserved for one bounce.
 pub const BOUNCE_DIMENSIONS: u32 = 7;
@@ -89,6 +99,14 @@ mod tests {
                 assert!(p < d && paired_dimension(p).is_none());
             }
         }
+    }
+
+    /// The lens's 2D draw is not paired with anything, and no bounce before a depth of
+    /// 10^8 reads it.
+    #[test]
+    fn lens_dimension_is_apart() {
+        assert_eq!(paired_dimension(LENS_DIMENSION), None);
+        assert!(dimension_of(100_000_000, Stage::Roulette) < LENS_DIMENSION);
     }
 
     /// Stages of consecutive bounces tile the dimensions after the camera's without overlap.

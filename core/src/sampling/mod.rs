@@ -15,7 +15,9 @@ pub use discrete::Discrete1D;
 pub use distribution2d::Distribution2D;
 pub use independent::{pixel_key, IndependentSampler};
 pub use kind::{SamplerKind, SAMPLER_NAMES};
-pub use layout::{dimension_of, paired_dimension, Stage, BOUNCE_DIMENSIONS, CAMERA_DIMENSIONS};
+pub use layout::{
+    dimension_of, paired_dimension, Stage, BOUNCE_DIMENSIONS, CAMERA_DIMENSIONS, LENS_DIMENSION,
+};
 pub use zsobol::{ZSobolSampler, CACHED_DIMENSIONS};
 pub use zsobol_pixel::{CachedZSobol, ZSobolPixel};
 

@@ -68,7 +68,7 @@ pub fn run(
         for k in 0..samples as u64 {
             let mut s = IndependentSampler::new(seed, i as u32, 0, k);
             let pos = s.next_2d() * Vec2::new(w, h);
-            let ray = scene.camera.generate_ray(pos);
+            let ray = scene.camera.sample_ray(pos, &mut s);
             m.push(luminance(integrator.li(scene, ray, &mut s).as_dvec3()));
         }
         let test = t_test_mean_f32(&m, reference);

@@ -1,0 +1,136 @@
+//! The `<film>` plugins ([`FILMS`]) and what a sensor carries besides its projection: the
+//! film's size, the `<rfilter>` and the `<sampler>` (Nori puts width/height on the camera).
+use crate::filter::build_filter;
+use crate::plugin::{self, Default, Param, ParamType, Plugin, Range};
+use crate::sampler::build_sampler;
+use crate::util::Result;
+use crate::xml::{Kind, Object};
+use tessera_core::camera::{Filter, GaussianFilter};
+use tessera_core::sampling::SamplerKind;
+
+/// Largest image edge accepted.
+pub const MAX_EDGE: i64 = 1 << 16;
+/// Largest pixel count accepted (the accumulation buffer takes 64 bytes a pixel).
+pub const MAX_PIXELS: i64 = 1 << 26;
+
+/// A film: its size.
+pub type FilmPlugin = Plugin<fn(&Object) -> Result<(u32, u32)>>;
+
+/// Every `<film type=...>` Tessera knows.
+pub static FILMS: &[FilmPlugin] = &[HDRFILM];
+
+pub(super) const EDGE: Range = Range::Note("between 1 and 65536");
+
+const WIDTH: Param = Param::integer("width", 768, EDGE, "image width in pixels");
+const HEIGHT: Param = Param::integer("height", 576, EDGE, "image height in pixels");
+const PIXEL_FORMAT: Param = Param::new(
+    "pixel_format",
+    ParamType::String,
+    Default::Str("rgb"),
+    Range::Any,
+    "has no effect: the output is linear RGB",
+)
+.ignored();
+const COMPONENT_FORMAT: Param = Param::new(
+    "component_format",
+    ParamType::String,
+    Default::Str("float16"),
+    Range::Any,
+    "has no effect: the output file's format decides",
+)
+.ignored();
+const FILE_FORMAT: Param = Param::new(
+    "file_format",
+    ParamType::String,
+    Default::Str("openexr"),
+    Range::Any,
+    "has no effect: the output file's extension decides",
+)
+.ignored();
+
+/// `hdrfilm`.
+pub const HDRFILM: FilmPlugin = Plugin {
+    name: "hdrfilm",
+    aliases: &[],
+    doc: "The image's size (the outputs' formats come from their file names).",
+    params: &[WIDTH, HEIGHT, PIXEL_FORMAT, COMPONENT_FORMAT, FILE_FORMAT],
+    nested: "an optional `<rfilter>`",
+    build: |film| {
+        let width = edge(film, &WIDTH)?;
+        let height = edge(film, &HEIGHT)?;
+        for p in [PIXEL_FORMAT, COMPONENT_FORMAT, FILE_FORMAT] {
+            film.string_opt(p.name)?;
+        }
+        Ok((width, height))
+    },
+};
+
+/// An image edge read from `p`, within [`MAX_EDGE`].
+pub(super) fn edge(obj: &Object, p: &Param) -> Result<u32> {
+    Ok(p.read_i64_where(obj, |v| (1..=MAX_EDGE).contains(&v))? as u32)
+}
+
+/// What a sensor's children (and a Nori camera's own width/height) say.
+#[derive(Debug)]
+pub(super) struct Film {
+    pub width: u32,
+    pub height: u32,
+    pub filter: Filter,
+    pub spp: Option<u64>,
+    pub seed: Option<u64>,
+    pub sampler: Option<SamplerKind>,
+}
+
+/// Reads the `<film>`, `<rfilter>` and `<sampler>` under sensor `obj`; `size` is the image
+/// size when no film gives one.
+pub(super) fn read_film(
+    obj: &Object,
+    size: (u32, u32),
+    warnings: &mut Vec<String>,
+) -> Result<Film> {
+    let mut filter = Filter::Gaussian(GaussianFilter::new(0.5));
+    let (mut width, mut height) = size;
+    let (mut spp, mut seed, mut sampler) = (None, None, None);
+    for c in &obj.children {
+        match c.obj.kind {
+            Kind::Film => {
+                c.mark_used();
+                let film = &c.obj;
+                let plugin = plugin::find(FILMS, "film", film)?;
+                (width, height) = (plugin.build)(film)?;
+                for f in &film.children {
+                    if f.obj.kind == Kind::RFilter {
+                        f.mark_used();
+                        filter = build_filter(&f.obj)?;
+                    }
+                }
+                plugin.check_unused(film)?;
+            }
+            Kind::RFilter => {
+                c.mark_used();
+                filter = build_filter(&c.obj)?;
+            }
+            Kind::Sampler => {
+                c.mark_used();
+                let (n, s, k) = build_sampler(&c.obj, warnings)?;
+                spp = Some(n);
+                seed = Some(s);
+                sampler = Some(k);
+            }
+            _ => {}
+        }
+    }
+    if width as i64 * height as i64 > MAX_PIXELS {
+        return Err(obj.error(format!(
+            "image of {width}x{height} pixels is over the limit of {MAX_PIXELS} pixels"
+        )));
+    }
+    Ok(Film {
+        width,
+        height,
+        filter,
+        spp,
+        seed,
+        sampler,
+    })
+}
