@@ -8,7 +8,7 @@
 //!
 //! Run: `cargo run --release -p tessera-core --example furnace`
 use tessera_core::bsdf::{Bsdf, Diffuse};
-use tessera_core::camera::{Filter, FovAxis, Perspective};
+use tessera_core::camera::{Camera, Filter, FovAxis};
 use tessera_core::emitter::{ConstantEnv, Emitter};
 use tessera_core::film::PixelAccum;
 use tessera_core::geometry::{Shape, ShapeKind, Sphere};
@@ -38,7 +38,7 @@ fn look_at(origin: Vec3, target: Vec3, up: Vec3) -> Transform {
 
 fn main() {
     let (width, height) = (32, 32);
-    let camera = Perspective::new(
+    let camera = Camera::perspective(
         look_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, Vec3::Y),
         width,
         height,
