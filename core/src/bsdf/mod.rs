@@ -18,6 +18,9 @@ pub mod microfacet;
 mod mirror;
 mod plastic;
 pub mod plastic_common;
+mod principled;
+pub mod principled_lobes;
+mod principled_sample;
 mod roughconductor;
 mod roughdielectric;
 mod roughplastic;
@@ -37,6 +40,7 @@ pub use diffuse::Diffuse;
 pub use mask::Mask;
 pub use mirror::Mirror;
 pub use plastic::Plastic;
+pub use principled::{Principled, PrincipledIndex, PrincipledParams, SamplingRates};
 pub use roughconductor::RoughConductor;
 pub use roughdielectric::RoughDielectric;
 pub use roughplastic::RoughPlastic;
@@ -96,6 +100,8 @@ pub enum Bsdf {
     Blend(Blend),
     /// Opacity mask over a model (`mask`).
     Mask(Mask),
+    /// Burley's Disney model as Mitsuba 3 writes it (`principled`).
+    Principled(Principled),
 }
 
 macro_rules! dispatch {
@@ -116,6 +122,7 @@ macro_rules! dispatch {
             Bsdf::BlinnPhongMetal($b) => $e,
             Bsdf::Blend($b) => $e,
             Bsdf::Mask($b) => $e,
+            Bsdf::Principled($b) => $e,
         }
     };
 }

@@ -46,6 +46,7 @@ impl Bsdf {
                 f(&b.opacity);
                 b.nested.for_each_texture(f);
             }
+            Bsdf::Principled(b) => b.for_each_texture(f),
         }
     }
 }
