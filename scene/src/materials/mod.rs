@@ -7,6 +7,7 @@ mod conductor;
 mod dielectric;
 pub(crate) mod ior;
 mod plastic;
+mod principled;
 pub(crate) mod texture;
 mod wakame;
 
@@ -28,6 +29,7 @@ pub static BSDFS: &[BsdfPlugin] = &[
     dielectric::DIELECTRIC,
     dielectric::ROUGHDIELECTRIC,
     dielectric::THINDIELECTRIC,
+    principled::PRINCIPLED,
     basic::TWOSIDED,
     basic::BLENDBSDF,
     basic::MASK,
