@@ -372,6 +372,8 @@ fn bad_parameters_are_located_errors() {
         ("principled", r#"<float name="clearcoat_sampling_rate" value="-1"/>"#, "clearcoat_sampling_rate"),
         ("principled", r#"<string name="main_specular_sampling_rate" value="a"/>"#, "main_specular_sampling_rate"),
         ("principled", r#"<float name="subsurface" value="0.5"/>"#, "subsurface"),
+        ("principled", r#"<texture type="checkerboard" name="eta"/>"#, "eta"),
+        ("principled", r#"<texture type="checkerboard" name="specular"/>"#, "specular"),
     ];
     assert_cases_rejected_on_their_line(&cases, false);
 }
