@@ -258,7 +258,9 @@ impl<'a> RenderJob<'a> {
         let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
         let ray = self.scene.camera.generate_ray(pos);
         probe.camera(pos, &ray);
-        let l = self.integrator.li_probed(self.scene, ray, &mut sampler, probe);
+        let l = self
+            .integrator
+            .li_probed(self.scene, ray, &mut sampler, probe);
         // Filters with negative lobes weight their samples; the others give no weight.
         weight.map_or(l, |w| l * w)
     }

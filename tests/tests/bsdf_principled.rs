@@ -9,6 +9,7 @@
 
 use glam::{Vec2, Vec3};
 use tessera_core::bsdf::{Bsdf, BsdfTraits};
+use tessera_core::math::Norm;
 use tessera_lab::stats::{sampled_albedo, sidak_alpha, Pcg32, SphereChi2};
 use tessera_tests::bsdf::{
     assert_cases_rejected_on_their_line, assert_chi2_passes, dir_at, load_bsdf_xml,
@@ -146,9 +147,9 @@ fn finite_at_extremes() {
     let grazing = [
         Vec3::new(1.0, 0.0, 0.0),
         Vec3::new(0.0, -1.0, 0.0),
-        Vec3::new(1.0, 0.0, 1e-7).normalize(),
-        Vec3::new(1.0, 0.0, -1e-7).normalize(),
-        Vec3::new(0.6, 0.8, 1e-4).normalize(),
+        Vec3::new(1.0, 0.0, 1e-7).unit(),
+        Vec3::new(1.0, 0.0, -1e-7).unit(),
+        Vec3::new(0.6, 0.8, 1e-4).unit(),
         Vec3::Z,
         -Vec3::Z,
     ];
