@@ -21,6 +21,7 @@ pub mod plastic_common;
 mod principled;
 pub mod principled_lobes;
 mod principled_sample;
+mod principled_thin;
 mod roughconductor;
 mod roughdielectric;
 mod roughplastic;
@@ -41,6 +42,7 @@ pub use mask::Mask;
 pub use mirror::Mirror;
 pub use plastic::Plastic;
 pub use principled::{Principled, PrincipledIndex, PrincipledParams, SamplingRates};
+pub use principled_thin::{PrincipledThin, PrincipledThinParams, ThinSamplingRates};
 pub use roughconductor::RoughConductor;
 pub use roughdielectric::RoughDielectric;
 pub use roughplastic::RoughPlastic;
@@ -102,6 +104,8 @@ pub enum Bsdf {
     Mask(Mask),
     /// Burley's Disney model as Mitsuba 3 writes it (`principled`).
     Principled(Principled),
+    /// Burley's thin-sheet variant as Mitsuba 3 writes it (`principledthin`).
+    PrincipledThin(PrincipledThin),
 }
 
 macro_rules! dispatch {
@@ -123,6 +127,7 @@ macro_rules! dispatch {
             Bsdf::Blend($b) => $e,
             Bsdf::Mask($b) => $e,
             Bsdf::Principled($b) => $e,
+            Bsdf::PrincipledThin($b) => $e,
         }
     };
 }

@@ -23,8 +23,8 @@
 use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetKind};
 use super::principled_lobes::{
-    clearcoat_alpha, hue, lerp, main_alphas, micro_compatible, mulsign, schlick_fresnel,
-    schlick_weight, smith_ggx1, FresnelBlend, Gtr1,
+    burley_diffuse, clearcoat_alpha, main_alphas, micro_compatible, mulsign, schlick_fresnel,
+    sheen_color, smith_ggx1, FresnelBlend, Gtr1,
 };
 use crate::math::{Norm, INV_PI};
 use crate::texture::Texture;
@@ -269,33 +269,15 @@ impl Principled {
         uv: Vec2,
     ) -> Color {
         let (ci, co) = (ci.abs(), co.abs());
-        let (fo, fi) = (schlick_weight(co), schlick_weight(ci));
-        let f_diff = (1.0 - 0.5 * fi) * (1.0 - 0.5 * fo);
-        let rr = 2.0 * w.roughness * cos_d * cos_d;
-        let f_retro = rr * (fo + fi + fo * fi * (rr - 1.0));
-        let shape = match &self.p.flatness {
-            Some(flat) => {
-                let fss90 = rr / 2.0;
-                let fss = lerp(1.0, fss90, fo) * lerp(1.0, fss90, fi);
-                let f_ss = 1.25 * (fss * (1.0 / (co + ci) - 0.5) + 0.5);
-                lerp(f_diff + f_retro, f_ss, flat.eval_1(uv))
-            }
-            None => f_diff + f_retro,
-        };
+        let flatness = self.p.flatness.as_ref().map(|t| t.eval_1(uv));
+        let shape = burley_diffuse(w.roughness, flatness, ci, co, cos_d);
         let mut value = base * (brdf * co * INV_PI * shape);
         let metallic = w.metallic.unwrap_or(0.0);
         if let Some(sheen) = &self.p.sheen {
             let sheen = sheen.eval_1(uv);
             if sheen > 0.0 && 1.0 - metallic > 0.0 {
-                let fd = schlick_weight(cos_d.abs());
-                let s = sheen * (1.0 - metallic) * fd * co;
-                value += match &self.p.sheen_tint {
-                    Some(tint) => {
-                        let t = tint.eval_1(uv);
-                        hue(base).map(|c| lerp(1.0, c, t)) * s
-                    }
-                    None => Color::splat(s),
-                };
+                let tint = self.p.sheen_tint.as_ref().map(|t| t.eval_1(uv));
+                value += sheen_color(tint, base, cos_d) * (sheen * (1.0 - metallic) * co);
             }
         }
         value

@@ -141,6 +141,39 @@ pub fn micro_compatible(m: Vec3, wi: Vec3, wo: Vec3, cos_i: f32, reflection: boo
     wi.dot(m) > 0.0 && if reflection { o > 0.0 } else { o < 0.0 }
 }
 
+/// Burley's diffuse shape (Lambert's `1 / pi` and the cosine excluded): Schlick-weighted
+/// diffuse `(1 - Fi / 2)(1 - Fo / 2)` plus retro-reflection `Rr (Fo + Fi + Fo Fi (Rr - 1))`
+/// with `Rr = 2 roughness cos_d^2`, blended by `flatness` toward Hanrahan-Krueger's
+/// flattened subsurface `1.25 (Fss (1 / (cos_o + cos_i) - 0.5) + 0.5)`. Cosines are absolute
+/// (`ci`, `co`); `cos_d` is `wo.h`.
+#[inline]
+pub fn burley_diffuse(roughness: f32, flatness: Option<f32>, ci: f32, co: f32, cos_d: f32) -> f32 {
+    let (fo, fi) = (schlick_weight(co), schlick_weight(ci));
+    let f_diff = (1.0 - 0.5 * fi) * (1.0 - 0.5 * fo);
+    let rr = 2.0 * roughness * cos_d * cos_d;
+    let f_retro = rr * (fo + fi + fo * fi * (rr - 1.0));
+    match flatness {
+        Some(flat) => {
+            let fss90 = rr / 2.0;
+            let fss = lerp(1.0, fss90, fo) * lerp(1.0, fss90, fi);
+            let f_ss = 1.25 * (fss * (1.0 / (co + ci) - 0.5) + 0.5);
+            lerp(f_diff + f_retro, f_ss, flat)
+        }
+        None => f_diff + f_retro,
+    }
+}
+
+/// The sheen's colour factor `Fd c_sheen` (weights and cosine excluded): Schlick's weight of
+/// `cos_d` (`wo.h`), tinted toward the base colour's hue by `tint` when given.
+#[inline]
+pub fn sheen_color(tint: Option<f32>, base: Color, cos_d: f32) -> Color {
+    let fd = schlick_weight(cos_d.abs());
+    match tint {
+        Some(t) => hue(base).map(|c| lerp(1.0, c, t)) * fd,
+        None => Color::splat(fd),
+    }
+}
+
 /// The main lobe's GGX roughnesses `(alpha_u, alpha_v)`: `roughness^2`, stretched by the
 /// aspect `sqrt(1 - 0.9 anisotropic)` when the material has `anisotropic`; at least 1e-3.
 #[inline]

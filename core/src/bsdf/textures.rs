@@ -47,6 +47,7 @@ impl Bsdf {
                 b.nested.for_each_texture(f);
             }
             Bsdf::Principled(b) => b.for_each_texture(f),
+            Bsdf::PrincipledThin(b) => b.for_each_texture(f),
         }
     }
 }

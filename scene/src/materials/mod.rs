@@ -8,6 +8,7 @@ mod dielectric;
 pub(crate) mod ior;
 mod plastic;
 mod principled;
+mod principled_thin;
 pub(crate) mod texture;
 mod wakame;
 
@@ -30,6 +31,7 @@ pub static BSDFS: &[BsdfPlugin] = &[
     dielectric::ROUGHDIELECTRIC,
     dielectric::THINDIELECTRIC,
     principled::PRINCIPLED,
+    principled_thin::PRINCIPLEDTHIN,
     basic::TWOSIDED,
     basic::BLENDBSDF,
     basic::MASK,

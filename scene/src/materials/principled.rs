@@ -10,7 +10,7 @@ use tessera_core::bsdf::{Bsdf, Principled, PrincipledIndex, PrincipledParams, Sa
 use tessera_core::texture::Texture;
 
 /// A scalar weight in `[0, 1]` that may be a texture, with a float default.
-const fn weight(name: &'static str, default: f64, doc: &'static str) -> Param {
+pub(super) const fn weight(name: &'static str, default: f64, doc: &'static str) -> Param {
     Param::new(
         name,
         ParamType::Texture,
@@ -26,12 +26,12 @@ const BASE_COLOR: Param = Param::texture(
     Range::Unit,
     "colour of the diffuse, metallic, tinted and transmitted light",
 );
-const ROUGHNESS: Param = weight(
+pub(super) const ROUGHNESS: Param = weight(
     "roughness",
     0.5,
     "roughness of the main specular lobes (GGX alpha = roughness^2, at least 1e-3) and of the retro-reflection",
 );
-const ANISOTROPIC: Param = weight(
+pub(super) const ANISOTROPIC: Param = weight(
     "anisotropic",
     0.0,
     "anisotropy of the main lobes (0 isotropic); stretches alpha by sqrt(1 - 0.9 anisotropic)",
@@ -64,7 +64,7 @@ const SPECULAR: Param = Param::float(
     },
     "Blender's specular level, the index eta = 2 / (1 - sqrt(0.08 specular)) - 1 (used without eta)",
 );
-const SPEC_TINT: Param = weight(
+pub(super) const SPEC_TINT: Param = weight(
     "spec_tint",
     0.0,
     "tint of the dielectric reflection toward the base colour's hue",
@@ -74,12 +74,12 @@ const SHEEN: Param = weight(
     0.0,
     "weight of the grazing sheen (cloth) of the non-metallic part",
 );
-const SHEEN_TINT: Param = weight(
+pub(super) const SHEEN_TINT: Param = weight(
     "sheen_tint",
     0.0,
     "tint of the sheen toward the base colour's hue",
 );
-const FLATNESS: Param = weight(
+pub(super) const FLATNESS: Param = weight(
     "flatness",
     0.0,
     "blend of the diffuse toward Hanrahan-Krueger's flattened subsurface approximation",
@@ -94,7 +94,7 @@ const CLEARCOAT_GLOSS: Param = weight(
     0.0,
     "gloss of the clear coating: its GTR1 roughness goes from 0.1 (0) to 0.001 (1)",
 );
-const DIFFUSE_RATE: Param = Param::float(
+pub(super) const DIFFUSE_RATE: Param = Param::float(
     "diffuse_reflectance_sampling_rate",
     1.0,
     Range::NonNegative,
@@ -181,7 +181,7 @@ fn build_principled(obj: &Object) -> Result<Bsdf> {
 }
 
 /// The texture parameter `p` (values in `[0, 1]`), its declared default when absent.
-fn scalar_or_colour(obj: &Object, p: &Param) -> Result<Texture> {
+pub(super) fn scalar_or_colour(obj: &Object, p: &Param) -> Result<Texture> {
     let default = match p.default {
         Default::Float(v) => [v; 3],
         Default::Rgb(c) => c,
@@ -192,11 +192,16 @@ fn scalar_or_colour(obj: &Object, p: &Param) -> Result<Texture> {
 
 /// A lobe's weight: `None` (the lobe is off) when the file does not give it or gives it as
 /// the float 0, as Mitsuba 3 decides.
-fn lobe(obj: &Object, p: &Param) -> Result<Option<Texture>> {
+pub(super) fn lobe(obj: &Object, p: &Param) -> Result<Option<Texture>> {
     if !obj.has(p.name) {
         return Ok(None);
     }
     let t = scalar_or_colour(obj, p)?;
-    let zero_float = matches!(obj.prop(p.name), Some(q) if q.value == Value::Float(0.0));
-    Ok((!zero_float).then_some(t))
+    Ok(switched_on(obj, p.name).then_some(t))
+}
+
+/// Whether a given lobe weight turns its lobe on: unless it is the float 0 (Mitsuba's
+/// `get_flag`).
+pub(super) fn switched_on(obj: &Object, name: &str) -> bool {
+    !matches!(obj.prop(name), Some(q) if q.value == Value::Float(0.0))
 }
