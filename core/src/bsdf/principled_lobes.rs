@@ -24,11 +24,7 @@ pub fn lerp(a: f32, b: f32, t: f32) -> f32 {
 /// `v` with its sign flipped where `s` is negative (Mitsuba's `dr::mulsign`, by sign bit).
 #[inline]
 pub fn mulsign(v: Vec3, s: f32) -> Vec3 {
-    if s.is_sign_negative() {
-        -v
-    } else {
-        v
-    }
+    v * 1.0f32.copysign(s)
 }
 
 /// Schlick's weight `(1 - cos)^5`, with `1 - cos` clamped to `[0, 1]`.
