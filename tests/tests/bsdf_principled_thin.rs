@@ -8,7 +8,7 @@
 //! the file; test `k` uses seed `k`. Run with `--nocapture` to see every p-value.
 
 use glam::{Vec2, Vec3};
-use tessera_core::bsdf::Bsdf;
+use tessera_core::bsdf::{Bsdf, BsdfTraits};
 use tessera_lab::stats::{sampled_albedo, sidak_alpha, Pcg32, SphereChi2};
 use tessera_tests::bsdf::{
     assert_cases_rejected_on_their_line, assert_chi2_passes, dir_at, load_bsdf_xml,
@@ -240,4 +240,30 @@ fn bad_parameters_are_located_errors() {
         ("principledthin", r#"<float name="metallic" value="0.5"/>"#, "metallic"),
     ];
     assert_cases_rejected_on_their_line(&cases, false);
+}
+
+/// What the path loop is told: it samples with both inputs, has smooth lobes only and is not
+/// Lambertian; the textures it reads are reported, switched-off lobes' not.
+#[test]
+fn traits_and_textures() {
+    let b = thin(GLASS);
+    assert_eq!(
+        BsdfTraits::of(&b),
+        BsdfTraits {
+            uses_u1: true,
+            uses_u2: true,
+            has_smooth: true,
+            lambertian: false,
+        }
+    );
+    assert!(!b.has_delta());
+    let count = |b: &Bsdf| {
+        let mut n = 0;
+        b.for_each_texture(&mut |_| n += 1);
+        n
+    };
+    // base colour, roughness, eta; then anisotropic, spec_trans, spec_tint, diff_trans.
+    assert_eq!(count(&thin("")), 3);
+    assert_eq!(count(&b), 7);
+    assert_eq!(count(&thin(r#"<float name="diff_trans" value="0"/>"#)), 3);
 }
