@@ -103,3 +103,60 @@ fn a_wrong_material_is_caught() {
     std::fs::remove_dir_all(&tmp).ok();
     assert!(!bad.is_empty());
 }
+
+/// `check` of the table `NAME.csv` against `xml` (a case file written to a scratch folder).
+fn check_table_against(table: &str, xml: &str) -> Vec<String> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("bsdf_cases");
+    let tmp = std::env::temp_dir().join(format!(
+        "tessera_bsdf_control_{table}_{}",
+        std::process::id()
+    ));
+    std::fs::create_dir_all(&tmp).unwrap();
+    let case = tmp.join(format!("{table}.xml"));
+    std::fs::write(&case, xml).unwrap();
+    std::fs::copy(
+        dir.join(format!("{table}.csv")),
+        tmp.join(format!("{table}.csv")),
+    )
+    .unwrap();
+    let bad = check(&case);
+    std::fs::remove_dir_all(&tmp).ok();
+    bad
+}
+
+#[test]
+fn a_slightly_wrong_principled_is_caught() {
+    // Controls: each `principled` table against its material with one lobe parameter moved a
+    // little (clearcoat gloss 0.4 -> 0.45, eta 1.45 -> 1.46, sheen tint 0.6 -> 0.55).
+    let wrap = |body: &str| {
+        format!(r#"<scene version="3.0.0"><bsdf type="principled">{body}</bsdf></scene>"#)
+    };
+    let controls = [
+        (
+            "principled_clearcoat",
+            r#"<rgb name="base_color" value="0.1, 0.3, 0.6"/><float name="roughness" value="0.45"/>
+            <float name="clearcoat" value="0.8"/><float name="clearcoat_gloss" value="0.45"/>
+            <float name="clearcoat_sampling_rate" value="2"/>"#,
+        ),
+        (
+            "principled_spec_trans",
+            r#"<rgb name="base_color" value="0.9, 0.8, 0.6"/><float name="roughness" value="0.3"/>
+            <float name="spec_trans" value="0.7"/><float name="eta" value="1.46"/>
+            <float name="diffuse_reflectance_sampling_rate" value="0.5"/>"#,
+        ),
+        (
+            "principled_sheen",
+            r#"<rgb name="base_color" value="0.6, 0.2, 0.4"/><float name="roughness" value="0.9"/>
+            <float name="sheen" value="0.8"/><float name="sheen_tint" value="0.55"/>
+            <float name="flatness" value="0.3"/>"#,
+        ),
+    ];
+    for (table, body) in controls {
+        let bad = check_table_against(table, &wrap(body));
+        println!("{table}, moved: {} mismatches", bad.len());
+        assert!(
+            !bad.is_empty(),
+            "{table}: the moved parameter is not caught"
+        );
+    }
+}

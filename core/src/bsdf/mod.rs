@@ -18,6 +18,10 @@ pub mod microfacet;
 mod mirror;
 mod plastic;
 pub mod plastic_common;
+mod principled;
+pub mod principled_lobes;
+mod principled_sample;
+mod principled_thin;
 mod roughconductor;
 mod roughdielectric;
 mod roughplastic;
@@ -37,6 +41,8 @@ pub use diffuse::Diffuse;
 pub use mask::Mask;
 pub use mirror::Mirror;
 pub use plastic::Plastic;
+pub use principled::{Principled, PrincipledIndex, PrincipledParams, SamplingRates};
+pub use principled_thin::{PrincipledThin, PrincipledThinParams, ThinSamplingRates};
 pub use roughconductor::RoughConductor;
 pub use roughdielectric::RoughDielectric;
 pub use roughplastic::RoughPlastic;
@@ -96,6 +102,10 @@ pub enum Bsdf {
     Blend(Blend),
     /// Opacity mask over a model (`mask`).
     Mask(Mask),
+    /// Burley's Disney model as Mitsuba 3 writes it (`principled`).
+    Principled(Principled),
+    /// Burley's thin-sheet variant as Mitsuba 3 writes it (`principledthin`).
+    PrincipledThin(PrincipledThin),
 }
 
 macro_rules! dispatch {
@@ -116,6 +126,8 @@ macro_rules! dispatch {
             Bsdf::BlinnPhongMetal($b) => $e,
             Bsdf::Blend($b) => $e,
             Bsdf::Mask($b) => $e,
+            Bsdf::Principled($b) => $e,
+            Bsdf::PrincipledThin($b) => $e,
         }
     };
 }

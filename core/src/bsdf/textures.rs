@@ -46,6 +46,8 @@ impl Bsdf {
                 f(&b.opacity);
                 b.nested.for_each_texture(f);
             }
+            Bsdf::Principled(b) => b.for_each_texture(f),
+            Bsdf::PrincipledThin(b) => b.for_each_texture(f),
         }
     }
 }

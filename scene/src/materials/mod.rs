@@ -7,6 +7,8 @@ mod conductor;
 mod dielectric;
 pub(crate) mod ior;
 mod plastic;
+mod principled;
+mod principled_thin;
 pub(crate) mod texture;
 mod wakame;
 
@@ -28,6 +30,8 @@ pub static BSDFS: &[BsdfPlugin] = &[
     dielectric::DIELECTRIC,
     dielectric::ROUGHDIELECTRIC,
     dielectric::THINDIELECTRIC,
+    principled::PRINCIPLED,
+    principled_thin::PRINCIPLEDTHIN,
     basic::TWOSIDED,
     basic::BLENDBSDF,
     basic::MASK,

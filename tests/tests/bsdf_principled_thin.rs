@@ -1,0 +1,269 @@
+//! `principledthin` (Mitsuba 3): sampling against the pdf from both sides (with the
+//! per-sample check that the weight is `eval / pdf`), finite non-negative values at extreme
+//! parameters and grazing angles, the mean sample weight against the quadrature of `eval`, the
+//! symmetry of the sheet, and parameter errors. (Agreement of eval and pdf with Mitsuba 3
+//! itself is `bsdf_mitsuba_eval.rs`, on the `principledthin_*` tables of `tests/bsdf_cases/`.)
+//!
+//! The chi-square tests (listed in [`N_CHI2`]) run at the Šidák-corrected level of 0.01 over
+//! the file; test `k` uses seed `k`. Run with `--nocapture` to see every p-value.
+
+use glam::{Vec2, Vec3};
+use tessera_core::bsdf::{Bsdf, BsdfTraits};
+use tessera_lab::stats::{sampled_albedo, sidak_alpha, Pcg32, SphereChi2};
+use tessera_tests::bsdf::{
+    assert_cases_rejected_on_their_line, assert_chi2_passes, dir_at, load_bsdf_xml,
+    uniform_direction, CHI2_HALF,
+};
+
+/// Chi-square tests in this file: the cases of `samples_its_pdf`.
+const N_CHI2: usize = 10;
+
+const UV: Vec2 = Vec2::new(0.25, 0.75);
+
+fn thin(props: &str) -> Bsdf {
+    load_bsdf_xml(&format!(r#"<bsdf type="principledthin">{props}</bsdf>"#))
+}
+
+/// A unit direction at polar angle `deg` (above 90: from the back) and azimuth 0.7 rad.
+fn dir(deg: f32) -> Vec3 {
+    dir_at(deg, 0.7)
+}
+
+const LEAF: &str = r#"<rgb name="base_color" value="0.2, 0.6, 0.1"/>
+    <float name="roughness" value="0.5"/><float name="diff_trans" value="0.8"/>
+    <float name="sheen" value="0.3"/><float name="flatness" value="0.5"/>"#;
+const GLASS: &str = r#"<rgb name="base_color" value="0.7, 0.1, 0.1"/>
+    <float name="roughness" value="0.15"/><float name="spec_tint" value="0.1"/>
+    <float name="anisotropic" value="0.5"/><float name="spec_trans" value="0.8"/>
+    <float name="diff_trans" value="0.3"/><float name="eta" value="1.33"/>"#;
+const MIXED: &str = r#"<rgb name="base_color" value="0.5, 0.4, 0.9"/>
+    <float name="roughness" value="0.6"/><float name="spec_trans" value="0.4"/>
+    <float name="eta" value="1.6"/><float name="spec_tint" value="0.7"/>
+    <float name="sheen" value="0.5"/><float name="diff_trans" value="1.5"/>
+    <float name="specular_reflectance_sampling_rate" value="2"/>
+    <float name="diffuse_transmittance_sampling_rate" value="0.5"/>"#;
+
+/// Every lobe's sampling against the mixture density, from both sides; `BsdfChi2` also checks
+/// every sample's `pdf` against `pdf()` and `weight * pdf` against `eval()`.
+#[test]
+fn samples_its_pdf() {
+    #[rustfmt::skip]
+    let cases: [(&str, &str, f32); N_CHI2] = [
+        ("default", "", 30.0),
+        ("default, from the back", "", 160.0),
+        ("leaf", LEAF, 0.0),
+        ("leaf, from the back", LEAF, 120.0),
+        ("glass", GLASS, 20.0),
+        ("glass", GLASS, 80.0),
+        ("glass, from the back", GLASS, 135.0),
+        ("mixed", MIXED, 50.0),
+        ("mixed, from the back", MIXED, 175.0),
+        ("rough glass, eta 0.5", r#"<float name="spec_trans" value="1"/>
+            <float name="roughness" value="0.9"/><float name="eta" value="0.5"/>"#, 60.0),
+    ];
+    let a = sidak_alpha(0.01, N_CHI2);
+    let mut failed = Vec::new();
+    for (k, (name, props, deg)) in cases.iter().enumerate() {
+        let r = CHI2_HALF.run(&thin(props), dir(*deg), UV, k as u64);
+        println!("{name} at {deg} deg: {r}");
+        if !r.passes(a) {
+            failed.push(format!("{name} at {deg} deg: {r}"));
+        }
+    }
+    assert!(failed.is_empty(), "alpha = {a:.3e}:\n{}", failed.join("\n"));
+}
+
+/// Control: directions sampled with specular transmission rate 1, judged against the density
+/// of rate 1.5, are rejected; against their own density they pass.
+#[test]
+fn a_wrong_lobe_probability_is_rejected() {
+    let drawn = thin(GLASS);
+    let claimed = thin(&format!(
+        r#"{GLASS}<float name="specular_transmittance_sampling_rate" value="1.5"/>"#
+    ));
+    let wi = dir(20.0);
+    let run = |pdf_of: &Bsdf| {
+        let mut rng = Pcg32::new(99);
+        SphereChi2 {
+            theta_bins: 20,
+            phi_bins: 40,
+            samples: 500_000,
+        }
+        .run(
+            |u| Some(drawn.sample(wi, rng.next_f32(), u, UV)?.wo),
+            |w| f64::from(pdf_of.pdf(wi, w, UV)),
+            7,
+        )
+    };
+    let alpha = sidak_alpha(0.01, N_CHI2);
+    let r = run(&claimed);
+    println!("control: {r}");
+    assert!(!r.passes(alpha), "control not rejected: {r}");
+    assert_chi2_passes("same directions, own density", &run(&drawn), N_CHI2);
+}
+
+/// The sheet is the same from both sides: mirroring `wi` and `wo` through it changes neither
+/// eval nor pdf.
+#[test]
+fn both_sides_alike() {
+    let flip = |v: Vec3| Vec3::new(v.x, v.y, -v.z);
+    let mut rng = Pcg32::new(11);
+    for props in ["", LEAF, GLASS, MIXED] {
+        let b = thin(props);
+        for _ in 0..2000 {
+            let wi = uniform_direction(rng.next_vec2(), true);
+            let wo = uniform_direction(rng.next_vec2(), true);
+            assert_eq!(b.eval(wi, wo, UV), b.eval(flip(wi), flip(wo), UV));
+            assert_eq!(b.pdf(wi, wo, UV), b.pdf(flip(wi), flip(wo), UV));
+        }
+    }
+}
+
+/// Extreme parameters at random and grazing directions: eval, pdf and sample weights are
+/// finite and non-negative, and every sample's weight is `eval / pdf` at its direction.
+#[test]
+fn finite_at_extremes() {
+    let extremes = [
+        r#"<float name="roughness" value="0"/><float name="spec_trans" value="1"/>"#,
+        r#"<float name="roughness" value="1"/><float name="spec_trans" value="1"/>
+           <float name="eta" value="1"/><float name="anisotropic" value="1"/>"#,
+        r#"<float name="diff_trans" value="2"/><float name="sheen" value="1"/>
+           <float name="sheen_tint" value="1"/><rgb name="base_color" value="0, 0, 0"/>"#,
+        r#"<float name="spec_trans" value="0.5"/><float name="eta" value="0.01"/>
+           <float name="spec_tint" value="1"/><float name="flatness" value="1"/>"#,
+        r#"<float name="diffuse_reflectance_sampling_rate" value="0"/>"#,
+    ];
+    let grazing = [
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::new(0.0, -1.0, 0.0),
+        Vec3::new(1.0, 0.0, 1e-7),
+        Vec3::new(1.0, 0.0, -1e-7),
+        Vec3::Z,
+        -Vec3::Z,
+    ];
+    let mut rng = Pcg32::new(3);
+    let close = |a: f32, c: f32| (a - c).abs() <= 1e-3 * a.abs().max(c.abs()) + 1e-6;
+    for props in extremes {
+        let b = thin(props);
+        let (n, mut inconsistent) = (20_000, 0);
+        for k in 0..n {
+            let wi = if k < 300 {
+                grazing[k % grazing.len()]
+            } else {
+                uniform_direction(rng.next_vec2(), true)
+            };
+            let wo = if k % 3 == 0 {
+                grazing[(k / 3) % grazing.len()]
+            } else {
+                uniform_direction(rng.next_vec2(), true)
+            };
+            let (f, p) = (b.eval(wi, wo, UV), b.pdf(wi, wo, UV));
+            assert!(
+                f.is_finite() && f.min_element() >= 0.0 && p.is_finite() && p >= 0.0,
+                "{props}: wi {wi} wo {wo}: eval {f} pdf {p}"
+            );
+            if let Some(s) = b.sample(wi, rng.next_f32(), rng.next_vec2(), UV) {
+                assert!(
+                    s.weight.is_finite() && s.weight.min_element() >= 0.0 && s.pdf > 0.0,
+                    "{props}: wi {wi}: {s:?}"
+                );
+                let fw = s.weight * s.pdf;
+                let f = b.eval(wi, s.wo, UV);
+                if !(close(s.pdf, b.pdf(wi, s.wo, UV)) && (0..3).all(|c| close(fw[c], f[c]))) {
+                    inconsistent += 1;
+                }
+            }
+        }
+        assert!(
+            inconsistent <= n / 10_000,
+            "{props}: {inconsistent} inconsistent samples"
+        );
+    }
+}
+
+/// `integral eval(wi, wo) dwo` over the sphere by the midpoint rule on cells of equal solid
+/// angle, first channel, in f64.
+fn quadrature_albedo(b: &Bsdf, wi: Vec3, nz: usize, np: usize) -> f64 {
+    let mut s = 0.0f64;
+    for i in 0..nz {
+        let z = -1.0 + 2.0 * (i as f64 + 0.5) / nz as f64;
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        for j in 0..np {
+            let p = std::f64::consts::TAU * (j as f64 + 0.5) / np as f64;
+            let wo = Vec3::new((r * p.cos()) as f32, (r * p.sin()) as f32, z as f32);
+            s += f64::from(b.eval(wi, wo, UV).x);
+        }
+    }
+    s * 4.0 * std::f64::consts::PI / (nz * np) as f64
+}
+
+/// Sampling reaches everything `eval` gives: the mean sample weight equals the quadrature of
+/// `eval` within 4 standard errors plus 1e-3, for sets without sharp lobes. Control: with a
+/// diffuse transmission sampling rate of 0 the diffuse transmission is evaluated but never
+/// sampled, which must be caught.
+#[test]
+fn sampled_albedo_equals_quadrature_of_eval() {
+    let rough = r#"<float name="spec_trans" value="0.6"/><float name="roughness" value="0.7"/>
+        <float name="diff_trans" value="1"/><float name="eta" value="1.4"/>"#;
+    let check = |props: &str, deg: f32| {
+        let b = thin(props);
+        let (m, se) = sampled_albedo(&b, dir(deg), UV, 400_000, 6);
+        let q = quadrature_albedo(&b, dir(deg), 2000, 400);
+        (f64::from(m.x), f64::from(se.x), q)
+    };
+    for (name, props, deg) in [("leaf", LEAF, 30.0), ("rough sheet", rough, 140.0)] {
+        let (m, se, q) = check(props, deg);
+        println!("{name} at {deg} deg: sampled {m:.5} +- {se:.5}, quadrature {q:.5}");
+        assert!(
+            (m - q).abs() <= 4.0 * se + 1e-3,
+            "{name}: {m} +- {se} vs {q}"
+        );
+    }
+    let (m, se, q) = check(
+        &format!(r#"{LEAF}<float name="diffuse_transmittance_sampling_rate" value="0"/>"#),
+        30.0,
+    );
+    println!("control, transmission never sampled: sampled {m:.5} +- {se:.5}, quadrature {q:.5}");
+    assert!((m - q).abs() > 4.0 * se + 1e-3, "control not caught");
+}
+
+/// Every bad parameter is an error located at the property (line 3 of the inline file).
+#[test]
+fn bad_parameters_are_located_errors() {
+    #[rustfmt::skip]
+    let cases = [
+        ("principledthin", r#"<float name="diff_trans" value="2.5"/>"#, "diff_trans"),
+        ("principledthin", r#"<float name="diff_trans" value="-0.5"/>"#, "diff_trans"),
+        ("principledthin", r#"<float name="eta" value="0"/>"#, "eta"),
+        ("principledthin", r#"<float name="spec_trans" value="1.1"/>"#, "spec_trans"),
+        ("principledthin", r#"<float name="specular_transmittance_sampling_rate" value="-1"/>"#, "specular_transmittance_sampling_rate"),
+        ("principledthin", r#"<float name="metallic" value="0.5"/>"#, "metallic"),
+    ];
+    assert_cases_rejected_on_their_line(&cases, false);
+}
+
+/// What the path loop is told: it samples with both inputs, has smooth lobes only and is not
+/// Lambertian; the textures it reads are reported, switched-off lobes' not.
+#[test]
+fn traits_and_textures() {
+    let b = thin(GLASS);
+    assert_eq!(
+        BsdfTraits::of(&b),
+        BsdfTraits {
+            uses_u1: true,
+            uses_u2: true,
+            has_smooth: true,
+            lambertian: false,
+        }
+    );
+    assert!(!b.has_delta());
+    let count = |b: &Bsdf| {
+        let mut n = 0;
+        b.for_each_texture(&mut |_| n += 1);
+        n
+    };
+    // base colour, roughness, eta; then anisotropic, spec_trans, spec_tint, diff_trans.
+    assert_eq!(count(&thin("")), 3);
+    assert_eq!(count(&b), 7);
+    assert_eq!(count(&thin(r#"<float name="diff_trans" value="0"/>"#)), 3);
+}
