@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Regenerates every Mitsuba 3 reference image in scenes/refs/ (see scenes/refs/README.md).
+# Regenerates every Mitsuba 3 reference image in scenes/refs/ (see scenes/refs/README.md) and
+# tests/real/refs/.
 # Run from anywhere; needs Mitsuba 3.9.1 (scripts/install_mitsuba.sh).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -24,3 +25,5 @@ PYTHON="${PYTHON:-python3}"
     --spp 16384 --seed 0 -D res=128 -D rfilter=box --variant scalar_rgb
 "$PYTHON" scripts/mitsuba_ref.py scenes/veach_mis.xml -o scenes/refs/veach_mis_128x128_mitsuba.exr \
     --spp 16384 --seed 0 -D res=128 -D rfilter=box --variant scalar_rgb
+# The real corpus (tests/real/refs/LIST: sizes and sample counts; tests/real_agreement.rs).
+"$PYTHON" scripts/mitsuba_real_refs.py --seed 0 --variant scalar_rgb

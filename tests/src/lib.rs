@@ -118,9 +118,25 @@ pub fn worst_region(
     block: u32,
     b: impl Fn(u32, u32, usize) -> (f64, f64),
 ) -> (f64, String) {
+    worst_region_rect(a, res, res, block, b)
+}
+
+/// [`worst_region`] of a `width x height` render (both multiples of `block`).
+pub fn worst_region_rect(
+    a: &Framebuffer,
+    width: u32,
+    height: u32,
+    block: u32,
+    b: impl Fn(u32, u32, usize) -> (f64, f64),
+) -> (f64, String) {
+    assert_eq!((a.width, a.height), (width, height), "render size");
+    assert!(
+        width % block == 0 && height % block == 0,
+        "{width}x{height} is not a whole number of {block}-pixel blocks"
+    );
     let mut worst = (1.0, String::new());
-    for by in 0..res / block {
-        for bx in 0..res / block {
+    for by in 0..height / block {
+        for bx in 0..width / block {
             let sa = region_stats(a, bx * block, by * block, block, block);
             for (k, &(ma, va)) in sa.iter().enumerate() {
                 let (mb, vb) = b(bx, by, k);
@@ -172,11 +188,26 @@ pub fn worst_against_reference(
         (res, res),
         "reference size"
     );
-    worst_region(ours, res, block, |bx, by, k| {
+    worst_against_reference_rect(ours, like_ref, like_spp, reference, ref_spp, block)
+}
+
+/// [`worst_against_reference`] of images of any size (the reference's; both sides multiples of
+/// `block`).
+pub fn worst_against_reference_rect(
+    ours: &Framebuffer,
+    like_ref: &Framebuffer,
+    like_spp: u64,
+    reference: &tessera::image_io::RgbImage,
+    ref_spp: f64,
+    block: u32,
+) -> (f64, String) {
+    let (w, h) = (reference.width, reference.height);
+    assert_eq!((like_ref.width, like_ref.height), (w, h), "render size");
+    worst_region_rect(ours, w, h, block, |bx, by, k| {
         let mut m = 0.0;
         for y in by * block..(by + 1) * block {
             for x in bx * block..(bx + 1) * block {
-                m += reference.data[(y * res + x) as usize][k] as f64;
+                m += reference.data[(y * w + x) as usize][k] as f64;
             }
         }
         let m = m / (block * block) as f64;
