@@ -35,9 +35,8 @@ const DIMMER: f32 = 0.95;
 const KNOWN_DEVIATIONS: &[(&str, &str)] = &[(
     "mitsuba-data/scenes/hello.xml",
     "the direct integrator with emitter_samples = 4 and point lights: Mitsuba 3.9.1 weights each \
-     point-light sample 1 instead of 1/4, so its image is 4 times too bright; and its teapot's \
-     <rotate x=\"0\" y=\"1\" z=\"1\"> axis is not unit length, which Mitsuba does not normalise \
-     (the matrix is not a rotation) and Tessera does",
+     point-light sample 1 instead of 1/4, so its image is 4 times too bright (its teapot's \
+     <rotate> axis (0, 1, 1), not of unit length, Tessera now uses as Mitsuba does)",
 )];
 
 /// Manifest scenes not compared, to keep the test's time down: each shares its stage (the
