@@ -160,6 +160,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         names,
         source_hash: 0,
         accel_seconds,
+        frame_origin: root.frame_origin.to_array(),
     })
 }
 

@@ -27,6 +27,10 @@ pub struct LoadedScene {
     pub source_hash: u64,
     /// Seconds spent building the core scene (its acceleration structure, mostly).
     pub accel_seconds: f64,
+    /// The world position of the core scene's origin: zero, unless the camera was far from the
+    /// world's origin and the loader moved the scene so that the camera sits at the core's
+    /// origin (a world point `p` is then at `p - frame_origin` in the core scene).
+    pub frame_origin: [f64; 3],
 }
 
 /// The plugin names of a scene's parts, by their index in the core scene, for reports that

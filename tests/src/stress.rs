@@ -3,6 +3,7 @@
 //! folder for generated mesh files.
 use std::path::PathBuf;
 use tessera_core::glam::DVec3;
+use tessera_scene::xml::RECENTRE_FROM;
 
 /// Where a stress scene sits: every point `p` of the unit-scale scene maps to
 /// `p * scale + offset`, lengths to `l * scale`.
@@ -13,6 +14,9 @@ pub struct Placement {
     /// Translation applied after the scale.
     pub offset: DVec3,
 }
+
+/// How far (unit-scale units) every camera of the stress scenes is from what it sees.
+pub const CAMERA_REACH: f64 = 8.0;
 
 impl Placement {
     /// The unit-scale scene at the origin.
@@ -29,6 +33,11 @@ impl Placement {
         }
     }
 
+    /// The unit scene moved 1e6 along each axis: f32 coordinates there are 0.0625 apart.
+    pub fn far() -> Self {
+        Placement::moved(DVec3::splat(1e6))
+    }
+
     /// Unit scale, moved by `d`.
     pub fn moved(d: DVec3) -> Self {
         Placement {
@@ -40,6 +49,7 @@ impl Placement {
     /// Every placement of the suite: uniform scales 1e-4, 1e-2, 1, 1e2, 1e4, and the unit scene
     /// moved 1e3 and 1e5 along each axis (away from the origin in x, y and z at once).
     pub fn all() -> Vec<Placement> {
+        // (The 1e6 placement is [`Placement::far`], for the analytic scenes.)
         let mut v: Vec<Placement> = [1e-4, 1e-2, 1.0, 1e2, 1e4]
             .into_iter()
             .map(Placement::scaled)
@@ -68,13 +78,20 @@ impl Placement {
     }
 
     /// The relative spacing of f32 coordinates across an object of unit-scale size `size` at this
-    /// placement: `eps * (largest offset component + placed size) / placed size`. Nothing finer
-    /// than this is represented, so an answer can be off by a small multiple of it however
-    /// exact the arithmetic (1e5 from the origin, a sphere of radius 2 is stored on a grid of
-    /// 0.0078, 0.4% of its radius).
+    /// placement, in the frame the core renders in: `eps * (largest coordinate + placed size) /
+    /// placed size`. Nothing finer than this is represented, so an answer can be off by a small
+    /// multiple of it however exact the arithmetic. The loader renders a scene whose camera is
+    /// [`RECENTRE_FROM`] or more from the origin in a frame centred on the camera (every
+    /// camera here is within [`CAMERA_REACH`] unit-scale units of what it sees); nearer, the
+    /// offset from the origin counts.
     pub fn resolution(&self, size: f64) -> f64 {
         let placed = size * self.scale;
-        f32::EPSILON as f64 * (self.offset.abs().max_element() + placed) / placed
+        let far = self.offset.abs().max_element() + CAMERA_REACH * self.scale;
+        let largest = match far >= RECENTRE_FROM {
+            true => CAMERA_REACH * self.scale,
+            false => self.offset.abs().max_element(),
+        };
+        f32::EPSILON as f64 * (largest + placed) / placed
     }
 
     /// A placed length.

@@ -18,6 +18,7 @@ mod params;
 mod parse;
 mod path;
 mod property;
+mod recentre;
 mod refs;
 mod search;
 pub(crate) mod source;
@@ -35,6 +36,7 @@ use std::path::Path;
 pub use dialect::snake_case;
 pub use object::{Child, Kind, Object, Prop, Value};
 pub use parse::{MAX_DEPTH, MAX_INCLUDE_DEPTH};
+pub use recentre::RECENTRE_FROM;
 pub use source::MAX_FILE_BYTES;
 
 use crate::error::InputError;

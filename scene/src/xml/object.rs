@@ -218,6 +218,9 @@ pub struct Object {
     pub(crate) search: Rc<[PathBuf]>,
     /// On the root of a load: located warnings about the files themselves.
     pub(crate) load_warnings: Vec<String>,
+    /// On the root of a load: where the world's origin was moved from (the camera's position)
+    /// when the scene was recentred on its camera (`recentre.rs`), else zero.
+    pub(crate) frame_origin: glam::DVec3,
     referenced: Cell<bool>,
 }
 
@@ -242,6 +245,7 @@ impl Object {
             children,
             search: Rc::new([]),
             load_warnings: Vec::new(),
+            frame_origin: glam::DVec3::ZERO,
             referenced: Cell::new(false),
         }
     }

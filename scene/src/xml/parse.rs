@@ -21,6 +21,7 @@ use super::building::Building;
 use super::dialect::element_alias;
 use super::draft::{finalize, Draft, DraftChild, Target};
 use super::object::{Kind, Object};
+use super::recentre::recentre;
 use super::search::folder_of;
 use super::source::canonical;
 use super::source::{check_size, parse_document, Source};
@@ -209,7 +210,9 @@ impl Parser {
         let root = self.drafts.len();
         self.drafts.push(Some(draft));
         let search: Rc<[PathBuf]> = std::mem::take(&mut self.resolver).into();
+        let shift = recentre(&mut self.drafts);
         let mut obj = finalize(&mut self.drafts, &self.ids, root, &search)?;
+        obj.frame_origin = shift.unwrap_or_default();
         obj.load_warnings = std::mem::take(&mut self.warnings);
         Ok(obj)
     }
