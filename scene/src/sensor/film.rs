@@ -48,18 +48,42 @@ const FILE_FORMAT: Param = Param::new(
 )
 .ignored();
 
+const BANNER: Param = Param::boolean(
+    "banner",
+    true,
+    "has no effect: a Mitsuba 0.x parameter that Mitsuba 3 also ignores",
+)
+.ignored();
+const SAMPLE_BORDER: Param = Param::boolean(
+    "sample_border",
+    false,
+    "has no effect: samples never reach past the image's pixels",
+)
+.ignored();
+
 /// `hdrfilm`.
 pub const HDRFILM: FilmPlugin = Plugin {
     name: "hdrfilm",
     aliases: &[],
     doc: "The image's size (the outputs' formats come from their file names).",
-    params: &[WIDTH, HEIGHT, PIXEL_FORMAT, COMPONENT_FORMAT, FILE_FORMAT],
+    params: &[
+        WIDTH,
+        HEIGHT,
+        PIXEL_FORMAT,
+        COMPONENT_FORMAT,
+        FILE_FORMAT,
+        BANNER,
+        SAMPLE_BORDER,
+    ],
     nested: "an optional `<rfilter>`",
     build: |film| {
         let width = edge(film, &WIDTH)?;
         let height = edge(film, &HEIGHT)?;
         for p in [PIXEL_FORMAT, COMPONENT_FORMAT, FILE_FORMAT] {
             film.string_opt(p.name)?;
+        }
+        for p in [BANNER, SAMPLE_BORDER] {
+            p.read_bool(film)?;
         }
         Ok((width, height))
     },
