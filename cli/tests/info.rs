@@ -50,9 +50,9 @@ fn info_counts_what_the_material_scene_holds() {
 }
 
 #[test]
-fn info_counts_image_uses_and_lists_warnings() {
-    // One texture declared once and referenced from two BSDFs. The loader builds it for each
-    // use, so the image is held twice: the report says so (distinct storage, not files).
+fn info_counts_a_shared_image_once_and_lists_warnings() {
+    // One texture declared once and referenced from two BSDFs, and a third texture naming the
+    // same file: one image in memory. The same file read raw is another image (the control).
     let dir = std::env::temp_dir().join(format!("tessera-info-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::copy(scenes().join("textures/tiles.png"), dir.join("tiles.png")).unwrap();
@@ -63,6 +63,8 @@ fn info_counts_image_uses_and_lists_warnings() {
   <texture type="bitmap" id="tiles"><string name="filename" value="tiles.png"/></texture>
   <shape type="sphere">{bitmap}</shape>
   <shape type="rectangle">{bitmap}</shape>
+  <shape type="rectangle"><bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="tiles.png"/></texture></bsdf></shape>
+  <shape type="rectangle"><bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="tiles.png"/><boolean name="raw" value="true"/></texture></bsdf></shape>
 </scene>
 "#
     );
@@ -73,7 +75,7 @@ fn info_counts_image_uses_and_lists_warnings() {
     let out = String::from_utf8_lossy(&o.stdout).into_owned();
     assert_eq!(
         row(&out, "textures"),
-        "2 image uses (2 distinct images, 6.0 KiB), 0 procedural"
+        "4 image uses (2 distinct images, 6.0 KiB), 0 procedural"
     );
     assert_eq!(row(&out, "warnings"), "1");
     let located = format!("{}:2:", scene.display());

@@ -5,6 +5,7 @@ mod basic;
 mod chalmers;
 mod conductor;
 mod dielectric;
+mod image_cache;
 pub(crate) mod ior;
 mod plastic;
 mod principled;

@@ -4,6 +4,7 @@
 //! non-negative, and in [0, 1] where the parameter is a reflectance or weight. The conventions
 //! (which row is `v = 0`, pixel centres, wrapping) are in `tessera_core::texture`'s plugin files.
 use super::super::util::{at_prop, Result};
+use super::image_cache::shared_pixels;
 use crate::image::{is_srgb_coded, read_image};
 use crate::plugin::{self, Default, Param, Plugin, Range};
 use crate::xml::{Kind, Object};
@@ -215,6 +216,17 @@ pub(crate) fn load_bitmap(
     name: &str,
     s: BitmapSettings,
 ) -> std::result::Result<Bitmap, String> {
+    let (w, h, pixels) = shared_pixels(path, s.raw, s.unit, s.scale, || decode(path, name, &s))?;
+    Bitmap::new(w, h, pixels, s.filter, s.wrap, s.to_uv)
+        .ok_or_else(|| format!("\"{name}\": unusable image size {w}x{h}"))
+}
+
+/// The pixels of the image at `path`, decoded (sRGB unless raw, scaled) and checked.
+fn decode(
+    path: &Path,
+    name: &str,
+    s: &BitmapSettings,
+) -> std::result::Result<(usize, usize, Vec<Vec3>), String> {
     let img = read_image(path)?;
     let decode = is_srgb_coded(path) && !s.raw;
     let mut pixels = Vec::with_capacity(img.data.len());
@@ -238,9 +250,7 @@ pub(crate) fn load_bitmap(
         }
         pixels.push(c);
     }
-    let (w, h) = (img.width as usize, img.height as usize);
-    Bitmap::new(w, h, pixels, s.filter, s.wrap, s.to_uv)
-        .ok_or_else(|| format!("\"{name}\": unusable image size {w}x{h}"))
+    Ok((img.width as usize, img.height as usize, pixels))
 }
 
 #[cfg(test)]
