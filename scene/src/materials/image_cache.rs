@@ -28,9 +28,11 @@ struct Key {
 /// A decoded image: width, height and pixels.
 type Decoded = (usize, usize, Arc<[Vec3]>);
 
+/// A remembered image: width, height and its pixels while some texture holds them.
+type Entry = (usize, usize, Weak<[Vec3]>);
+
 thread_local! {
-    static CACHE: RefCell<HashMap<Key, (usize, usize, Weak<[Vec3]>)>> =
-        RefCell::new(HashMap::new());
+    static CACHE: RefCell<HashMap<Key, Entry>> = RefCell::new(HashMap::new());
 }
 
 /// The pixels of `path` decoded with `raw`, `unit` and `scale`: shared with a texture that

@@ -40,11 +40,7 @@ pub(super) fn recentre(drafts: &mut [Option<Draft>]) -> Option<DVec3> {
                 move_point(d, "center", c);
             }
             (Kind::Sensor | Kind::Shape, _) | (Kind::Emitter, "spot") => prepend(d, shift),
-            (Kind::Emitter, "point") => {
-                if !move_point(d, "position", c) {
-                    prepend(d, shift);
-                }
-            }
+            (Kind::Emitter, "point") => move_or_prepend(d, "position", c, shift),
             (Kind::Integrator, "simple") => {
                 move_point(d, "position", c);
             }
@@ -84,6 +80,13 @@ fn prepend(d: &mut Draft, shift: DMat4) {
             d.props
                 .push(Prop::new("to_world", Value::Transform(shift), loc));
         }
+    }
+}
+
+/// Moves the point `name` of `d` by `-c` if `d` has it, else shifts its `to_world`.
+fn move_or_prepend(d: &mut Draft, name: &str, c: DVec3, shift: DMat4) {
+    if !move_point(d, name, c) {
+        prepend(d, shift);
     }
 }
 
