@@ -91,14 +91,7 @@ pub fn report(file: &str, loaded: &LoadedScene, seconds: f64) -> String {
     let depth = spec.max_depth.map_or("unbounded".into(), |d| d.to_string());
     row("integrator", format!("{} (max_depth {depth})", spec.name));
     row("sampler", s.sampler.name().to_string());
-    // The variant's name, without its tables.
-    let filter = format!("{:?}", s.filter);
-    let filter = filter
-        .split(['(', ' ', '{'])
-        .next()
-        .unwrap_or("")
-        .to_lowercase();
-    row("filter", filter);
+    row("filter", s.filter.name().to_string());
     row("shapes", by_plugin(&loaded.names.shapes));
     let (mut tris, mut spheres, mut disks) = (0usize, 0usize, 0usize);
     for p in &s.prims {

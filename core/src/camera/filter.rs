@@ -77,6 +77,17 @@ pub enum Filter {
 }
 
 impl Filter {
+    /// The filter's family, as reports name it (`mitchell` also for Catmull-Rom).
+    pub fn name(&self) -> &'static str {
+        match self {
+            Filter::Box => "box",
+            Filter::Gaussian(_) => "gaussian",
+            Filter::Tent(_) => "tent",
+            Filter::Mitchell(_) => "mitchell",
+            Filter::Lanczos(_) => "lanczos",
+        }
+    }
+
     /// Offset of a sample from its pixel's centre, in pixels (its weight dropped: see
     /// [`Filter::sample_weighted`]).
     #[inline]
