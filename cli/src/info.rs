@@ -10,7 +10,7 @@ use std::time::Instant;
 use tessera_core::camera::Projection;
 use tessera_core::emitter::Emitter;
 use tessera_core::geometry::Prim;
-use tessera_scene::{load_scene, LoadedScene};
+use tessera_scene::{load_scene_as, LoadedScene};
 
 /// Arguments of `tessera info`.
 #[derive(Args, Debug, Clone)]
@@ -20,12 +20,15 @@ pub struct InfoArgs {
     /// Define a scene parameter (`-D name=value`), as for `render`.
     #[arg(short = 'D', value_parser = super::define::parse_define)]
     pub defines: Vec<(String, String)>,
+    /// Whose conventions to load a Nori-vocabulary file with (nori or wakame), as for `render`.
+    #[arg(long, value_parser = tessera_scene::Dialect::parse)]
+    pub dialect: Option<tessera_scene::Dialect>,
 }
 
 /// Loads the scene and prints its report; returns the exit code (2 for bad input).
 pub fn run(args: &InfoArgs) -> i32 {
     let start = Instant::now();
-    match load_scene(&args.scene, &args.defines) {
+    match load_scene_as(&args.scene, &args.defines, args.dialect) {
         Ok(loaded) => {
             let seconds = start.elapsed().as_secs_f64();
             print!(
@@ -86,6 +89,10 @@ pub fn report(file: &str, loaded: &LoadedScene, seconds: f64) -> String {
             l.aperture_radius, l.focus_distance
         ),
         p => p.name().to_string(),
+    };
+    let camera = match loaded.dialect {
+        tessera_scene::Dialect::Nori => camera,
+        d => format!("{camera}, {d} conventions (image mirrored left to right)"),
     };
     row("camera", camera);
     let depth = spec.max_depth.map_or("unbounded".into(), |d| d.to_string());

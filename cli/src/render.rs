@@ -23,7 +23,7 @@ use tessera_core::adaptive::{AdaptiveParams, ZSOBOL_BLOCK_FACTOR};
 use tessera_core::camera::Camera;
 use tessera_core::render::RenderJob;
 use tessera_scene::error::InputError;
-use tessera_scene::{load_scene, MAX_EDGE, MAX_PIXELS};
+use tessera_scene::{load_scene_as, MAX_EDGE, MAX_PIXELS};
 
 fn usage(msg: String) -> i32 {
     eprintln!("error: {msg}");
@@ -87,7 +87,7 @@ pub fn run(args: &RenderArgs) -> i32 {
         (Ok(b), Ok(w)) => (b, w),
         (Err(e), _) | (_, Err(e)) => return usage(e),
     };
-    let mut loaded = match load_scene(&args.scene, &args.defines) {
+    let mut loaded = match load_scene_as(&args.scene, &args.defines, args.dialect) {
         Ok(l) => l,
         Err(e) => return usage(e.to_string()),
     };

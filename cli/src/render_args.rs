@@ -65,6 +65,11 @@ pub struct RenderArgs {
     /// Override a scene `<default>`: -D name=value.
     #[arg(short = 'D', value_parser = super::define::parse_define)]
     pub defines: Vec<(String, String)>,
+    /// Render a Nori-vocabulary file as `nori` (the default, also Mitsuba 3's image) or
+    /// `wakame` (the image mirrored left to right, as Wakame's camera draws it) renders it,
+    /// whatever the file's `<?tessera dialect="..."?>` says.
+    #[arg(long, value_parser = tessera_scene::Dialect::parse)]
+    pub dialect: Option<tessera_scene::Dialect>,
     /// No progress bar.
     #[arg(short, long)]
     pub quiet: bool,

@@ -11,6 +11,7 @@ use super::util::Result;
 use crate::error::InputError;
 use crate::xml::{Kind, Object};
 use std::collections::HashSet;
+use tessera_core::camera::Camera;
 use tessera_core::emitter::{AreaLight, Emitter};
 use tessera_core::geometry::{Shape, ShapeKind};
 use tessera_core::sampling::SamplerKind;
@@ -140,7 +141,10 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         disks,
         bsdfs: bsdfs.list,
         emitters,
-        camera: sensor.camera,
+        camera: Camera {
+            to_world: root.dialect.camera_to_world(sensor.camera.to_world),
+            ..sensor.camera
+        },
         filter: sensor.filter,
         light_selection: integrator_spec.light_selection,
     };
@@ -161,6 +165,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         source_hash: 0,
         accel_seconds,
         frame_origin: root.frame_origin.to_array(),
+        dialect: root.dialect,
     })
 }
 

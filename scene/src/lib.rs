@@ -31,13 +31,30 @@ pub use loaded::{LoadedScene, PluginNames};
 pub use sensor::{MAX_EDGE, MAX_PIXELS};
 
 use crate::error::InputError;
+pub use crate::xml::Dialect;
 use std::path::Path;
 
 /// Loads a scene file (read once: its hash comes from the same bytes); `defines` are
 /// `-D name=value` overrides of `<default>`s.
 pub fn load_scene(path: &Path, defines: &[(String, String)]) -> Result<LoadedScene, InputError> {
+    load_scene_as(path, defines, None)
+}
+
+/// [`load_scene`] rendered with `dialect`'s conventions whatever the file declares (`None`:
+/// the file's; see [`Dialect`]). A dialect given here is part of the scene's hash.
+pub fn load_scene_as(
+    path: &Path,
+    defines: &[(String, String)],
+    dialect: Option<Dialect>,
+) -> Result<LoadedScene, InputError> {
     let text = crate::xml::read_file(path)?;
-    load_scene_str(&text, path, defines)
+    let root = crate::xml::load_str_as(&text, path, defines, dialect)?;
+    let mut loaded = build::build(&root)?;
+    loaded.source_hash = hash::scene_hash(text.as_bytes(), defines);
+    if let Some(d) = dialect {
+        loaded.source_hash = hash::with_dialect(loaded.source_hash, d);
+    }
+    Ok(loaded)
 }
 
 /// Builds a scene from an already parsed `<scene>` object (e.g. one nested in a test file).

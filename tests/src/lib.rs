@@ -131,7 +131,7 @@ pub fn worst_region_rect(
 ) -> (f64, String) {
     assert_eq!((a.width, a.height), (width, height), "render size");
     assert!(
-        width % block == 0 && height % block == 0,
+        width.is_multiple_of(block) && height.is_multiple_of(block),
         "{width}x{height} is not a whole number of {block}-pixel blocks"
     );
     let mut worst = (1.0, String::new());

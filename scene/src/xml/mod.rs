@@ -9,6 +9,7 @@
 mod attrs;
 mod building;
 mod cie;
+mod conventions;
 mod dialect;
 mod draft;
 mod getters;
@@ -33,6 +34,7 @@ mod tests;
 
 use std::path::Path;
 
+pub use conventions::Dialect;
 pub use dialect::snake_case;
 pub use object::{Child, Kind, Object, Prop, Value};
 pub use parse::{MAX_DEPTH, MAX_INCLUDE_DEPTH};
@@ -62,5 +64,18 @@ pub fn load_str(
     virtual_path: &Path,
     defines: &[(String, String)],
 ) -> Result<Object, InputError> {
-    parse::Parser::new(defines).load_text(text, virtual_path)
+    load_str_as(text, virtual_path, defines, None)
+}
+
+/// [`load_str`] with the conventions of `dialect` whatever the text declares (`None`: the
+/// text's, see [`Dialect`]).
+pub fn load_str_as(
+    text: &str,
+    virtual_path: &Path,
+    defines: &[(String, String)],
+    dialect: Option<Dialect>,
+) -> Result<Object, InputError> {
+    parse::Parser::new(defines)
+        .with_dialect(dialect)
+        .load_text(text, virtual_path)
 }

@@ -221,6 +221,8 @@ pub struct Object {
     /// On the root of a load: where the world's origin was moved from (the camera's position)
     /// when the scene was recentred on its camera (`recentre.rs`), else zero.
     pub(crate) frame_origin: glam::DVec3,
+    /// On the root of a load: whose conventions the scene is rendered with.
+    pub(crate) dialect: super::Dialect,
     referenced: Cell<bool>,
 }
 
@@ -246,6 +248,7 @@ impl Object {
             search: Rc::new([]),
             load_warnings: Vec::new(),
             frame_origin: glam::DVec3::ZERO,
+            dialect: super::Dialect::Nori,
             referenced: Cell::new(false),
         }
     }

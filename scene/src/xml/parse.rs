@@ -18,6 +18,7 @@ use roxmltree::Node;
 
 use super::attrs::Attrs;
 use super::building::Building;
+use super::conventions::{read_instruction, Dialect};
 use super::dialect::element_alias;
 use super::draft::{finalize, Draft, DraftChild, Target};
 use super::object::{Kind, Object};
@@ -87,6 +88,8 @@ pub struct Parser {
     pub(super) warnings: Vec<String>,
     /// The version attribute of each file in `files` (`None`: none, as in Nori files).
     pub(super) versions: Vec<Option<Version>>,
+    /// The command line's `--dialect`, which overrides the file's.
+    pub(super) dialect: Option<Dialect>,
 }
 
 pub(super) fn strip_bom(text: &str) -> &str {
@@ -175,7 +178,14 @@ impl Parser {
             files: Vec::new(),
             versions: Vec::new(),
             warnings: Vec::new(),
+            dialect: None,
         }
+    }
+
+    /// Renders the file with `dialect`'s conventions whatever the file says.
+    pub fn with_dialect(mut self, dialect: Option<Dialect>) -> Self {
+        self.dialect = dialect;
+        self
     }
 
     /// Parses a whole scene file's text; `path` names it in locations and resolves includes.
@@ -185,6 +195,7 @@ impl Parser {
         let file = Arc::new(path.to_path_buf());
         let doc = parse_document(text, &file)?;
         let src = Source::new(file, text);
+        let declared = read_instruction(&doc, |at| src.loc(at))?;
         let root = doc.root_element();
         let loc = src.loc(root.range().start);
         // A scene file, or a Nori test file (`<test type="ttest|chi2test">` holding scenes).
@@ -213,6 +224,7 @@ impl Parser {
         let shift = recentre(&mut self.drafts);
         let mut obj = finalize(&mut self.drafts, &self.ids, root, &search)?;
         obj.frame_origin = shift.unwrap_or_default();
+        obj.dialect = self.dialect.or(declared).unwrap_or_default();
         obj.load_warnings = std::mem::take(&mut self.warnings);
         Ok(obj)
     }
