@@ -24,16 +24,17 @@ REFS = os.path.join(REAL, "refs")
 
 
 def read_list():
-    """(scene, width, height, spp) per line of tests/real/refs/LIST (the last column, the
-    test's own sample count, is not needed here)."""
+    """(scene, width, height, spp, defines) per line of tests/real/refs/LIST (the fifth column,
+    the test's own sample count, is not needed here; name=value words after it are -D defines)."""
     out = []
     with open(os.path.join(REFS, "LIST")) as f:
         for line in f:
             line = line.strip()
             if not line or line.startswith("#"):
                 continue
-            scene, w, h, spp, _ours_spp = line.split()
-            out.append((scene, int(w), int(h), int(spp)))
+            scene, w, h, spp, _ours_spp, *defs = line.split()
+            defines = dict(d.split("=", 1) for d in defs)
+            out.append((scene, int(w), int(h), int(spp), defines))
     return out
 
 
@@ -41,20 +42,20 @@ def ref_name(scene):
     return scene.replace("/", "__")[: -len(".xml")] + ".exr"
 
 
-def load_overridden(mi, variant, path, width, height):
+def load_overridden(mi, variant, path, width, height, defines):
     """The scene at `path`, its film set to width x height with a box filter. Relative file
     names resolve beside the file, as in mitsuba.load_file."""
     saved = mi.FileResolver(mi.file_resolver())
     mi.file_resolver().prepend(os.path.dirname(os.path.abspath(path)))
     try:
-        return load_parsed(mi, variant, path, width, height)
+        return load_parsed(mi, variant, path, width, height, defines)
     finally:
         mi.Thread.thread().set_file_resolver(saved)
 
 
-def load_parsed(mi, variant, path, width, height):
+def load_parsed(mi, variant, path, width, height, defines):
     cfg = mi.parser.ParserConfig(variant)
-    state = mi.parser.parse_file(cfg, path)
+    state = mi.parser.parse_file(cfg, path, **defines)
     nodes = state.nodes
     films = [n for n in nodes if n.type == mi.ObjectType.Film]
     filters = [n for n in nodes if n.type == mi.ObjectType.ReconstructionFilter]
@@ -87,10 +88,11 @@ def main():
     import mitsuba as mi
     mi.set_variant(args.variant)
 
-    for scene_rel, width, height, total in read_list():
+    for scene_rel, width, height, total, defines in read_list():
         if args.only and not any(o in scene_rel for o in args.only):
             continue
-        scene = load_overridden(mi, args.variant, os.path.join(REAL, scene_rel), width, height)
+        scene = load_overridden(mi, args.variant, os.path.join(REAL, scene_rel), width, height,
+                                defines)
         size = list(scene.sensors()[0].film().size())
         assert size == [width, height], (scene_rel, size)
         t0 = time.time()

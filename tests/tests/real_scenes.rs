@@ -10,13 +10,24 @@ fn real_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("real")
 }
 
-/// The scene paths the manifest lists (comments and blank lines skipped).
-fn manifest() -> Vec<PathBuf> {
+/// A `name=value` define of a list line.
+fn define(word: &str) -> (String, String) {
+    let (k, v) = word.split_once('=').unwrap_or_else(|| panic!("{word:?} is not name=value"));
+    (k.to_string(), v.to_string())
+}
+
+/// The scene paths the manifest lists, each with the defines it is loaded with (comments and
+/// blank lines skipped).
+fn manifest() -> Vec<(PathBuf, Vec<(String, String)>)> {
     let text = std::fs::read_to_string(real_dir().join("MANIFEST")).expect("tests/real/MANIFEST");
     text.lines()
         .map(str::trim)
         .filter(|l| !l.is_empty() && !l.starts_with('#'))
-        .map(|l| real_dir().join(l))
+        .map(|l| {
+            let mut words = l.split_whitespace();
+            let path = real_dir().join(words.next().expect("a path"));
+            (path, words.map(define).collect())
+        })
         .collect()
 }
 
@@ -37,8 +48,8 @@ fn every_listed_real_scene_loads() {
         scenes.len()
     );
     let mut failures = Vec::new();
-    for path in &scenes {
-        if let Err(e) = load_scene(path, &[]) {
+    for (path, defines) in &scenes {
+        if let Err(e) = load_scene(path, defines) {
             failures.push(e.to_string());
         }
     }
