@@ -152,6 +152,7 @@ fn lens_camera(r: f32, focus: f32) -> Camera {
             aperture_radius: r,
             focus_distance: focus,
         }),
+        crop: None,
     }
 }
 

@@ -12,7 +12,7 @@ pub use filter::{Filter, GaussianFilter, TentFilter};
 pub use negative_lobes::{LanczosFilter, MitchellFilter};
 pub use orthographic::Orthographic;
 pub use perspective::{FovAxis, Perspective};
-pub use sensor::{Camera, Projection};
+pub use sensor::{Camera, Crop, Projection};
 pub use signed_profile::SignedProfile;
 pub use step_profile::{StepProfile, STEPS};
 pub use thin_lens::ThinLens;

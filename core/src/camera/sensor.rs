@@ -42,6 +42,23 @@ pub struct Camera {
     pub height: u32,
     /// The projection.
     pub projection: Projection,
+    /// Where the image lies on a larger film (Mitsuba 3's crop window), if it does.
+    pub crop: Option<Crop>,
+}
+
+/// A crop window: the camera's `width` x `height` image is the window at (`x`, `y`) (pixels,
+/// top-left corner) of a `film_width` x `film_height` film, and sees what that window of the
+/// whole film's image sees.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Crop {
+    /// Left edge of the window on the film, in pixels.
+    pub x: u32,
+    /// Top edge of the window on the film, in pixels.
+    pub y: u32,
+    /// The whole film's width in pixels.
+    pub film_width: u32,
+    /// The whole film's height in pixels.
+    pub film_height: u32,
 }
 
 impl Camera {
@@ -61,6 +78,20 @@ impl Camera {
             width,
             height,
             projection: Projection::Perspective(p),
+            crop: None,
+        }
+    }
+
+    /// Film position `pos` of the image as a position on the whole film, and the film's size
+    /// (the image's own without a crop window, `pos` then unchanged).
+    #[inline]
+    fn on_film(&self, pos: Vec2) -> (Vec2, (u32, u32)) {
+        match self.crop {
+            None => (pos, (self.width, self.height)),
+            Some(c) => (
+                pos + Vec2::new(c.x as f32, c.y as f32),
+                (c.film_width, c.film_height),
+            ),
         }
     }
 
@@ -79,7 +110,8 @@ impl Camera {
             Projection::ThinLens(lens) => {
                 sampler.start_dimension(LENS_DIMENSION);
                 let u = sampler.next_2d();
-                lens.generate_ray(&self.to_world, pos, (self.width, self.height), u)
+                let (pos, size) = self.on_film(pos);
+                lens.generate_ray(&self.to_world, pos, size, u)
             }
             _ => self.generate_ray(pos),
         }
@@ -91,7 +123,8 @@ impl Camera {
     pub fn generate_ray_through(&self, pos: Vec2, lens: Vec2) -> Ray {
         match &self.projection {
             Projection::ThinLens(l) => {
-                l.generate_ray(&self.to_world, pos, (self.width, self.height), lens)
+                let (pos, size) = self.on_film(pos);
+                l.generate_ray(&self.to_world, pos, size, lens)
             }
             _ => self.generate_ray(pos),
         }
@@ -100,7 +133,7 @@ impl Camera {
     /// The ray through film position `pos`, through the centre of a thin lens's aperture.
     #[inline]
     pub fn generate_ray(&self, pos: Vec2) -> Ray {
-        let size = (self.width, self.height);
+        let (pos, size) = self.on_film(pos);
         match &self.projection {
             Projection::Perspective(p) => pinhole_ray(p, &self.to_world, pos, size),
             Projection::ThinLens(l) => pinhole_ray(&l.pinhole, &self.to_world, pos, size),

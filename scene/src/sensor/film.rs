@@ -13,8 +13,17 @@ pub const MAX_EDGE: i64 = 1 << 16;
 /// Largest pixel count accepted (the accumulation buffer takes 64 bytes a pixel).
 pub const MAX_PIXELS: i64 = 1 << 26;
 
-/// A film: its size.
-pub type FilmPlugin = Plugin<fn(&Object) -> Result<(u32, u32)>>;
+/// A film: its size and crop window.
+pub type FilmPlugin = Plugin<fn(&Object) -> Result<FilmSize>>;
+
+/// The size a film gives the image: the whole film's, and the window of it that is rendered
+/// (`[x, y, width, height]`, pixels), if not all of it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FilmSize {
+    pub width: u32,
+    pub height: u32,
+    pub crop: Option<[u32; 4]>,
+}
 
 /// Every `<film type=...>` Tessera knows.
 pub static FILMS: &[FilmPlugin] = &[HDRFILM];
@@ -61,6 +70,33 @@ const SAMPLE_BORDER: Param = Param::boolean(
 )
 .ignored();
 
+const CROP_OFFSET_X: Param = Param::integer(
+    "crop_offset_x",
+    0,
+    Range::Note("0 or more; the window must lie on the film"),
+    "left edge of the rendered window, in pixels of the film",
+);
+const CROP_OFFSET_Y: Param = Param::integer(
+    "crop_offset_y",
+    0,
+    Range::Note("0 or more; the window must lie on the film"),
+    "top edge of the rendered window, in pixels of the film",
+);
+const CROP_WIDTH: Param = Param::new(
+    "crop_width",
+    ParamType::Integer,
+    Default::Note("width"),
+    Range::Note("1 or more; the window must lie on the film"),
+    "width of the rendered window: the output image's width",
+);
+const CROP_HEIGHT: Param = Param::new(
+    "crop_height",
+    ParamType::Integer,
+    Default::Note("height"),
+    Range::Note("1 or more; the window must lie on the film"),
+    "height of the rendered window: the output image's height",
+);
+
 /// `hdrfilm`.
 pub const HDRFILM: FilmPlugin = Plugin {
     name: "hdrfilm",
@@ -69,6 +105,10 @@ pub const HDRFILM: FilmPlugin = Plugin {
     params: &[
         WIDTH,
         HEIGHT,
+        CROP_OFFSET_X,
+        CROP_OFFSET_Y,
+        CROP_WIDTH,
+        CROP_HEIGHT,
         PIXEL_FORMAT,
         COMPONENT_FORMAT,
         FILE_FORMAT,
@@ -85,9 +125,32 @@ pub const HDRFILM: FilmPlugin = Plugin {
         for p in [BANNER, SAMPLE_BORDER] {
             p.read_bool(film)?;
         }
-        Ok((width, height))
+        Ok(FilmSize {
+            width,
+            height,
+            crop: read_crop(film, width, height)?,
+        })
     },
 };
+
+/// The crop window, checked to lie on the `width` x `height` film as Mitsuba 3 checks it
+/// (`None` when it is the whole film).
+fn read_crop(film: &Object, width: u32, height: u32) -> Result<Option<[u32; 4]>> {
+    let read = |p: &Param, default: u32, low: i64| {
+        p.read_i64_or(film, default.into(), |v| (low..=MAX_EDGE).contains(&v))
+            .map(|v| v as u32)
+    };
+    let x = read(&CROP_OFFSET_X, 0, 0)?;
+    let y = read(&CROP_OFFSET_Y, 0, 0)?;
+    let w = read(&CROP_WIDTH, width.saturating_sub(x), 1)?;
+    let h = read(&CROP_HEIGHT, height.saturating_sub(y), 1)?;
+    if w == 0 || h == 0 || x + w > width || y + h > height {
+        return Err(film.error(format!(
+            "the crop window {w}x{h} at ({x}, {y}) does not lie on the {width}x{height} film"
+        )));
+    }
+    Ok(((x, y, w, h) != (0, 0, width, height)).then_some([x, y, w, h]))
+}
 
 /// An image edge read from `p`, within [`MAX_EDGE`].
 pub(super) fn edge(obj: &Object, p: &Param) -> Result<u32> {
@@ -99,6 +162,8 @@ pub(super) fn edge(obj: &Object, p: &Param) -> Result<u32> {
 pub(super) struct Film {
     pub width: u32,
     pub height: u32,
+    /// The rendered window `[x, y, width, height]` of the film, if not all of it.
+    pub crop: Option<[u32; 4]>,
     pub filter: Filter,
     pub spp: Option<u64>,
     pub seed: Option<u64>,
@@ -114,6 +179,7 @@ pub(super) fn read_film(
 ) -> Result<Film> {
     let mut filter = Filter::Gaussian(GaussianFilter::new(0.5));
     let (mut width, mut height) = size;
+    let mut crop = None;
     let (mut spp, mut seed, mut sampler) = (None, None, None);
     for c in &obj.children {
         match c.obj.kind {
@@ -121,7 +187,8 @@ pub(super) fn read_film(
                 c.mark_used();
                 let film = &c.obj;
                 let plugin = plugin::find(FILMS, "film", film)?;
-                (width, height) = (plugin.build)(film)?;
+                let size = (plugin.build)(film)?;
+                (width, height, crop) = (size.width, size.height, size.crop);
                 for f in &film.children {
                     if f.obj.kind == Kind::RFilter {
                         f.mark_used();
@@ -152,6 +219,7 @@ pub(super) fn read_film(
     Ok(Film {
         width,
         height,
+        crop,
         filter,
         spp,
         seed,

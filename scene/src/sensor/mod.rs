@@ -8,7 +8,7 @@ mod perspective;
 use crate::plugin::{self, Default, Param, ParamType, Plugin, Range};
 use crate::util::Result;
 use crate::xml::Object;
-use tessera_core::camera::{Camera, Filter};
+use tessera_core::camera::{Camera, Crop, Filter};
 use tessera_core::sampling::SamplerKind;
 
 pub use film::{FILMS, MAX_EDGE, MAX_PIXELS};
@@ -88,8 +88,18 @@ fn read_shutter(obj: &Object) -> Result<()> {
 
 /// The parts of a sensor whose camera `camera` makes from the film's size.
 fn parts(film: film::Film, camera: impl FnOnce(u32, u32) -> Camera) -> SensorParts {
+    let mut camera = camera(film.width, film.height);
+    if let Some([x, y, width, height]) = film.crop {
+        camera.crop = Some(Crop {
+            x,
+            y,
+            film_width: film.width,
+            film_height: film.height,
+        });
+        (camera.width, camera.height) = (width, height);
+    }
     SensorParts {
-        camera: camera(film.width, film.height),
+        camera,
         filter: film.filter,
         spp: film.spp,
         seed: film.seed,

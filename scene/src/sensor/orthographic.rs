@@ -50,5 +50,6 @@ fn build_orthographic(obj: &Object, warnings: &mut Vec<String>) -> Result<Sensor
         width,
         height,
         projection: Projection::Orthographic(Orthographic { near, far }),
+        crop: None,
     }))
 }

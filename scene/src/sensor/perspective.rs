@@ -154,6 +154,7 @@ fn build_perspective(obj: &Object, warnings: &mut Vec<String>) -> Result<SensorP
             width,
             height,
             projection: Projection::Perspective(p),
+            crop: None,
         }
     }))
 }
@@ -185,6 +186,7 @@ fn build_thinlens(obj: &Object, warnings: &mut Vec<String>) -> Result<SensorPart
             width,
             height,
             projection,
+            crop: None,
         }
     }))
 }
