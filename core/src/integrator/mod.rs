@@ -7,6 +7,7 @@ mod path_state;
 mod probe;
 mod record;
 mod reuse;
+mod reuse_halves;
 mod simple;
 mod visibility;
 mod whitted;
