@@ -105,7 +105,7 @@ impl PathIntegrator {
     fn hit_weight<P: Probe>(
         &self,
         strategy: Strategy,
-        prev: Option<Prev>,
+        prev: Option<&Prev>,
         light_pdf: f32,
         probe: &mut P,
     ) -> f32 {
@@ -144,6 +144,7 @@ impl PathIntegrator {
     ///   hit (only delta lights) or that has weight zero (`path_ems`, non-delta bounce). The
     ///   last segment is the last use of the sampler in this sample, and each sample has its
     ///   own stream, so no other value moves.
+    #[inline]
     pub fn li_probed<S: Sampler, P: Probe>(
         &self,
         scene: &Scene,
@@ -218,15 +219,10 @@ impl PathIntegrator {
     ) -> Option<Interaction> {
         let strategy = Strategy::of(ST);
         let features = &scene.features;
-        let PathState {
-            ray,
-            throughput,
-            depth,
-            prev,
-            ..
-        } = *path;
+        let (ray, throughput, depth) = (&path.ray, path.throughput, path.depth);
+        let prev = path.prev.as_ref();
         let visible = !(depth == 0 && self.hide_emitters);
-        let hit = probe.intersect(scene, &ray);
+        let hit = probe.intersect(scene, ray);
         probe.ray(if depth == 0 {
             RayKind::Camera
         } else {
@@ -254,7 +250,7 @@ impl PathIntegrator {
                 d,
                 hit.as_ref(),
                 with_pdf,
-                prev.as_ref().and_then(|p| p.sel.as_ref()),
+                prev.and_then(|p| p.sel.as_ref()),
                 probe,
                 |probe, le, light_pdf| {
                     let w = self.hit_weight(strategy, prev, light_pdf, probe);
