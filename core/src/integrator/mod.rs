@@ -9,6 +9,7 @@ mod record;
 mod reuse;
 mod reuse_halves;
 mod simple;
+mod unweighted_hit;
 mod visibility;
 mod whitted;
 
