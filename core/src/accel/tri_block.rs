@@ -120,27 +120,43 @@ impl Ray4 {
     }
 }
 
-/// What the four-lane test found. Lane `i` is bit `i` of the masks; the arrays hold meaningful
-/// values in `hit` lanes only (the SSE version skips the rest of the work, and its stores, once
-/// no lane can hit).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Lanes {
+/// What an `N`-lane triangle test found ([`Lanes`] for one block, `Lanes8` for a pair). Lane
+/// `i` is bit `i` of the masks; the arrays hold meaningful values in `hit` lanes only (the
+/// vector versions skip the rest of the work, and its stores, once no lane can hit).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LaneHits<const N: usize> {
     /// Lanes the ray hits within `(0, t_max)` (never a `fallback` lane).
     pub hit: u32,
     /// Lanes left to the scalar test: an edge function exactly zero, or no triangle (NaN).
     pub fallback: u32,
     /// Hit distances.
-    pub t: [f32; 4],
+    pub t: [f32; N],
     /// Barycentrics `b0, b1, b2`.
-    pub b: [[f32; 4]; 3],
+    pub b: [[f32; N]; 3],
     /// The unnormalised distance `t * det` and the determinant, to re-check a hit against a
-    /// smaller `t_max` ([`Lanes::accepts`]).
-    pub t_scaled: [f32; 4],
+    /// smaller `t_max` ([`LaneHits::accepts`]).
+    pub t_scaled: [f32; N],
     /// Determinant (sum of the edge functions).
-    pub det: [f32; 4],
+    pub det: [f32; N],
 }
 
-impl Lanes {
+/// What the four-lane test found.
+pub type Lanes = LaneHits<4>;
+
+impl<const N: usize> Default for LaneHits<N> {
+    fn default() -> Self {
+        LaneHits {
+            hit: 0,
+            fallback: 0,
+            t: [0.0; N],
+            b: [[0.0; N]; 3],
+            t_scaled: [0.0; N],
+            det: [0.0; N],
+        }
+    }
+}
+
+impl<const N: usize> LaneHits<N> {
     /// Whether hit lane `lane` (found with a larger `t_max`) is also a hit within `(0, t_max)`:
     /// the two conditions of the scalar test that depend on `t_max`, evaluated as it does. With
     /// it, testing lanes in order while lowering `t_max` gives exactly the scalar loop's result.

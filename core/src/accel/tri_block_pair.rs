@@ -14,41 +14,13 @@
 //! function from code compiled without it is `unsafe` (the token vouches for the CPU).
 #![allow(unsafe_code)]
 
-use super::tri_block::{test4, Lanes, Ray4, Tri4};
+use super::tri_block::{test4, LaneHits, Lanes, Ray4, Tri4};
 use crate::math::gamma;
 
-/// What the eight-lane test found: lanes 0-3 are block `a`'s, lanes 4-7 block `b`'s. The fields
-/// mean what [`Lanes`]' do; arrays hold meaningful values in `hit` lanes only.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Lanes8 {
-    /// Lanes the ray hits within `(0, t_max)` (never a `fallback` lane).
-    pub hit: u32,
-    /// Lanes left to the scalar test: an edge function exactly zero, or no triangle (NaN).
-    pub fallback: u32,
-    /// Hit distances.
-    pub t: [f32; 8],
-    /// Barycentrics `b0, b1, b2`.
-    pub b: [[f32; 8]; 3],
-    /// The unnormalised distance `t * det`.
-    pub t_scaled: [f32; 8],
-    /// Determinant.
-    pub det: [f32; 8],
-}
+/// What the eight-lane test found: lanes 0-3 are block `a`'s, lanes 4-7 block `b`'s.
+pub type Lanes8 = LaneHits<8>;
 
-impl Lanes8 {
-    /// Whether hit lane `lane` (found with a larger `t_max`) is also a hit within `(0, t_max)`,
-    /// as [`Lanes::accepts`].
-    #[inline(always)]
-    pub fn accepts(&self, lane: usize, t_max: f32) -> bool {
-        let (ts, det) = (self.t_scaled[lane], self.det[lane]);
-        let beyond = if det < 0.0 {
-            ts < t_max * det
-        } else {
-            ts > t_max * det
-        };
-        !beyond && self.t[lane] < t_max
-    }
-
+impl LaneHits<8> {
     /// The two four-lane results side by side.
     pub fn join(a: &Lanes, b: &Lanes) -> Lanes8 {
         let cat = |x: &[f32; 4], y: &[f32; 4]| {

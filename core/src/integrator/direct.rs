@@ -10,8 +10,9 @@
 //! (a delta light for BSDF sampling, a delta BSDF for emitter sampling) leaves it to the other.
 use super::mis::Heuristic;
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
+use super::unweighted_hit::cast_unweighted;
 use crate::light::{emission_along, sample_light, VertexSelection};
-use crate::math::{Norm, Ray};
+use crate::math::Ray;
 use crate::sampling::{Sampler, Stage};
 use crate::scene::Scene;
 use crate::Color;
@@ -49,24 +50,15 @@ impl DirectIntegrator {
         probe: &mut P,
     ) -> Color {
         let mut result = Color::ZERO;
-        let hit = probe.intersect(scene, &ray);
-        probe.ray(RayKind::Camera);
-        probe.hit(scene, hit.as_ref(), ray.d);
-        if !self.hide_emitters {
-            emission_along(
-                scene,
-                ray.o,
-                ray.d.unit(),
-                hit.as_ref(),
-                false,
-                None,
-                probe,
-                |probe, le, _| {
-                    result += le;
-                    probe.emission(le, 1.0, le);
-                },
-            );
-        }
+        let hit = cast_unweighted(
+            scene,
+            &ray,
+            RayKind::Camera,
+            Color::ONE,
+            !self.hide_emitters,
+            &mut result,
+            probe,
+        );
         let Some(si) = hit else {
             probe.end(PathEnd::Escaped);
             return result;

@@ -7,7 +7,9 @@ mod path_state;
 mod probe;
 mod record;
 mod reuse;
+mod reuse_halves;
 mod simple;
+mod unweighted_hit;
 mod visibility;
 mod whitted;
 

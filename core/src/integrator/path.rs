@@ -17,8 +17,13 @@
 //!   lights, delta BSDF components).
 //! - `path_mis` / `path`: the same two strategies combined by the power heuristic (Tessera's own
 //!   parameter `heuristic`, string power|balance, default power).
+//!
+//! The loop is written as steps ([`PathIntegrator::arrive`], [`PathIntegrator::scatter`],
+//! [`PathIntegrator::roulette`], [`alive`]) over a [`PathState`]: [`PathIntegrator::follow`]
+//! runs them until the path ends. Path reuse (`reuse_halves.rs`) composes the same steps into
+//! the two halves of its group estimator.
 use super::mis::Heuristic;
-use super::path_state::{PathState, Prefix, Prev, PREFIX, SUFFIX, WHOLE};
+use super::path_state::{PathState, Prev};
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
 use crate::geometry::Interaction;
 use crate::light::{emission_along, sample_light, VertexSelection};
@@ -41,10 +46,14 @@ pub enum Strategy {
     Mis,
 }
 
-const BSDF: u8 = 0;
-const EMITTER: u8 = 1;
-const HALF: u8 = 2;
-const MIS: u8 = 3;
+/// [`Strategy::Bsdf`]'s number, the loop's const parameter `ST` (see [`Strategy::of`]).
+pub(super) const BSDF: u8 = 0;
+/// [`Strategy::Emitter`]'s number.
+pub(super) const EMITTER: u8 = 1;
+/// [`Strategy::Half`]'s number.
+pub(super) const HALF: u8 = 2;
+/// [`Strategy::Mis`]'s number.
+pub(super) const MIS: u8 = 3;
 
 impl Strategy {
     /// The strategy numbered `n` (a const parameter of the path loop).
@@ -96,7 +105,7 @@ impl PathIntegrator {
     fn hit_weight<P: Probe>(
         &self,
         strategy: Strategy,
-        prev: Option<Prev>,
+        prev: Option<&Prev>,
         light_pdf: f32,
         probe: &mut P,
     ) -> f32 {
@@ -135,6 +144,7 @@ impl PathIntegrator {
     ///   hit (only delta lights) or that has weight zero (`path_ems`, non-delta bounce). The
     ///   last segment is the last use of the sampler in this sample, and each sample has its
     ///   own stream, so no other value moves.
+    #[inline]
     pub fn li_probed<S: Sampler, P: Probe>(
         &self,
         scene: &Scene,
@@ -142,52 +152,75 @@ impl PathIntegrator {
         sampler: &mut S,
         probe: &mut P,
     ) -> Color {
-        self.run::<WHOLE, S, P>(
-            scene,
-            PathState::start(ray),
-            sampler,
-            probe,
-            &mut Prefix::default(),
-        )
-    }
-
-    /// The loop in mode `MODE` (see [`WHOLE`]) for this integrator's strategy.
-    #[inline(always)]
-    pub(super) fn run<const MODE: u8, S: Sampler, P: Probe>(
-        &self,
-        scene: &Scene,
-        state: PathState,
-        sampler: &mut S,
-        probe: &mut P,
-        prefix: &mut Prefix,
-    ) -> Color {
         // One loop per strategy, so that the strategy's tests fold away in each.
         match self.strategy {
-            Strategy::Bsdf => self.trace::<BSDF, MODE, S, P>(scene, state, sampler, probe, prefix),
-            Strategy::Emitter => {
-                self.trace::<EMITTER, MODE, S, P>(scene, state, sampler, probe, prefix)
-            }
-            Strategy::Half => self.trace::<HALF, MODE, S, P>(scene, state, sampler, probe, prefix),
-            Strategy::Mis => self.trace::<MIS, MODE, S, P>(scene, state, sampler, probe, prefix),
+            Strategy::Bsdf => self.trace::<BSDF, S, P>(scene, ray, sampler, probe),
+            Strategy::Emitter => self.trace::<EMITTER, S, P>(scene, ray, sampler, probe),
+            Strategy::Half => self.trace::<HALF, S, P>(scene, ray, sampler, probe),
+            Strategy::Mis => self.trace::<MIS, S, P>(scene, ray, sampler, probe),
         }
     }
 
-    /// Casts `ray` (segment `depth` of the path) and adds the light it finds to `result`:
-    /// the hit, or `Err` when a hidden emitter ends the path.
+    /// [`PathIntegrator::li_probed`] for the strategy numbered `ST` (see [`Strategy::of`]): a
+    /// path from the camera ray, followed until it ends.
     #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
-    fn arrive<const ST: u8, P: Probe>(
+    fn trace<const ST: u8, S: Sampler, P: Probe>(
         &self,
         scene: &Scene,
-        ray: &Ray,
-        depth: u32,
-        prev: Option<Prev>,
-        throughput: Color,
+        ray: Ray,
+        sampler: &mut S,
+        probe: &mut P,
+    ) -> Color {
+        let mut result = Color::ZERO;
+        if self.max_depth == Some(0) {
+            probe.end(PathEnd::MaxDepth);
+            return result;
+        }
+        let mut path = PathState::start(ray);
+        self.follow::<ST, S, P, _>(scene, &mut path, &mut result, sampler, probe, |t| t);
+        result
+    }
+
+    /// The path loop from `path` (whose ray is not cast yet) until the path ends, adding the
+    /// light found to `result`: at each vertex the ray reaches, the light it hits, emitter
+    /// sampling, BSDF sampling of the next ray and Russian roulette. `roulette_sees` maps the
+    /// throughput to the one roulette's survival probability is computed from (the identity
+    /// for a whole path).
+    #[inline(always)]
+    pub(super) fn follow<const ST: u8, S: Sampler, P: Probe, R: Fn(Color) -> Color>(
+        &self,
+        scene: &Scene,
+        path: &mut PathState,
+        result: &mut Color,
+        sampler: &mut S,
+        probe: &mut P,
+        roulette_sees: R,
+    ) {
+        while let Some(si) = self.arrive::<ST, P>(scene, path, result, probe) {
+            if !self.scatter::<ST, S, P>(scene, &si, path, result, sampler, probe)
+                || !self.roulette(path, sampler, probe, &roulette_sees)
+                || !alive(path, probe)
+            {
+                break;
+            }
+        }
+    }
+
+    /// Casts the path's ray and adds the light it hits to `result`, weighted against emitter
+    /// sampling at the vertex it left: the vertex reached, or `None` when the path ends (the
+    /// ray escaped, or a hidden emitter ends it).
+    #[inline(always)]
+    pub(super) fn arrive<const ST: u8, P: Probe>(
+        &self,
+        scene: &Scene,
+        path: &PathState,
         result: &mut Color,
         probe: &mut P,
-    ) -> Result<Option<Interaction>, ()> {
+    ) -> Option<Interaction> {
         let strategy = Strategy::of(ST);
         let features = &scene.features;
+        let (ray, throughput, depth) = (&path.ray, path.throughput, path.depth);
+        let prev = path.prev.as_ref();
         let visible = !(depth == 0 && self.hide_emitters);
         let hit = probe.intersect(scene, ray);
         probe.ray(if depth == 0 {
@@ -203,7 +236,7 @@ impl PathIntegrator {
                 .is_some_and(|si| scene.shapes[si.shape as usize].emitter.is_some())
         {
             probe.end(PathEnd::HiddenEmitter);
-            return Err(());
+            return None;
         }
         // path_ems gives light found after a vertex that sampled emitters weight zero.
         let weighted = !(strategy == Strategy::Emitter && prev.is_some_and(|p| p.nee));
@@ -217,7 +250,7 @@ impl PathIntegrator {
                 d,
                 hit.as_ref(),
                 with_pdf,
-                prev.as_ref().and_then(|p| p.sel.as_ref()),
+                prev.and_then(|p| p.sel.as_ref()),
                 probe,
                 |probe, le, light_pdf| {
                     let w = self.hit_weight(strategy, prev, light_pdf, probe);
@@ -227,171 +260,134 @@ impl PathIntegrator {
                 },
             );
         }
-        Ok(hit)
+        if hit.is_none() {
+            probe.end(PathEnd::Escaped);
+        }
+        hit
     }
 
-    /// [`PathIntegrator::li_probed`] for the strategy numbered `ST` (see [`Strategy::of`]).
+    /// At vertex `si`, which the path's ray reached: emitter sampling (adding its light to
+    /// `result`), then BSDF sampling of the next ray, which `path` moves on to. False when the
+    /// path ends here (depth limit, nothing left to find ahead, or no direction).
     #[inline(always)]
-    fn trace<const ST: u8, const MODE: u8, S: Sampler, P: Probe>(
+    pub(super) fn scatter<const ST: u8, S: Sampler, P: Probe>(
         &self,
         scene: &Scene,
-        state: PathState,
+        si: &Interaction,
+        path: &mut PathState,
+        result: &mut Color,
         sampler: &mut S,
         probe: &mut P,
-        prefix: &mut Prefix,
-    ) -> Color {
+    ) -> bool {
         let strategy = Strategy::of(ST);
-        let max_depth = self.max_depth.unwrap_or(u32::MAX);
-        if max_depth == 0 {
-            probe.end(PathEnd::MaxDepth);
-            return Color::ZERO;
-        }
         let features = &scene.features;
-        let mut result = Color::ZERO;
-        let PathState {
-            mut ray,
-            mut throughput,
-            // Product of the relative indices crossed: radiance scaling at refractions is
-            // undone for Russian roulette, as in Mitsuba 3.
-            mut eta,
-            mut depth,
-            mut prev,
-            rr_scale,
-            mut pending,
-        } = state;
-        loop {
-            let resumed = if MODE == SUFFIX { pending.take() } else { None };
-            let hit = match resumed {
-                Some(si) => Some(si),
-                None => {
-                    let hit = self.arrive::<ST, P>(
-                        scene,
-                        &ray,
-                        depth,
-                        prev,
-                        throughput,
-                        &mut result,
-                        probe,
-                    );
-                    match hit {
-                        Ok(hit) => hit,
-                        Err(()) => break,
+        let max_depth = self.max_depth.unwrap_or(u32::MAX);
+        let depth = path.depth;
+        if depth + 1 >= max_depth {
+            probe.end(PathEnd::MaxDepth);
+            return false;
+        }
+        let shape = &scene.shapes[si.shape as usize];
+        let bsdf = &scene.bsdfs[shape.bsdf as usize];
+        let traits = scene.bsdf_traits(shape.bsdf);
+        let wi = si.frame.to_local(si.wi);
+        let nee = strategy != Strategy::Bsdf && features.has_emitters && traits.has_smooth;
+        let sel = if nee {
+            VertexSelection::new(scene.light_bounds(), si, bsdf, wi)
+        } else {
+            None
+        };
+        if nee {
+            let want_pdf = strategy == Strategy::Mis;
+            sampler.start_stage(depth, Stage::Light);
+            if let Some(ls) =
+                sample_light(scene, si, bsdf, wi, sampler, want_pdf, sel.as_ref(), probe)
+            {
+                let w = match (ls.delta, strategy) {
+                    (true, _) | (_, Strategy::Emitter) => 1.0,
+                    (_, Strategy::Half) => 0.5,
+                    _ => {
+                        probe.mis_weight();
+                        self.heuristic.weight(ls.light_pdf, ls.bsdf_pdf)
                     }
-                }
-            };
-            let Some(si) = hit else {
-                probe.end(PathEnd::Escaped);
-                break;
-            };
-            if MODE == PREFIX && depth == 1 {
-                let state = PathState {
-                    ray,
-                    throughput,
-                    eta,
-                    depth,
-                    prev,
-                    rr_scale: Color::ONE,
-                    pending: Some(si),
                 };
-                prefix.y = Some(state);
-                break;
-            }
-            let shape = &scene.shapes[si.shape as usize];
-            if depth + 1 >= max_depth {
-                probe.end(PathEnd::MaxDepth);
-                break;
-            }
-            let bsdf = &scene.bsdfs[shape.bsdf as usize];
-            let traits = scene.bsdf_traits(shape.bsdf);
-            let wi = si.frame.to_local(si.wi);
-            let nee = strategy != Strategy::Bsdf && features.has_emitters && traits.has_smooth;
-            let sel = if nee {
-                VertexSelection::new(scene.light_bounds(), &si, bsdf, wi)
-            } else {
-                None
-            };
-            if nee {
-                let want_pdf = strategy == Strategy::Mis;
-                sampler.start_stage(depth, Stage::Light);
-                if let Some(ls) =
-                    sample_light(scene, &si, bsdf, wi, sampler, want_pdf, sel.as_ref(), probe)
-                {
-                    let w = match (ls.delta, strategy) {
-                        (true, _) | (_, Strategy::Emitter) => 1.0,
-                        (_, Strategy::Half) => 0.5,
-                        _ => {
-                            probe.mis_weight();
-                            self.heuristic.weight(ls.light_pdf, ls.bsdf_pdf)
-                        }
-                    };
-                    let c = throughput * ls.value * w;
-                    result += c;
-                    probe.light(&ls, w, c);
-                }
-            }
-            // The next vertex is the last: it only adds the light its ray hits.
-            let last = depth + 2 >= max_depth;
-            if last && !features.has_hittable_emitters {
-                probe.end(PathEnd::NothingAhead);
-                break;
-            }
-            if MODE == PREFIX && depth == 0 && traits.has_smooth {
-                prefix.x = Some((si, shape.bsdf, wi));
-            }
-            sampler.start_stage(depth, Stage::Bsdf);
-            let (u1, u2) = traits.draw_sample_inputs(sampler);
-            let Some(bs) = bsdf.sample(wi, u1, u2, si.uv) else {
-                probe.bsdf_sample(None, Vec3::ZERO, throughput);
-                probe.end(PathEnd::BsdfSampleFailed);
-                break;
-            };
-            let nee_next = nee && !bs.delta && features.has_hittable_emitters;
-            if last && strategy == Strategy::Emitter && nee_next {
-                probe.bsdf_sample(Some(&bs), si.frame.to_world(bs.wo), throughput * bs.weight);
-                probe.end(PathEnd::NothingAhead);
-                break;
-            }
-            if MODE == PREFIX {
-                prefix.delta = bs.delta;
-            }
-            throughput *= bs.weight;
-            eta *= bs.eta;
-            prev = Some(Prev {
-                p: si.p,
-                pdf: bs.pdf,
-                nee: nee_next,
-                sel,
-            });
-            let wo = si.frame.to_world(bs.wo);
-            probe.bsdf_sample(Some(&bs), wo, throughput);
-            ray = si.spawn_ray(wo);
-            depth += 1;
-            if depth >= self.rr_depth {
-                let seen = if MODE == SUFFIX {
-                    throughput * rr_scale
-                } else {
-                    throughput
-                };
-                let q = (seen.max_element() * eta * eta).min(0.95);
-                // The roulette belongs to the bounce just taken.
-                sampler.start_stage(depth - 1, Stage::Roulette);
-                let survived = sampler.next_1d() < q;
-                if survived {
-                    throughput /= q;
-                }
-                probe.roulette(q, survived, throughput);
-                if !survived {
-                    probe.end(PathEnd::Roulette);
-                    break;
-                }
-            }
-            // A prefix's second vertex is a sample for its neighbours too, whatever its weight.
-            let zero = throughput == Color::ZERO && !(MODE == PREFIX && depth == 1);
-            if zero || !throughput.is_finite() {
-                probe.end(PathEnd::ZeroThroughput);
-                break;
+                let c = path.throughput * ls.value * w;
+                *result += c;
+                probe.light(&ls, w, c);
             }
         }
-        result
+        // The next vertex is the last: it only adds the light its ray hits.
+        let last = depth + 2 >= max_depth;
+        if last && !features.has_hittable_emitters {
+            probe.end(PathEnd::NothingAhead);
+            return false;
+        }
+        sampler.start_stage(depth, Stage::Bsdf);
+        let (u1, u2) = traits.draw_sample_inputs(sampler);
+        let Some(bs) = bsdf.sample(wi, u1, u2, si.uv) else {
+            probe.bsdf_sample(None, Vec3::ZERO, path.throughput);
+            probe.end(PathEnd::BsdfSampleFailed);
+            return false;
+        };
+        let nee_next = nee && !bs.delta && features.has_hittable_emitters;
+        if last && strategy == Strategy::Emitter && nee_next {
+            let weighted = path.throughput * bs.weight;
+            probe.bsdf_sample(Some(&bs), si.frame.to_world(bs.wo), weighted);
+            probe.end(PathEnd::NothingAhead);
+            return false;
+        }
+        path.throughput *= bs.weight;
+        path.eta *= bs.eta;
+        path.prev = Some(Prev {
+            p: si.p,
+            pdf: bs.pdf,
+            nee: nee_next,
+            delta: bs.delta,
+            sel,
+        });
+        let wo = si.frame.to_world(bs.wo);
+        probe.bsdf_sample(Some(&bs), wo, path.throughput);
+        path.ray = si.spawn_ray(wo);
+        path.depth += 1;
+        true
     }
+
+    /// Russian roulette for the bounce just taken, from `rr_depth` on: survival probability
+    /// min(max of `roulette_sees(throughput)` * eta^2, 0.95), the throughput divided by it on
+    /// survival. False when the path ends.
+    #[inline(always)]
+    pub(super) fn roulette<S: Sampler, P: Probe>(
+        &self,
+        path: &mut PathState,
+        sampler: &mut S,
+        probe: &mut P,
+        roulette_sees: impl Fn(Color) -> Color,
+    ) -> bool {
+        if path.depth < self.rr_depth {
+            return true;
+        }
+        let q = (roulette_sees(path.throughput).max_element() * path.eta * path.eta).min(0.95);
+        // The roulette belongs to the bounce just taken.
+        sampler.start_stage(path.depth - 1, Stage::Roulette);
+        let survived = sampler.next_1d() < q;
+        if survived {
+            path.throughput /= q;
+        }
+        probe.roulette(q, survived, path.throughput);
+        if !survived {
+            probe.end(PathEnd::Roulette);
+        }
+        survived
+    }
+}
+
+/// Whether the path still carries light: false (the path ends) once its throughput is zero or
+/// not finite.
+#[inline(always)]
+pub(super) fn alive<P: Probe>(path: &PathState, probe: &mut P) -> bool {
+    let alive = path.throughput != Color::ZERO && path.throughput.is_finite();
+    if !alive {
+        probe.end(PathEnd::ZeroThroughput);
+    }
+    alive
 }

@@ -6,11 +6,12 @@
 //! it can apply: `max_depth` of 3 or more (a second vertex that reflects light) and `rr_depth` of
 //! 2 or more (no roulette before the second vertex).
 //!
-//! The estimator. Each pixel `k` traces its path as usual up to its second vertex `y_k`, counting
-//! everything found on the way (emission at `x_k` and `y_k`, emitter sampling at `x_k`). Where
+//! The estimator. Each pixel `k` traces its path as usual up to its second vertex `y_k` (the
+//! prefix, `reuse_halves.rs`, made of the path tracer's own steps), counting everything found on
+//! the way (emission at `x_k` and `y_k`, emitter sampling at `x_k`). Where
 //! `y_k` is Lambertian ([`crate::bsdf::Bsdf::is_lambertian`]) and was reached by a smooth bounce,
 //! the light it reflects, `L_k`, is the same toward every direction on the side `x_k` is on; the
-//! rest of the path estimates it once (throughput 1 from `y_k`, Russian roulette still seeing
+//! rest of the path (the suffix) estimates it once (throughput 1 from `y_k`, Russian roulette still seeing
 //! the whole path's throughput). Pixel `i` then adds, for each such `y_j` seen from its side,
 //!
 //! `f_i(x_i -> y_j) G(x_i, y_j) V(x_i, y_j) L_j / sum_m p_m(y_j)`,
@@ -26,9 +27,10 @@
 //! The cost: up to 56 shadow rays per group of eight (each pair of first and second vertices,
 //! seven per pixel), eight BSDF densities and evaluations per second vertex. Neighbouring pixels' noise becomes
 //! correlated; each pixel's error does not grow.
-use super::path::PathIntegrator;
-use super::path_state::{PathState, Prefix, PREFIX, SUFFIX};
+use super::path::{PathIntegrator, Strategy, BSDF, EMITTER, HALF, MIS};
+use super::path_state::PathState;
 use super::probe::{Probe, RayKind};
+use super::reuse_halves::Prefix;
 use crate::geometry::Interaction;
 use crate::math::{offset_ray_origin, Ray};
 use crate::sampling::Sampler;
@@ -75,32 +77,52 @@ impl PathIntegrator {
             }
             return;
         }
+        // One estimator per strategy, so that the strategy's tests fold away in each.
+        match self.strategy {
+            Strategy::Bsdf => self.share::<BSDF, S, P>(scene, rays, samplers, probe, out),
+            Strategy::Emitter => self.share::<EMITTER, S, P>(scene, rays, samplers, probe, out),
+            Strategy::Half => self.share::<HALF, S, P>(scene, rays, samplers, probe, out),
+            Strategy::Mis => self.share::<MIS, S, P>(scene, rays, samplers, probe, out),
+        }
+    }
+
+    /// The group estimator for the strategy numbered `ST`: each pixel's prefix, then the
+    /// suffixes (from a throughput of 1 at a shared second vertex), then each shared vertex's
+    /// light gathered by every pixel. Adds to `out[k]` (zero on entry).
+    #[inline(always)]
+    fn share<const ST: u8, S: Sampler, P: Probe>(
+        &self,
+        scene: &Scene,
+        rays: &[Option<Ray>],
+        samplers: &mut [S],
+        probe: &mut P,
+        out: &mut [Color],
+    ) {
+        let n = rays.len().min(GROUP);
         let mut pre = [Prefix::default(); GROUP];
         for k in 0..n {
             let Some(ray) = rays[k] else { continue };
-            let start = PathState::start(ray);
-            out[k] = self.run::<PREFIX, S, P>(scene, start, &mut samplers[k], probe, &mut pre[k]);
+            out[k] = self.prefix::<ST, S, P>(scene, ray, &mut samplers[k], probe, &mut pre[k]);
         }
         // The second vertices whose reflected light is shared, and what they reflect.
         let mut shared: [Option<(Interaction, Color)>; GROUP] = [None; GROUP];
         for k in 0..n {
-            let Some(state) = pre[k].y else { continue };
-            let Some(y) = state.pending else { continue };
+            let Some((state, y)) = pre[k].y else { continue };
             let lambertian = scene
                 .bsdf_traits(scene.shapes[y.shape as usize].bsdf)
                 .lambertian;
-            let mut none = Prefix::default();
             if pre[k].x.is_some() && !pre[k].delta && lambertian {
                 let from_y = PathState {
                     throughput: Color::ONE,
-                    rr_scale: state.throughput,
                     ..state
                 };
-                let l = self.run::<SUFFIX, S, P>(scene, from_y, &mut samplers[k], probe, &mut none);
+                let rr_scale = state.throughput;
+                let l =
+                    self.suffix::<ST, S, P>(scene, from_y, &y, rr_scale, &mut samplers[k], probe);
                 shared[k] = Some((y, l));
             } else {
                 out[k] +=
-                    self.run::<SUFFIX, S, P>(scene, state, &mut samplers[k], probe, &mut none);
+                    self.suffix::<ST, S, P>(scene, state, &y, Color::ONE, &mut samplers[k], probe);
             }
         }
         for (j, s) in shared.iter().enumerate().take(n) {

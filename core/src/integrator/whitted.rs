@@ -8,8 +8,9 @@
 //! one. Light of the emitters a ray meets counts at every vertex (the camera's included), as
 //! the recursion adds `Le` at each hit.
 use super::probe::{PathEnd, Probe, RayKind};
-use crate::light::{emission_along, sample_light};
-use crate::math::{Norm, Ray};
+use super::unweighted_hit::cast_unweighted;
+use crate::light::sample_light;
+use crate::math::Ray;
 use crate::sampling::{Sampler, Stage};
 use crate::scene::Scene;
 use crate::Color;
@@ -39,22 +40,7 @@ impl WhittedIntegrator {
         let mut throughput = Color::ONE;
         let mut kind = RayKind::Camera;
         for depth in 0..MAX_BOUNCES {
-            let hit = probe.intersect(scene, &ray);
-            probe.ray(kind);
-            probe.hit(scene, hit.as_ref(), ray.d);
-            emission_along(
-                scene,
-                ray.o,
-                ray.d.unit(),
-                hit.as_ref(),
-                false,
-                None,
-                probe,
-                |probe, le, _| {
-                    result += throughput * le;
-                    probe.emission(le, 1.0, throughput * le);
-                },
-            );
+            let hit = cast_unweighted(scene, &ray, kind, throughput, true, &mut result, probe);
             let Some(si) = hit else {
                 probe.end(PathEnd::Escaped);
                 return result;

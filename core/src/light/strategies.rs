@@ -80,7 +80,7 @@ pub fn sample_light<S: Sampler, P: Probe>(
 /// the density emitter sampling from `from` has for that direction (selection included), or 0
 /// when `with_pdf` is false (callers that do not weigh strategies skip its cost). The selection
 /// probability is `sel`'s, the selection of the vertex at `from`, else the scene's.
-#[inline]
+#[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub fn emission_along<P: Probe>(
     scene: &Scene,
