@@ -43,8 +43,13 @@ fn square(p: DVec3, origin: DVec3, axis: DVec3, length: f64) -> (Vec2, DVec3) {
         phi += std::f64::consts::TAU;
     }
     let n = (v - z * h).normalize();
+    // The point is rounded to f32 2000 from the origin (steps of 1e-4): its height may fall
+    // that far outside the cylinder's ends.
     (
-        Vec2::new((phi / std::f64::consts::TAU) as f32, (h / length) as f32),
+        Vec2::new(
+            (phi / std::f64::consts::TAU) as f32,
+            (h / length).clamp(0.0, 1.0) as f32,
+        ),
         n,
     )
 }
