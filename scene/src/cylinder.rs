@@ -7,6 +7,7 @@ use crate::shapes::{Geometry, ShapePlugin, RADIUS, TO_WORLD};
 use crate::util::Result;
 use crate::xml::Object;
 use glam::{DMat4, DVec3};
+use tessera_core::math::Norm;
 use tessera_core::geometry::{Cylinder, ShapeKind};
 
 const P0: Param = Param::new(
@@ -60,7 +61,7 @@ fn build_cylinder(obj: &Object) -> Result<Geometry> {
     let radius = f64::from(RADIUS.read_f32(obj)?);
     let tf = obj.transform(TO_WORLD.name, DMat4::IDENTITY)?;
     let d = p1 - p0;
-    let length = d.length();
+    let length = d.norm();
     if !(length > 0.0 && length.is_finite()) {
         return Err(obj.error("the cylinder's p0 and p1 must differ"));
     }
@@ -71,7 +72,7 @@ fn build_cylinder(obj: &Object) -> Result<Geometry> {
     let cy = tf.transform_vector3(t * radius);
     let cz = tf.transform_vector3(n * length);
     let origin = tf.transform_point3(p0);
-    let (r, ry, len) = (cx.length(), cy.length(), cz.length());
+    let (r, ry, len) = (cx.norm(), cy.norm(), cz.norm());
     let tol = 1e-5;
     if !(r > 0.0 && len > 0.0 && r.is_finite() && len.is_finite() && origin.is_finite())
         || (r - ry).abs() > tol * r

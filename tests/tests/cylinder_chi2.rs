@@ -8,13 +8,14 @@
 //! must be a density of the square (integral 1). Control: the same samples against the density
 //! of a cylinder whose radius is 2% larger must fail.
 use glam::{DVec3, Vec2};
+use tessera_core::math::Norm;
 use tessera_core::geometry::{Cylinder, Shape, ShapeKind};
 use tessera_lab::stats::{sidak_alpha, PlaneChi2};
 
 const N_TESTS: usize = 3;
 
 fn cylinder(origin: DVec3, axis: DVec3, radius: f64, length: f64) -> Shape {
-    let z = axis.normalize();
+    let z = axis.unit();
     let x = z.any_orthonormal_vector();
     let y = z.cross(x);
     Shape {
@@ -32,9 +33,9 @@ fn cylinder(origin: DVec3, axis: DVec3, radius: f64, length: f64) -> Shape {
 
 /// (angle / 2 pi, height / length) of `p`, in a frame of the test's own.
 fn square(p: DVec3, origin: DVec3, axis: DVec3, length: f64) -> (Vec2, DVec3) {
-    let z = axis.normalize();
+    let z = axis.unit();
     let x = if z.x.abs() < 0.9 { DVec3::X } else { DVec3::Y };
-    let x = (x - z * z.dot(x)).normalize();
+    let x = (x - z * z.dot(x)).unit();
     let y = z.cross(x);
     let v = p - origin;
     let h = v.dot(z);
@@ -42,7 +43,7 @@ fn square(p: DVec3, origin: DVec3, axis: DVec3, length: f64) -> (Vec2, DVec3) {
     if phi < 0.0 {
         phi += std::f64::consts::TAU;
     }
-    let n = (v - z * h).normalize();
+    let n = (v - z * h).unit();
     // The point is rounded to f32 2000 from the origin (steps of 1e-4): its height may fall
     // that far outside the cylinder's ends.
     (
@@ -76,9 +77,9 @@ fn run(r: DVec3, claimed_radius: f64, seed: u64) -> tessera_lab::stats::Chi2Resu
         },
         |q| {
             // The density of the square at q, by the shape's own pdf_from.
-            let z = axis.normalize();
+            let z = axis.unit();
             let x = if z.x.abs() < 0.9 { DVec3::X } else { DVec3::Y };
-            let x = (x - z * z.dot(x)).normalize();
+            let x = (x - z * z.dot(x)).unit();
             let y = z.cross(x);
             let phi = f64::from(q.x) * std::f64::consts::TAU;
             let n = x * phi.cos() + y * phi.sin();

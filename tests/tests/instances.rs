@@ -49,14 +49,15 @@ fn alpha(comparisons: usize) -> f64 {
 
 #[test]
 fn instances_and_cylinders_match_mitsuba() {
-    let cases: [(&str, (&str, &str), (&str, &str)); 3] = [
-        ("instances", ("rz", "35"), ("rz", "38")),
-        ("instances", ("sy", "0.6"), ("sy", "0.63")),
-        ("cylinder", ("r", "0.6"), ("r", "0.624")),
+    // Scene, and the control's change of one of its defaults (rz 35, sy 0.6, r 0.6).
+    let cases = [
+        ("instances", ("rz", "38")),
+        ("instances", ("sy", "0.63")),
+        ("cylinder", ("r", "0.624")),
     ];
     let a = alpha(2);
     let mut failures = Vec::new();
-    for (i, (name, _, control)) in cases.iter().enumerate() {
+    for (i, (name, control)) in cases.iter().enumerate() {
         let path = dir().join("refs").join(format!("{name}.exr"));
         let reference = tessera::image_io::read_image(&path)
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()));

@@ -6,7 +6,7 @@
 //! The loader (`scene/src/shapes/cylinder.rs`) declares the parameters. The intersection is
 //! solved in f64 in the cylinder's own frame, so hits stay accurate far from the origin, from
 //! inside and at grazing angles; the hit point is then projected onto the surface.
-use crate::math::{gamma, Aabb, Norm, Ray};
+use crate::math::{gamma, sqrt_f64, Aabb, Norm, Ray};
 use glam::{DVec3, Vec2, Vec3};
 
 /// A cylinder in world space (rigid frame, uniform radius).
@@ -62,7 +62,7 @@ impl Cylinder {
             return None;
         }
         // The cancellation-free pair of roots.
-        let q = -0.5 * (b + libm::copysign(libm::sqrt(disc), b));
+        let q = -0.5 * (b + libm::copysign(sqrt_f64(disc), b));
         let (mut t0, mut t1) = (q / a, if q != 0.0 { c / q } else { q / a });
         if t0 > t1 {
             core::mem::swap(&mut t0, &mut t1);
@@ -88,7 +88,7 @@ impl Cylinder {
     #[inline]
     pub fn project(&self, p: Vec3) -> (Vec3, Vec3, DVec3) {
         let l = self.local_point(p.as_dvec3());
-        let r = libm::sqrt(l.x * l.x + l.y * l.y);
+        let r = sqrt_f64(l.x * l.x + l.y * l.y);
         let (c, s) = if r > 0.0 { (l.x / r, l.y / r) } else { (1.0, 0.0) };
         let z = l.z.clamp(0.0, self.length);
         let (w, err) = self.point(c, s, z);
