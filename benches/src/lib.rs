@@ -152,6 +152,8 @@ pub fn mesh_parts(positions: Vec<Vec3>, indices: Vec<[u32; 3]>) -> SceneParts {
         camera: Camera::perspective(Transform::IDENTITY, 4, 4, 40.0, FovAxis::X, 0.01, 1e4),
         filter: Filter::Box,
         light_selection: Default::default(),
+        groups: Vec::new(),
+        instances: Vec::new(),
     }
 }
 

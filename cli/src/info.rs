@@ -100,17 +100,33 @@ pub fn report(file: &str, loaded: &LoadedScene, seconds: f64) -> String {
     row("sampler", s.sampler.name().to_string());
     row("filter", s.filter.name().to_string());
     row("shapes", by_plugin(&loaded.names.shapes));
-    let (mut tris, mut spheres, mut disks) = (0usize, 0usize, 0usize);
+    let (mut tris, mut spheres, mut disks, mut cylinders) = (0usize, 0usize, 0usize, 0usize);
     for p in &s.prims {
         match p {
             Prim::Triangle { .. } => tris += 1,
             Prim::Sphere { .. } => spheres += 1,
             Prim::Disk { .. } => disks += 1,
+            Prim::Cylinder { .. } => cylinders += 1,
+            Prim::Instance { .. } => {}
         }
     }
+    let cyl = match cylinders {
+        0 => String::new(),
+        n => format!(", {n} cylinders"),
+    };
+    let inst = match s.instances.len() {
+        0 => "no instances".to_string(),
+        n => {
+            let inner: usize = s.groups.iter().map(|g| g.prims.len()).sum();
+            format!(
+                "{n} instances of {} shape groups ({inner} primitives in the groups)",
+                s.groups.len()
+            )
+        }
+    };
     row(
         "primitives",
-        format!("{tris} triangles, {spheres} spheres, {disks} disks; no instances"),
+        format!("{tris} triangles, {spheres} spheres, {disks} disks{cyl}; {inst}"),
     );
     row("bsdfs", by_plugin(&loaded.names.bsdfs));
     row("emitters", by_plugin(&loaded.names.emitters));
@@ -157,6 +173,21 @@ pub fn report(file: &str, loaded: &LoadedScene, seconds: f64) -> String {
             loaded.accel_seconds
         ),
     );
+    if !s.instances.is_empty() {
+        let n = s.instances.len();
+        let groups: usize = s.groups.iter().map(|g| g.memory_bytes()).sum();
+        row(
+            "instancing",
+            format!(
+                "{n} instances, {} bytes each (their record {} bytes, and their share of the top \
+                 level: primitive record, block lane, nodes); {} shape groups, {} each on average",
+                (m.nodes + m.triangles + m.prims + m.instances) / n,
+                m.instances / n,
+                s.groups.len(),
+                mib(groups / s.groups.len().max(1))
+            ),
+        );
+    }
     row("load", format!("{seconds:.3} s in all"));
     row("warnings", loaded.warnings.len().to_string());
     for w in &loaded.warnings {

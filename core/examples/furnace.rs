@@ -67,6 +67,8 @@ fn main() {
         camera,
         filter: Filter::Box,
         light_selection: LightSelection::Power,
+        groups: Vec::new(),
+        instances: Vec::new(),
     };
     let scene = Scene::new(parts).expect("the parts refer to each other correctly");
     let integrator = Integrator::Path(PathIntegrator::default());

@@ -1,13 +1,15 @@
 //! The flat, read-only scene: shapes, primitives under a BVH, BSDFs, emitters, camera.
 use crate::accel::tri_block::Ray4;
+use crate::accel::level::{Level, LevelError, LevelPrims, NOT_A_TRIANGLE};
 use crate::accel::{AnyLeaves, BuildParams, Bvh8, ClosestLeaves, TriBlocks};
 use crate::bsdf::{Bsdf, BsdfTraits};
 use crate::camera::{Camera, Filter};
 use crate::emitter::{Emitter, EmitterCtx};
-use crate::geometry::{Disk, Hit, Interaction, Prim, Shape, ShapeKind, TriRay};
+use crate::geometry::{Disk, Hit, Instance, Interaction, Prim, Shape, ShapeKind, TriRay};
 use crate::light::{Behind, LightBound, LightSampler, LightSelection};
 use crate::math::{Aabb, Norm, Ray};
 use alloc::vec::Vec;
+use core::cell::Cell;
 use glam::{Vec2, Vec3};
 
 /// What a scene contains, computed once; integrators consult it to skip work a scene does not
@@ -47,6 +49,11 @@ pub struct SceneParts {
     pub filter: Filter,
     /// How emitter sampling picks a light.
     pub light_selection: LightSelection,
+    /// Shape groups: each the indices of its shapes (in object space, without emitters; they
+    /// are drawn only through instances).
+    pub groups: Vec<Vec<u32>>,
+    /// Placed copies of the groups.
+    pub instances: Vec<Instance>,
 }
 
 /// A scene ready to render: built once, then only read (it is `Sync`).
@@ -64,6 +71,11 @@ pub struct Scene {
     pub blocks: TriBlocks,
     /// The 8-wide hierarchy over `prims`; its leaves refer to their first block in `blocks`.
     pub bvh: Bvh8,
+    /// Each shape group's own hierarchy (the bottom level), built once however many instances
+    /// it has.
+    pub groups: Vec<Level>,
+    /// Instances of the groups (the top level's `Prim::Instance` refer to them).
+    pub instances: Vec<Instance>,
     /// Materials.
     pub bsdfs: Vec<Bsdf>,
     /// What each BSDF's sampling reads and whether it has smooth components, by BSDF index
@@ -109,40 +121,56 @@ impl Scene {
 
     /// [`Scene::new`] with a chosen BVH leaf-size trade-off (for measuring it).
     pub fn with_build_params(mut p: SceneParts, params: BuildParams) -> Result<Scene, BuildError> {
-        let mut prims = Vec::new();
-        let mut tris = Vec::new();
+        let mut grouped = alloc::vec![false; p.shapes.len()];
+        for g in &p.groups {
+            for &si in g {
+                let s = p.shapes.get(si as usize).ok_or(BuildError::BadIndex)?;
+                // Instanced geometry carries no light (Mitsuba 3 refuses it as well).
+                if s.emitter.is_some() || grouped[si as usize] {
+                    return Err(BuildError::BadIndex);
+                }
+                grouped[si as usize] = true;
+            }
+        }
+        let mut top = LevelPrims::default();
         for (si, s) in p.shapes.iter().enumerate() {
             if s.bsdf as usize >= p.bsdfs.len()
                 || s.emitter.is_some_and(|e| e as usize >= p.emitters.len())
             {
                 return Err(BuildError::BadIndex);
             }
-            let shape = u32::try_from(si).map_err(|_| BuildError::TooLarge)?;
-            match &s.kind {
-                ShapeKind::Mesh(m) => {
-                    let n = m.positions.len();
-                    for (f, idx) in m.indices.iter().enumerate() {
-                        if idx.iter().any(|&i| i as usize >= n) {
-                            return Err(BuildError::BadMeshIndex);
-                        }
-                        let face = u32::try_from(f).map_err(|_| BuildError::TooLarge)?;
-                        prims.push(Prim::Triangle { shape, face });
-                        tris.push(m.vertices(f));
-                    }
-                }
-                ShapeKind::Sphere(sp) => {
-                    prims.push(Prim::Sphere { sphere: *sp, shape });
-                    tris.push(NOT_A_TRIANGLE);
-                }
-                ShapeKind::Disk(d) => {
-                    if *d as usize >= p.disks.len() {
-                        return Err(BuildError::BadIndex);
-                    }
-                    prims.push(Prim::Disk { disk: *d, shape });
-                    tris.push(NOT_A_TRIANGLE);
-                }
+            if !grouped[si] {
+                top.push_shape(si, s, &p.disks)?;
             }
         }
+        let mut groups = Vec::with_capacity(p.groups.len());
+        for g in &p.groups {
+            let mut lp = LevelPrims::default();
+            for &si in g {
+                lp.push_shape(si as usize, &p.shapes[si as usize], &p.disks)?;
+            }
+            let bounds: Vec<Aabb> = lp
+                .prims
+                .iter()
+                .zip(&lp.tris)
+                .map(|(pr, v)| pr.bounds(v, &p.disks, &p.shapes))
+                .collect();
+            groups.push(Level::build(lp, &bounds, params));
+        }
+        let mut instance_bounds = Vec::new();
+        for (ii, inst) in p.instances.iter().enumerate() {
+            let g = groups.get(inst.group as usize).ok_or(BuildError::BadIndex)?;
+            let b = inst.bounds(g.bvh.bounds());
+            if g.prims.is_empty() || b.is_empty() {
+                // An empty group: nothing to hit.
+                continue;
+            }
+            let instance = u32::try_from(ii).map_err(|_| BuildError::TooLarge)?;
+            top.prims.push(Prim::Instance { instance });
+            top.tris.push(NOT_A_TRIANGLE);
+            instance_bounds.push(b);
+        }
+        let (prims, tris) = (&top.prims, &top.tris);
         if prims.len() >= u32::MAX as usize {
             return Err(BuildError::TooLarge);
         }
@@ -159,12 +187,16 @@ impl Scene {
                 environments.push(i as u32);
             }
         }
+        let mut instance_bounds = instance_bounds.into_iter();
         let bounds: Vec<Aabb> = prims
             .iter()
-            .zip(&tris)
-            .map(|(pr, v)| pr.bounds(v, &p.disks))
+            .zip(tris)
+            .map(|(pr, v)| match pr {
+                Prim::Instance { .. } => instance_bounds.next().unwrap_or(Aabb::EMPTY),
+                _ => pr.bounds(v, &p.disks, &p.shapes),
+            })
             .collect();
-        let (mut bvh, order) = Bvh8::build_with(&bounds, params);
+        let Level { prims, blocks, bvh } = Level::build(top, &bounds, params);
         let world = bvh.bounds();
         let (center, radius) = if world.is_empty() {
             (glam::Vec3::ZERO, 1.0)
@@ -181,9 +213,6 @@ impl Scene {
             scene_radius: radius,
         };
         let lights = LightSampler::new(p.light_selection, &p.emitters, &ctx);
-        let prims: Vec<Prim> = order.iter().map(|&i| prims[i as usize]).collect();
-        let tris: Vec<[Vec3; 3]> = order.iter().map(|&i| tris[i as usize]).collect();
-        let blocks = TriBlocks::build(&mut bvh, &tris);
         let features = SceneFeatures {
             has_emitters: !p.emitters.is_empty(),
             has_environment: !environments.is_empty(),
@@ -200,6 +229,8 @@ impl Scene {
             prims,
             blocks,
             bvh,
+            groups,
+            instances: p.instances,
             bsdfs: p.bsdfs,
             bsdf_traits,
             emitters: p.emitters,
@@ -273,12 +304,22 @@ impl Scene {
         tri: &TriRay,
         t_max: f32,
     ) -> Option<(f32, glam::Vec2)> {
+        if let Prim::Instance { .. } = self.prims[i] {
+            return self.other_prim::<false>(i, ray, &NOT_A_TRIANGLE, t_max, &Cell::default());
+        }
         let v = self.triangle(i).unwrap_or(NOT_A_TRIANGLE);
-        self.prims[i].intersect(ray, tri, &v, t_max, &self.disks)
+        self.prims[i].intersect(ray, tri, &v, t_max, &self.disks, &self.shapes)
     }
 
     /// The closest hit along the ray, if any.
     pub fn intersect_hit(&self, ray: &Ray) -> Option<Hit> {
+        self.closest(ray, &Cell::default())
+    }
+
+    /// The closest hit along the ray; where it is on an instance, `inner` says where in its
+    /// group.
+    #[inline(always)]
+    fn closest(&self, ray: &Ray, inner: &Cell<InnerHit>) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         let r4 = Ray4::from_ray(ray);
         self.bvh.cast::<false>(
@@ -287,24 +328,86 @@ impl Scene {
                 blocks: &self.blocks,
                 ray: &r4,
                 best: &mut best,
-                other: |i: usize, v: &[Vec3; 3], t_max: f32| self.other_prim(i, ray, v, t_max),
+                other: |i: usize, v: &[Vec3; 3], t_max: f32| {
+                    self.other_prim::<false>(i, ray, v, t_max, inner)
+                },
             },
         );
         best
     }
 
     /// The test of primitive `i`, which is not a triangle (the leaves' `other`; `v` is its NaN
-    /// corners).
+    /// corners). An instance is tested through its group's hierarchy: for the closest hit
+    /// (`ANY` false) `inner` then records where in the group the hit is, for any hit the walk
+    /// stops at the first.
     #[inline(always)]
-    fn other_prim(&self, i: usize, ray: &Ray, v: &[Vec3; 3], t_max: f32) -> Option<(f32, Vec2)> {
+    fn other_prim<const ANY: bool>(
+        &self,
+        i: usize,
+        ray: &Ray,
+        v: &[Vec3; 3],
+        t_max: f32,
+        inner: &Cell<InnerHit>,
+    ) -> Option<(f32, Vec2)> {
         match &self.prims[i] {
+            Prim::Instance { instance } => self.instance_hit::<ANY>(*instance, ray, t_max, inner),
+            pr => self.plain_prim(pr, ray, v, t_max),
+        }
+    }
+
+    /// The test of a primitive that is neither a triangle of the blocks nor an instance.
+    #[inline(always)]
+    fn plain_prim(&self, pr: &Prim, ray: &Ray, v: &[Vec3; 3], t_max: f32) -> Option<(f32, Vec2)> {
+        match pr {
             Prim::Sphere { sphere, .. } => sphere.intersect(ray, t_max).map(|t| (t, Vec2::ZERO)),
             Prim::Disk { disk, .. } => self.disks[*disk as usize].intersect(ray, t_max),
             // Not reached from the blocks (a triangle's lane is tested there); as the scalar test.
-            pr @ Prim::Triangle { .. } => {
-                pr.intersect(ray, &TriRay::new(ray), v, t_max, &self.disks)
-            }
+            pr => pr.intersect(ray, &TriRay::new(ray), v, t_max, &self.disks, &self.shapes),
         }
+    }
+
+    /// A ray against instance `instance` within `(0, t_max)`: the group's hierarchy walked with
+    /// the ray in object space (where `t` measures the same points).
+    #[inline(never)]
+    fn instance_hit<const ANY: bool>(
+        &self,
+        instance: u32,
+        ray: &Ray,
+        t_max: f32,
+        inner: &Cell<InnerHit>,
+    ) -> Option<(f32, Vec2)> {
+        let inst = &self.instances[instance as usize];
+        let g = &self.groups[inst.group as usize];
+        let oray = inst.to_object(&Ray { t_max, ..*ray });
+        let r4 = Ray4::from_ray(&oray);
+        let other =
+            |j: usize, v: &[Vec3; 3], t: f32| self.plain_prim(&g.prims[j], &oray, v, t);
+        if ANY {
+            let mut leaves = AnyLeaves {
+                blocks: &g.blocks,
+                ray: &r4,
+                hit: false,
+                other,
+            };
+            g.bvh.cast::<true>(&oray, &mut leaves);
+            return leaves.hit.then_some((t_max, Vec2::ZERO));
+        }
+        let mut best: Option<Hit> = None;
+        g.bvh.cast::<false>(
+            &oray,
+            ClosestLeaves {
+                blocks: &g.blocks,
+                ray: &r4,
+                best: &mut best,
+                other,
+            },
+        );
+        let h = best?;
+        inner.set(InnerHit {
+            prim: h.prim,
+            uv: h.uv,
+        });
+        Some((h.t, Vec2::ZERO))
     }
 
     /// Tests the primitives `prims` of a leaf for a hit closer than `t_max`, updating `best`;
@@ -318,9 +421,10 @@ impl Scene {
         t_max: f32,
         best: &mut Option<Hit>,
     ) -> f32 {
+        let inner = Cell::default();
         self.blocks
             .closest(prims.start, prims.len(), r4, t_max, best, |i, v, t_max| {
-                self.other_prim(i, ray, v, t_max)
+                self.other_prim::<false>(i, ray, v, t_max, &inner)
             })
     }
 
@@ -334,16 +438,32 @@ impl Scene {
         prims: core::ops::Range<usize>,
         t_max: f32,
     ) -> bool {
+        let inner = Cell::default();
         self.blocks
             .any(prims.start, prims.len(), r4, t_max, |i, v, t_max| {
-                self.other_prim(i, ray, v, t_max)
+                self.other_prim::<true>(i, ray, v, t_max, &inner)
             })
     }
 
     /// The closest surface interaction along the ray, if any.
     pub fn intersect(&self, ray: &Ray) -> Option<Interaction> {
-        let hit = self.intersect_hit(ray)?;
+        let inner = Cell::default();
+        let hit = self.closest(ray, &inner)?;
         let prim = &self.prims[hit.prim as usize];
+        if let Prim::Instance { instance } = prim {
+            let inst = &self.instances[*instance as usize];
+            let g = &self.groups[inst.group as usize];
+            let ih = inner.get();
+            let gp = &g.prims[ih.prim as usize];
+            let oray = inst.to_object(ray);
+            let ohit = Hit {
+                t: hit.t,
+                prim: ih.prim,
+                uv: ih.uv,
+            };
+            let it = self.shapes[gp.shape() as usize].interaction(&ohit, gp, &oray, &self.disks);
+            return Some(inst.to_world_interaction(&it, ray));
+        }
         let shape = &self.shapes[prim.shape() as usize];
         Some(shape.interaction(&hit, prim, ray, &self.disks))
     }
@@ -351,11 +471,14 @@ impl Scene {
     /// Whether anything blocks the ray within its extent (any hit, early exit).
     pub fn occluded(&self, ray: &Ray) -> bool {
         let r4 = Ray4::from_ray(ray);
+        let inner = Cell::default();
         let mut leaves = AnyLeaves {
             blocks: &self.blocks,
             ray: &r4,
             hit: false,
-            other: |i: usize, v: &[Vec3; 3], t_max: f32| self.other_prim(i, ray, v, t_max),
+            other: |i: usize, v: &[Vec3; 3], t_max: f32| {
+                self.other_prim::<true>(i, ray, v, t_max, &inner)
+            },
         };
         self.bvh.cast::<true>(ray, &mut leaves);
         leaves.hit
@@ -367,6 +490,8 @@ impl Scene {
             nodes: self.bvh.memory_bytes(),
             triangles: self.blocks.memory_bytes(),
             prims: core::mem::size_of_val(self.prims.as_slice()),
+            instances: core::mem::size_of_val(self.instances.as_slice()),
+            groups: self.groups.iter().map(Level::memory_bytes).sum(),
         }
     }
 }
@@ -381,7 +506,26 @@ pub struct AccelMemory {
     pub triangles: usize,
     /// Per primitive, which shape and face it is (for shading, and for spheres and disks).
     pub prims: usize,
+    /// The instances' records (group and transform pair).
+    pub instances: usize,
+    /// The shape groups' own hierarchies (nodes, blocks, primitive records).
+    pub groups: usize,
 }
 
-/// The corners stored for a primitive that is not a triangle.
-const NOT_A_TRIANGLE: [Vec3; 3] = [Vec3::NAN; 3];
+impl From<LevelError> for BuildError {
+    fn from(e: LevelError) -> BuildError {
+        match e {
+            LevelError::BadIndex => BuildError::BadIndex,
+            LevelError::BadMeshIndex => BuildError::BadMeshIndex,
+            LevelError::TooLarge => BuildError::TooLarge,
+        }
+    }
+}
+
+/// Where a closest hit on an instance landed inside its group: the group's primitive and its
+/// uv (the top level's [`Hit`] names the instance).
+#[derive(Clone, Copy, Debug, Default)]
+struct InnerHit {
+    prim: u32,
+    uv: Vec2,
+}

@@ -6,6 +6,7 @@ use super::integrator::read_integrator;
 use super::loaded::{LoadedScene, PluginNames};
 use super::sampler::build_sampler;
 use super::sensor::build_sensor;
+use super::instancing::{Groups, INSTANCE, SHAPEGROUP};
 use super::shapes::build_shape;
 use super::util::Result;
 use crate::error::InputError;
@@ -13,7 +14,7 @@ use crate::xml::{Kind, Object};
 use std::collections::HashSet;
 use tessera_core::camera::Camera;
 use tessera_core::emitter::{AreaLight, Emitter};
-use tessera_core::geometry::{Shape, ShapeKind};
+use tessera_core::geometry::{Disk, Instance, Shape, ShapeKind};
 use tessera_core::sampling::SamplerKind;
 use tessera_core::scene::{Scene, SceneParts};
 
@@ -23,11 +24,8 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         return Err(root.error("the root element must be <scene>"));
     }
     let mut warnings = root.load_warnings.clone();
-    let mut bsdfs = Bsdfs::default();
-    let mut shapes = Vec::new();
-    let mut disks = Vec::new();
-    let mut emitters = Vec::new();
-    let mut names = PluginNames::default();
+    let mut acc = Acc::default();
+    let mut groups = Groups::default();
     let mut integrator_obj = None;
     let mut sensor = None;
     let mut scene_sampler = None;
@@ -47,65 +45,26 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
             }
             Kind::Sampler => scene_sampler = Some(build_sampler(obj, &mut warnings)?),
             Kind::Bsdf => {
-                bsdfs.index_of(obj)?;
+                acc.bsdfs.index_of(obj)?;
             }
             // An area emitter declared to be referenced is built on each shape that refers
             // to it (Mitsuba adds surface emitters to the scene through their shapes).
             Kind::Emitter if obj.plugin == AREA.name && obj.is_referenced() => {}
             Kind::Emitter => {
-                emitters.push(build_emitter(obj, None)?);
-                names.emitters.push(obj.plugin.clone());
+                acc.emitters.push(build_emitter(obj, None)?);
+                acc.names.emitters.push(obj.plugin.clone());
             }
             // Declared to be referenced (`<ref>`); built where it is used.
             Kind::Texture => {}
+            Kind::Shape if obj.plugin == SHAPEGROUP.name => {
+                groups.group_of(obj, &mut |o| add_shape(o, &mut acc, true))?;
+            }
+            Kind::Shape if obj.plugin == INSTANCE.name => {
+                let instance = groups.instance(obj, &mut |o| add_shape(o, &mut acc, true))?;
+                acc.instances.push(instance);
+            }
             Kind::Shape => {
-                let parts = build_shape(obj)?;
-                if let Some(kind) = parts.kind {
-                    let shape_index = shapes.len() as u32;
-                    let bsdf = match parts.bsdf {
-                        Some(b) => bsdfs.index_of(&b.obj)?,
-                        None => bsdfs.default_index(parts.emitter.is_some()),
-                    };
-                    let emitter = match parts.emitter {
-                        Some(e) => {
-                            emitters.push(build_emitter(&e.obj, Some(shape_index))?);
-                            names.emitters.push(e.obj.plugin.clone());
-                            Some(emitters.len() as u32 - 1)
-                        }
-                        None => None,
-                    };
-                    let kind = match (kind, parts.disk) {
-                        (ShapeKind::Disk(_), Some(d)) => {
-                            disks.push(d);
-                            ShapeKind::Disk(disks.len() as u32 - 1)
-                        }
-                        (k, _) => k,
-                    };
-                    shapes.push(Shape {
-                        kind,
-                        bsdf,
-                        emitter,
-                        flip_normals: parts.flip_normals,
-                    });
-                    names.shapes.push(obj.plugin.clone());
-                }
-                // OBJ faces with MTL materials: one shape each, with its own BSDF and light.
-                for part in parts.mtl_parts {
-                    let shape_index = shapes.len() as u32;
-                    let emitter = part.material.emission.map(|radiance| {
-                        emitters.push(Emitter::Area(AreaLight::new(shape_index, radiance)));
-                        names.emitters.push("area (MTL Ke)".into());
-                        emitters.len() as u32 - 1
-                    });
-                    shapes.push(Shape {
-                        kind: ShapeKind::Mesh(part.mesh),
-                        bsdf: bsdfs.push(part.material.bsdf, "MTL material".into()),
-                        emitter,
-                        flip_normals: parts.flip_normals,
-                    });
-                    names.shapes.push(format!("{} (MTL part)", obj.plugin));
-                }
-                parts.plugin.check_unused(obj)?;
+                add_shape(obj, &mut acc, false)?;
             }
             _ => {
                 return Err(InputError::at(
@@ -136,11 +95,22 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
     };
     root.check_unused()?;
     warn_ignored(root, &families(), &mut warnings, &mut HashSet::new());
+    let Acc {
+        bsdfs,
+        shapes,
+        disks,
+        emitters,
+        mut names,
+        instances,
+        ..
+    } = acc;
     let parts = SceneParts {
         shapes,
         disks,
         bsdfs: bsdfs.list,
         emitters,
+        groups: groups.into_shape_lists(),
+        instances,
         camera: Camera {
             to_world: root.dialect.camera_to_world(sensor.camera.to_world),
             ..sensor.camera
@@ -167,6 +137,96 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         frame_origin: root.frame_origin.to_array(),
         dialect: root.dialect,
     })
+}
+
+/// What the scene walk has built so far.
+#[derive(Default)]
+struct Acc {
+    bsdfs: Bsdfs,
+    shapes: Vec<Shape>,
+    disks: Vec<Disk>,
+    emitters: Vec<Emitter>,
+    names: PluginNames,
+    instances: Vec<Instance>,
+}
+
+/// Builds the shape `obj` (and its OBJ material parts) into `acc`; returns the indices of the
+/// shapes added. `in_group`: it is a member of a shape group, which carries no emitter.
+fn add_shape(obj: &Object, acc: &mut Acc, in_group: bool) -> Result<Vec<u32>> {
+    if obj.plugin == SHAPEGROUP.name || obj.plugin == INSTANCE.name {
+        return Err(obj.error(format!(
+            "{} inside a shapegroup: nested shape groups and instances are not permitted (as \
+             in Mitsuba 3)",
+            obj.describe()
+        )));
+    }
+    let parts = build_shape(obj)?;
+    let mut added = Vec::new();
+    if in_group {
+        if let Some(e) = parts.emitter {
+            return Err(InputError::at(
+                &e.loc,
+                "an emitter on a shape inside a shapegroup: instancing of emitters is not \
+                 supported (as in Mitsuba 3)",
+            ));
+        }
+        if parts.mtl_parts.iter().any(|p| p.material.emission.is_some()) {
+            return Err(obj.error(
+                "an MTL material with Ke emission inside a shapegroup: instancing of emitters \
+                 is not supported (as in Mitsuba 3)",
+            ));
+        }
+    }
+    if let Some(kind) = parts.kind {
+        let shape_index = acc.shapes.len() as u32;
+        let bsdf = match parts.bsdf {
+            Some(b) => acc.bsdfs.index_of(&b.obj)?,
+            None => acc.bsdfs.default_index(parts.emitter.is_some()),
+        };
+        let emitter = match parts.emitter {
+            Some(e) => {
+                acc.emitters.push(build_emitter(&e.obj, Some(shape_index))?);
+                acc.names.emitters.push(e.obj.plugin.clone());
+                Some(acc.emitters.len() as u32 - 1)
+            }
+            None => None,
+        };
+        let kind = match (kind, parts.disk) {
+            (ShapeKind::Disk(_), Some(d)) => {
+                acc.disks.push(d);
+                ShapeKind::Disk(acc.disks.len() as u32 - 1)
+            }
+            (k, _) => k,
+        };
+        added.push(shape_index);
+        acc.shapes.push(Shape {
+            kind,
+            bsdf,
+            emitter,
+            flip_normals: parts.flip_normals,
+        });
+        acc.names.shapes.push(obj.plugin.clone());
+    }
+    // OBJ faces with MTL materials: one shape each, with its own BSDF and light.
+    for part in parts.mtl_parts {
+        let shape_index = acc.shapes.len() as u32;
+        let emitter = part.material.emission.map(|radiance| {
+            acc.emitters
+                .push(Emitter::Area(AreaLight::new(shape_index, radiance)));
+            acc.names.emitters.push("area (MTL Ke)".into());
+            acc.emitters.len() as u32 - 1
+        });
+        added.push(shape_index);
+        acc.shapes.push(Shape {
+            kind: ShapeKind::Mesh(part.mesh),
+            bsdf: acc.bsdfs.push(part.material.bsdf, "MTL material".into()),
+            emitter,
+            flip_normals: parts.flip_normals,
+        });
+        acc.names.shapes.push(format!("{} (MTL part)", obj.plugin));
+    }
+    parts.plugin.check_unused(obj)?;
+    Ok(added)
 }
 
 /// Adds a located warning for each parameter the file gives that is declared without effect

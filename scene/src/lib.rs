@@ -14,9 +14,11 @@ pub mod xml;
 
 mod bsdfs;
 mod build;
+mod cylinder;
 mod emitters;
 mod families;
 mod filter;
+mod instancing;
 mod integrator;
 mod loaded;
 pub(crate) mod materials;

@@ -23,7 +23,16 @@ pub struct Geometry {
 }
 
 impl Geometry {
-    fn of(kind: ShapeKind) -> Result<Geometry> {
+    /// No geometry of its own (`shapegroup`, `instance`: the scene builder handles them).
+    pub fn none() -> Geometry {
+        Geometry {
+            kind: None,
+            disk: None,
+            mtl_parts: Vec::new(),
+        }
+    }
+
+    pub(crate) fn of(kind: ShapeKind) -> Result<Geometry> {
         Ok(Geometry {
             kind: Some(kind),
             disk: None,
@@ -36,10 +45,21 @@ impl Geometry {
 pub type ShapePlugin = Plugin<fn(&Object) -> Result<Geometry>>;
 
 /// Every `<shape type=...>` Tessera knows.
-pub static SHAPES: &[ShapePlugin] = &[SPHERE, OBJ, PLY, SERIALIZED, RECTANGLE, CUBE, DISK];
+pub static SHAPES: &[ShapePlugin] = &[
+    SPHERE,
+    OBJ,
+    PLY,
+    SERIALIZED,
+    RECTANGLE,
+    CUBE,
+    DISK,
+    crate::cylinder::CYLINDER,
+    crate::instancing::SHAPEGROUP,
+    crate::instancing::INSTANCE,
+];
 
-const TO_WORLD: Param = Param::transform("to_world", "object to world");
-const FLIP_NORMALS: Param = Param::boolean(
+pub(crate) const TO_WORLD: Param = Param::transform("to_world", "object to world");
+pub(crate) const FLIP_NORMALS: Param = Param::boolean(
     "flip_normals",
     false,
     "swap the front and back sides (which side an area light or a one-sided BSDF faces)",
@@ -52,7 +72,7 @@ const CENTER: Param = Param::new(
     Range::Any,
     "centre, before to_world",
 );
-const RADIUS: Param = Param::float("radius", 1.0, Range::Positive, "radius, before to_world");
+pub(crate) const RADIUS: Param = Param::float("radius", 1.0, Range::Positive, "radius, before to_world");
 
 /// `sphere`.
 pub const SPHERE: ShapePlugin = Plugin {

@@ -62,6 +62,8 @@ pub fn scene_of(shapes: Vec<Shape>, disks: Vec<Disk>) -> Scene {
         camera: Camera::perspective(Transform::IDENTITY, 4, 4, 40.0, FovAxis::X, 0.01, 1e4),
         filter: Filter::Box,
         light_selection: Default::default(),
+        groups: Vec::new(),
+        instances: Vec::new(),
     })
     .expect("valid scene")
 }

@@ -85,7 +85,7 @@ impl<'a, B: Wide> WideScene<'a, B> {
             .map(|i| scene.triangle(i).unwrap_or([Vec3::NAN; 3]))
             .collect();
         let bounds: Vec<Aabb> = (0..scene.prims.len())
-            .map(|i| scene.prims[i].bounds(&corners[i], &scene.disks))
+            .map(|i| scene.prims[i].bounds(&corners[i], &scene.disks, &scene.shapes))
             .collect();
         let (mut bvh, order) = B::build(&bounds);
         let sorted: Vec<[Vec3; 3]> = order.iter().map(|&i| corners[i as usize]).collect();

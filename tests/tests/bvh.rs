@@ -63,6 +63,8 @@ fn random_scene(rng: &mut Rng, triangles: usize) -> Scene {
         camera,
         filter: Filter::Box,
         light_selection: Default::default(),
+        groups: Vec::new(),
+        instances: Vec::new(),
     };
     Scene::new(parts).expect("valid scene")
 }

@@ -15,13 +15,16 @@
 //! - `tri_block`: a block of four triangles and its four-lane watertight test (`unsafe`, fenced);
 //! - `tri_block_pair`: two blocks tested in one AVX2 pass (`unsafe`, fenced);
 //! - `blocks`: packing leaves into triangle blocks, and the leaf loops over them;
-//! - `counts`: the casts that count their work.
+//! - `counts`: the casts that count their work;
+//! - `level`: one level of primitives, blocks and hierarchy (the scene's top level, or a shape
+//!   group's bottom level under instances).
 mod binary;
 mod blocks;
 mod collapse;
 mod counts;
 mod entry;
 mod leaves;
+pub mod level;
 mod root;
 pub mod slab;
 pub mod slab_simd;

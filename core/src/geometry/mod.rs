@@ -1,5 +1,7 @@
 //! Shapes, their intersection routines, and surface sampling.
+mod cylinder;
 mod disk;
+mod instance;
 mod interaction;
 mod mesh;
 mod prim;
@@ -7,7 +9,9 @@ mod shape;
 mod sphere;
 mod triangle;
 
+pub use cylinder::Cylinder;
 pub use disk::Disk;
+pub use instance::Instance;
 pub use interaction::{Interaction, SHADOW_EPSILON};
 pub use mesh::{interpolate_point, Mesh, TriangleHit};
 pub use prim::{Hit, Prim};

@@ -1,7 +1,7 @@
 //! Primitives as the BVH stores them: which shape (and face) each is. A triangle's corners are
 //! kept apart, in blocks of four in the same order (`Scene::blocks`), so the
 //! leaf loop reads 37 bytes per triangle and nothing else.
-use super::{Disk, Sphere, TriRay};
+use super::{Disk, Shape, ShapeKind, Sphere, TriRay};
 use crate::math::{Aabb, Ray};
 use glam::Vec3;
 
@@ -14,6 +14,11 @@ pub enum Prim {
     Sphere { sphere: Sphere, shape: u32 },
     /// Disk `disk` (index into the scene's disks) of shape `shape`.
     Disk { disk: u32, shape: u32 },
+    /// Cylinder shape `shape` (its geometry is the shape's `ShapeKind::Cylinder`).
+    Cylinder { shape: u32 },
+    /// Instance `instance` of a shape group (top level only; the scene tests it, through the
+    /// group's own hierarchy).
+    Instance { instance: u32 },
 }
 
 /// The closest hit found by a traversal.
@@ -28,8 +33,9 @@ pub struct Hit {
 }
 
 impl Prim {
-    /// Bounding box; `v` is the triangle's corners (ignored for other primitives).
-    pub fn bounds(&self, v: &[Vec3; 3], disks: &[Disk]) -> Aabb {
+    /// Bounding box; `v` is the triangle's corners (ignored for other primitives). An
+    /// instance's box is the scene's to compute (empty here).
+    pub fn bounds(&self, v: &[Vec3; 3], disks: &[Disk], shapes: &[Shape]) -> Aabb {
         match self {
             Prim::Triangle { .. } => Aabb::point(v[0]).grow(v[1]).grow(v[2]),
             Prim::Sphere { sphere, .. } => {
@@ -47,18 +53,27 @@ impl Prim {
                 }
                 b
             }
+            Prim::Cylinder { shape } => match &shapes[*shape as usize].kind {
+                ShapeKind::Cylinder(c) => c.bounds(),
+                _ => Aabb::EMPTY,
+            },
+            Prim::Instance { .. } => Aabb::EMPTY,
         }
     }
-    /// Shape index.
+    /// Shape index (`u32::MAX` for an instance, which is no shape: its hit is on one of its
+    /// group's shapes).
     pub fn shape(&self) -> u32 {
         match *self {
             Prim::Triangle { shape, .. }
             | Prim::Sphere { shape, .. }
-            | Prim::Disk { shape, .. } => shape,
+            | Prim::Disk { shape, .. }
+            | Prim::Cylinder { shape } => shape,
+            Prim::Instance { .. } => u32::MAX,
         }
     }
     /// Intersection in `(0, t_max)`: `(t, uv)`. `v` is the triangle's corners (ignored for
     /// other primitives) and `tri` the triangle test's per-ray part (`TriRay::new(ray)`).
+    /// An instance gives `None`: the scene tests it.
     #[inline(always)]
     pub fn intersect(
         &self,
@@ -67,6 +82,7 @@ impl Prim {
         v: &[Vec3; 3],
         t_max: f32,
         disks: &[Disk],
+        shapes: &[Shape],
     ) -> Option<(f32, glam::Vec2)> {
         match self {
             Prim::Triangle { .. } => tri
@@ -76,6 +92,11 @@ impl Prim {
                 sphere.intersect(ray, t_max).map(|t| (t, glam::Vec2::ZERO))
             }
             Prim::Disk { disk, .. } => disks[*disk as usize].intersect(ray, t_max),
+            Prim::Cylinder { shape } => match &shapes[*shape as usize].kind {
+                ShapeKind::Cylinder(c) => c.intersect(ray, t_max).map(|t| (t, glam::Vec2::ZERO)),
+                _ => None,
+            },
+            Prim::Instance { .. } => None,
         }
     }
 }

@@ -3,7 +3,7 @@
 //! Common scene parameters of every `<shape>`: `flip_normals` (boolean, default false), a nested
 //! or referenced `<bsdf>` (default: `diffuse` with reflectance 0.5, as in Mitsuba 3), an optional
 //! nested `<emitter type="area">`.
-use super::{Disk, Hit, Interaction, Mesh, Prim, Sphere};
+use super::{Cylinder, Disk, Hit, Interaction, Mesh, Prim, Sphere};
 use crate::math::{acos, sqrt, Frame, Norm, Ray};
 use glam::{Vec2, Vec3};
 
@@ -16,6 +16,8 @@ pub enum ShapeKind {
     Sphere(Sphere),
     /// An analytic disk; the index is into the scene's disk array.
     Disk(u32),
+    /// An analytic open cylinder.
+    Cylinder(Cylinder),
 }
 
 /// A shape in the scene.
@@ -64,6 +66,7 @@ impl Shape {
             ShapeKind::Mesh(m) => m.area(),
             ShapeKind::Sphere(s) => s.area(),
             ShapeKind::Disk(d) => disks[*d as usize].area,
+            ShapeKind::Cylinder(c) => c.area(),
         }
     }
 
@@ -113,6 +116,12 @@ impl Shape {
                     None,
                 )
             }
+            (ShapeKind::Cylinder(c), _) => {
+                let (p, err, l) = c.project(ray.at(hit.t));
+                let n = c.normal(l.x, l.y);
+                let (uv, dpdu) = c.uv_dpdu(l);
+                (p, err, n, n, uv, dpdu, None)
+            }
             _ => unreachable_shape(),
         };
         let ng = self.orient(ng);
@@ -155,6 +164,10 @@ impl Shape {
                 let disk = &disks[*d as usize];
                 let (p, err) = disk.sample(u);
                 (p, err, disk.normal, disk.normal)
+            }
+            ShapeKind::Cylinder(c) => {
+                let (p, err, n) = c.sample(u);
+                (p, err, n, n)
             }
         };
         Some(PositionSample {

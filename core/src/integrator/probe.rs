@@ -130,7 +130,7 @@ pub struct Counters {
     pub triangle_hits: u64,
     /// ... that met a sphere.
     pub sphere_hits: u64,
-    /// ... that met a disk.
+    /// ... that met a disk (or a cylinder, the other flat-parametrised analytic shape).
     pub disk_hits: u64,
     /// ... that escaped the scene.
     pub escaped: u64,
@@ -265,7 +265,7 @@ impl Probe for Counters {
         match scene.shapes[si.shape as usize].kind {
             ShapeKind::Mesh(_) => self.triangle_hits += 1,
             ShapeKind::Sphere(_) => self.sphere_hits += 1,
-            ShapeKind::Disk(_) => self.disk_hits += 1,
+            ShapeKind::Disk(_) | ShapeKind::Cylinder(_) => self.disk_hits += 1,
         }
     }
     fn shadow(&mut self, blocked: bool) {

@@ -89,6 +89,11 @@ impl LightBound {
                         radius: s.radius,
                         lum,
                     },
+                    ShapeKind::Cylinder(c) => LightBound::Solid {
+                        center: (c.origin + c.axes[2] * (0.5 * c.length)).as_vec3(),
+                        area: c.area(),
+                        lum,
+                    },
                     ShapeKind::Disk(i) => {
                         let d = &ctx.disks[*i as usize];
                         LightBound::Flat {

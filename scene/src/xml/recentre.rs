@@ -13,7 +13,8 @@
 //! report prints (`--debug-pixel`) are in the camera's frame for the others.
 use glam::{DMat4, DVec3};
 
-use super::draft::Draft;
+use super::draft::{Draft, Target};
+use std::collections::HashSet;
 use super::object::{Kind, Prop, Value};
 
 /// Distance from the origin (along any axis) from which a camera's scene is recentred.
@@ -32,7 +33,22 @@ pub(super) fn recentre(drafts: &mut [Option<Draft>]) -> Option<DVec3> {
         return None;
     }
     let shift = DMat4::from_translation(-c);
-    for d in drafts.iter_mut().flatten() {
+    // A shape group's members are in the group's own space: its instances move instead.
+    let members: HashSet<usize> = drafts
+        .iter()
+        .flatten()
+        .filter(|d| d.kind == Kind::Shape && d.plugin == "shapegroup")
+        .flat_map(|d| &d.children)
+        .filter_map(|c| match c.target {
+            Target::Node(i) if !c.is_ref => Some(i),
+            _ => None,
+        })
+        .collect();
+    for (i, d) in drafts.iter_mut().enumerate() {
+        let Some(d) = d else { continue };
+        if members.contains(&i) || (d.kind == Kind::Shape && d.plugin == "shapegroup") {
+            continue;
+        }
         match (d.kind, d.plugin.as_str()) {
             // A sphere placed by its centre alone: move the centre, which the builder may
             // store before applying a transform.
