@@ -1,0 +1,256 @@
+//! The wrappers that add image channels: Mitsuba 3's `aov` (surface variables such as depth,
+//! normals and albedo, beside its nested integrators' images) and `moment` (each nested
+//! integrator's XYZ and its square). Both render their first nested integrator as the colour
+//! image (`aov` without one renders black, as Mitsuba 3 does); the spec read is that
+//! integrator's, so the command line changes it as usual, and the extra channels are listed in
+//! [`IntegratorSpec::layers`], each rendered by an integrator of its own with the same seed and
+//! sampler (so the same camera samples) and written into a multichannel EXR.
+//!
+//! Channel names are Mitsuba 3.9.1's: a nested integrator is named by its `name` attribute or
+//! `_arg_N` (N its position among the wrapper's nested objects); `aov` gives it `NAME.R/G/B/A`
+//! and then the variables `NAME.T` (depth), `NAME.X/Y/Z` (position, normals), `NAME.U/V` (uv),
+//! `NAME.R/G/B` (albedo); `moment` gives `NAME.X/Y/Z` per nested integrator, then the same
+//! names prefixed by `m2_` for the squares.
+use crate::integrator::{read_integrator, IntegratorBuild, IntegratorPlugin, IntegratorSpec};
+use crate::plugin::{Param, Plugin, Range};
+use crate::util::Result;
+use crate::xml::{Kind, Object};
+use tessera_core::integrator::{Aov, AovIntegrator, Integrator, MomentIntegrator};
+
+/// Up to three image channels rendered together, as the channels of one colour.
+#[derive(Clone, Debug)]
+pub struct Layer {
+    /// The channel names (one to three), in the order of the colour's channels.
+    pub names: Vec<String>,
+    /// What is rendered.
+    pub source: LayerSource,
+}
+
+/// What a [`Layer`] renders.
+#[derive(Clone, Debug)]
+pub enum LayerSource {
+    /// A nested integrator's colour.
+    Nested(Box<IntegratorSpec>),
+    /// A surface variable.
+    Aov(Aov),
+    /// A nested integrator's XYZ (`square` false) or its square.
+    Moment {
+        /// The nested integrator.
+        nested: Box<IntegratorSpec>,
+        /// Second moment.
+        square: bool,
+    },
+}
+
+impl Layer {
+    /// The core integrator that renders the layer (`None` only for a nested spec that builds
+    /// nothing, which the loader has already refused).
+    pub fn build(&self) -> Option<Integrator> {
+        Some(match &self.source {
+            LayerSource::Nested(spec) => spec.build()?,
+            LayerSource::Aov(aov) => Integrator::Aov(AovIntegrator { aov: *aov }),
+            LayerSource::Moment { nested, square } => Integrator::Moment(MomentIntegrator {
+                inner: Box::new(nested.build()?),
+                square: *square,
+            }),
+        })
+    }
+}
+
+/// The AOV types Mitsuba 3 has, with what Tessera renders for each (`None`: not supported).
+const AOV_TYPES: &[(&str, Option<(Aov, &[&str])>)] = &[
+    ("albedo", Some((Aov::Albedo, &["R", "G", "B"]))),
+    ("depth", Some((Aov::Depth, &["T"]))),
+    ("position", Some((Aov::Position, &["X", "Y", "Z"]))),
+    ("uv", Some((Aov::Uv, &["U", "V"]))),
+    ("geo_normal", Some((Aov::GeoNormal, &["X", "Y", "Z"]))),
+    ("sh_normal", Some((Aov::ShNormal, &["X", "Y", "Z"]))),
+    ("dp_du", None),
+    ("dp_dv", None),
+    ("duv_dx", None),
+    ("duv_dy", None),
+    ("prim_index", None),
+    ("shape_index", None),
+];
+
+const AOVS: Param = Param::new(
+    "aovs",
+    crate::plugin::ParamType::String,
+    crate::plugin::Default::Required,
+    Range::Note(
+        "comma-separated NAME:TYPE pairs; TYPE one of albedo, depth, position, uv, geo_normal, \
+         sh_normal (Mitsuba 3's dp_du, dp_dv, duv_dx, duv_dy, prim_index and shape_index are \
+         refused)",
+    ),
+    "the surface variables written as extra channels",
+);
+
+/// `aov`.
+pub const AOV: IntegratorPlugin = Plugin {
+    name: "aov",
+    aliases: &[],
+    doc: "Mitsuba 3's arbitrary output variables: extra EXR channels describing the first \
+          surface each camera ray meets (averaged over a pixel's samples like the colour), after \
+          each nested integrator's R, G, B and A; the colour image is the first nested \
+          integrator's (black without one). PNG and PFM outputs get the colour only, with a \
+          warning.",
+    params: &[AOVS],
+    nested: "zero or more `<integrator>` (not `aov` or `moment`), each written as channels \
+             NAME.R/G/B/A",
+    build: IntegratorBuild {
+        read: read_aov,
+        make: Some(|_| Integrator::Aov(AovIntegrator { aov: Aov::Black })),
+    },
+};
+
+/// `moment`.
+pub const MOMENT: IntegratorPlugin = Plugin {
+    name: "moment",
+    aliases: &[],
+    doc: "Mitsuba 3's moment wrapper: the colour image is the first nested integrator's; extra \
+          EXR channels NAME.X/Y/Z hold each nested integrator's mean XYZ and m2_NAME.X/Y/Z the \
+          mean of its square (from which the pixel variance follows). PNG and PFM outputs get \
+          the colour only, with a warning.",
+    params: &[],
+    nested: "one or more `<integrator>` (not `aov` or `moment`)",
+    build: IntegratorBuild {
+        read: read_moment,
+        make: None,
+    },
+};
+
+/// The nested integrators of a wrapper, each with its channel name prefix; wrappers and path
+/// reuse are refused in them (a reusing path's samples depend on its neighbours', which the
+/// layer renders do not share).
+fn nested_specs(obj: &Object) -> Result<Vec<(String, IntegratorSpec)>> {
+    let mut out = Vec::new();
+    for (i, child) in obj.children.iter().enumerate() {
+        if child.obj.kind != Kind::Integrator {
+            continue;
+        }
+        child.mark_used();
+        let spec = read_integrator(Some(&child.obj))?;
+        if spec.name == "aov" || spec.name == "moment" || !spec.layers.is_empty() {
+            return Err(crate::error::InputError::at(
+                &child.loc,
+                format!("{} cannot be nested in {}", child.obj.describe(), obj.describe()),
+            ));
+        }
+        if spec.reuse {
+            return Err(crate::error::InputError::at(
+                &child.loc,
+                format!(
+                    "{} nested in {} cannot use reuse (path reuse is not supported with extra \
+                     channels)",
+                    child.obj.describe(),
+                    obj.describe()
+                ),
+            ));
+        }
+        let name = child.name.clone().unwrap_or_else(|| format!("_arg_{i}"));
+        out.push((name, spec));
+    }
+    Ok(out)
+}
+
+fn names(prefix: &str, suffixes: &[&str]) -> Vec<String> {
+    suffixes.iter().map(|s| format!("{prefix}.{s}")).collect()
+}
+
+fn read_aov(obj: &Object, spec: &mut IntegratorSpec) -> Result<()> {
+    let text = AOVS.read_string(obj)?;
+    let loc = obj.prop(AOVS.name).map_or(obj.loc.clone(), |p| p.loc.clone());
+    let nested = nested_specs(obj)?;
+    let mut layers = Vec::new();
+    for (name, nested) in &nested {
+        let escaped_count = nested.name.starts_with("path") && !nested.hide_emitters;
+        layers.push(Layer {
+            names: names(name, &["R", "G", "B"]),
+            source: LayerSource::Nested(Box::new(nested.clone())),
+        });
+        layers.push(Layer {
+            names: names(name, &["A"]),
+            source: LayerSource::Aov(Aov::Alpha { escaped_count }),
+        });
+    }
+    for item in text.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        let (name, kind) = match item.split_once(':') {
+            Some((n, k)) if !n.trim().is_empty() && !k.trim().is_empty() => (n.trim(), k.trim()),
+            _ => {
+                return Err(crate::error::InputError::at(
+                    &loc,
+                    format!("aov \"{item}\" is not a NAME:TYPE pair (e.g. dd.y:depth)"),
+                ))
+            }
+        };
+        let valid = || {
+            AOV_TYPES
+                .iter()
+                .filter(|t| t.1.is_some())
+                .map(|t| t.0)
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let (aov, suffixes) = match AOV_TYPES.iter().find(|t| t.0 == kind) {
+            Some((_, Some(t))) => *t,
+            Some((_, None)) => {
+                return Err(crate::error::InputError::at(
+                    &loc,
+                    format!(
+                        "aov type \"{kind}\" (Mitsuba 3's) is not supported by Tessera \
+                         (supported: {})",
+                        valid()
+                    ),
+                ))
+            }
+            None => {
+                return Err(crate::error::InputError::at(
+                    &loc,
+                    format!("unknown aov type \"{kind}\" (valid: {})", valid()),
+                ))
+            }
+        };
+        layers.push(Layer {
+            names: names(name, suffixes),
+            source: LayerSource::Aov(aov),
+        });
+    }
+    if layers.is_empty() {
+        spec.warnings.push(format!(
+            "{}: {} gives no aovs and no nested integrator: the image is black",
+            obj.loc,
+            obj.describe()
+        ));
+    }
+    if let Some((_, first)) = nested.into_iter().next() {
+        *spec = first;
+    }
+    spec.layers = layers;
+    Ok(())
+}
+
+fn read_moment(obj: &Object, spec: &mut IntegratorSpec) -> Result<()> {
+    let nested = nested_specs(obj)?;
+    let Some((_, first)) = nested.first() else {
+        return Err(obj.error("a moment integrator needs a nested <integrator>"));
+    };
+    let mut layers = Vec::new();
+    for square in [false, true] {
+        for (name, n) in &nested {
+            let prefix = match square {
+                true => format!("m2_{name}"),
+                false => name.clone(),
+            };
+            layers.push(Layer {
+                names: names(&prefix, &["X", "Y", "Z"]),
+                source: LayerSource::Moment {
+                    nested: Box::new(n.clone()),
+                    square,
+                },
+            });
+        }
+    }
+    *spec = first.clone();
+    spec.layers = layers;
+    Ok(())
+}
