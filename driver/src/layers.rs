@@ -10,9 +10,9 @@
 //! samples, which is what Mitsuba 3's film computes, and the bits do not depend on the thread
 //! count or the tile size.
 use crate::image_io::write_atomic;
-use crate::render::{render, RenderOptions};
+use crate::render::{render, Framebuffer, RenderOptions};
 use exr::prelude::{AnyChannel, AnyChannels, Encoding, FlatSamples, Layer as ExrLayer};
-use exr::prelude::{LayerAttributes, SmallVec, Vec2, WritableImage};
+use exr::prelude::{LayerAttributes, ReadChannels, ReadLayers, SmallVec, Vec2, WritableImage};
 use std::ops::Range;
 use std::path::Path;
 use tessera_core::render::RenderJob;
@@ -39,12 +39,7 @@ pub fn render_layers(
 ) -> Result<Vec<Channel>, String> {
     let mut out = Vec::new();
     for layer in layers {
-        let integrator = layer
-            .build()
-            .ok_or_else(|| format!("cannot build the integrator of channels {:?}", layer.names))?;
-        let job = RenderJob::new(scene, &integrator, seed);
-        let fb = render(&job, samples.clone(), opts, &mut |_, _| {});
-        let means = fb.rgb();
+        let means = render_layer(scene, layer, seed, samples.clone(), opts)?.rgb();
         for (c, name) in layer.names.iter().enumerate().take(3) {
             out.push(Channel {
                 name: name.clone(),
@@ -53,6 +48,21 @@ pub fn render_layers(
         }
     }
     Ok(out)
+}
+
+/// Renders one layer (its channels are the first of each pixel's colour sums).
+pub fn render_layer(
+    scene: &Scene,
+    layer: &Layer,
+    seed: u64,
+    samples: Range<u64>,
+    opts: &RenderOptions,
+) -> Result<Framebuffer, String> {
+    let integrator = layer
+        .build()
+        .ok_or_else(|| format!("cannot build the integrator of channels {:?}", layer.names))?;
+    let job = RenderJob::new(scene, &integrator, seed);
+    Ok(render(&job, samples, opts, &mut |_, _| {}))
 }
 
 /// The colour image's `R`, `G`, `B` channels from its pixel means.
@@ -97,4 +107,30 @@ pub fn write_channels_exr(
         image.write().to_file(tmp).map_err(|e| e.to_string())
     })
     .map_err(err)
+}
+
+/// Reads every float channel of an EXR file's first layer: width, height and the channels in
+/// the file's order (sorted by name). Errors are one line naming the file.
+pub fn read_channels_exr(path: &Path) -> Result<(u32, u32, Vec<Channel>), String> {
+    let err = |e: String| format!("{}: cannot read image: {e}", path.display());
+    let image = exr::prelude::read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .from_file(path)
+        .map_err(|e| err(e.to_string()))?;
+    let layer = &image.layer_data;
+    let (w, h) = (layer.size.0 as u32, layer.size.1 as u32);
+    let channels = layer
+        .channel_data
+        .list
+        .iter()
+        .map(|c| Channel {
+            name: c.name.to_string(),
+            values: c.sample_data.values_as_f32().collect(),
+        })
+        .collect();
+    Ok((w, h, channels))
 }

@@ -254,3 +254,126 @@ fn read_moment(obj: &Object, spec: &mut IntegratorSpec) -> Result<()> {
     spec.layers = layers;
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    fn load(integrator: &str) -> Result<crate::LoadedScene, crate::error::InputError> {
+        let text = format!(
+            "<scene version=\"3.0.0\">\n{integrator}\n<sensor type=\"perspective\"/>\n</scene>\n"
+        );
+        crate::load_scene_str(&text, Path::new("/nowhere/m.xml"), &[])
+    }
+
+    fn names(l: &crate::LoadedScene) -> Vec<String> {
+        let layers = &l.integrator_spec.layers;
+        layers.iter().flat_map(|l| l.names.clone()).collect()
+    }
+
+    /// Mitsuba 3.9.1's channel names (checked by running it): nested integrators first, by
+    /// `name` or `_arg_N`, then the variables; the image is the first nested integrator's.
+    #[test]
+    fn aov_names_its_channels_as_mitsuba_does() {
+        let l = load(
+            "<integrator type=\"aov\">\n  <string name=\"aovs\" value=\"dd:depth, uv:uv\"/>\n  \
+             <integrator type=\"path\" name=\"p1\">\n    <integer name=\"max_depth\" value=\"3\"/>\n  \
+             </integrator>\n  <integrator type=\"direct\"/>\n</integrator>",
+        )
+        .unwrap();
+        assert_eq!(l.integrator_spec.name, "path");
+        assert_eq!(l.integrator_spec.max_depth, Some(3));
+        assert_eq!(
+            names(&l),
+            [
+                "p1.R", "p1.G", "p1.B", "p1.A", "_arg_2.R", "_arg_2.G", "_arg_2.B", "_arg_2.A",
+                "dd.T", "uv.U", "uv.V"
+            ]
+        );
+        // Without a nested integrator: the variables only, over a black image.
+        let l = load("<integrator type=\"aov\"><string name=\"aovs\" value=\"n:sh_normal\"/></integrator>")
+            .unwrap();
+        assert_eq!(names(&l), ["n.X", "n.Y", "n.Z"]);
+        assert!(matches!(
+            l.integrator,
+            tessera_core::integrator::Integrator::Aov(_)
+        ));
+    }
+
+    /// Bad `aovs` are located one-line errors that name the valid types.
+    #[test]
+    fn bad_aovs_are_located_errors() {
+        for (aovs, words) in [
+            ("dd:dpeth", "unknown aov type \"dpeth\" (valid: albedo, depth,"),
+            ("dd:prim_index", "not supported by Tessera"),
+            ("depth", "not a NAME:TYPE pair"),
+        ] {
+            let e = load(&format!(
+                "<integrator type=\"aov\">\n  <string name=\"aovs\" value=\"{aovs}\"/>\n</integrator>"
+            ))
+            .unwrap_err()
+            .to_string();
+            assert!(e.starts_with("/nowhere/m.xml:3:3:") && e.contains(words), "{e}");
+            assert_eq!(e.lines().count(), 1, "{e}");
+        }
+        // Control: a valid list loads.
+        load("<integrator type=\"aov\"><string name=\"aovs\" value=\"dd:depth\"/></integrator>")
+            .unwrap();
+        let e = load("<integrator type=\"aov\"/>").unwrap_err().to_string();
+        assert!(e.starts_with("/nowhere/m.xml:2:1:") && e.contains("aovs"), "{e}");
+        let e = load(
+            "<integrator type=\"aov\"><string name=\"aovs\" value=\"\"/>\n  \
+             <integrator type=\"moment\"><integrator type=\"path\"/></integrator></integrator>",
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.starts_with("/nowhere/m.xml:3:3:") && e.contains("cannot be nested"), "{e}");
+        let e = load(
+            "<integrator type=\"moment\">\n  <integrator type=\"path\">\n    \
+             <boolean name=\"reuse\" value=\"true\"/></integrator></integrator>",
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.starts_with("/nowhere/m.xml:3:3:") && e.contains("reuse"), "{e}");
+    }
+
+    /// `moment`: X, Y, Z per nested integrator, then the `m2_` squares; nothing nested is a
+    /// located error; on the command line it names no integrator of its own.
+    #[test]
+    fn moment_names_its_channels_as_mitsuba_does() {
+        let l = load(
+            "<integrator type=\"moment\">\n  <integrator type=\"path\" name=\"a\">\n    \
+             <integer name=\"max_depth\" value=\"3\"/>\n  </integrator>\n  \
+             <integrator type=\"direct\" name=\"b\"/>\n</integrator>",
+        )
+        .expect("moment loads");
+        assert_eq!(l.integrator_spec.name, "path");
+        assert_eq!(l.integrator_spec.max_depth, Some(3));
+        assert_eq!(
+            names(&l),
+            [
+                "a.X", "a.Y", "a.Z", "b.X", "b.Y", "b.Z", "m2_a.X", "m2_a.Y", "m2_a.Z", "m2_b.X",
+                "m2_b.Y", "m2_b.Z"
+            ]
+        );
+        let mut l = l;
+        let e = l.set_integrator(Some("moment"), None).unwrap_err();
+        assert!(e.contains("wraps other integrators"), "{e}");
+        let e = l.set_integrator(Some("aov"), None).unwrap_err();
+        assert!(e.contains("wraps other integrators"), "{e}");
+        l.set_integrator(Some("direct"), None)
+            .expect("control: a real integrator");
+        let e = load(
+            "<integrator type=\"moment\">\n  <integrator type=\"path\">\n    \
+             <integer name=\"max_depth\" value=\"-7\"/>\n  </integrator>\n</integrator>",
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.starts_with("/nowhere/m.xml:4:5:"), "{e}");
+        let e = load("<integrator type=\"moment\"/>").unwrap_err().to_string();
+        assert!(
+            e.starts_with("/nowhere/m.xml:2:1:") && e.contains("nested"),
+            "{e}"
+        );
+    }
+}
