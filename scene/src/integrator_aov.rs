@@ -7,8 +7,8 @@
 //! sampler (so the same camera samples) and written into a multichannel EXR.
 //!
 //! Channel names are Mitsuba 3.9.1's: a nested integrator is named by its `name` attribute or
-//! `_arg_N` (N its position among the wrapper's nested objects); `aov` gives it `NAME.R/G/B/A`
-//! and then the variables `NAME.T` (depth), `NAME.X/Y/Z` (position, normals), `NAME.U/V` (uv),
+//! `_arg_N` (N counting the wrapper's unnamed nested objects from 0); `aov` gives it
+//! `NAME.R/G/B/A` and then the variables `NAME.T` (depth), `NAME.X/Y/Z` (position, normals), `NAME.U/V` (uv),
 //! `NAME.R/G/B` (albedo); `moment` gives `NAME.X/Y/Z` per nested integrator, then the same
 //! names prefixed by `m2_` for the squares.
 use crate::integrator::{read_integrator, IntegratorBuild, IntegratorPlugin, IntegratorSpec};
@@ -124,7 +124,8 @@ pub const MOMENT: IntegratorPlugin = Plugin {
 /// layer renders do not share).
 fn nested_specs(obj: &Object) -> Result<Vec<(String, IntegratorSpec)>> {
     let mut out = Vec::new();
-    for (i, child) in obj.children.iter().enumerate() {
+    let mut unnamed = 0;
+    for child in &obj.children {
         if child.obj.kind != Kind::Integrator {
             continue;
         }
@@ -147,7 +148,10 @@ fn nested_specs(obj: &Object) -> Result<Vec<(String, IntegratorSpec)>> {
                 ),
             ));
         }
-        let name = child.name.clone().unwrap_or_else(|| format!("_arg_{i}"));
+        let name = child.name.clone().unwrap_or_else(|| {
+            unnamed += 1;
+            format!("_arg_{}", unnamed - 1)
+        });
         out.push((name, spec));
     }
     Ok(out)
@@ -286,7 +290,7 @@ mod tests {
         assert_eq!(
             names(&l),
             [
-                "p1.R", "p1.G", "p1.B", "p1.A", "_arg_2.R", "_arg_2.G", "_arg_2.B", "_arg_2.A",
+                "p1.R", "p1.G", "p1.B", "p1.A", "_arg_0.R", "_arg_0.G", "_arg_0.B", "_arg_0.A",
                 "dd.T", "uv.U", "uv.V"
             ]
         );
