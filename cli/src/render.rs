@@ -266,7 +266,7 @@ pub fn run(args: &RenderArgs) -> i32 {
         false => {
             let secs = start.elapsed().as_secs_f64();
             super::render_layers::write(args, &loaded, &fb, seed, &opts, &decor, secs)
-        },
+        }
     };
     if let Err(e) = written {
         eprintln!("error: {e}");

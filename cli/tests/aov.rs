@@ -45,8 +45,8 @@ fn render_writes_mitsuba_channel_names_to_exr() {
     assert_eq!(
         names,
         [
-            "B", "G", "R", "alb.B", "alb.G", "alb.R", "dd.y.T", "img.A", "img.B", "img.G",
-            "img.R", "nn.X", "nn.Y", "nn.Z", "pos.X", "pos.Y", "pos.Z"
+            "B", "G", "R", "alb.B", "alb.G", "alb.R", "dd.y.T", "img.A", "img.B", "img.G", "img.R",
+            "nn.X", "nn.Y", "nn.Z", "pos.X", "pos.Y", "pos.Z"
         ]
     );
     // The colour is the nested path tracer's, so R and img.R are the same values; depth is a
@@ -55,7 +55,9 @@ fn render_writes_mitsuba_channel_names_to_exr() {
     assert_eq!(get("R"), get("img.R"));
     assert!(get("img.A").iter().all(|&a| a == 1.0));
     let depth = get("dd.y.T");
-    assert!(depth.iter().all(|d| d.is_finite() && (0.0..10.0).contains(d)));
+    assert!(depth
+        .iter()
+        .all(|d| d.is_finite() && (0.0..10.0).contains(d)));
     assert!(depth.iter().any(|&d| d > 3.0));
     assert!(png.exists());
     // Flags the extra channels do not support: one line, naming the scene.

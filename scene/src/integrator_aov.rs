@@ -134,7 +134,11 @@ fn nested_specs(obj: &Object) -> Result<Vec<(String, IntegratorSpec)>> {
         if spec.name == "aov" || spec.name == "moment" || !spec.layers.is_empty() {
             return Err(crate::error::InputError::at(
                 &child.loc,
-                format!("{} cannot be nested in {}", child.obj.describe(), obj.describe()),
+                format!(
+                    "{} cannot be nested in {}",
+                    child.obj.describe(),
+                    obj.describe()
+                ),
             ));
         }
         if spec.reuse {
@@ -163,7 +167,9 @@ fn names(prefix: &str, suffixes: &[&str]) -> Vec<String> {
 
 fn read_aov(obj: &Object, spec: &mut IntegratorSpec) -> Result<()> {
     let text = AOVS.read_string(obj)?;
-    let loc = obj.prop(AOVS.name).map_or(obj.loc.clone(), |p| p.loc.clone());
+    let loc = obj
+        .prop(AOVS.name)
+        .map_or(obj.loc.clone(), |p| p.loc.clone());
     let nested = nested_specs(obj)?;
     let mut layers = Vec::new();
     for (name, nested) in &nested {
@@ -295,8 +301,10 @@ mod tests {
             ]
         );
         // Without a nested integrator: the variables only, over a black image.
-        let l = load("<integrator type=\"aov\"><string name=\"aovs\" value=\"n:sh_normal\"/></integrator>")
-            .unwrap();
+        let l = load(
+            "<integrator type=\"aov\"><string name=\"aovs\" value=\"n:sh_normal\"/></integrator>",
+        )
+        .unwrap();
         assert_eq!(names(&l), ["n.X", "n.Y", "n.Z"]);
         assert!(matches!(
             l.integrator,
@@ -308,7 +316,10 @@ mod tests {
     #[test]
     fn bad_aovs_are_located_errors() {
         for (aovs, words) in [
-            ("dd:dpeth", "unknown aov type \"dpeth\" (valid: albedo, depth,"),
+            (
+                "dd:dpeth",
+                "unknown aov type \"dpeth\" (valid: albedo, depth,",
+            ),
             ("dd:prim_index", "not supported by Tessera"),
             ("depth", "not a NAME:TYPE pair"),
         ] {
@@ -317,28 +328,40 @@ mod tests {
             ))
             .unwrap_err()
             .to_string();
-            assert!(e.starts_with("/nowhere/m.xml:3:3:") && e.contains(words), "{e}");
+            assert!(
+                e.starts_with("/nowhere/m.xml:3:3:") && e.contains(words),
+                "{e}"
+            );
             assert_eq!(e.lines().count(), 1, "{e}");
         }
         // Control: a valid list loads.
         load("<integrator type=\"aov\"><string name=\"aovs\" value=\"dd:depth\"/></integrator>")
             .unwrap();
         let e = load("<integrator type=\"aov\"/>").unwrap_err().to_string();
-        assert!(e.starts_with("/nowhere/m.xml:2:1:") && e.contains("aovs"), "{e}");
+        assert!(
+            e.starts_with("/nowhere/m.xml:2:1:") && e.contains("aovs"),
+            "{e}"
+        );
         let e = load(
             "<integrator type=\"aov\"><string name=\"aovs\" value=\"\"/>\n  \
              <integrator type=\"moment\"><integrator type=\"path\"/></integrator></integrator>",
         )
         .unwrap_err()
         .to_string();
-        assert!(e.starts_with("/nowhere/m.xml:3:3:") && e.contains("cannot be nested"), "{e}");
+        assert!(
+            e.starts_with("/nowhere/m.xml:3:3:") && e.contains("cannot be nested"),
+            "{e}"
+        );
         let e = load(
             "<integrator type=\"moment\">\n  <integrator type=\"path\">\n    \
              <boolean name=\"reuse\" value=\"true\"/></integrator></integrator>",
         )
         .unwrap_err()
         .to_string();
-        assert!(e.starts_with("/nowhere/m.xml:3:3:") && e.contains("reuse"), "{e}");
+        assert!(
+            e.starts_with("/nowhere/m.xml:3:3:") && e.contains("reuse"),
+            "{e}"
+        );
     }
 
     /// `moment`: X, Y, Z per nested integrator, then the `m2_` squares; nothing nested is a
@@ -374,7 +397,9 @@ mod tests {
         .unwrap_err()
         .to_string();
         assert!(e.starts_with("/nowhere/m.xml:4:5:"), "{e}");
-        let e = load("<integrator type=\"moment\"/>").unwrap_err().to_string();
+        let e = load("<integrator type=\"moment\"/>")
+            .unwrap_err()
+            .to_string();
         assert!(
             e.starts_with("/nowhere/m.xml:2:1:") && e.contains("nested"),
             "{e}"

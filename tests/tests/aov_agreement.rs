@@ -129,7 +129,10 @@ fn aov_channels_match_mitsuba() {
     let (p, at) = worst_against_reference_rect(&ours, &ours, SPP, &rgb(1.0), REF_SPP, BLOCK);
     assert!(p > alpha, "colour: p = {p:.2e} at {at}");
     let (p, at) = worst_against_reference_rect(&ours, &ours, SPP, &rgb(0.95), REF_SPP, BLOCK);
-    assert!(p < alpha, "control (colour 5% darker) passed: p = {p:.2e} at {at}");
+    assert!(
+        p < alpha,
+        "control (colour 5% darker) passed: p = {p:.2e} at {at}"
+    );
 
     for layer in &l.integrator_spec.layers {
         let fb = render_layer(&l.scene, layer, SEED, 0..SPP, &opts(2, 16)).unwrap();
@@ -141,7 +144,10 @@ fn aov_channels_match_mitsuba() {
         if layer.names[0] == "nn.X" {
             let swapped = [refs[2], refs[1], refs[0]];
             let (p, at) = worst(&fb, &ks, &swapped);
-            assert!(p < alpha, "control (nn X and Z swapped) passed: p = {p:.2e} at {at}");
+            assert!(
+                p < alpha,
+                "control (nn X and Z swapped) passed: p = {p:.2e} at {at}"
+            );
         }
         if layer.names[0] == "alb.R" {
             let darker: Vec<Vec<f32>> = refs
@@ -150,7 +156,10 @@ fn aov_channels_match_mitsuba() {
                 .collect();
             let darker: Vec<&[f32]> = darker.iter().map(Vec::as_slice).collect();
             let (p, at) = worst(&fb, &ks, &darker);
-            assert!(p < alpha, "control (albedo 3% darker) passed: p = {p:.2e} at {at}");
+            assert!(
+                p < alpha,
+                "control (albedo 3% darker) passed: p = {p:.2e} at {at}"
+            );
         }
     }
 }
@@ -185,13 +194,22 @@ fn moment_second_moment_is_the_mean_of_squared_samples() {
             "m2_d.Y", "m2_d.Z"
         ]
     );
-    assert_eq!(l.integrator_spec.name, "path", "the image is the first nested integrator's");
+    assert_eq!(
+        l.integrator_spec.name, "path",
+        "the image is the first nested integrator's"
+    );
     let spp = 16;
     let second = &l.integrator_spec.layers[2];
     assert_eq!(second.names[0], "m2_p.X");
     let fb = render_layer(&l.scene, second, SEED, 0..spp, &opts(2, 8)).unwrap();
-    let first = render_layer(&l.scene, &l.integrator_spec.layers[0], SEED, 0..spp, &opts(2, 8))
-        .unwrap();
+    let first = render_layer(
+        &l.scene,
+        &l.integrator_spec.layers[0],
+        SEED,
+        0..spp,
+        &opts(2, 8),
+    )
+    .unwrap();
     let job = RenderJob::new(&l.scene, &l.integrator, SEED);
     let m = tessera_core::integrator::SRGB_TO_XYZ.as_dmat3();
     let (mut bad, mut control_bad, mut worst) = (0, 0, 0.0f64);
@@ -218,7 +236,11 @@ fn moment_second_moment_is_the_mean_of_squared_samples() {
     }
     assert_eq!(bad, 0, "worst difference {worst:.2} tolerances");
     // Control: the square of the mean is not the mean of the squares (most pixels are noisy).
-    assert!(control_bad > 1500, "control passed in {} channels", 3072 - control_bad);
+    assert!(
+        control_bad > 1500,
+        "control passed in {} channels",
+        3072 - control_bad
+    );
 }
 
 #[test]
@@ -229,6 +251,10 @@ fn layers_are_the_same_bits_on_any_thread_count() {
         let b = render_layer(&l.scene, layer, SEED, 0..8, &opts(2, 5)).unwrap();
         assert!(a == b, "{:?} differs between thread counts", layer.names);
         let c = render_layer(&l.scene, layer, SEED + 1, 0..8, &opts(2, 5)).unwrap();
-        assert!(a != c, "control: another seed gives the same {:?}", layer.names);
+        assert!(
+            a != c,
+            "control: another seed gives the same {:?}",
+            layer.names
+        );
     }
 }

@@ -68,7 +68,10 @@ impl AovIntegrator {
         // Camera rays are unit length, so the ray parameter is the distance.
         let length = ray.d.length();
         match self.aov {
-            Aov::Albedo => albedo(&scene.bsdfs[scene.shapes[si.shape as usize].bsdf as usize], &si),
+            Aov::Albedo => albedo(
+                &scene.bsdfs[scene.shapes[si.shape as usize].bsdf as usize],
+                &si,
+            ),
             Aov::Depth => Color::new(si.t * length, 0.0, 0.0),
             Aov::Position => si.p,
             Aov::Uv => Color::new(si.uv.x, si.uv.y, 0.0),
@@ -93,9 +96,7 @@ pub fn albedo(bsdf: &Bsdf, si: &Interaction) -> Color {
 fn side_albedo(bsdf: &Bsdf, wi: Vec3, si: &Interaction) -> Color {
     match bsdf {
         Bsdf::Diffuse(d) => d.reflectance.eval(si.uv),
-        Bsdf::TwoSided(t) if wi.z < 0.0 => {
-            side_albedo(&t.back, Vec3::new(wi.x, wi.y, -wi.z), si)
-        }
+        Bsdf::TwoSided(t) if wi.z < 0.0 => side_albedo(&t.back, Vec3::new(wi.x, wi.y, -wi.z), si),
         Bsdf::TwoSided(t) => side_albedo(&t.front, wi, si),
         b => b.eval(wi, Vec3::Z, si.uv) * core::f32::consts::PI,
     }
