@@ -57,8 +57,11 @@ impl Layer {
     }
 }
 
+/// A variable and the suffixes of its channel names.
+type AovChannels = (Aov, &'static [&'static str]);
+
 /// The AOV types Mitsuba 3 has, with what Tessera renders for each (`None`: not supported).
-const AOV_TYPES: &[(&str, Option<(Aov, &[&str])>)] = &[
+const AOV_TYPES: &[(&str, Option<AovChannels>)] = &[
     ("albedo", Some((Aov::Albedo, &["R", "G", "B"]))),
     ("depth", Some((Aov::Depth, &["T"]))),
     ("position", Some((Aov::Position, &["X", "Y", "Z"]))),

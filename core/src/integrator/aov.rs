@@ -8,7 +8,7 @@
 use super::probe::{PathEnd, Probe, RayKind};
 use crate::bsdf::Bsdf;
 use crate::geometry::Interaction;
-use crate::math::Ray;
+use crate::math::{Norm, Ray};
 use crate::scene::Scene;
 use crate::Color;
 use glam::Vec3;
@@ -66,7 +66,7 @@ impl AovIntegrator {
             };
         };
         // Camera rays are unit length, so the ray parameter is the distance.
-        let length = ray.d.length();
+        let length = ray.d.norm();
         match self.aov {
             Aov::Albedo => albedo(
                 &scene.bsdfs[scene.shapes[si.shape as usize].bsdf as usize],
