@@ -12,6 +12,7 @@ pub mod plugins;
 pub mod probe_args;
 pub mod render;
 pub mod render_args;
+pub mod render_layers;
 pub mod render_once;
 pub mod split_args;
 pub mod test;

@@ -120,6 +120,9 @@ pub fn run(args: &RenderArgs) -> i32 {
         return usage("--threads must be at least 1".into());
     }
     let seed = args.seed.unwrap_or(loaded.seed);
+    if let Err(e) = super::render_layers::check_args(args, &loaded) {
+        return usage(e);
+    }
     if super::render_once::wanted(args) {
         return super::render_once::run(args, &loaded, threads, seed);
     }
@@ -258,7 +261,14 @@ pub fn run(args: &RenderArgs) -> i32 {
         pending: pending.as_deref(),
         check: check.as_ref(),
     };
-    if let Err(e) = save(&fb, passes, more) {
+    let written = match loaded.integrator_spec.layers.is_empty() {
+        true => save(&fb, passes, more),
+        false => {
+            let secs = start.elapsed().as_secs_f64();
+            super::render_layers::write(args, &loaded, &fb, seed, &opts, &decor, secs)
+        }
+    };
+    if let Err(e) = written {
         eprintln!("error: {e}");
         return 1;
     }

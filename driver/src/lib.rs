@@ -7,6 +7,7 @@
 mod api;
 pub mod checkpoint;
 pub mod image_io;
+pub mod layers;
 pub mod overlay;
 pub mod progressive;
 pub mod render;

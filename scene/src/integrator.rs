@@ -2,10 +2,11 @@
 //! Tessera's own (`heuristic`, `reuse`, `light_selection`). A scene without an integrator uses
 //! `path`. Each plugin reads its parameters into an [`IntegratorSpec`], which the command line
 //! may change (another name, another depth) before the core integrator is made from it.
+use crate::integrator_aov::{Layer, AOV, MOMENT};
 use crate::plugin::{self, Param, Plugin, Range};
 use crate::util::vec3;
 use crate::util::Result;
-use crate::xml::{Kind, Object};
+use crate::xml::Object;
 use tessera_core::glam::Vec3;
 use tessera_core::integrator::{
     DirectIntegrator, Heuristic, Integrator, NormalsIntegrator, PathIntegrator, SimpleIntegrator,
@@ -43,6 +44,9 @@ pub struct IntegratorSpec {
     /// Located warnings about what the file asks and the integrator does not do (a wrapper's
     /// extra outputs), reported with the scene's other warnings.
     pub warnings: Vec<String>,
+    /// Extra image channels (`aov`, `moment`), each group rendered by its own integrator with
+    /// the same seed and sampler; empty for every other integrator.
+    pub layers: Vec<Layer>,
 }
 
 impl Default for IntegratorSpec {
@@ -60,6 +64,7 @@ impl Default for IntegratorSpec {
             point_light: None,
             visibility_length: 1.0,
             warnings: Vec::new(),
+            layers: Vec::new(),
         }
     }
 }
@@ -131,6 +136,7 @@ pub static INTEGRATORS: &[IntegratorPlugin] = &[
     ),
     DIRECT_MIS,
     MOMENT,
+    AOV,
     WHITTED,
     SIMPLE,
     AO,
@@ -481,107 +487,8 @@ pub const SIMPLE: IntegratorPlugin = Plugin {
     },
 };
 
-/// `moment`: Mitsuba 3's wrapper that renders its first nested integrator and also records,
-/// per nested integrator, the mean of each sample's XYZ and of its square as extra channels.
-/// The image is the first nested integrator's, which is what Tessera renders: the spec read is
-/// that integrator's own (so the command line changes it as usual), with a located warning that
-/// the extra channels are not written.
-pub const MOMENT: IntegratorPlugin = Plugin {
-    name: "moment",
-    aliases: &[],
-    doc: "Mitsuba 3's second-moment wrapper: renders the image of its first nested integrator \
-          (the extra moment channels are not written; a warning says so).",
-    params: &[],
-    nested: "one or more `<integrator>`; the first makes the image",
-    build: IntegratorBuild {
-        read: read_moment,
-        make: None,
-    },
-};
-
-fn read_moment(obj: &Object, spec: &mut IntegratorSpec) -> Result<()> {
-    let mut nested = obj.children_of(Kind::Integrator);
-    let first = nested
-        .next()
-        .ok_or_else(|| obj.error("a moment integrator needs a nested <integrator>"))?;
-    first.mark_used();
-    *spec = read_integrator(Some(&first.obj))?;
-    for other in nested {
-        other.mark_used();
-        // Read for its errors, as Mitsuba builds it.
-        read_integrator(Some(&other.obj))?;
-        spec.warnings.push(format!(
-            "{}: {} nested in moment is not rendered (only the first nested integrator makes \
-             the image)",
-            other.loc,
-            other.obj.describe()
-        ));
-    }
-    spec.warnings.push(format!(
-        "{}: {} renders its first nested integrator's image; its moment channels are not \
-         written",
-        obj.loc,
-        obj.describe()
-    ));
-    Ok(())
-}
-
 #[cfg(test)]
 mod tests {
-    use std::path::Path;
-
-    fn load(integrator: &str) -> Result<crate::LoadedScene, crate::error::InputError> {
-        let text = format!(
-            "<scene version=\"3.0.0\">\n{integrator}\n<sensor type=\"perspective\"/>\n</scene>\n"
-        );
-        crate::load_scene_str(&text, Path::new("/nowhere/m.xml"), &[])
-    }
-
-    /// `moment` renders its first nested integrator, parameters and all, and says in located
-    /// warnings what it leaves out; without a nested integrator it is a located error.
-    #[test]
-    fn moment_renders_its_first_nested_integrator_with_a_warning() {
-        let l = load(
-            "<integrator type=\"moment\">\n  <integrator type=\"path\" name=\"a\">\n    \
-             <integer name=\"max_depth\" value=\"3\"/>\n  </integrator>\n  \
-             <integrator type=\"direct\" name=\"b\"/>\n</integrator>",
-        )
-        .expect("moment loads");
-        assert_eq!(l.integrator_spec.name, "path");
-        assert_eq!(l.integrator_spec.max_depth, Some(3));
-        let w: Vec<&String> = l.warnings.iter().filter(|w| w.contains("moment")).collect();
-        assert_eq!(w.len(), 2, "{:?}", l.warnings);
-        assert!(
-            w.iter().any(|w| w.starts_with("/nowhere/m.xml:2:1:")),
-            "{w:?}"
-        );
-        assert!(w
-            .iter()
-            .any(|w| w.starts_with("/nowhere/m.xml:6:3:") && w.contains("direct")));
-        // On the command line it names no integrator of its own.
-        let mut l = l;
-        let e = l.set_integrator(Some("moment"), None).unwrap_err();
-        assert!(e.contains("wraps another integrator"), "{e}");
-        l.set_integrator(Some("direct"), None)
-            .expect("control: a real integrator");
-        // The nested integrator's own errors keep their location.
-        let e = load(
-            "<integrator type=\"moment\">\n  <integrator type=\"path\">\n    \
-             <integer name=\"max_depth\" value=\"-7\"/>\n  </integrator>\n</integrator>",
-        )
-        .unwrap_err()
-        .to_string();
-        assert!(e.starts_with("/nowhere/m.xml:4:5:"), "{e}");
-        // Control: nothing nested.
-        let e = load("<integrator type=\"moment\"/>")
-            .unwrap_err()
-            .to_string();
-        assert!(
-            e.starts_with("/nowhere/m.xml:2:1:") && e.contains("nested"),
-            "{e}"
-        );
-    }
-
     #[test]
     fn declarations_match_what_the_builders_read() {
         crate::plugin::check::check_family(
@@ -590,6 +497,7 @@ mod tests {
             |obj| super::read_integrator(Some(obj)),
             |name| match name {
                 "moment" => "<integrator type=\"path\"/>".into(),
+                "aov" => "<string name=\"aovs\" value=\"dd:depth\"/>".into(),
                 "simple" => "<point name=\"position\" value=\"0, 1, 0\"/>\
                              <rgb name=\"energy\" value=\"1\"/>"
                     .into(),

@@ -20,6 +20,7 @@ mod families;
 mod filter;
 mod instancing;
 mod integrator;
+mod integrator_aov;
 mod loaded;
 pub(crate) mod materials;
 mod mitsuba_names;
@@ -29,6 +30,7 @@ mod shapes;
 mod util;
 
 pub use integrator::{integrator_names, IntegratorSpec, INTEGRATORS};
+pub use integrator_aov::{Layer, LayerSource};
 pub use loaded::{LoadedScene, PluginNames};
 pub use sensor::{MAX_EDGE, MAX_PIXELS};
 

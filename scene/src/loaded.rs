@@ -80,6 +80,12 @@ impl LoadedScene {
                     "\"+reuse\" needs a path tracer (path, path_mis, ...), found \"{base}\""
                 ));
             }
+            if base == "moment" || base == "aov" {
+                return Err(format!(
+                    "\"{base}\" wraps other integrators in a scene file; name the integrator \
+                     to render"
+                ));
+            }
             spec.name = base.to_string();
             spec.reuse = reuse;
         }

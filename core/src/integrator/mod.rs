@@ -1,6 +1,8 @@
 //! Integrators: a closed enum; each estimates the radiance arriving along one camera ray.
+mod aov;
 mod direct;
 mod mis;
+mod moment;
 mod normals;
 mod path;
 mod path_state;
@@ -13,8 +15,10 @@ mod unweighted_hit;
 mod visibility;
 mod whitted;
 
+pub use aov::{albedo, Aov, AovIntegrator};
 pub use direct::DirectIntegrator;
 pub use mis::{balance_heuristic, power_heuristic, Heuristic};
+pub use moment::{MomentIntegrator, SRGB_TO_XYZ};
 pub use normals::NormalsIntegrator;
 pub use path::{PathIntegrator, Strategy};
 pub use probe::{Counters, NoProbe, PathEnd, Probe, RayKind};
@@ -44,6 +48,11 @@ pub enum Integrator {
     Visibility(Visibility),
     /// Nori's Whitted-style ray tracer (`whitted`).
     Whitted(WhittedIntegrator),
+    /// One of Mitsuba 3's arbitrary output variables as a colour (the `aov` integrator's
+    /// channels).
+    Aov(AovIntegrator),
+    /// A nested integrator's XYZ or its square (the `moment` integrator's channels).
+    Moment(MomentIntegrator),
 }
 
 impl Integrator {
@@ -74,6 +83,8 @@ impl Integrator {
             Integrator::Simple(s) => s.li_probed(scene, ray, probe),
             Integrator::Visibility(v) => v.li_probed(scene, ray, sampler, probe),
             Integrator::Whitted(w) => w.li_probed(scene, ray, sampler, probe),
+            Integrator::Aov(a) => a.li_probed(scene, ray, probe),
+            Integrator::Moment(m) => m.li_probed(scene, ray, sampler, probe),
         }
     }
 }

@@ -1,0 +1,80 @@
+//! `tessera render` of a scene whose integrator adds image channels (`aov`, `moment`): after
+//! the colour render, each layer of channels is rendered with the same seed, sampler and sample
+//! count (see `tessera::layers`), and EXR outputs get every channel under Mitsuba 3's names.
+//! PNG and PFM outputs hold the colour only (one warning says so). Renders that stop on a time
+//! budget, an error target or a signal, resume, adapt or split do not know the final sample
+//! count of every pixel in advance, so they are refused with these integrators.
+use super::decor::Decor;
+use super::render_args::RenderArgs;
+use super::render_once::progressive_flag;
+use tessera::image_io::Format;
+use tessera::layers::{render_layers, rgb_channels, write_channels_exr};
+use tessera::render::{Framebuffer, RenderOptions};
+use tessera_scene::LoadedScene;
+
+/// Refuses the flags a render with extra channels does not support (one line).
+pub fn check_args(args: &RenderArgs, loaded: &LoadedScene) -> Result<(), String> {
+    if loaded.integrator_spec.layers.is_empty() {
+        return Ok(());
+    }
+    let flag = progressive_flag(args).or_else(|| {
+        [
+            (args.split.is_split(), "--crop, --tiles or --sample-range"),
+            (args.probe.stats, "--stats"),
+            (args.probe.debug_pixel.is_some(), "--debug-pixel"),
+        ]
+        .into_iter()
+        .find_map(|(given, name)| given.then_some(name))
+    });
+    match flag {
+        Some(flag) => Err(format!(
+            "{}: {flag} cannot be combined with an integrator that writes extra channels (aov, \
+             moment); render them with --spp",
+            args.scene.display()
+        )),
+        None => Ok(()),
+    }
+}
+
+/// Renders the extra channels for the samples `fb` holds (every pixel the same count) and
+/// writes every output.
+pub(super) fn write(
+    args: &RenderArgs,
+    loaded: &LoadedScene,
+    fb: &Framebuffer,
+    seed: u64,
+    opts: &RenderOptions,
+    decor: &Decor,
+    seconds: f64,
+) -> Result<(), String> {
+    let spp = fb.pixels.first().map_or(0, |p| p.count + p.dropped);
+    let layers = &loaded.integrator_spec.layers;
+    let wants_exr = args
+        .outputs
+        .iter()
+        .any(|o| Format::from_path(o) == Some(Format::Exr));
+    let extra = match wants_exr {
+        true => render_layers(&loaded.scene, layers, seed, 0..spp, opts)?,
+        false => Vec::new(),
+    };
+    let mut warned = false;
+    for o in &args.outputs {
+        if Format::from_path(o) == Some(Format::Exr) {
+            let mut channels = rgb_channels(&fb.rgb());
+            channels.extend(extra.iter().cloned());
+            write_channels_exr(o, fb.width, fb.height, &channels)?;
+        } else {
+            if !warned {
+                eprintln!(
+                    "warning: {}: the {} extra channels of the integrator are written only to \
+                     .exr outputs",
+                    o.display(),
+                    layers.iter().map(|l| l.names.len()).sum::<usize>()
+                );
+                warned = true;
+            }
+            decor.write(o, fb, seconds)?;
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,260 @@
+//! The `aov` and `moment` integrators' extra channels.
+//!
+//! `aov`: tests/aov/aov.xml (a diffuse sphere on a two-sided diffuse floor under a constant sky,
+//! 32x32, box filter; depth, shading normal, position and albedo beside a path tracer) against
+//! Mitsuba 3.9.1's render of the same file (tests/aov/aov_ref.exr, 1024 spp, by
+//! scripts/mitsuba_aov_ref.py): the channel names and order are Mitsuba's, and every channel
+//! agrees region by region (8x8 pixels, pixels as strata) in a z-test whose reference variance
+//! is our own per-pixel variance scaled by the sample-count ratio (both renderers average the
+//! same variable over uniformly placed box-filter samples), plus a float rounding allowance of
+//! 1e-4 relative. Where a region meets no silhouette its variables are smooth, so the test is
+//! then as tight as the rounding allowance. Sidak-corrected significance 0.01 over every
+//! compared region and channel. Controls that must fail: the normal's X and Z swapped, the
+//! albedo 3% darker, the colour 5% darker.
+//!
+//! `moment`: each sample's XYZ square is what the second-moment channel averages: computed here
+//! from the nested integrator's per-sample values, it matches the channel to float rounding,
+//! and the square of the mean (the control) does not.
+//!
+//! Determinism: a layer renders the same bits on 1 and 2 threads with different tiles.
+use std::path::{Path, PathBuf};
+use tessera::image_io::RgbImage;
+use tessera::layers::{read_channels_exr, render_layer};
+use tessera::render::{Framebuffer, RenderOptions};
+use tessera_core::glam::DVec3;
+use tessera_core::render::RenderJob;
+use tessera_lab::stats::sidak_alpha;
+use tessera_scene::{load_scene, load_scene_str, LoadedScene};
+use tessera_tests::{region_stats, render_loaded, worst_against_reference_rect, z_p_value};
+
+const SPP: u64 = 256;
+const REF_SPP: f64 = 1024.0;
+const BLOCK: u32 = 8;
+const SEED: u64 = 3;
+
+fn scene_path() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("aov/aov.xml")
+}
+
+fn opts(threads: usize, tile_size: u32) -> RenderOptions {
+    RenderOptions {
+        threads,
+        tile_size,
+        pixels: Default::default(),
+    }
+}
+
+/// Mitsuba 3's reference channels, by name.
+fn reference() -> Vec<(String, Vec<f32>)> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("aov/aov_ref.exr");
+    let (w, h, channels) = read_channels_exr(&path).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!((w, h), (32, 32));
+    channels.into_iter().map(|c| (c.name, c.values)).collect()
+}
+
+fn channel<'a>(r: &'a [(String, Vec<f32>)], name: &str) -> &'a [f32] {
+    &r.iter()
+        .find(|c| c.0 == name)
+        .unwrap_or_else(|| panic!("no channel {name} in the reference"))
+        .1
+}
+
+/// Smallest p-value over the regions of `fb`'s colour channels `ks` against reference planes
+/// `refs` (one per channel of `ks`), with where it was.
+fn worst(fb: &Framebuffer, ks: &[usize], refs: &[&[f32]]) -> (f64, String) {
+    let (w, h) = (fb.width, fb.height);
+    let mut worst = (1.0, String::new());
+    for by in 0..h / BLOCK {
+        for bx in 0..w / BLOCK {
+            let ours = region_stats(fb, bx * BLOCK, by * BLOCK, BLOCK, BLOCK);
+            for (&k, plane) in ks.iter().zip(refs) {
+                let mut m = 0.0;
+                for y in by * BLOCK..(by + 1) * BLOCK {
+                    for x in bx * BLOCK..(bx + 1) * BLOCK {
+                        m += plane[(y * w + x) as usize] as f64;
+                    }
+                }
+                let m = m / (BLOCK * BLOCK) as f64;
+                let (mo, vo) = ours[k];
+                let rounding = 1e-4 * m.abs().max(mo.abs()) + 1e-6;
+                let var = vo + vo * SPP as f64 / REF_SPP + rounding * rounding;
+                let z = (mo - m) / var.sqrt();
+                let p = z_p_value(z);
+                if p < worst.0 {
+                    worst = (
+                        p,
+                        format!("region ({bx},{by}) channel {k}: {mo:.6} vs {m:.6}, z = {z:.2}"),
+                    );
+                }
+            }
+        }
+    }
+    worst
+}
+
+/// The channel names, in order, that Mitsuba 3.9.1's film holds for tests/aov/aov.xml.
+const MITSUBA_ORDER: &[&str] = &[
+    "img.R", "img.G", "img.B", "img.A", "dd.y.T", "nn.X", "nn.Y", "nn.Z", "pos.X", "pos.Y",
+    "pos.Z", "alb.R", "alb.G", "alb.B",
+];
+
+#[test]
+fn aov_channels_match_mitsuba() {
+    let l = load_scene(&scene_path(), &[]).unwrap_or_else(|e| panic!("{e}"));
+    let names: Vec<&str> = l
+        .integrator_spec
+        .layers
+        .iter()
+        .flat_map(|layer| layer.names.iter().map(String::as_str))
+        .collect();
+    assert_eq!(names, MITSUBA_ORDER);
+    let r = reference();
+    let mut in_file: Vec<&str> = r.iter().map(|c| c.0.as_str()).collect();
+    in_file.retain(|n| !["R", "G", "B"].contains(n));
+    let mut sorted = names.clone();
+    sorted.sort();
+    assert_eq!(in_file, sorted, "the reference's channels");
+
+    let tests = (32 / BLOCK).pow(2) as usize * (3 + names.len());
+    let alpha = sidak_alpha(0.01, tests);
+    // The colour: Mitsuba's R, G, B are its first nested integrator's.
+    let ours = render_loaded(&l, SPP, SEED);
+    let rgb = |scale: f32| RgbImage {
+        width: 32,
+        height: 32,
+        data: (0..32 * 32)
+            .map(|i| ["R", "G", "B"].map(|n| channel(&r, n)[i] * scale))
+            .collect(),
+    };
+    let (p, at) = worst_against_reference_rect(&ours, &ours, SPP, &rgb(1.0), REF_SPP, BLOCK);
+    assert!(p > alpha, "colour: p = {p:.2e} at {at}");
+    let (p, at) = worst_against_reference_rect(&ours, &ours, SPP, &rgb(0.95), REF_SPP, BLOCK);
+    assert!(
+        p < alpha,
+        "control (colour 5% darker) passed: p = {p:.2e} at {at}"
+    );
+
+    for layer in &l.integrator_spec.layers {
+        let fb = render_layer(&l.scene, layer, SEED, 0..SPP, &opts(2, 16)).unwrap();
+        let ks: Vec<usize> = (0..layer.names.len()).collect();
+        let refs: Vec<&[f32]> = layer.names.iter().map(|n| channel(&r, n)).collect();
+        let (p, at) = worst(&fb, &ks, &refs);
+        assert!(p > alpha, "{:?}: p = {p:.2e} at {at}", layer.names);
+        eprintln!("{:?}: worst p = {p:.3} at {at}", layer.names);
+        if layer.names[0] == "nn.X" {
+            let swapped = [refs[2], refs[1], refs[0]];
+            let (p, at) = worst(&fb, &ks, &swapped);
+            assert!(
+                p < alpha,
+                "control (nn X and Z swapped) passed: p = {p:.2e} at {at}"
+            );
+        }
+        if layer.names[0] == "alb.R" {
+            let darker: Vec<Vec<f32>> = refs
+                .iter()
+                .map(|c| c.iter().map(|v| v * 0.97).collect())
+                .collect();
+            let darker: Vec<&[f32]> = darker.iter().map(Vec::as_slice).collect();
+            let (p, at) = worst(&fb, &ks, &darker);
+            assert!(
+                p < alpha,
+                "control (albedo 3% darker) passed: p = {p:.2e} at {at}"
+            );
+        }
+    }
+}
+
+/// The scene of tests/aov/aov.xml with `moment` over a path tracer and a direct integrator.
+fn moment_scene() -> LoadedScene {
+    let text = std::fs::read_to_string(scene_path()).unwrap();
+    let (a, b) = (
+        text.find("<integrator type=\"aov\">").unwrap(),
+        text.rfind("</integrator>").unwrap() + "</integrator>".len(),
+    );
+    let moment = "<integrator type=\"moment\">\n<integrator type=\"path\" name=\"p\">\
+                  <integer name=\"max_depth\" value=\"4\"/></integrator>\n\
+                  <integrator type=\"direct\" name=\"d\"/>\n</integrator>";
+    let text = format!("{}{moment}{}", &text[..a], &text[b..]);
+    load_scene_str(&text, &scene_path(), &[]).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn moment_second_moment_is_the_mean_of_squared_samples() {
+    let l = moment_scene();
+    let names: Vec<&str> = l
+        .integrator_spec
+        .layers
+        .iter()
+        .flat_map(|layer| layer.names.iter().map(String::as_str))
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "p.X", "p.Y", "p.Z", "d.X", "d.Y", "d.Z", "m2_p.X", "m2_p.Y", "m2_p.Z", "m2_d.X",
+            "m2_d.Y", "m2_d.Z"
+        ]
+    );
+    assert_eq!(
+        l.integrator_spec.name, "path",
+        "the image is the first nested integrator's"
+    );
+    let spp = 16;
+    let second = &l.integrator_spec.layers[2];
+    assert_eq!(second.names[0], "m2_p.X");
+    let fb = render_layer(&l.scene, second, SEED, 0..spp, &opts(2, 8)).unwrap();
+    let first = render_layer(
+        &l.scene,
+        &l.integrator_spec.layers[0],
+        SEED,
+        0..spp,
+        &opts(2, 8),
+    )
+    .unwrap();
+    let job = RenderJob::new(&l.scene, &l.integrator, SEED);
+    let m = tessera_core::integrator::SRGB_TO_XYZ.as_dmat3();
+    let (mut bad, mut control_bad, mut worst) = (0, 0, 0.0f64);
+    for y in 0..32 {
+        for x in 0..32 {
+            let (mut sum, mut sum_sq) = (DVec3::ZERO, DVec3::ZERO);
+            for i in 0..spp {
+                let xyz = m * job.sample(x, y, i).as_dvec3();
+                sum += xyz;
+                sum_sq += xyz * xyz;
+            }
+            let (mean, mean_sq) = (sum / spp as f64, sum_sq / spp as f64);
+            let got = DVec3::from(fb.at(x, y).mean().map(f64::from));
+            let got_first = DVec3::from(first.at(x, y).mean().map(f64::from));
+            for k in 0..3 {
+                let tol = 1e-5 * mean_sq[k].abs() + 1e-7;
+                let d = (got[k] - mean_sq[k]).abs();
+                worst = worst.max(d / tol);
+                bad += (d > tol) as u32;
+                bad += ((got_first[k] - mean[k]).abs() > 1e-5 * mean[k].abs() + 1e-7) as u32;
+                control_bad += ((mean[k] * mean[k] - got[k]).abs() > tol) as u32;
+            }
+        }
+    }
+    assert_eq!(bad, 0, "worst difference {worst:.2} tolerances");
+    // Control: the square of the mean is not the mean of the squares (most pixels are noisy).
+    assert!(
+        control_bad > 1500,
+        "control passed in {} channels",
+        3072 - control_bad
+    );
+}
+
+#[test]
+fn layers_are_the_same_bits_on_any_thread_count() {
+    let l = load_scene(&scene_path(), &[]).unwrap_or_else(|e| panic!("{e}"));
+    for layer in [&l.integrator_spec.layers[0], &l.integrator_spec.layers[5]] {
+        let a = render_layer(&l.scene, layer, SEED, 0..8, &opts(1, 32)).unwrap();
+        let b = render_layer(&l.scene, layer, SEED, 0..8, &opts(2, 5)).unwrap();
+        assert!(a == b, "{:?} differs between thread counts", layer.names);
+        let c = render_layer(&l.scene, layer, SEED + 1, 0..8, &opts(2, 5)).unwrap();
+        assert!(
+            a != c,
+            "control: another seed gives the same {:?}",
+            layer.names
+        );
+    }
+}
