@@ -96,10 +96,9 @@ fn textured_roughness_chi2() {
             </bsdf>"#,
             texture("roughness.png")
         ),
-        format!(
-            r#"<bsdf type="roughdielectric"><texture name="alpha" type="checkerboard">
+        r#"<bsdf type="roughdielectric"><texture name="alpha" type="checkerboard">
             <rgb name="color0" value="0.05"/><rgb name="color1" value="0.4"/></texture></bsdf>"#
-        ),
+            .to_string(),
     ];
     for (k, xml) in cases.iter().enumerate() {
         let b = load(xml);
@@ -142,7 +141,10 @@ fn a_grey_normal_map_gives_no_nan() {
     let (v, p) = (b.eval(wi, wo, UV), b.pdf(wi, wo, UV));
     assert!(v.is_finite() && p.is_finite());
     // Unperturbed, so only the (untilted) shadowing term is left: 1.
-    assert!((v - plain.eval(wi, wo, UV)).abs().max_element() < 1e-6, "{v}");
+    assert!(
+        (v - plain.eval(wi, wo, UV)).abs().max_element() < 1e-6,
+        "{v}"
+    );
     assert_eq!(p, plain.pdf(wi, wo, UV));
     assert!(b.sample(wi, 0.5, Vec2::new(0.3, 0.6), UV).is_some());
 }
@@ -153,8 +155,7 @@ fn bad_input_is_located() {
         "<bsdf type=\"normalmap\">\n<bsdf type=\"diffuse\"/>\n</bsdf>",
         false,
     )
-    .err()
-    .expect("a normal map without its texture is refused")
+    .expect_err("a normal map without its texture is refused")
     .to_string();
     assert!(
         err.contains("case.xml:2:1:") && err.contains("missing parameter \"normalmap\""),

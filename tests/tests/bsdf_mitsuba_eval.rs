@@ -222,6 +222,9 @@ fn a_wrong_normal_map_or_roughness_texture_is_caught() {
     for (table, xml) in controls {
         let bad = check_table_against(table, &xml);
         println!("{table}, changed: {} mismatches", bad.len());
-        assert!(!bad.is_empty(), "{table}: the changed texture is not caught");
+        assert!(
+            !bad.is_empty(),
+            "{table}: the changed texture is not caught"
+        );
     }
 }

@@ -76,7 +76,10 @@ fn mirrored() -> LoadedScene {
         from,
         &format!(r#"{from}<transform name="to_uv"><scale x="1" y="-1"/></transform>"#),
     );
-    assert_ne!(text, mirrored, "the scene's texture changed; update this test");
+    assert_ne!(
+        text, mirrored,
+        "the scene's texture changed; update this test"
+    );
     tessera_scene::load_scene_str(
         &mirrored,
         &scenes_dir().join(SCENE),
@@ -92,7 +95,10 @@ fn mirrored() -> LoadedScene {
 fn a_mirrored_texture_is_rejected() {
     let (p, what) = worst_against_mitsuba(&mirrored());
     println!("texture mirrored in v: worst p = {p:.3e} at {what}");
-    assert!(p < alpha(), "a mirrored texture went unnoticed (p = {p:.3e})");
+    assert!(
+        p < alpha(),
+        "a mirrored texture went unnoticed (p = {p:.3e})"
+    );
     let mut l = mirrored();
     l.set_integrator(Some("path_ems"), None)
         .expect("known integrator");
@@ -102,5 +108,8 @@ fn a_mirrored_texture_is_rejected() {
         region_stats(&mis, bx * BLOCK, by * BLOCK, BLOCK, BLOCK)[k]
     });
     println!("mirrored path_ems vs path_mis: worst p = {p:.3e} at {what}");
-    assert!(p < alpha(), "a mirrored light-sampled texture went unnoticed (p = {p:.3e})");
+    assert!(
+        p < alpha(),
+        "a mirrored light-sampled texture went unnoticed (p = {p:.3e})"
+    );
 }

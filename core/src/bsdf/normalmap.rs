@@ -42,8 +42,7 @@ impl NormalMap {
     }
     /// Samples the nested model in the perturbed frame.
     pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
-        self.tilted(wi, uv)
-            .sample(&self.nested, wi, u1, u2, uv)
+        self.tilted(wi, uv).sample(&self.nested, wi, u1, u2, uv)
     }
     /// Whether the nested model has a smooth component.
     pub fn has_smooth(&self) -> bool {

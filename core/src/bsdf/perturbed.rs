@@ -65,7 +65,11 @@ impl Tilted {
         }
         let frame = match n.try_unit() {
             Some(n) => match (Vec3::X - n * n.x).try_unit() {
-                Some(s) => Frame { s, t: n.cross(s), n },
+                Some(s) => Frame {
+                    s,
+                    t: n.cross(s),
+                    n,
+                },
                 None => Frame::from_normal(n),
             },
             None => Frame {

@@ -2,7 +2,8 @@
 //! use `eta = int_ior / ext_ior`, computed in single precision as Mitsuba does.
 use super::super::util::at_prop;
 use super::conductor::{
-    textured_microfacet, ALPHA_TEXTURE, ALPHA_U_TEXTURE, ALPHA_V_TEXTURE, DISTRIBUTION, SAMPLE_VISIBLE, SPECULAR_REFLECTANCE,
+    textured_microfacet, ALPHA_TEXTURE, ALPHA_U_TEXTURE, ALPHA_V_TEXTURE, DISTRIBUTION,
+    SAMPLE_VISIBLE, SPECULAR_REFLECTANCE,
 };
 use super::ior::{indices_differ, read_ior};
 use super::texture::read_texture;
