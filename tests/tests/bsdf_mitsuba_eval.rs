@@ -160,3 +160,71 @@ fn a_slightly_wrong_principled_is_caught() {
         );
     }
 }
+
+#[test]
+fn a_wrong_normal_map_or_roughness_texture_is_caught() {
+    // Controls for the textured cases: each table against its material with the texture read
+    // differently (the normal map's green channel inverted, the other handedness; the normals
+    // never flipped toward the viewer; the sRGB-encoded roughness read raw; the rough glass's
+    // textured alpha_u replaced by its constant mean).
+    let tex = Path::new(env!("CARGO_MANIFEST_DIR")).join("bsdf_cases/textures");
+    let t = |name: &str| tex.join(name).display().to_string();
+    let normalmap = |file: &str, extra: &str, nested: &str| {
+        format!(
+            r#"<scene version="3.0.0"><bsdf type="normalmap">{extra}
+            <texture name="normalmap" type="bitmap"><boolean name="raw" value="true"/>
+            <string name="filename" value="{}"/></texture>{nested}</bsdf></scene>"#,
+            t(file)
+        )
+    };
+    let conductor = r#"<bsdf type="roughconductor"><string name="material" value="Cu"/>
+        <string name="distribution" value="ggx"/><float name="alpha_u" value="0.1"/>
+        <float name="alpha_v" value="0.35"/></bsdf>"#;
+    let controls = [
+        (
+            "normalmap_roughconductor",
+            normalmap("normal_tilt_green_flipped.png", "", conductor),
+        ),
+        (
+            "normalmap_roughconductor",
+            normalmap(
+                "normal_tilt.png",
+                r#"<boolean name="flip_invalid_normals" value="false"/>"#,
+                conductor,
+            ),
+        ),
+        (
+            "normalmap_diffuse_noflip",
+            normalmap(
+                "normal_tilt.png",
+                r#"<boolean name="flip_invalid_normals" value="false"/>"#,
+                r#"<bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.5, 0.3"/></bsdf>"#,
+            ),
+        ),
+        (
+            "roughconductor_alpha_texture",
+            format!(
+                r#"<scene version="3.0.0"><bsdf type="roughconductor"><string name="material" value="Au"/>
+                <string name="distribution" value="ggx"/><texture name="alpha" type="bitmap">
+                <boolean name="raw" value="true"/><string name="filename" value="{}"/></texture>
+                </bsdf></scene>"#,
+                t("roughness.png")
+            ),
+        ),
+        (
+            "roughdielectric_alpha_uv_texture",
+            r#"<scene version="3.0.0"><bsdf type="roughdielectric"><string name="distribution" value="ggx"/>
+            <float name="int_ior" value="1.33"/><float name="alpha_u" value="0.3"/>
+            <float name="alpha_v" value="0.08"/></bsdf></scene>"#
+                .to_string(),
+        ),
+    ];
+    for (table, xml) in controls {
+        let bad = check_table_against(table, &xml);
+        println!("{table}, changed: {} mismatches", bad.len());
+        assert!(
+            !bad.is_empty(),
+            "{table}: the changed texture is not caught"
+        );
+    }
+}

@@ -16,6 +16,8 @@ pub mod fresnel;
 mod mask;
 pub mod microfacet;
 mod mirror;
+mod normalmap;
+pub mod perturbed;
 mod plastic;
 pub mod plastic_common;
 mod principled;
@@ -24,6 +26,7 @@ mod principled_sample;
 mod principled_thin;
 mod roughconductor;
 mod roughdielectric;
+pub mod roughness_texture;
 mod roughplastic;
 mod sample;
 mod textures;
@@ -40,6 +43,7 @@ pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
 pub use mask::Mask;
 pub use mirror::Mirror;
+pub use normalmap::NormalMap;
 pub use plastic::Plastic;
 pub use principled::{Principled, PrincipledIndex, PrincipledParams, SamplingRates};
 pub use principled_thin::{PrincipledThin, PrincipledThinParams, ThinSamplingRates};
@@ -104,6 +108,8 @@ pub enum Bsdf {
     Mask(Mask),
     /// Burley's Disney model as Mitsuba 3 writes it (`principled`).
     Principled(Principled),
+    /// A model seen through a tangent-space normal map (`normalmap`).
+    NormalMap(NormalMap),
     /// Burley's thin-sheet variant as Mitsuba 3 writes it (`principledthin`).
     PrincipledThin(PrincipledThin),
 }
@@ -127,6 +133,7 @@ macro_rules! dispatch {
             Bsdf::Blend($b) => $e,
             Bsdf::Mask($b) => $e,
             Bsdf::Principled($b) => $e,
+            Bsdf::NormalMap($b) => $e,
             Bsdf::PrincipledThin($b) => $e,
         }
     };

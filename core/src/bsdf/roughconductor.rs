@@ -10,6 +10,7 @@
 use super::conductor::conductor_fresnel;
 use super::fresnel::reflect;
 use super::microfacet::Microfacet;
+use super::roughness_texture::{distribution_at, RoughnessTexture};
 use super::sample::BsdfSample;
 use crate::math::Norm;
 use crate::texture::Texture;
@@ -21,6 +22,8 @@ use glam::{Vec2, Vec3};
 pub struct RoughConductor {
     /// Normal distribution, roughness and sampling strategy.
     pub distribution: Microfacet,
+    /// Roughness read from textures instead of `distribution`'s, when given as textures.
+    pub roughness: Option<RoughnessTexture>,
     /// Real part of the index of refraction (per channel).
     pub eta: Texture,
     /// Imaginary part (per channel).
@@ -62,7 +65,7 @@ impl RoughConductor {
         let Some(h) = Self::half_vector(wi, wo) else {
             return Color::ZERO;
         };
-        let md = &self.distribution;
+        let md = &distribution_at(&self.distribution, &self.roughness, uv);
         let d = md.d(h);
         if d == 0.0 {
             return Color::ZERO;
@@ -72,11 +75,11 @@ impl RoughConductor {
     }
 
     /// Density of `sample`: the normal's density times the reflection Jacobian `1 / (4 wo.h)`.
-    pub fn pdf(&self, wi: Vec3, wo: Vec3, _uv: Vec2) -> f32 {
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
         let Some(h) = Self::half_vector(wi, wo) else {
             return 0.0;
         };
-        self.distribution.pdf(wi, h) / (4.0 * wo.dot(h))
+        distribution_at(&self.distribution, &self.roughness, uv).pdf(wi, h) / (4.0 * wo.dot(h))
     }
 
     /// Reflects `wi` about a sampled microfacet normal.
@@ -84,7 +87,7 @@ impl RoughConductor {
         if !(wi.z > 0.0) {
             return None;
         }
-        let md = &self.distribution;
+        let md = &distribution_at(&self.distribution, &self.roughness, uv);
         let (m, pdf_m) = md.sample(wi, u2)?;
         let cos_im = wi.dot(m);
         let wo = reflect(wi, m);
@@ -132,6 +135,7 @@ mod tests {
                 eta: Texture::Constant(Color::ZERO),
                 k: Texture::Constant(Color::ONE),
                 specular_reflectance: Texture::Constant(Color::ONE),
+                roughness: None,
             };
             let wi = Vec3::new(0.3, -0.2, 0.9).unit();
             for wo in [

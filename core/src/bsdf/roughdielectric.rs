@@ -28,6 +28,7 @@
 //! does); the weight then carries the ratio of the two densities, so it stays `f cos / pdf`.
 use super::fresnel::{fresnel_dielectric, reflect, refract};
 use super::microfacet::Microfacet;
+use super::roughness_texture::{distribution_at, RoughnessTexture};
 use super::sample::BsdfSample;
 use crate::math::{sqrt, Norm};
 use crate::texture::Texture;
@@ -39,6 +40,8 @@ use glam::{Vec2, Vec3};
 pub struct RoughDielectric {
     /// Normal distribution, roughness and sampling strategy.
     pub distribution: Microfacet,
+    /// Roughness read from textures instead of `distribution`'s, when given as textures.
+    pub roughness: Option<RoughnessTexture>,
     /// Relative index `int_ior / ext_ior` (not 1).
     pub eta: f32,
     /// Tint of the reflection.
@@ -100,8 +103,8 @@ impl RoughDielectric {
     }
 
     /// The distribution normals are drawn from at incident cosine `cos_i`.
-    fn sampling_distribution(&self, cos_i: f32) -> Microfacet {
-        let mut d = self.distribution;
+    fn sampling_distribution(md: &Microfacet, cos_i: f32) -> Microfacet {
+        let mut d = *md;
         if !d.sample_visible {
             let s = 1.2 - 0.2 * sqrt(cos_i.abs());
             d.alpha_u *= s;
@@ -115,7 +118,7 @@ impl RoughDielectric {
         let Some(p) = self.pair(wi, wo) else {
             return Color::ZERO;
         };
-        let md = &self.distribution;
+        let md = &distribution_at(&self.distribution, &self.roughness, uv);
         let d = md.d(p.m);
         if d == 0.0 {
             return Color::ZERO;
@@ -132,11 +135,12 @@ impl RoughDielectric {
     }
 
     /// Density of `sample` at `wo`.
-    pub fn pdf(&self, wi: Vec3, wo: Vec3, _uv: Vec2) -> f32 {
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
         let Some(p) = self.pair(wi, wo) else {
             return 0.0;
         };
-        let sd = self.sampling_distribution(wi.z);
+        let md = distribution_at(&self.distribution, &self.roughness, uv);
+        let sd = Self::sampling_distribution(&md, wi.z);
         let wi_up = if wi.z > 0.0 { wi } else { -wi };
         let f = fresnel_dielectric(p.cos_im, self.eta).f;
         let choice = if p.reflect { f } else { 1.0 - f };
@@ -149,8 +153,8 @@ impl RoughDielectric {
         if ci == 0.0 || !wi.is_finite() {
             return None;
         }
-        let md = &self.distribution;
-        let sd = self.sampling_distribution(ci);
+        let md = &distribution_at(&self.distribution, &self.roughness, uv);
+        let sd = Self::sampling_distribution(md, ci);
         let wi_up = if ci > 0.0 { wi } else { -wi };
         let (m, pdf_m) = sd.sample(wi_up, u2)?;
         let cos_im = wi.dot(m);

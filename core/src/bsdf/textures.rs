@@ -1,5 +1,6 @@
 //! Walks the textures a BSDF reads (nested models included), for reports of what a scene holds
 //! and how much memory its images take.
+use super::roughness_texture::RoughnessTexture;
 use super::Bsdf;
 use crate::texture::Texture;
 
@@ -16,15 +17,21 @@ impl Bsdf {
             Bsdf::Conductor(b) => [&b.eta, &b.k, &b.specular_reflectance]
                 .into_iter()
                 .for_each(f),
-            Bsdf::RoughConductor(b) => [&b.eta, &b.k, &b.specular_reflectance]
-                .into_iter()
-                .for_each(f),
+            Bsdf::RoughConductor(b) => {
+                [&b.eta, &b.k, &b.specular_reflectance]
+                    .into_iter()
+                    .for_each(&mut *f);
+                roughness_textures(&b.roughness, f);
+            }
             Bsdf::Dielectric(b) => [&b.specular_reflectance, &b.specular_transmittance]
                 .into_iter()
                 .for_each(f),
-            Bsdf::RoughDielectric(b) => [&b.specular_reflectance, &b.specular_transmittance]
-                .into_iter()
-                .for_each(f),
+            Bsdf::RoughDielectric(b) => {
+                [&b.specular_reflectance, &b.specular_transmittance]
+                    .into_iter()
+                    .for_each(&mut *f);
+                roughness_textures(&b.roughness, f);
+            }
             Bsdf::ThinDielectric(b) => [&b.specular_reflectance, &b.specular_transmittance]
                 .into_iter()
                 .for_each(f),
@@ -47,7 +54,19 @@ impl Bsdf {
                 b.nested.for_each_texture(f);
             }
             Bsdf::Principled(b) => b.for_each_texture(f),
+            Bsdf::NormalMap(b) => {
+                f(&b.normalmap);
+                b.nested.for_each_texture(f);
+            }
             Bsdf::PrincipledThin(b) => b.for_each_texture(f),
         }
+    }
+}
+
+/// The roughness textures of a rough model (`alpha_u` then `alpha_v`), if it has them.
+fn roughness_textures(r: &Option<RoughnessTexture>, f: &mut dyn FnMut(&Texture)) {
+    if let Some(r) = r {
+        f(&r.alpha_u);
+        f(&r.alpha_v);
     }
 }

@@ -1,6 +1,11 @@
-//! Area light: uniform radiance leaving the front side of a shape (one-sided, as in Mitsuba 3).
+//! Area light: radiance leaving the front side of a shape (one-sided, as in Mitsuba 3), the same
+//! everywhere or read from a texture at the surface's uv.
 //!
-//! Scene parameters (`<emitter type="area">`, nested in a `<shape>`): `radiance` (rgb, required).
+//! Scene parameters (`<emitter type="area">`, nested in a `<shape>`): `radiance` (rgb or
+//! texture, required; declared in `scene/src/emitters/area.rs`). A textured light is still
+//! sampled by area (or by solid angle for spheres) and its radiance looked up at the sampled
+//! point's uv, which is unbiased; Mitsuba 3 instead samples the texture's uv distribution,
+//! which only changes the noise.
 //! Sampling: spheres seen from outside by solid angle (the cone toward them), every other shape
 //! uniformly by area (meshes choose a triangle by area). Points behind a flat light get no
 //! sample at all ([`Behind`], set when the scene is built).
@@ -8,6 +13,7 @@ use super::sample::{EmitterCtx, EmitterSample};
 use crate::geometry::{Interaction, SampleToward};
 use crate::light::Behind;
 use crate::math::offset_ray_origin;
+use crate::texture::Texture;
 use crate::Color;
 use glam::{Vec2, Vec3};
 
@@ -16,8 +22,11 @@ use glam::{Vec2, Vec3};
 pub struct AreaLight {
     /// Index of the shape.
     pub shape: u32,
-    /// Emitted radiance.
+    /// Emitted radiance; for a textured light, the texture's mean (what light selection and
+    /// power estimates use).
     pub radiance: Color,
+    /// Radiance varying over the surface by uv, when given as a texture.
+    pub texture: Option<Texture>,
     /// Where none of its light arrives, for a flat mesh (set when the `Scene` is built).
     pub behind: Option<Behind>,
 }
@@ -29,14 +38,28 @@ impl AreaLight {
         AreaLight {
             shape,
             radiance,
+            texture: None,
             behind: None,
         }
     }
-    /// Radiance leaving a point with shading normal `ns` toward the unit direction `w`.
+    /// The light of shape `shape` whose radiance is `texture` over the shape's uv.
+    pub fn textured(shape: u32, texture: Texture) -> Self {
+        AreaLight {
+            shape,
+            radiance: texture.mean_value(),
+            texture: Some(texture),
+            behind: None,
+        }
+    }
+    /// Radiance leaving a point with shading normal `ns` and texture coordinates `uv` toward
+    /// the unit direction `w`.
     #[inline]
-    pub fn eval(&self, ns: Vec3, w: Vec3) -> Color {
+    pub fn eval(&self, ns: Vec3, w: Vec3, uv: Vec2) -> Color {
         if ns.dot(w) > 0.0 {
-            self.radiance
+            match &self.texture {
+                None => self.radiance,
+                Some(t) => t.eval(uv),
+            }
         } else {
             Color::ZERO
         }
@@ -53,7 +76,7 @@ impl AreaLight {
             return None;
         }
         let wo = d / dist;
-        let le = self.eval(ps.ns, -wo);
+        let le = self.eval(ps.ns, -wo, ps.uv);
         if le == Color::ZERO || !(pdf > 0.0) {
             return None;
         }

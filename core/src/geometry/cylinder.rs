@@ -132,6 +132,12 @@ impl Cylinder {
         (p, err, self.normal(c, s))
     }
 
+    /// The uv of the point [`Cylinder::sample`] places for `u` (as a ray hit there gets it).
+    pub fn sample_uv(&self, u: Vec2) -> Vec2 {
+        let (s, c) = libm::sincos(f64::from(u.y) * core::f64::consts::TAU);
+        self.uv_dpdu(DVec3::new(c, s, f64::from(u.x) * self.length)).0
+    }
+
     /// Bounding box: that of the two end circles.
     pub fn bounds(&self) -> Aabb {
         let ext = DVec3::new(

@@ -161,6 +161,13 @@ impl Mesh {
         let ng = self.face_normals[i];
         (p, err, ng, self.shading_normal(idx, ng, b1, b2))
     }
+    /// Texture coordinates on triangle `i` at barycentrics `(b1, b2)` (as [`Mesh::hit`] finds
+    /// them).
+    #[inline]
+    pub fn uv_at(&self, i: usize, b1: f32, b2: f32) -> Vec2 {
+        let (idx, _) = self.corners(i);
+        self.uv(idx, b1, b2)
+    }
     /// Derivative of position along u on triangle `i`: from the texture coordinates, or, for a
     /// mesh without them, from the implicit (0,0), (1,0), (0,1) of Mitsuba 3 (`p1 - p0`). Zero
     /// where the uv map is degenerate.

@@ -44,6 +44,8 @@ pub struct PositionSample {
     pub ng: Vec3,
     /// Unit shading normal there (after `flip_normals`): the side an area emitter lights.
     pub ns: Vec3,
+    /// Texture coordinates there, as a ray hitting the point would find them.
+    pub uv: Vec2,
 }
 
 /// A point sampled on a shape for a reference point `r` ([`Shape::sample_toward`]).
@@ -91,20 +93,14 @@ impl Shape {
                 let (p, err) = s.project(ray.at(hit.t));
                 let n = (p - s.center) / s.radius;
                 let n = n.unit_or(Vec3::Z);
-                let uv = Vec2::new(
-                    (libm::atan2f(n.y, n.x) * crate::math::INV_TWO_PI + 1.0) % 1.0,
-                    acos(n.z.clamp(-1.0, 1.0)) * crate::math::INV_PI,
-                );
+                let uv = sphere_uv(n);
                 // Along increasing longitude, as Mitsuba 3's sphere.
                 (p, err, n, n, uv, Vec3::new(-n.y, n.x, 0.0), None)
             }
             (ShapeKind::Disk(d), _) => {
                 let disk = &disks[*d as usize];
                 let (p, err) = disk.point(hit.uv);
-                let uv = Vec2::new(
-                    hit.uv.norm(),
-                    (libm::atan2f(hit.uv.y, hit.uv.x) * crate::math::INV_TWO_PI + 1.0) % 1.0,
-                );
+                let uv = disk_uv(hit.uv);
                 // Radial, as Mitsuba 3's disk (u is the radius).
                 (
                     p,
@@ -150,29 +146,32 @@ impl Shape {
     /// A point uniformly distributed by area (density `1 / area`).
     #[inline]
     pub fn sample_position(&self, u: Vec2, disks: &[Disk]) -> Option<PositionSample> {
-        let (p, p_err, ng, ns) = match &self.kind {
+        let (p, p_err, ng, ns, uv) = match &self.kind {
             ShapeKind::Mesh(m) => {
                 let (i, b1, b2) = m.sample(u)?;
-                m.point(i, b1, b2)
+                let (p, err, ng, ns) = m.point(i, b1, b2);
+                (p, err, ng, ns, m.uv_at(i, b1, b2))
             }
             ShapeKind::Sphere(s) => {
                 let d = crate::sampling::warp::square_to_uniform_sphere(u);
                 let (p, err) = s.project(s.center + d * s.radius);
-                (p, err, d, d)
+                (p, err, d, d, sphere_uv(d))
             }
             ShapeKind::Disk(d) => {
                 let disk = &disks[*d as usize];
-                let (p, err) = disk.sample(u);
-                (p, err, disk.normal, disk.normal)
+                let local = crate::sampling::warp::square_to_uniform_disk_concentric(u);
+                let (p, err) = disk.point(local);
+                (p, err, disk.normal, disk.normal, disk_uv(local))
             }
             ShapeKind::Cylinder(c) => {
                 let (p, err, n) = c.sample(u);
-                (p, err, n, n)
+                (p, err, n, n, c.sample_uv(u))
             }
         };
         Some(PositionSample {
             p,
             p_err,
+            uv,
             ng: self.orient(ng),
             ns: self.orient(ns),
         })
@@ -200,6 +199,7 @@ impl Shape {
                         p_err,
                         ng: n,
                         ns: n,
+                        uv: sphere_uv(cs.n),
                     },
                     pdf: cs.pdf,
                     d,
@@ -253,6 +253,26 @@ pub fn area_to_solid_angle(r: Vec3, p: Vec3, n: Vec3, pdf_area: f32) -> f32 {
     } else {
         0.0
     }
+}
+
+/// Texture coordinates of a sphere at unit outward normal `n` (before `flip_normals`):
+/// longitude over `2 pi` in `[0, 1)`, polar angle over `pi`, as Mitsuba 3's sphere.
+#[inline]
+fn sphere_uv(n: Vec3) -> Vec2 {
+    Vec2::new(
+        (libm::atan2f(n.y, n.x) * crate::math::INV_TWO_PI + 1.0) % 1.0,
+        acos(n.z.clamp(-1.0, 1.0)) * crate::math::INV_PI,
+    )
+}
+
+/// Texture coordinates of a disk at local point `local` of the unit disk: the radius, then the
+/// angle over `2 pi` in `[0, 1)`, as Mitsuba 3's disk.
+#[inline]
+fn disk_uv(local: Vec2) -> Vec2 {
+    Vec2::new(
+        local.norm(),
+        (libm::atan2f(local.y, local.x) * crate::math::INV_TWO_PI + 1.0) % 1.0,
+    )
 }
 
 #[inline]

@@ -98,7 +98,7 @@ pub fn emission_along<P: Probe>(
                 return;
             };
             if let Emitter::Area(a) = &scene.emitters[ei as usize] {
-                let le = a.eval(si.frame.n, si.wi);
+                let le = a.eval(si.frame.n, si.wi, si.uv);
                 if le != Color::ZERO {
                     let pdf = if with_pdf {
                         a.pdf(&scene.emitter_ctx(), from, si.p, si.ng)

@@ -162,6 +162,15 @@ impl Bitmap {
         self.eval(uv).dot(LUMINANCE)
     }
 
+    /// The mean of the pixels.
+    pub fn mean_value(&self) -> Color {
+        let sum = self
+            .pixels
+            .iter()
+            .fold(glam::DVec3::ZERO, |s, p| s + p.as_dvec3());
+        (sum / self.pixels.len() as f64).as_vec3()
+    }
+
     /// The largest channel value of any pixel.
     pub fn max_value(&self) -> f32 {
         self.max

@@ -57,6 +57,15 @@ impl Texture {
             Texture::Checkerboard(c) => c.eval_1(uv),
         }
     }
+    /// The mean colour over one period of the texture (of the image's pixels, of the two
+    /// checkerboard colours' means): a power estimate for lights, not a lookup.
+    pub fn mean_value(&self) -> Color {
+        match self {
+            Texture::Constant(c) => *c,
+            Texture::Bitmap(b) => b.mean_value(),
+            Texture::Checkerboard(c) => (c.color0.mean_value() + c.color1.mean_value()) * 0.5,
+        }
+    }
     /// The largest channel value anywhere on the surface (an upper bound).
     pub fn max_value(&self) -> f32 {
         match self {

@@ -1,13 +1,18 @@
-//! `area`: emission from the surface of the shape that carries it.
+//! `area`: emission from the surface of the shape that carries it, the same everywhere or read
+//! from a texture over the shape's uv.
 use super::EmitterPlugin;
-use crate::plugin::{Default, Param, Plugin, Range};
+use crate::materials::texture::texture;
+use crate::plugin::{Default, Param, ParamType, Plugin, Range};
 use tessera_core::emitter::{AreaLight, Emitter};
+use tessera_core::texture::Texture;
 
-const RADIANCE: Param = Param::rgb(
+const RADIANCE: Param = Param::new(
     "radiance",
+    ParamType::Texture,
     Default::Required,
     Range::NonNegative,
-    "emitted radiance, the same in every direction on the front side",
+    "emitted radiance, the same in every direction on the front side; a texture is looked \
+     up at the surface's uv",
 );
 
 /// `area`.
@@ -24,6 +29,15 @@ pub const AREA: EmitterPlugin = Plugin {
                 "an area emitter must be nested in a shape or referenced from one with <ref>",
             ));
         };
+        let is_texture = obj.has(RADIANCE.name) && obj.prop(RADIANCE.name).is_none();
+        if is_texture {
+            return Ok(Emitter::Area(
+                match texture(obj, RADIANCE.name, [0.0; 3], false)? {
+                    Texture::Constant(c) => AreaLight::new(shape, c),
+                    t => AreaLight::textured(shape, t),
+                },
+            ));
+        }
         Ok(Emitter::Area(AreaLight::new(
             shape,
             RADIANCE.read_color(obj)?,

@@ -1,12 +1,14 @@
 //! `conductor` and `roughconductor` (Mitsuba 3 names and defaults), and the microfacet
 //! parameters shared with `roughdielectric`. Named metals come from [`conductor_table`]
-//! (Mitsuba 3's RGB values). Roughness must be a number here (Mitsuba also takes a texture).
+//! (Mitsuba 3's RGB values). `roughconductor` and `roughdielectric` take a texture for their
+//! roughness, as Mitsuba 3 does.
 use super::super::util::at_prop;
-use super::texture::read_texture;
+use super::texture::{read_texture, texture};
 use super::{BsdfPlugin, Result};
 use crate::plugin::{Default, Param, ParamType, Plugin, Range};
 use crate::xml::Object;
 use tessera_core::bsdf::microfacet::{Microfacet, MicrofacetKind};
+use tessera_core::bsdf::roughness_texture::RoughnessTexture;
 use tessera_core::bsdf::{Bsdf, Conductor, RoughConductor};
 use tessera_core::texture::Texture;
 
@@ -70,6 +72,31 @@ pub(crate) const ALPHA_V: Param = Param::new(
     Range::Positive,
     "roughness along the bitangent; give alpha_u and alpha_v together, instead of alpha",
 );
+/// `alpha` of the rough plugins that take a texture for it (`roughconductor`,
+/// `roughdielectric`).
+pub(crate) const ALPHA_TEXTURE: Param = Param::new(
+    "alpha",
+    ParamType::Texture,
+    Default::Float(0.1),
+    Range::Positive,
+    "roughness (root mean square slope of the microfacets); a texture is read as a scalar",
+);
+/// `alpha_u` of the rough plugins that take a texture for it.
+pub(crate) const ALPHA_U_TEXTURE: Param = Param::new(
+    "alpha_u",
+    ParamType::Texture,
+    Default::Absent,
+    Range::Positive,
+    "roughness along the tangent; give alpha_u and alpha_v together, instead of alpha",
+);
+/// `alpha_v` of the rough plugins that take a texture for it.
+pub(crate) const ALPHA_V_TEXTURE: Param = Param::new(
+    "alpha_v",
+    ParamType::Texture,
+    Default::Absent,
+    Range::Positive,
+    "roughness along the bitangent; give alpha_u and alpha_v together, instead of alpha",
+);
 /// `sample_visible` of the rough plugins.
 pub(crate) const SAMPLE_VISIBLE: Param = Param::boolean(
     "sample_visible",
@@ -106,17 +133,19 @@ pub const ROUGHCONDUCTOR: BsdfPlugin = Plugin {
         K,
         SPECULAR_REFLECTANCE,
         DISTRIBUTION,
-        ALPHA,
-        ALPHA_U,
-        ALPHA_V,
+        ALPHA_TEXTURE,
+        ALPHA_U_TEXTURE,
+        ALPHA_V_TEXTURE,
         SAMPLE_VISIBLE,
     ],
     nested: "",
     build: |obj| {
         let (eta, k) = complex_ior(obj)?;
         let specular_reflectance = read_texture(obj, &SPECULAR_REFLECTANCE)?;
+        let (distribution, roughness) = textured_microfacet(obj)?;
         Ok(Bsdf::RoughConductor(RoughConductor {
-            distribution: microfacet(obj)?,
+            distribution,
+            roughness,
             eta,
             k,
             specular_reflectance,
@@ -170,6 +199,57 @@ pub(crate) fn read_distribution(obj: &Object) -> Result<MicrofacetKind> {
         "ggx" => MicrofacetKind::Ggx,
         _ => MicrofacetKind::Beckmann,
     })
+}
+
+/// The microfacet distribution of `roughconductor` or `roughdielectric`, whose roughness may be
+/// textures: [`microfacet`]'s rules, and a nested or referenced `<texture>` for `alpha`,
+/// `alpha_u` or `alpha_v` (one constant over the surface is read as a number).
+pub(crate) fn textured_microfacet(obj: &Object) -> Result<(Microfacet, Option<RoughnessTexture>)> {
+    let is_texture = |name: &str| obj.has(name) && obj.prop(name).is_none();
+    let names: &[&str] = if obj.has("alpha_u") || obj.has("alpha_v") {
+        &["alpha_u", "alpha_v"]
+    } else {
+        &["alpha"]
+    };
+    let unpaired = names.len() == 2 && !(obj.has("alpha_u") && obj.has("alpha_v"));
+    if unpaired || !names.iter().any(|n| is_texture(n)) {
+        return Ok((microfacet(obj)?, None));
+    }
+    let mut tex = Vec::new();
+    for &name in names {
+        let t = if is_texture(name) {
+            texture(obj, name, [0.1; 3], false)?
+        } else {
+            let p = match name {
+                "alpha" => &ALPHA,
+                "alpha_u" => &ALPHA_U,
+                _ => &ALPHA_V,
+            };
+            let a = p.read_f32_opt(obj)?.ok_or_else(|| obj.missing(name))?;
+            Texture::constant(a)
+        };
+        tex.push(t);
+    }
+    if names.len() == 2 && obj.has("alpha") {
+        return Err(at_prop(
+            obj,
+            "alpha",
+            format!(
+                "{} takes either \"alpha\" or \"alpha_u\"/\"alpha_v\", not both",
+                obj.describe()
+            ),
+        ));
+    }
+    let alpha_v = tex.pop().expect("one texture or two");
+    let alpha_u = tex.pop().unwrap_or_else(|| alpha_v.clone());
+    let placeholder = |t: &Texture| t.max_value().max(1e-4);
+    let distribution = Microfacet {
+        kind: read_distribution(obj)?,
+        alpha_u: placeholder(&alpha_u),
+        alpha_v: placeholder(&alpha_v),
+        sample_visible: SAMPLE_VISIBLE.read_bool(obj)?,
+    };
+    Ok((distribution, Some(RoughnessTexture { alpha_u, alpha_v })))
 }
 
 /// The microfacet distribution of a rough plugin: `distribution`, `alpha` or

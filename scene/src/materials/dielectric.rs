@@ -2,7 +2,8 @@
 //! use `eta = int_ior / ext_ior`, computed in single precision as Mitsuba does.
 use super::super::util::at_prop;
 use super::conductor::{
-    microfacet, ALPHA, ALPHA_U, ALPHA_V, DISTRIBUTION, SAMPLE_VISIBLE, SPECULAR_REFLECTANCE,
+    textured_microfacet, ALPHA_TEXTURE, ALPHA_U_TEXTURE, ALPHA_V_TEXTURE, DISTRIBUTION,
+    SAMPLE_VISIBLE, SPECULAR_REFLECTANCE,
 };
 use super::ior::{indices_differ, read_ior};
 use super::texture::read_texture;
@@ -86,9 +87,9 @@ pub const ROUGHDIELECTRIC: BsdfPlugin = Plugin {
         SPECULAR_REFLECTANCE,
         SPECULAR_TRANSMITTANCE,
         DISTRIBUTION,
-        ALPHA,
-        ALPHA_U,
-        ALPHA_V,
+        ALPHA_TEXTURE,
+        ALPHA_U_TEXTURE,
+        ALPHA_V_TEXTURE,
         SAMPLE_VISIBLE,
     ],
     nested: "",
@@ -98,8 +99,10 @@ pub const ROUGHDIELECTRIC: BsdfPlugin = Plugin {
 fn build_rough(obj: &Object) -> Result<Bsdf> {
     let g = Glass::read(obj)?;
     indices_differ(obj, g.int_ior, g.ext_ior)?;
+    let (distribution, roughness) = textured_microfacet(obj)?;
     Ok(Bsdf::RoughDielectric(RoughDielectric {
-        distribution: microfacet(obj)?,
+        distribution,
+        roughness,
         eta: g.eta,
         specular_reflectance: g.reflectance,
         specular_transmittance: g.transmittance,

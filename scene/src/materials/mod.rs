@@ -7,6 +7,7 @@ mod conductor;
 mod dielectric;
 mod image_cache;
 pub(crate) mod ior;
+mod maps;
 mod plastic;
 mod principled;
 mod principled_thin;
@@ -36,6 +37,7 @@ pub static BSDFS: &[BsdfPlugin] = &[
     basic::TWOSIDED,
     basic::BLENDBSDF,
     basic::MASK,
+    maps::NORMALMAP_PLUGIN,
     wakame::MIRROR,
     wakame::MICROFACET,
     chalmers::BLINNPHONG,
@@ -96,6 +98,9 @@ mod tests {
             |name| {
                 match name {
                     "twosided" | "mask" => "<bsdf type=\"diffuse\"/>",
+                    "normalmap" => {
+                        "<bsdf type=\"diffuse\"/><rgb name=\"normalmap\" value=\"0.6 0.4 0.9\"/>"
+                    }
                     "blendbsdf" => "<bsdf type=\"diffuse\"/><bsdf type=\"conductor\"/>",
                     _ => "",
                 }

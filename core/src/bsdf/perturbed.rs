@@ -1,0 +1,131 @@
+//! A nested model evaluated in a shading frame tilted away from the surface's own, the common
+//! part of `normalmap` (and of any other model that perturbs the shading normal), as Mitsuba
+//! 3.9.1 does it.
+//!
+//! The tilted normal `n` is given in the local (unperturbed) frame. With
+//! `flip_invalid_normals`, a normal that faces away from `wi` (`wi.z (wi . n) <= 0`) has its
+//! tangential part negated first. The tilted frame is `(s, t, n)` with
+//! `s = normalize(x - n n.x)` (the surface's own tangent, which follows `dp/du`, projected),
+//! `t = n x s`. Directions are rotated into it, the nested model is asked there, and a pair
+//! whose `wo` lies on different sides of the two frames (`wo.z * wo'.z <= 0`) scatters nothing.
+//! With `use_shadowing_function`, values are multiplied by the shadowing term of Estevez et al.
+//! 2019 ("A Microfacet-Based Shadowing Function to Solve the Bump Terminator Problem"):
+//! `2 / (1 + sqrt(1 + a2 tan^2 theta_o))` with `a2 = min(tan^2 theta_n / 8, 1)`.
+//!
+//! Where Mitsuba divides by zero (a texture value of exactly `(1/2, 1/2, 1/2)`, whose normal
+//! has no length, or a normal along the tangent), the unperturbed frame is used instead, so no
+//! NaN is produced.
+use super::sample::BsdfSample;
+use super::Bsdf;
+use crate::math::{Frame, Norm};
+use crate::Color;
+use glam::{Vec2, Vec3};
+
+/// How the tilted frame is built and weighted (the two switches of Mitsuba 3's adapters).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PerturbOptions {
+    /// Mirror the normal's tangential part when it faces away from `wi`.
+    pub flip_invalid_normals: bool,
+    /// Multiply by the bump-terminator shadowing term.
+    pub use_shadowing_function: bool,
+}
+
+/// `tan^2 theta` of a unit vector (infinite at grazing).
+#[inline]
+fn tan2(v: Vec3) -> f32 {
+    (1.0 - v.z * v.z).max(0.0) / (v.z * v.z)
+}
+
+/// The shadowing term for tilted normal `n` toward `wo` (both in the unperturbed frame).
+#[inline]
+pub fn shadow_terminator(n: Vec3, wo: Vec3) -> f32 {
+    let a2 = (0.125 * tan2(n)).min(1.0);
+    let v = 2.0 / (1.0 + crate::math::sqrt(1.0 + a2 * tan2(wo)));
+    if v.is_finite() {
+        v
+    } else {
+        0.0
+    }
+}
+
+/// A tilted frame for one incident direction.
+#[derive(Clone, Copy, Debug)]
+pub struct Tilted {
+    /// The tilted frame, in unperturbed local coordinates.
+    pub frame: Frame,
+    options: PerturbOptions,
+}
+
+impl Tilted {
+    /// The frame around the (not necessarily unit) normal `n` for incident `wi`.
+    pub fn new(n: Vec3, wi: Vec3, options: PerturbOptions) -> Self {
+        let mut n = n;
+        if options.flip_invalid_normals && wi.z * wi.dot(n) <= 0.0 {
+            n = Vec3::new(-n.x, -n.y, n.z);
+        }
+        let frame = match n.try_unit() {
+            Some(n) => match (Vec3::X - n * n.x).try_unit() {
+                Some(s) => Frame {
+                    s,
+                    t: n.cross(s),
+                    n,
+                },
+                None => Frame::from_normal(n),
+            },
+            None => Frame {
+                s: Vec3::X,
+                t: Vec3::Y,
+                n: Vec3::Z,
+            },
+        };
+        Tilted { frame, options }
+    }
+
+    #[inline]
+    fn shadow(&self, wo: Vec3) -> f32 {
+        if self.options.use_shadowing_function {
+            shadow_terminator(self.frame.n, wo)
+        } else {
+            1.0
+        }
+    }
+
+    /// `nested`'s value in the tilted frame (times the shadowing term).
+    pub fn eval(&self, nested: &Bsdf, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+        let two = self.frame.to_local(wo);
+        if !(wo.z * two.z > 0.0) {
+            return Color::ZERO;
+        }
+        nested.eval(self.frame.to_local(wi), two, uv) * self.shadow(wo)
+    }
+
+    /// `nested`'s density in the tilted frame.
+    pub fn pdf(&self, nested: &Bsdf, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
+        let two = self.frame.to_local(wo);
+        if !(wo.z * two.z > 0.0) {
+            return 0.0;
+        }
+        nested.pdf(self.frame.to_local(wi), two, uv)
+    }
+
+    /// Samples `nested` in the tilted frame; the direction is returned in the unperturbed one.
+    pub fn sample(
+        &self,
+        nested: &Bsdf,
+        wi: Vec3,
+        u1: f32,
+        u2: Vec2,
+        uv: Vec2,
+    ) -> Option<BsdfSample> {
+        let s = nested.sample(self.frame.to_local(wi), u1, u2, uv)?;
+        let wo = self.frame.to_world(s.wo);
+        if !(s.wo.z * wo.z > 0.0) {
+            return None;
+        }
+        Some(BsdfSample {
+            wo,
+            weight: s.weight * self.shadow(wo),
+            ..s
+        })
+    }
+}
