@@ -1,4 +1,4 @@
-//! `tessera render --stats`: the tile render of [`crate::render`] with a [`Counters`] probe per
+//! `tessera render --stats`: the tile render of [`crate::render`](mod@crate::render) with a [`Counters`] probe per
 //! worker thread, summed at the end.
 //!
 //! A probe only observes: each sample has the same value as without it, added to its pixel in

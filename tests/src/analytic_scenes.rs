@@ -58,7 +58,7 @@ fn closed_emitter(shape: &str, params: &str) -> String {
     )
 }
 
-/// A closed emitting sphere of radius 2 ([`closed_emitter`]) seen from its centre through a
+/// A closed emitting sphere of radius 2 (`closed_emitter`) seen from its centre through a
 /// `res x res` film with field of view `fov`.
 pub fn closed_sphere(fov: f64, res: u32) -> String {
     let body = closed_emitter("sphere", "\n    <float name=\"radius\" value=\"2\"/>");
@@ -70,7 +70,7 @@ pub fn closed_sphere(fov: f64, res: u32) -> String {
     )
 }
 
-/// A closed emitting cube (a triangle mesh, [`closed_emitter`]) seen from inside.
+/// A closed emitting cube (a triangle mesh, `closed_emitter`) seen from inside.
 pub fn furnace_box() -> String {
     let lookat = r#"origin="0.1, 0.2, 0" target="1, 0.3, 0.4" up="0, 1, 0""#;
     scene(1.0, lookat, 1, &closed_emitter("cube", ""))

@@ -29,7 +29,7 @@
 //! the point on the emitter at bounce 0 with the camera's offset, the point on the emitter at
 //! bounce `d + 1` with the BSDF direction of bounce `d`) does not permute the index with its
 //! own scramble: it takes Sobol dimensions 2 and 3
-//! ([`sobol_dim23_reversed`](super::sobol::sobol_dim23_reversed)) of its partner's permuted
+//! ([`sobol_dim23_reversed`]) of its partner's permuted
 //! index, Owen-scrambled with its own seeds. A pixel's points of the couple are then one 4D
 //! (3, m, 4)-net (Sobol dimensions 0 to 3) instead of two 2D nets joined at random, which
 //! stratifies what the couple integrates together (the light over the pixel, the light found

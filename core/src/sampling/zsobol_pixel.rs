@@ -72,8 +72,8 @@ impl ZSobolPixel {
     }
 
     /// Tells the cache that the samples `run` of the pixel are taken next, in order: samples in
-    /// it then draw their values eight at a time ([`super::zsobol_lanes`]) where the run takes
-    /// at least [`MIN_GROUP_SAMPLES`] of a group. The values stay exactly the same; this only
+    /// it then draw their values eight at a time (`zsobol_lanes`) where the run takes
+    /// at least `MIN_GROUP_SAMPLES` of a group. The values stay exactly the same; this only
     /// decides how they are computed. [`ZSobolPixel::move_to`] forgets the run.
     #[inline]
     pub fn set_run(&mut self, run: Range<u64>) {
