@@ -1,7 +1,7 @@
 //! Arbitrary output variables (Mitsuba 3's `aov` integrator): what the first surface a camera
 //! ray meets is, rather than the light arriving from it, returned in a colour's channels so
 //! that the ordinary render loop averages it like radiance (same camera samples, same filter
-//! weights; see `docs/aov.md`).
+//! weights; see `docs/guide/aov.md`).
 //!
 //! Each [`Aov`] fills up to three channels (unused ones are 0); a miss gives 0 in every
 //! channel, as in Mitsuba 3. The loader (`scene/src/integrator_aov.rs`) names the channels.
