@@ -6,7 +6,7 @@
 #
 #   scripts/bench_scenes.sh [THREADS [MAX_SECONDS [OUTDIR]]]      (defaults: 2, 60, docs/bench)
 #
-# Needs the dist build (cargo build --profile dist -p tessera; release plus fat LTO), Mitsuba 3 (scripts/install_mitsuba.sh) and, for
+# Needs the dist build (cargo build --profile dist -p tessera-cli; release plus fat LTO), Mitsuba 3 (scripts/install_mitsuba.sh) and, for
 # llvm_ad_rgb, scripts/install_llvm.sh. Set VARIANTS=scalar_rgb to skip the LLVM variant,
 # SAMPLERS=zsobol to measure only Tessera's zsobol curve, and SEEDS=N to make every curve (both
 # renderers) the wave-by-wave mean of N seeds (N times the time; MAX_SECONDS applies per seed).
@@ -16,7 +16,7 @@
 # samples, the wave timed alone), as Mitsuba's script does.
 # INTEGRATORS=a,b (default path_mis) names Tessera's curves, e.g. INTEGRATORS=path_mis,path_mis+reuse.
 # For a build tuned to this CPU, as Mitsuba's LLVM variant's kernels are (same image bits):
-#   RUSTFLAGS="-C target-cpu=native" cargo build --profile dist -p tessera --target-dir target/native
+#   RUSTFLAGS="-C target-cpu=native" cargo build --profile dist -p tessera-cli --target-dir target/native
 #   TESSERA=target/native/dist/tessera scripts/bench_scenes.sh 2 30
 # and, profile-guided on top (about 10% faster, same bits; see scripts/build_pgo.sh):
 #   TARGET_CPU=native scripts/build_pgo.sh && TESSERA=target/pgo/dist/tessera scripts/bench_scenes.sh 2 30
@@ -50,7 +50,7 @@ for NAME in cbox veach_mis; do
     "$PYTHON" scripts/mitsuba_bench.py "scenes/$NAME.xml" -D res=128 -D rfilter=box \
         --reference "$REF" --variant "$VARIANTS" --seeds "$SEEDS" --repeats "$REPEATS" --threads "$THREADS" --max-seconds "$MAX" \
         -o "$OUT/$NAME.csv"
-    # Each curve's time to the README's error levels, and its ratio to Mitsuba's fastest
+    # Each curve's time to the error levels of docs/performance.md, and its ratio to Mitsuba's fastest
     # variant measured (llvm_ad_rgb when it is among VARIANTS, else the first).
     case ",$VARIANTS," in
         *,llvm_ad_rgb,*) PEER="mitsuba-llvm_ad_rgb:path" ;;

@@ -33,7 +33,7 @@ rm -rf "$DATA"
 mkdir -p "$DATA"
 echo "== 1/5 instrumented build (target/pgo-gen)"
 RUSTFLAGS="$FLAGS -Cprofile-generate=$DATA" CARGO_TARGET_DIR=target/pgo-gen \
-    cargo build --profile dist -p tessera --quiet
+    cargo build --profile dist -p tessera-cli --quiet
 # Build scripts and proc macros of step 1 are instrumented too: their profiles are not wanted.
 rm -f "$DATA"/*.profraw
 
@@ -70,7 +70,7 @@ echo "== 3/5 merging $(ls "$DATA"/*.profraw | wc -l) profiles"
 "$PROFDATA" merge -o "$DATA/merged.profdata" "$DATA"/*.profraw
 echo "== 4/5 profile-guided build (target/pgo)"
 RUSTFLAGS="$FLAGS -Cprofile-use=$DATA/merged.profdata" CARGO_TARGET_DIR=target/pgo \
-    cargo build --profile dist -p tessera --quiet
+    cargo build --profile dist -p tessera-cli --quiet
 echo "== 5/5 same image bits as the instrumented build"
 train target/pgo/dist/tessera pgo
 for f in "$SCRATCH"/gen-*.exr; do

@@ -5,8 +5,8 @@ use clap::Parser;
 use tessera_cli::{Cli, Command};
 
 /// jemalloc, built to back its mappings with transparent huge pages (`.cargo/config.toml`): a
-/// large scene's acceleration structure then takes few TLB entries (see the README's
-/// "Against Embree" section for what it measured).
+/// large scene's acceleration structure then takes few TLB entries (see
+/// `docs/performance.md`, "Against Embree", for what it measured).
 #[cfg(not(target_env = "msvc"))]
 #[global_allocator]
 static ALLOCATOR: tikv_jemallocator::Jemalloc = tikv_jemallocator::Jemalloc;

@@ -75,7 +75,7 @@ pub struct RenderArgs {
     pub quiet: bool,
     /// Adaptive sampling: after 2 samples in every pixel, passes doubling the mean sample count
     /// send each pass's samples where the relative variance is highest; --spp is then the mean
-    /// over pixels. Consistent, not unbiased (see the README).
+    /// over pixels. Consistent, not unbiased (see docs/guide/adaptive-sampling.md).
     #[arg(long)]
     pub adaptive: bool,
     /// Stop at the first power of two spp (with --adaptive: doubling of the mean) whose relative

@@ -12,7 +12,7 @@
 //! Why halves and not the sample variance: with a stratified sampler (`zsobol`) the error of a
 //! pixel falls faster than `s^2 / n`, because its samples are not independent. The sample
 //! variance ignores that and overstates the error, by 2 to 5 times at 16-128 spp on the Cornell
-//! box and the Veach scene (README). Two halves that are each a well-spread set of samples (the
+//! box and the Veach scene (`docs/design/adaptive-and-reuse.md`). Two halves that are each a well-spread set of samples (the
 //! first and second halves of a power-of-two count) show the error the sampler really leaves. With
 //! independent samples both estimates agree.
 //!

@@ -6,7 +6,7 @@
 #   scripts/mitsuba_rays/run.sh SCENE.xml [VARIANT [THREADS]] [-D name=value ...]
 #   RAYDUMP=/tmp/rays scripts/mitsuba_rays/run.sh ...   # also records every 16-wide packet
 #
-# Example (session 28): cbox at 128x128, 256 spp, max_depth 8, one thread:
+# Example: cbox at 128x128, 256 spp, max_depth 8, one thread:
 #   scripts/mitsuba_rays/run.sh scenes/cbox.xml llvm_ad_rgb 1 -D res=128 -D spp=256 -D rfilter=box
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)

@@ -1,7 +1,7 @@
 //! `lean x8 zsobol avx2`: `lean x8 zsobol in step` (`in_step.rs`) with every stage between the
 //! casts written for the vector unit by hand ([`F8`]: eight lanes in one AVX register) instead
 //! of left to the compiler. The question it answers: does shading eight paths per instruction
-//! pay, once it is not the compiler's partial vectorisation (session 25: in step was 8% slower
+//! pay, once it is not the compiler's partial vectorisation (measured before: in step was 8% slower
 //! than one path at a time)?
 //!
 //! What stays one lane at a time: the ray casts, the sampler's draws (Tessera's `ZSobolPixel`,

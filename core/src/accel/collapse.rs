@@ -35,7 +35,7 @@ pub enum Collapse {
 
 impl Collapse {
     /// The collapse scenes use. Measured with the Embree bench (`BVH8_COLLAPSE` overrides it
-    /// there): see the README section "8-wide BVH with an AVX2 node test".
+    /// there): see `docs/design/ray-casting.md`.
     pub const DEFAULT: Collapse = Collapse::Sah {
         node_cost: 2.0,
         block_cost: 1.0,

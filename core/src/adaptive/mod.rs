@@ -32,7 +32,7 @@
 //! accumulators give the same counts on any machine, whatever rendered them (thread count, tile
 //! size). The counts depend on the samples themselves, so the image is not exactly unbiased: a
 //! pixel whose first samples happened to be quiet gets fewer later samples. The uniform share,
-//! the smoothing and the growing totals keep that effect small; see the README's measurements.
+//! the smoothing and the growing totals keep that effect small; see `docs/design/adaptive-and-reuse.md` for the measurements.
 use crate::film::PixelAccum;
 use crate::math::sqrt_f64;
 
@@ -215,7 +215,7 @@ pub(crate) mod tests {
         a
     }
 
-    /// The plan as first written (session 10), kept to check that the leaner one computes the
+    /// The plan as first written, kept to check that the leaner one computes the
     /// same counts.
     fn reference_plan(
         pixels: &[PixelAccum],
