@@ -2,8 +2,32 @@
 //! [`tessera_core::scene::Scene`] plus the render settings the file carries (integrator, sample
 //! count, seed). XML parsing with located errors ([`xml`], [`error`]), meshes ([`mesh`]), images
 //! ([`image`]), and one builder file per plugin family. Start from [`load_scene`].
+//!
+//! # Example
+//!
+//! ```
+//! use std::path::Path;
+//! let xml = r#"<scene version="3.0.0">
+//!     <sensor type="perspective">
+//!         <float name="fov" value="45"/>
+//!         <film type="hdrfilm"><integer name="width" value="32"/><integer name="height" value="24"/></film>
+//!     </sensor>
+//!     <shape type="sphere"><bsdf type="diffuse"/></shape>
+//!     <emitter type="constant"/>
+//! </scene>"#;
+//! let loaded = tessera_scene::load_scene_str(xml, Path::new("inline.xml"), &[]).unwrap();
+//! let camera = &loaded.scene.camera;
+//! assert_eq!((camera.width, camera.height), (32, 24));
+//! assert_eq!(loaded.names.shapes, ["sphere"]);
+//!
+//! // A misspelt parameter is a one-line error at its line and column.
+//! let typo = xml.replace("name=\"fov\"", "name=\"fvo\"");
+//! let err = tessera_scene::load_scene_str(&typo, Path::new("inline.xml"), &[]).unwrap_err();
+//! assert!(err.to_string().starts_with("inline.xml:3:"), "{err}");
+//! ```
 // `!(x > 0.0)` rejects NaN along with the values it names (as in the core).
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
+#![warn(missing_docs)]
 pub mod error;
 pub mod hash;
 pub mod image;

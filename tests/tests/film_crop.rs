@@ -132,7 +132,9 @@ fn windows_off_the_film_are_located_errors() {
         (crop(0, 60, 8, 8), "the crop window 8x8 at (0, 60) does not lie on the 64x64 film"),
         (crop(0, 0, 0, 8), "crop_width"),
     ] {
-        let e = cbox(&film, PERSPECTIVE).err().expect("accepted");
+        let Err(e) = cbox(&film, PERSPECTIVE) else {
+            panic!("{film}: accepted")
+        };
         assert!(e.contains("cbox.xml:"), "{e}");
         assert!(e.contains(says), "{e}");
     }

@@ -8,17 +8,38 @@ use glam::Vec3;
 /// One intersectable primitive, referring back to the shape it belongs to.
 #[derive(Clone, Copy, Debug)]
 pub enum Prim {
-    /// Triangle `face` of mesh shape `shape` (its corners are in the scene's `blocks`).
-    Triangle { shape: u32, face: u32 },
+    /// A triangle of a mesh (its corners are in the scene's `blocks`).
+    Triangle {
+        /// The mesh shape's index.
+        shape: u32,
+        /// The triangle's index in the mesh.
+        face: u32,
+    },
     /// A sphere shape.
-    Sphere { sphere: Sphere, shape: u32 },
-    /// Disk `disk` (index into the scene's disks) of shape `shape`.
-    Disk { disk: u32, shape: u32 },
-    /// Cylinder shape `shape` (its geometry is the shape's `ShapeKind::Cylinder`).
-    Cylinder { shape: u32 },
-    /// Instance `instance` of a shape group (top level only; the scene tests it, through the
-    /// group's own hierarchy).
-    Instance { instance: u32 },
+    Sphere {
+        /// Its geometry.
+        sphere: Sphere,
+        /// The shape's index.
+        shape: u32,
+    },
+    /// A disk shape.
+    Disk {
+        /// Index into the scene's disks.
+        disk: u32,
+        /// The shape's index.
+        shape: u32,
+    },
+    /// A cylinder shape (its geometry is the shape's `ShapeKind::Cylinder`).
+    Cylinder {
+        /// The shape's index.
+        shape: u32,
+    },
+    /// An instance of a shape group (top level only; the scene tests it through the group's
+    /// own hierarchy).
+    Instance {
+        /// Index into the scene's instances.
+        instance: u32,
+    },
 }
 
 /// The closest hit found by a traversal.

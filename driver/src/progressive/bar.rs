@@ -8,7 +8,12 @@ use std::time::Duration;
 #[derive(Clone, Copy)]
 pub enum BarMode {
     /// Samples (pixels x spp) against the target.
-    Samples { pixels: u64, target: u64 },
+    Samples {
+        /// Pixels rendered.
+        pixels: u64,
+        /// Samples per pixel aimed at.
+        target: u64,
+    },
     /// Milliseconds against the time budget.
     Time,
     /// Nothing to count against: a spinner.
