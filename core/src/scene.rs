@@ -1,7 +1,7 @@
 //! The flat, read-only scene: shapes, primitives under a BVH, BSDFs, emitters, camera.
-use crate::accel::tri_block::Ray4;
 use crate::accel::level::{Level, LevelError, LevelPrims, NOT_A_TRIANGLE};
-use crate::accel::{AnyLeaves, BuildParams, Bvh8, ClosestLeaves, TriBlocks};
+use crate::accel::tri_block::Ray4;
+use crate::accel::{AnyLeaves, BuildParams, Bvh8, TriBlocks};
 use crate::bsdf::{Bsdf, BsdfTraits};
 use crate::camera::{Camera, Filter};
 use crate::emitter::{Emitter, EmitterCtx};
@@ -10,7 +10,9 @@ use crate::light::{Behind, LightBound, LightSampler, LightSelection};
 use crate::math::{Aabb, Norm, Ray};
 use alloc::vec::Vec;
 use core::cell::Cell;
-use glam::{Vec2, Vec3};
+use glam::Vec3;
+
+mod casts;
 
 /// What a scene contains, computed once; integrators consult it to skip work a scene does not
 /// need (no shadow rays without emitters, no environment lookups without an environment...).
@@ -159,7 +161,9 @@ impl Scene {
         }
         let mut instance_bounds = Vec::new();
         for (ii, inst) in p.instances.iter().enumerate() {
-            let g = groups.get(inst.group as usize).ok_or(BuildError::BadIndex)?;
+            let g = groups
+                .get(inst.group as usize)
+                .ok_or(BuildError::BadIndex)?;
             let b = inst.bounds(g.bvh.bounds());
             if g.prims.is_empty() || b.is_empty() {
                 // An empty group: nothing to hit.
@@ -316,135 +320,6 @@ impl Scene {
         self.closest(ray, &Cell::default())
     }
 
-    /// The closest hit along the ray; where it is on an instance, `inner` says where in its
-    /// group.
-    #[inline(always)]
-    fn closest(&self, ray: &Ray, inner: &Cell<InnerHit>) -> Option<Hit> {
-        let mut best: Option<Hit> = None;
-        let r4 = Ray4::from_ray(ray);
-        self.bvh.cast::<false>(
-            ray,
-            ClosestLeaves {
-                blocks: &self.blocks,
-                ray: &r4,
-                best: &mut best,
-                other: |i: usize, v: &[Vec3; 3], t_max: f32| {
-                    self.other_prim::<false>(i, ray, v, t_max, inner)
-                },
-            },
-        );
-        best
-    }
-
-    /// The test of primitive `i`, which is not a triangle (the leaves' `other`; `v` is its NaN
-    /// corners). An instance is tested through its group's hierarchy: for the closest hit
-    /// (`ANY` false) `inner` then records where in the group the hit is, for any hit the walk
-    /// stops at the first.
-    #[inline(always)]
-    fn other_prim<const ANY: bool>(
-        &self,
-        i: usize,
-        ray: &Ray,
-        v: &[Vec3; 3],
-        t_max: f32,
-        inner: &Cell<InnerHit>,
-    ) -> Option<(f32, Vec2)> {
-        match &self.prims[i] {
-            Prim::Instance { instance } => self.instance_hit::<ANY>(*instance, ray, t_max, inner),
-            pr => self.plain_prim(pr, ray, v, t_max),
-        }
-    }
-
-    /// The test of a primitive that is neither a triangle of the blocks nor an instance.
-    #[inline(always)]
-    fn plain_prim(&self, pr: &Prim, ray: &Ray, v: &[Vec3; 3], t_max: f32) -> Option<(f32, Vec2)> {
-        match pr {
-            Prim::Sphere { sphere, .. } => sphere.intersect(ray, t_max).map(|t| (t, Vec2::ZERO)),
-            Prim::Disk { disk, .. } => self.disks[*disk as usize].intersect(ray, t_max),
-            // Not reached from the blocks (a triangle's lane is tested there); as the scalar test.
-            pr => pr.intersect(ray, &TriRay::new(ray), v, t_max, &self.disks, &self.shapes),
-        }
-    }
-
-    /// A ray against instance `instance` within `(0, t_max)`: the group's hierarchy walked with
-    /// the ray in object space (where `t` measures the same points).
-    #[inline(never)]
-    fn instance_hit<const ANY: bool>(
-        &self,
-        instance: u32,
-        ray: &Ray,
-        t_max: f32,
-        inner: &Cell<InnerHit>,
-    ) -> Option<(f32, Vec2)> {
-        let inst = &self.instances[instance as usize];
-        let g = &self.groups[inst.group as usize];
-        let oray = inst.to_object(&Ray { t_max, ..*ray });
-        let r4 = Ray4::from_ray(&oray);
-        let other =
-            |j: usize, v: &[Vec3; 3], t: f32| self.plain_prim(&g.prims[j], &oray, v, t);
-        if ANY {
-            let mut leaves = AnyLeaves {
-                blocks: &g.blocks,
-                ray: &r4,
-                hit: false,
-                other,
-            };
-            g.bvh.cast::<true>(&oray, &mut leaves);
-            return leaves.hit.then_some((t_max, Vec2::ZERO));
-        }
-        let mut best: Option<Hit> = None;
-        g.bvh.cast::<false>(
-            &oray,
-            ClosestLeaves {
-                blocks: &g.blocks,
-                ray: &r4,
-                best: &mut best,
-                other,
-            },
-        );
-        let h = best?;
-        inner.set(InnerHit {
-            prim: h.prim,
-            uv: h.uv,
-        });
-        Some((h.t, Vec2::ZERO))
-    }
-
-    /// Tests the primitives `prims` of a leaf for a hit closer than `t_max`, updating `best`;
-    /// returns the new `t_max`. Shared by the ordinary and the counted casts.
-    #[inline(always)]
-    pub(crate) fn leaf_closest(
-        &self,
-        ray: &Ray,
-        r4: &Ray4,
-        prims: core::ops::Range<usize>,
-        t_max: f32,
-        best: &mut Option<Hit>,
-    ) -> f32 {
-        let inner = Cell::default();
-        self.blocks
-            .closest(prims.start, prims.len(), r4, t_max, best, |i, v, t_max| {
-                self.other_prim::<false>(i, ray, v, t_max, &inner)
-            })
-    }
-
-    /// Whether any primitive of `prims` blocks the ray before `t_max` (ordinary and counted
-    /// casts).
-    #[inline(always)]
-    pub(crate) fn leaf_any(
-        &self,
-        ray: &Ray,
-        r4: &Ray4,
-        prims: core::ops::Range<usize>,
-        t_max: f32,
-    ) -> bool {
-        let inner = Cell::default();
-        self.blocks
-            .any(prims.start, prims.len(), r4, t_max, |i, v, t_max| {
-                self.other_prim::<true>(i, ray, v, t_max, &inner)
-            })
-    }
-
     /// The closest surface interaction along the ray, if any.
     pub fn intersect(&self, ray: &Ray) -> Option<Interaction> {
         let inner = Cell::default();
@@ -520,12 +395,4 @@ impl From<LevelError> for BuildError {
             LevelError::TooLarge => BuildError::TooLarge,
         }
     }
-}
-
-/// Where a closest hit on an instance landed inside its group: the group's primitive and its
-/// uv (the top level's [`Hit`] names the instance).
-#[derive(Clone, Copy, Debug, Default)]
-struct InnerHit {
-    prim: u32,
-    uv: Vec2,
 }

@@ -2,11 +2,11 @@
 use super::bsdfs::Bsdfs;
 use super::emitters::{build_emitter, AREA};
 use super::families::{declared_params, families, Family};
+use super::instancing::{Groups, INSTANCE, SHAPEGROUP};
 use super::integrator::read_integrator;
 use super::loaded::{LoadedScene, PluginNames};
 use super::sampler::build_sampler;
 use super::sensor::build_sensor;
-use super::instancing::{Groups, INSTANCE, SHAPEGROUP};
 use super::shapes::build_shape;
 use super::util::Result;
 use crate::error::InputError;
@@ -170,7 +170,11 @@ fn add_shape(obj: &Object, acc: &mut Acc, in_group: bool) -> Result<Vec<u32>> {
                  supported (as in Mitsuba 3)",
             ));
         }
-        if parts.mtl_parts.iter().any(|p| p.material.emission.is_some()) {
+        if parts
+            .mtl_parts
+            .iter()
+            .any(|p| p.material.emission.is_some())
+        {
             return Err(obj.error(
                 "an MTL material with Ke emission inside a shapegroup: instancing of emitters \
                  is not supported (as in Mitsuba 3)",

@@ -7,8 +7,8 @@ use crate::shapes::{Geometry, ShapePlugin, RADIUS, TO_WORLD};
 use crate::util::Result;
 use crate::xml::Object;
 use glam::{DMat4, DVec3};
-use tessera_core::math::Norm;
 use tessera_core::geometry::{Cylinder, ShapeKind};
+use tessera_core::math::Norm;
 
 const P0: Param = Param::new(
     "p0",
@@ -33,13 +33,7 @@ pub const CYLINDER: ShapePlugin = Plugin {
           p0 to p1, normals pointing away from the axis, placed by to_world, which must keep \
           the cross-section a circle (rotation, translation, a scale uniform across the axis; \
           it may stretch along the axis).",
-    params: &[
-        P0,
-        P1,
-        RADIUS,
-        TO_WORLD,
-        crate::shapes::FLIP_NORMALS,
-    ],
+    params: &[P0, P1, RADIUS, TO_WORLD, crate::shapes::FLIP_NORMALS],
     nested: "an optional `<bsdf>` and `<emitter type=\"area\">`",
     build: build_cylinder,
 };

@@ -72,7 +72,8 @@ const CENTER: Param = Param::new(
     Range::Any,
     "centre, before to_world",
 );
-pub(crate) const RADIUS: Param = Param::float("radius", 1.0, Range::Positive, "radius, before to_world");
+pub(crate) const RADIUS: Param =
+    Param::float("radius", 1.0, Range::Positive, "radius, before to_world");
 
 /// `sphere`.
 pub const SPHERE: ShapePlugin = Plugin {

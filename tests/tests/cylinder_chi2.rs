@@ -8,8 +8,8 @@
 //! must be a density of the square (integral 1). Control: the same samples against the density
 //! of a cylinder whose radius is 2% larger must fail.
 use glam::{DVec3, Vec2};
-use tessera_core::math::Norm;
 use tessera_core::geometry::{Cylinder, Shape, ShapeKind};
+use tessera_core::math::Norm;
 use tessera_lab::stats::{sidak_alpha, PlaneChi2};
 
 const N_TESTS: usize = 3;

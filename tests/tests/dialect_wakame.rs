@@ -77,7 +77,10 @@ fn worst_angle(loaded: &LoadedScene, reference: &LoadedScene, dialect: Dialect) 
 fn each_dialect_gives_its_renderers_rays() {
     let nori = load(&scene(""));
     let wakame = load(&scene(r#"<?tessera dialect="wakame"?>"#));
-    assert_eq!((nori.dialect, wakame.dialect), (Dialect::Nori, Dialect::Wakame));
+    assert_eq!(
+        (nori.dialect, wakame.dialect),
+        (Dialect::Nori, Dialect::Wakame)
+    );
     let tol = 1e-5;
     assert!(worst_angle(&nori, &nori, Dialect::Nori) < tol);
     assert!(worst_angle(&wakame, &nori, Dialect::Wakame) < tol);
@@ -115,8 +118,14 @@ fn the_command_line_dialect_overrides_the_files() {
 fn bad_instructions_are_located_errors() {
     let path = Path::new("/nowhere/s.xml");
     for (instruction, says) in [
-        (r#"<?tessera dialect="mitsuba0"?>"#, "unknown dialect \"mitsuba0\""),
-        (r#"<?tessera flavour="wakame"?>"#, "expected <?tessera dialect="),
+        (
+            r#"<?tessera dialect="mitsuba0"?>"#,
+            "unknown dialect \"mitsuba0\"",
+        ),
+        (
+            r#"<?tessera flavour="wakame"?>"#,
+            "expected <?tessera dialect=",
+        ),
         (
             r#"<?tessera dialect="nori"?><?tessera dialect="wakame"?>"#,
             "a second <?tessera dialect",

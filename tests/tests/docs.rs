@@ -156,7 +156,9 @@ fn dated_phrases(text: &str) -> Vec<String> {
                 let after = &lower[start + word.len()..];
                 let spaced = after.trim_start_matches([' ', '\t']);
                 let gap = after.len() - spaced.len();
-                let numbered = spaced.trim_start_matches('#').starts_with(|c: char| c.is_ascii_digit());
+                let numbered = spaced
+                    .trim_start_matches('#')
+                    .starts_with(|c: char| c.is_ascii_digit());
                 let hashed = word == "issue" && spaced.starts_with('#');
                 if gap > 0 && (numbered || hashed) {
                     let end = (start + word.len() + gap + 1).min(line.len());
@@ -211,12 +213,19 @@ fn size_check_control_flags_a_long_readme() {
 #[test]
 fn every_relative_link_points_at_a_file() {
     let files = doc_files();
-    assert!(files.len() > 10, "found only {} Markdown files", files.len());
+    assert!(
+        files.len() > 10,
+        "found only {} Markdown files",
+        files.len()
+    );
     let mut broken = Vec::new();
     for f in &files {
         let text = fs::read_to_string(f).unwrap();
         for b in broken_links(&text, f.parent().unwrap()) {
-            broken.push(format!("{}:{b}", f.strip_prefix(root()).unwrap_or(f).display()));
+            broken.push(format!(
+                "{}:{b}",
+                f.strip_prefix(root()).unwrap_or(f).display()
+            ));
         }
     }
     assert!(broken.is_empty(), "broken links:\n{}", broken.join("\n"));
@@ -241,12 +250,19 @@ fn link_checker_control_flags_a_missing_file() {
 #[test]
 fn no_session_or_issue_numbers() {
     let files = tracked_text_files();
-    assert!(files.len() > 300, "found only {} tracked text files", files.len());
+    assert!(
+        files.len() > 300,
+        "found only {} tracked text files",
+        files.len()
+    );
     let mut found = Vec::new();
     for f in &files {
         let text = fs::read_to_string(f).unwrap();
         for p in dated_phrases(&text) {
-            found.push(format!("{}:{p}", f.strip_prefix(root()).unwrap_or(f).display()));
+            found.push(format!(
+                "{}:{p}",
+                f.strip_prefix(root()).unwrap_or(f).display()
+            ));
         }
     }
     assert!(found.is_empty(), "dated narrative:\n{}", found.join("\n"));
@@ -256,10 +272,16 @@ fn no_session_or_issue_numbers() {
 fn dated_phrase_control_flags_sessions_and_issues() {
     // Built at run time, so that this file does not hold the phrases it looks for.
     let (s, i) = ("Session", "issue");
-    let text = format!("Measured in {s} 34.\n{i} 5's targets\nsee {i} #12\nsessions of work, an {i} with X\n");
+    let text = format!(
+        "Measured in {s} 34.\n{i} 5's targets\nsee {i} #12\nsessions of work, an {i} with X\n"
+    );
     assert_eq!(
         dated_phrases(&text),
-        vec![format!("1: {s} 3"), format!("2: {i} 5"), format!("3: {i} #")]
+        vec![
+            format!("1: {s} 3"),
+            format!("2: {i} 5"),
+            format!("3: {i} #")
+        ]
     );
 }
 

@@ -64,7 +64,11 @@ fn cropped_rays_are_the_whole_films_rays_at_the_offset() {
             for lens in [Vec2::new(0.5, 0.5), Vec2::new(0.1, 0.8)] {
                 let r = b.generate_ray_through(pos, lens);
                 let s = a.generate_ray_through(pos + Vec2::new(24.0, 8.0), lens);
-                assert_eq!((r.o, r.d, r.t_max), (s.o, s.d, s.t_max), "{sensor} at {pos}");
+                assert_eq!(
+                    (r.o, r.d, r.t_max),
+                    (s.o, s.d, s.t_max),
+                    "{sensor} at {pos}"
+                );
                 // Control: the whole film's ray at the unmoved position is another ray.
                 let c = a.generate_ray_through(pos, lens);
                 moved += usize::from(c.o != r.o || c.d != r.d);
@@ -128,8 +132,14 @@ fn a_cropped_render_is_mitsubas_window() {
 #[test]
 fn windows_off_the_film_are_located_errors() {
     for (film, says) in [
-        (crop(40, 0, 32, 16), "the crop window 32x16 at (40, 0) does not lie on the 64x64 film"),
-        (crop(0, 60, 8, 8), "the crop window 8x8 at (0, 60) does not lie on the 64x64 film"),
+        (
+            crop(40, 0, 32, 16),
+            "the crop window 32x16 at (40, 0) does not lie on the 64x64 film",
+        ),
+        (
+            crop(0, 60, 8, 8),
+            "the crop window 8x8 at (0, 60) does not lie on the 64x64 film",
+        ),
         (crop(0, 0, 0, 8), "crop_width"),
     ] {
         let Err(e) = cbox(&film, PERSPECTIVE) else {
@@ -139,7 +149,11 @@ fn windows_off_the_film_are_located_errors() {
         assert!(e.contains(says), "{e}");
     }
     // Offsets alone: the window runs to the film's far edges.
-    let l = cbox("<integer name=\"crop_offset_x\" value=\"60\"/>", PERSPECTIVE).unwrap();
+    let l = cbox(
+        "<integer name=\"crop_offset_x\" value=\"60\"/>",
+        PERSPECTIVE,
+    )
+    .unwrap();
     assert_eq!((l.scene.camera.width, l.scene.camera.height), (4, 64));
     // The whole film as a window is no crop at all.
     let l = cbox(&crop(0, 0, 64, 64), PERSPECTIVE).unwrap();

@@ -44,7 +44,10 @@ fn worst(l: &LoadedScene, reference: &RgbImage, ref_spp: f64, seed: u64) -> (f64
 }
 
 fn alpha(comparisons: usize) -> f64 {
-    sidak_alpha(0.01, comparisons * ((RES / BLOCK) * (RES / BLOCK) * 3) as usize)
+    sidak_alpha(
+        0.01,
+        comparisons * ((RES / BLOCK) * (RES / BLOCK) * 3) as usize,
+    )
 }
 
 #[test]
@@ -63,7 +66,12 @@ fn instances_and_cylinders_match_mitsuba() {
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         let seed = 7000 + 10 * i as u64;
         if i != 1 {
-            let (p, what) = worst(&load(&format!("{name}.xml"), &[]), &reference, REF_SPP, seed);
+            let (p, what) = worst(
+                &load(&format!("{name}.xml"), &[]),
+                &reference,
+                REF_SPP,
+                seed,
+            );
             eprintln!("{name}: worst p = {p:.3e} at {what}");
             if p < a {
                 failures.push(format!("{name}: p = {p:.3e} < {a:.3e} at {what}"));
@@ -73,10 +81,16 @@ fn instances_and_cylinders_match_mitsuba() {
         let (pc, whatc) = worst(&l, &reference, REF_SPP, seed + 5);
         eprintln!("{name} control {control:?}: p = {pc:.3e} at {whatc}");
         if pc >= a {
-            failures.push(format!("{name}: control {control:?} went unnoticed (p = {pc:.3e})"));
+            failures.push(format!(
+                "{name}: control {control:?} went unnoticed (p = {pc:.3e})"
+            ));
         }
     }
-    assert!(failures.is_empty(), "alpha {a:.3e}\n{}", failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "alpha {a:.3e}\n{}",
+        failures.join("\n")
+    );
 }
 
 /// Our render as a reference image (its mean per pixel).
@@ -101,7 +115,10 @@ fn instanced_geometry_renders_as_the_same_geometry_written_out() {
     let a = alpha(1);
     let (p, what) = worst_against_reference_rect(&ours, &like, SPP, &reference, SPP as f64, BLOCK);
     eprintln!("instanced vs written out: worst p = {p:.3e} at {what}");
-    assert!(p >= a, "instanced vs written out: p = {p:.3e} < {a:.3e} at {what}");
+    assert!(
+        p >= a,
+        "instanced vs written out: p = {p:.3e} < {a:.3e} at {what}"
+    );
     let (reference, like) = image_of(&wrong, SPP, 13);
     let (pc, whatc) =
         worst_against_reference_rect(&ours, &like, SPP, &reference, SPP as f64, BLOCK);
@@ -111,9 +128,8 @@ fn instanced_geometry_renders_as_the_same_geometry_written_out() {
 
 /// A scene with `body` and a camera; the load's error message.
 fn error_of(body: &str) -> String {
-    let text = format!(
-        "<scene version=\"3.0.0\">\n<sensor type=\"perspective\"/>\n{body}\n</scene>"
-    );
+    let text =
+        format!("<scene version=\"3.0.0\">\n<sensor type=\"perspective\"/>\n{body}\n</scene>");
     match load_scene_str(&text, Path::new("t.xml"), &[]) {
         Ok(_) => panic!("loaded: {body}"),
         Err(e) => e.to_string(),
@@ -133,11 +149,7 @@ fn bad_instancing_is_a_located_error() {
             "t.xml:4:",
             "refers only to a shapegroup",
         ),
-        (
-            "<shape type=\"instance\"/>",
-            "t.xml:3:",
-            "needs a <ref",
-        ),
+        ("<shape type=\"instance\"/>", "t.xml:3:", "needs a <ref"),
         (
             "<shape type=\"shapegroup\" id=\"g\">\n<shape type=\"shapegroup\" id=\"h\"><shape \
              type=\"sphere\"/></shape>\n</shape>",
@@ -177,7 +189,10 @@ fn bad_instancing_is_a_located_error() {
     for (body, at, what) in cases {
         let e = error_of(body);
         eprintln!("{e}");
-        assert!(e.starts_with(at) || e.contains(&format!(" {at}")) || e.contains(at), "{body}\n{e}");
+        assert!(
+            e.starts_with(at) || e.contains(&format!(" {at}")) || e.contains(at),
+            "{body}\n{e}"
+        );
         assert!(e.contains(what), "{body}\n{e}");
         assert_eq!(e.lines().count(), 1, "{e}");
     }

@@ -166,7 +166,11 @@ fn like_mitsuba(l: &LoadedScene, spp: u64, seed: u64) -> Option<Framebuffer> {
 fn every_manifest_scene_is_compared_or_accounted_for() {
     let compared: Vec<String> = listed().into_iter().map(|s| s.scene).collect();
     for line in lines(&real_dir().join("MANIFEST")) {
-        let scene = line.split_whitespace().next().unwrap_or_default().to_string();
+        let scene = line
+            .split_whitespace()
+            .next()
+            .unwrap_or_default()
+            .to_string();
         let known = KNOWN_DEVIATIONS.iter().any(|(k, _)| *k == scene);
         let left_out = NOT_COMPARED.contains(&scene.as_str());
         let n = [compared.contains(&scene), known, left_out]

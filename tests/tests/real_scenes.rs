@@ -12,7 +12,9 @@ fn real_dir() -> PathBuf {
 
 /// A `name=value` define of a list line.
 fn define(word: &str) -> (String, String) {
-    let (k, v) = word.split_once('=').unwrap_or_else(|| panic!("{word:?} is not name=value"));
+    let (k, v) = word
+        .split_once('=')
+        .unwrap_or_else(|| panic!("{word:?} is not name=value"));
     (k.to_string(), v.to_string())
 }
 

@@ -32,12 +32,20 @@ impl Cylinder {
     #[inline]
     fn local_point(&self, p: DVec3) -> DVec3 {
         let v = p - self.origin;
-        DVec3::new(v.dot(self.axes[0]), v.dot(self.axes[1]), v.dot(self.axes[2]))
+        DVec3::new(
+            v.dot(self.axes[0]),
+            v.dot(self.axes[1]),
+            v.dot(self.axes[2]),
+        )
     }
 
     #[inline]
     fn local_vector(&self, v: DVec3) -> DVec3 {
-        DVec3::new(v.dot(self.axes[0]), v.dot(self.axes[1]), v.dot(self.axes[2]))
+        DVec3::new(
+            v.dot(self.axes[0]),
+            v.dot(self.axes[1]),
+            v.dot(self.axes[2]),
+        )
     }
 
     /// Local to world for a point.
@@ -89,7 +97,11 @@ impl Cylinder {
     pub fn project(&self, p: Vec3) -> (Vec3, Vec3, DVec3) {
         let l = self.local_point(p.as_dvec3());
         let r = sqrt_f64(l.x * l.x + l.y * l.y);
-        let (c, s) = if r > 0.0 { (l.x / r, l.y / r) } else { (1.0, 0.0) };
+        let (c, s) = if r > 0.0 {
+            (l.x / r, l.y / r)
+        } else {
+            (1.0, 0.0)
+        };
         let z = l.z.clamp(0.0, self.length);
         let (w, err) = self.point(c, s, z);
         (w, err, DVec3::new(c, s, z))
@@ -108,7 +120,9 @@ impl Cylinder {
     /// Outward unit normal at local angle `(cos, sin)`.
     #[inline]
     pub fn normal(&self, c: f64, s: f64) -> Vec3 {
-        (self.axes[0] * c + self.axes[1] * s).as_vec3().unit_or(Vec3::Z)
+        (self.axes[0] * c + self.axes[1] * s)
+            .as_vec3()
+            .unit_or(Vec3::Z)
     }
 
     /// uv and dp/du at local coordinates `l = (cos, sin, z)`, as Mitsuba 3 defines them.
@@ -118,8 +132,12 @@ impl Cylinder {
         if phi < 0.0 {
             phi += core::f64::consts::TAU;
         }
-        let uv = Vec2::new((phi / core::f64::consts::TAU) as f32, (l.z / self.length) as f32);
-        let dpdu = (self.axes[0] * -l.y + self.axes[1] * l.x) * (self.radius * core::f64::consts::TAU);
+        let uv = Vec2::new(
+            (phi / core::f64::consts::TAU) as f32,
+            (l.z / self.length) as f32,
+        );
+        let dpdu =
+            (self.axes[0] * -l.y + self.axes[1] * l.x) * (self.radius * core::f64::consts::TAU);
         (uv, dpdu.as_vec3())
     }
 
@@ -135,7 +153,8 @@ impl Cylinder {
     /// The uv of the point [`Cylinder::sample`] places for `u` (as a ray hit there gets it).
     pub fn sample_uv(&self, u: Vec2) -> Vec2 {
         let (s, c) = libm::sincos(f64::from(u.y) * core::f64::consts::TAU);
-        self.uv_dpdu(DVec3::new(c, s, f64::from(u.x) * self.length)).0
+        self.uv_dpdu(DVec3::new(c, s, f64::from(u.x) * self.length))
+            .0
     }
 
     /// Bounding box: that of the two end circles.

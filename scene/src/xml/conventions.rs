@@ -51,7 +51,10 @@ impl Dialect {
             .find(|d| d.name() == name)
             .ok_or_else(|| {
                 let names: Vec<_> = Dialect::ALL.iter().map(|d| d.name()).collect();
-                format!("unknown dialect \"{name}\" (expected {})", names.join(" or "))
+                format!(
+                    "unknown dialect \"{name}\" (expected {})",
+                    names.join(" or ")
+                )
             })
     }
 
@@ -102,12 +105,17 @@ pub fn read_instruction(
             .ok_or_else(|| {
                 InputError::at(
                     &at,
-                    format!("expected <?tessera dialect=\"nori|wakame\"?>, found <?tessera {value}?>"),
+                    format!(
+                        "expected <?tessera dialect=\"nori|wakame\"?>, found <?tessera {value}?>"
+                    ),
                 )
             })?;
         let dialect = Dialect::parse(name).map_err(|m| InputError::at(&at, m))?;
         if found.replace(dialect).is_some() {
-            return Err(InputError::at(&at, "a second <?tessera dialect=...?> instruction"));
+            return Err(InputError::at(
+                &at,
+                "a second <?tessera dialect=...?> instruction",
+            ));
         }
     }
     Ok(found)
@@ -142,7 +150,12 @@ mod tests {
         assert_eq!(w.vector(p), t.vector(mirrored));
         // The inverse stays the inverse.
         let q = Vec3::new(1.0, 2.0, 3.0);
-        assert!((w.inv.transform_point3(w.m.transform_point3(q)) - q).abs().max_element() < 1e-5);
+        assert!(
+            (w.inv.transform_point3(w.m.transform_point3(q)) - q)
+                .abs()
+                .max_element()
+                < 1e-5
+        );
         let n = Dialect::Nori.camera_to_world(t);
         assert_eq!(n.m, t.m);
         assert_eq!(n.inv, t.inv);

@@ -14,8 +14,8 @@
 use glam::{DMat4, DVec3};
 
 use super::draft::{Draft, Target};
-use std::collections::HashSet;
 use super::object::{Kind, Prop, Value};
+use std::collections::HashSet;
 
 /// Distance from the origin (along any axis) from which a camera's scene is recentred.
 pub const RECENTRE_FROM: f64 = 256.0;
