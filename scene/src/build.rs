@@ -2,12 +2,12 @@
 use super::bsdfs::Bsdfs;
 use super::emitters::{build_emitter, AREA};
 use super::families::{declared_params, families, Family};
-use super::instancing::{Groups, INSTANCE, SHAPEGROUP};
 use super::integrator::read_integrator;
 use super::loaded::{LoadedScene, PluginNames};
 use super::sampler::build_sampler;
 use super::sensor::build_sensor;
 use super::shapes::build_shape;
+use super::shapes::instancing::{Groups, INSTANCE, SHAPEGROUP};
 use super::util::Result;
 use crate::error::InputError;
 use crate::xml::{Kind, Object};

@@ -60,6 +60,18 @@ pub fn declared_params(families: &[Family], kind: Kind, name: &str) -> Option<&'
         .map(|p| p.params)
 }
 
+impl Family {
+    /// Mitsuba 3's plugins of this family that the loader does not read, in Mitsuba's order.
+    pub fn not_read(&self) -> Vec<&'static str> {
+        crate::mitsuba_names::MITSUBA_PLUGINS
+            .iter()
+            .filter(|(k, _)| *k == self.kind)
+            .flat_map(|(_, names)| names.iter().copied())
+            .filter(|n| !self.plugins.iter().any(|p| p.is(n)))
+            .collect()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use std::path::Path;
@@ -95,6 +107,31 @@ mod tests {
         assert!(
             w[0].starts_with("/nowhere/w.xml:2:28: \"focus_distance\" of sensor \"perspective\""),
             "{w:?}"
+        );
+    }
+
+    /// Every plugin the loader reads that Mitsuba also has is in Mitsuba's list, and the
+    /// families' "not read" lists exclude what the loader reads.
+    #[test]
+    fn not_read_is_mitsuba_minus_the_loader() {
+        for f in crate::families::families() {
+            for n in f.not_read() {
+                assert!(crate::mitsuba_names::is_mitsuba_plugin(f.kind, n));
+                assert!(!f.plugins.iter().any(|p| p.is(n)), "{n}");
+            }
+        }
+        let shapes = crate::families::families()
+            .into_iter()
+            .find(|f| f.kind == crate::xml::Kind::Shape)
+            .unwrap();
+        let missing = shapes.not_read();
+        assert!(
+            missing.contains(&"linearcurve")
+                && !missing.contains(&"sphere")
+                && !missing.contains(&"cylinder")
+                && !missing.contains(&"instance")
+                && !missing.contains(&"shapegroup"),
+            "{missing:?}"
         );
     }
 }

@@ -38,13 +38,10 @@ pub mod xml;
 
 mod bsdfs;
 mod build;
-mod cylinder;
 mod emitters;
 mod families;
 mod filter;
-mod instancing;
 mod integrator;
-mod integrator_aov;
 mod loaded;
 pub(crate) mod materials;
 mod mitsuba_names;
@@ -54,7 +51,7 @@ mod shapes;
 mod util;
 
 pub use integrator::{integrator_names, IntegratorSpec, INTEGRATORS};
-pub use integrator_aov::{Layer, LayerSource};
+pub use integrator::{Layer, LayerSource};
 pub use loaded::{LoadedScene, PluginNames};
 pub use sensor::{MAX_EDGE, MAX_PIXELS};
 

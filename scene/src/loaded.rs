@@ -31,8 +31,8 @@ pub struct LoadedScene {
     /// world's origin and the loader moved the scene so that the camera sits at the core's
     /// origin (a world point `p` is then at `p - frame_origin` in the core scene).
     pub frame_origin: [f64; 3],
-    /// Whose conventions the scene is rendered with (see [`crate::Dialect`]).
-    pub dialect: crate::Dialect,
+    /// Whose conventions the scene is rendered with (see [`crate::xml::Dialect`]).
+    pub dialect: crate::xml::Dialect,
 }
 
 /// The plugin names of a scene's parts, by their index in the core scene, for reports that

@@ -1,8 +1,7 @@
 //! The plugin names Mitsuba 3.9.1 defines in each family Tessera reads, so that the reference can
-//! list the ones Tessera does not read (computed against the loader's tables, so it cannot drift
-//! from them) and an unknown name can be told apart from a typo: "a Mitsuba 3 plugin Tessera
+//! list the ones Tessera does not read (the families compute that against the loader's tables,
+//! so it cannot drift from them) and an unknown name can be told apart from a typo: "a Mitsuba 3 plugin Tessera
 //! does not read" rather than "unknown".
-use crate::families::Family;
 use crate::xml::Kind;
 
 /// Mitsuba 3.9.1's plugins per element (its `src/<family>/*.cpp`).
@@ -132,16 +131,6 @@ pub fn is_mitsuba_plugin(kind: Kind, name: &str) -> bool {
         .any(|(k, names)| *k == kind && names.contains(&name))
 }
 
-/// Mitsuba 3's plugins of `family` that the loader does not read, in Mitsuba's order.
-pub fn not_read(family: &Family) -> Vec<&'static str> {
-    MITSUBA_PLUGINS
-        .iter()
-        .filter(|(k, _)| *k == family.kind)
-        .flat_map(|(_, names)| names.iter().copied())
-        .filter(|n| !family.plugins.iter().any(|p| p.is(n)))
-        .collect()
-}
-
 #[cfg(test)]
 mod tests {
     use std::path::Path;
@@ -168,31 +157,6 @@ mod tests {
         assert!(
             e.contains("unknown shape \"linearcurv\" (Tessera reads:"),
             "{e}"
-        );
-    }
-
-    /// Every plugin the loader reads that Mitsuba also has is in Mitsuba's list, and the
-    /// families' "not read" lists exclude what the loader reads.
-    #[test]
-    fn not_read_is_mitsuba_minus_the_loader() {
-        for f in crate::families::families() {
-            for n in super::not_read(&f) {
-                assert!(super::is_mitsuba_plugin(f.kind, n));
-                assert!(!f.plugins.iter().any(|p| p.is(n)), "{n}");
-            }
-        }
-        let shapes = crate::families::families()
-            .into_iter()
-            .find(|f| f.kind == crate::xml::Kind::Shape)
-            .unwrap();
-        let missing = super::not_read(&shapes);
-        assert!(
-            missing.contains(&"linearcurve")
-                && !missing.contains(&"sphere")
-                && !missing.contains(&"cylinder")
-                && !missing.contains(&"instance")
-                && !missing.contains(&"shapegroup"),
-            "{missing:?}"
         );
     }
 }

@@ -43,7 +43,7 @@ pub fn reference() -> String {
          `<phase>` and `<volume>`, are refused as elements.)\n\n",
     );
     for f in families() {
-        let missing = crate::mitsuba_names::not_read(&f);
+        let missing = f.not_read();
         if !missing.is_empty() {
             let list: Vec<String> = missing.iter().map(|n| format!("`{n}`")).collect();
             s.push_str(&format!(

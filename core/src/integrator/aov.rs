@@ -4,7 +4,7 @@
 //! weights; see `docs/guide/aov.md`).
 //!
 //! Each [`Aov`] fills up to three channels (unused ones are 0); a miss gives 0 in every
-//! channel, as in Mitsuba 3. The loader (`scene/src/integrator_aov.rs`) names the channels.
+//! channel, as in Mitsuba 3. The loader (`scene/src/integrator/aov.rs`) names the channels.
 use super::probe::{PathEnd, Probe, RayKind};
 use crate::bsdf::Bsdf;
 use crate::geometry::Interaction;

@@ -1,7 +1,7 @@
 //! `diffuse`, `twosided`, `blendbsdf` (also Chalmers' `blend`) and `mask`: the plain reflector
 //! and the wrappers that combine other BSDFs.
 use super::texture::read_texture;
-use super::{nested_bsdfs, BsdfPlugin, Result};
+use super::{nested_bsdfs, BsdfPlugin, Nest, Result};
 use crate::plugin::{Param, Plugin, Range};
 use crate::xml::Object;
 use tessera_core::bsdf::{Blend, Bsdf, Diffuse, Mask, TwoSided};
@@ -20,7 +20,7 @@ pub const DIFFUSE: BsdfPlugin = Plugin {
     doc: "Lambertian reflection, one-sided (the back side is black unless wrapped in `twosided`).",
     params: &[REFLECTANCE],
     nested: "",
-    build: |obj| {
+    build: |obj, _| {
         Ok(Bsdf::Diffuse(Diffuse {
             reflectance: read_texture(obj, &REFLECTANCE)?,
         }))
@@ -38,8 +38,8 @@ pub const TWOSIDED: BsdfPlugin = Plugin {
     build: build_twosided,
 };
 
-fn build_twosided(obj: &Object) -> Result<Bsdf> {
-    let mut v = nested_bsdfs(obj, 1, 2)?;
+fn build_twosided(obj: &Object, nest: Nest) -> Result<Bsdf> {
+    let mut v = nested_bsdfs(obj, 1, 2, nest)?;
     let back = v.pop().expect("at least one nested bsdf");
     let front = v.pop().unwrap_or_else(|| back.clone());
     Ok(Bsdf::TwoSided(TwoSided {
@@ -65,9 +65,9 @@ pub const BLENDBSDF: BsdfPlugin = Plugin {
     build: build_blend,
 };
 
-fn build_blend(obj: &Object) -> Result<Bsdf> {
+fn build_blend(obj: &Object, nest: Nest) -> Result<Bsdf> {
     let weight = read_texture(obj, &WEIGHT)?;
-    let mut v = nested_bsdfs(obj, 2, 2)?;
+    let mut v = nested_bsdfs(obj, 2, 2, nest)?;
     let second = v.pop().expect("two nested bsdfs");
     let first = v.pop().expect("two nested bsdfs");
     Ok(Bsdf::Blend(Blend {
@@ -94,9 +94,11 @@ pub const MASK: BsdfPlugin = Plugin {
     build: build_mask,
 };
 
-fn build_mask(obj: &Object) -> Result<Bsdf> {
+fn build_mask(obj: &Object, nest: Nest) -> Result<Bsdf> {
     let opacity = read_texture(obj, &OPACITY)?;
-    let nested = nested_bsdfs(obj, 1, 1)?.pop().expect("one nested bsdf");
+    let nested = nested_bsdfs(obj, 1, 1, nest)?
+        .pop()
+        .expect("one nested bsdf");
     Ok(Bsdf::Mask(Mask {
         opacity,
         nested: Box::new(nested),

@@ -41,9 +41,9 @@ pub const BLINNPHONG: BsdfPlugin = Plugin {
           Fresnel over a nested model.",
     params: &[SHININESS, R0, FRESNEL],
     nested: "at most one `<bsdf>`: the layer below (none: nothing below)",
-    build: |obj| {
+    build: |obj, nest| {
         let (shininess, r0) = lobe(obj)?;
-        let base = nested_bsdfs(obj, 0, 1)?.pop().map(Box::new);
+        let base = nested_bsdfs(obj, 0, 1, nest)?.pop().map(Box::new);
         Ok(Bsdf::BlinnPhong(BlinnPhong::new(shininess, r0, base)))
     },
 };
@@ -55,9 +55,9 @@ pub const BLINNPHONG_METAL: BsdfPlugin = Plugin {
     doc: "The Chalmers tutorial's metal: a tinted Blinn-Phong lobe.",
     params: &[COLOR, SHININESS, R0, FRESNEL],
     nested: "",
-    build: |obj| {
+    build: |obj, nest| {
         let (shininess, r0) = lobe(obj)?;
-        nested_bsdfs(obj, 0, 0)?;
+        nested_bsdfs(obj, 0, 0, nest)?;
         Ok(Bsdf::BlinnPhongMetal(BlinnPhongMetal::new(
             read_texture(obj, &COLOR)?,
             shininess,

@@ -111,7 +111,7 @@ pub const CONDUCTOR: BsdfPlugin = Plugin {
     doc: "A smooth metal: mirror reflection weighted by the complex Fresnel factor.",
     params: &[MATERIAL, ETA, K, SPECULAR_REFLECTANCE],
     nested: "",
-    build: |obj| {
+    build: |obj, _| {
         let (eta, k) = complex_ior(obj)?;
         Ok(Bsdf::Conductor(Conductor {
             eta,
@@ -139,7 +139,7 @@ pub const ROUGHCONDUCTOR: BsdfPlugin = Plugin {
         SAMPLE_VISIBLE,
     ],
     nested: "",
-    build: |obj| {
+    build: |obj, _| {
         let (eta, k) = complex_ior(obj)?;
         let specular_reflectance = read_texture(obj, &SPECULAR_REFLECTANCE)?;
         let (distribution, roughness) = textured_microfacet(obj)?;

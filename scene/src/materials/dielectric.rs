@@ -7,7 +7,7 @@ use super::conductor::{
 };
 use super::ior::{indices_differ, read_ior};
 use super::texture::read_texture;
-use super::{BsdfPlugin, Result};
+use super::{BsdfPlugin, Nest, Result};
 use crate::plugin::{Param, Plugin, Range};
 use crate::xml::Object;
 use tessera_core::bsdf::{Bsdf, Dielectric, RoughDielectric, ThinDielectric};
@@ -28,7 +28,7 @@ const SPECULAR_TRANSMITTANCE: Param = Param::texture(
 pub const DIELECTRIC: BsdfPlugin = smooth_glass(
     "dielectric",
     "Smooth glass: Fresnel-weighted mirror reflection and refraction.",
-    |obj| {
+    |obj, _| {
         let g = Glass::read(obj)?;
         Ok(Bsdf::Dielectric(Dielectric {
             eta: g.eta,
@@ -43,7 +43,7 @@ pub const THINDIELECTRIC: BsdfPlugin = smooth_glass(
     "thindielectric",
     "A thin glass sheet (a window pane): reflection and straight-through transmission, with the \
      inter-reflections inside the sheet summed.",
-    |obj| {
+    |obj, _| {
         let g = Glass::read(obj)?;
         Ok(Bsdf::ThinDielectric(ThinDielectric {
             eta: g.eta,
@@ -57,7 +57,7 @@ pub const THINDIELECTRIC: BsdfPlugin = smooth_glass(
 const fn smooth_glass(
     name: &'static str,
     doc: &'static str,
-    build: fn(&Object) -> Result<Bsdf>,
+    build: fn(&Object, Nest) -> Result<Bsdf>,
 ) -> BsdfPlugin {
     Plugin {
         name,
@@ -96,7 +96,7 @@ pub const ROUGHDIELECTRIC: BsdfPlugin = Plugin {
     build: build_rough,
 };
 
-fn build_rough(obj: &Object) -> Result<Bsdf> {
+fn build_rough(obj: &Object, _: Nest) -> Result<Bsdf> {
     let g = Glass::read(obj)?;
     indices_differ(obj, g.int_ior, g.ext_ior)?;
     let (distribution, roughness) = textured_microfacet(obj)?;

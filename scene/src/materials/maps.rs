@@ -42,12 +42,14 @@ pub const NORMALMAP_PLUGIN: BsdfPlugin = Plugin {
           from an RGB texture in tangent space (the frame's first tangent follows dp/du).",
     params: &[NORMALMAP, FLIP_INVALID_NORMALS, USE_SHADOWING_FUNCTION],
     nested: "exactly one `<bsdf>`",
-    build: |obj| {
+    build: |obj, nest| {
         if !obj.has(NORMALMAP.name) {
             return Err(obj.missing(NORMALMAP.name));
         }
         let normalmap = texture(obj, NORMALMAP.name, [0.5, 0.5, 1.0], false)?;
-        let nested = nested_bsdfs(obj, 1, 1)?.pop().expect("one nested bsdf");
+        let nested = nested_bsdfs(obj, 1, 1, nest)?
+            .pop()
+            .expect("one nested bsdf");
         Ok(Bsdf::NormalMap(NormalMap {
             normalmap,
             nested: Box::new(nested),

@@ -1,6 +1,6 @@
 //! The BSDF plugins: one [`Plugin`] per `<bsdf type=...>`, declared in the file of its family
 //! (same names and defaults as Mitsuba 3 unless its declaration says otherwise), and the
-//! table [`BSDFS`] that lists them.
+//! table `BSDFS` that lists them (in `table.rs`, above the plugins' files).
 mod basic;
 mod chalmers;
 mod conductor;
@@ -11,46 +11,23 @@ mod maps;
 mod plastic;
 mod principled;
 mod principled_thin;
+mod table;
 pub(crate) mod texture;
 mod wakame;
 
 use super::util::Result;
-use crate::plugin::{self, Plugin};
+use crate::plugin::Plugin;
 use crate::xml::{Child, Kind, Object};
 use tessera_core::bsdf::Bsdf;
 
-/// A BSDF plugin.
-pub type BsdfPlugin = Plugin<fn(&Object) -> Result<Bsdf>>;
+pub use table::{build_bsdf, BSDFS};
 
-/// Every `<bsdf type=...>` Tessera knows, in the order the reference lists them.
-pub static BSDFS: &[BsdfPlugin] = &[
-    basic::DIFFUSE,
-    plastic::PLASTIC,
-    plastic::ROUGHPLASTIC,
-    conductor::CONDUCTOR,
-    conductor::ROUGHCONDUCTOR,
-    dielectric::DIELECTRIC,
-    dielectric::ROUGHDIELECTRIC,
-    dielectric::THINDIELECTRIC,
-    principled::PRINCIPLED,
-    principled_thin::PRINCIPLEDTHIN,
-    basic::TWOSIDED,
-    basic::BLENDBSDF,
-    basic::MASK,
-    maps::NORMALMAP_PLUGIN,
-    wakame::MIRROR,
-    wakame::MICROFACET,
-    chalmers::BLINNPHONG,
-    chalmers::BLINNPHONG_METAL,
-];
+/// A BSDF plugin. Its builder gets the object and the builder of nested BSDFs (the family's
+/// own, which the table passes down, so that a wrapper's file need not know the table).
+pub type BsdfPlugin = Plugin<fn(&Object, Nest) -> Result<Bsdf>>;
 
-/// Builds one BSDF (recursively for wrappers) and reports unused parameters.
-pub fn build_bsdf(obj: &Object) -> Result<Bsdf> {
-    let plugin = plugin::find(BSDFS, "bsdf", obj)?;
-    let b = (plugin.build)(obj)?;
-    plugin.check_unused(obj)?;
-    Ok(b)
-}
+/// Builds a nested `<bsdf>` (recursively, through the family's table).
+pub type Nest = fn(&Object) -> Result<Bsdf>;
 
 /// The nested `<bsdf>` children of `obj`, in document order.
 pub fn nested(obj: &Object) -> Vec<&Child> {
@@ -61,7 +38,7 @@ pub fn nested(obj: &Object) -> Vec<&Child> {
 }
 
 /// Builds the nested BSDFs of `obj`, which must number between `min` and `max`.
-pub fn nested_bsdfs(obj: &Object, min: usize, max: usize) -> Result<Vec<Bsdf>> {
+pub fn nested_bsdfs(obj: &Object, min: usize, max: usize, nest: Nest) -> Result<Vec<Bsdf>> {
     let kids = nested(obj);
     if kids.len() < min || kids.len() > max {
         let want = if min == max {
@@ -78,7 +55,7 @@ pub fn nested_bsdfs(obj: &Object, min: usize, max: usize) -> Result<Vec<Bsdf>> {
     kids.iter()
         .map(|c| {
             c.mark_used();
-            build_bsdf(&c.obj)
+            nest(&c.obj)
         })
         .collect()
 }

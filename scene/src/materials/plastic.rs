@@ -6,7 +6,7 @@ use super::conductor::{
 };
 use super::ior::{indices_differ, read_eta};
 use super::texture::read_texture;
-use super::{BsdfPlugin, Result};
+use super::{BsdfPlugin, Nest, Result};
 use crate::plugin::{Param, Plugin, Range};
 use crate::xml::Object;
 use tessera_core::bsdf::{Bsdf, Plastic, RoughPlastic};
@@ -55,7 +55,7 @@ pub const PLASTIC: BsdfPlugin = Plugin {
         NONLINEAR,
     ],
     nested: "",
-    build: |obj| {
+    build: |obj, _| {
         let c = Coating::read(obj)?;
         Ok(Bsdf::Plastic(Plastic::new(
             c.diffuse,
@@ -87,7 +87,7 @@ pub const ROUGHPLASTIC: BsdfPlugin = Plugin {
     build: build_rough,
 };
 
-fn build_rough(obj: &Object) -> Result<Bsdf> {
+fn build_rough(obj: &Object, _: Nest) -> Result<Bsdf> {
     let c = Coating::read(obj)?;
     indices_differ(obj, c.int_ior, c.ext_ior)?;
     let kind = read_distribution(obj)?;

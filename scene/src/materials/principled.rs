@@ -3,7 +3,7 @@
 //! whose weight the file does not give, or gives as the float 0, is off.
 use super::super::util::at_prop;
 use super::texture::texture;
-use super::{BsdfPlugin, Result};
+use super::{BsdfPlugin, Nest, Result};
 use crate::plugin::{Default, Param, ParamType, Plugin, Range};
 use crate::xml::{Object, Value};
 use tessera_core::bsdf::{Bsdf, Principled, PrincipledIndex, PrincipledParams, SamplingRates};
@@ -142,7 +142,7 @@ pub const PRINCIPLED: BsdfPlugin = Plugin {
     build: build_principled,
 };
 
-fn build_principled(obj: &Object) -> Result<Bsdf> {
+fn build_principled(obj: &Object, _: Nest) -> Result<Bsdf> {
     let index = if obj.has(ETA.name) {
         if obj.has(SPECULAR.name) {
             return Err(at_prop(

@@ -7,7 +7,7 @@ use super::principled::{
     SHEEN_TINT, SPEC_TINT,
 };
 use super::texture::texture;
-use super::{BsdfPlugin, Result};
+use super::{BsdfPlugin, Nest, Result};
 use crate::plugin::{Default, Param, ParamType, Plugin, Range};
 use crate::xml::Object;
 use tessera_core::bsdf::{Bsdf, PrincipledThin, PrincipledThinParams, ThinSamplingRates};
@@ -86,7 +86,7 @@ pub const PRINCIPLEDTHIN: BsdfPlugin = Plugin {
     build: build_thin,
 };
 
-fn build_thin(obj: &Object) -> Result<Bsdf> {
+fn build_thin(obj: &Object, _: Nest) -> Result<Bsdf> {
     let eta = texture(obj, ETA.name, [1.5; 3], false)?;
     if let Texture::Constant(c) = &eta {
         if !(c.min_element() > 0.0) {

@@ -1,7 +1,7 @@
 //! Nori / Wakame BSDFs: `mirror` and Wakame's `microfacet`.
 use super::dielectric::{EXT_IOR, INT_IOR};
 use super::ior::read_eta;
-use super::{BsdfPlugin, Result};
+use super::{BsdfPlugin, Nest, Result};
 use crate::plugin::{Default, Param, Plugin, Range};
 use crate::xml::Object;
 use tessera_core::bsdf::{Bsdf, Mirror, WakameMicrofacet};
@@ -13,7 +13,7 @@ pub const MIRROR: BsdfPlugin = Plugin {
     doc: "Nori's perfect one-sided mirror.",
     params: &[],
     nested: "",
-    build: |_| Ok(Bsdf::Mirror(Mirror {})),
+    build: |_, _| Ok(Bsdf::Mirror(Mirror {})),
 };
 
 const ALPHA: Param = Param::float("alpha", 0.1, Range::Positive, "Beckmann roughness");
@@ -35,7 +35,7 @@ pub const MICROFACET: BsdfPlugin = Plugin {
     build: build_microfacet,
 };
 
-fn build_microfacet(obj: &Object) -> Result<Bsdf> {
+fn build_microfacet(obj: &Object, _: Nest) -> Result<Bsdf> {
     let alpha = ALPHA.read_f32(obj)?;
     let (_, _, eta) = read_eta(obj, &INT_IOR, &EXT_IOR)?;
     let kd = KD.read_color(obj)?;

@@ -4,7 +4,7 @@
 //! Scene parameters (`<shape type="obj">`): `filename` (string, required), `to_world` (transform),
 //! `face_normals` (boolean, default false: use the file's vertex normals, or smooth ones computed
 //! from the faces when the file has none), `flip_normals` (boolean, default false), `use_mtl`
-//! (boolean, default false; a Tessera extension, see `scene/shapes.rs`). Without `use_mtl` all
+//! (boolean, default false; a Tessera extension, see `scene/src/shapes/mesh_file.rs`). Without `use_mtl` all
 //! objects and groups of the file form one mesh and `mtllib` / `usemtl` are ignored, as in
 //! Mitsuba 3; with it, the faces are split by material.
 use super::data::{read_mesh_bytes, MeshData};

@@ -1,11 +1,12 @@
-//! The `<sensor>` plugins ([`SENSORS`], Nori's `<camera>`): Mitsuba 3's `perspective`,
+//! The `<sensor>` plugins (`SENSORS`, in `table.rs`; Nori's `<camera>`): Mitsuba 3's `perspective`,
 //! `thinlens` and `orthographic`, with the `<film>` ([`FILMS`]), `<rfilter>` and `<sampler>`
 //! that may hang off them. The parameters every sensor shares are declared here.
 mod film;
 mod orthographic;
 mod perspective;
+mod table;
 
-use crate::plugin::{self, Default, Param, ParamType, Plugin, Range};
+use crate::plugin::{Default, Param, ParamType, Plugin, Range};
 use crate::util::Result;
 use crate::xml::Object;
 use tessera_core::camera::{Camera, Crop, Filter};
@@ -14,6 +15,7 @@ use tessera_core::sampling::SamplerKind;
 pub use film::{FILMS, MAX_EDGE, MAX_PIXELS};
 pub use orthographic::ORTHOGRAPHIC;
 pub use perspective::{PERSPECTIVE, THINLENS};
+pub use table::{build_sensor, SENSORS};
 
 /// The sensor and what hangs off it.
 #[derive(Debug)]
@@ -27,17 +29,6 @@ pub struct SensorParts {
 
 /// A sensor plugin; the builder may add warnings (from its sampler).
 pub type SensorPlugin = Plugin<fn(&Object, &mut Vec<String>) -> Result<SensorParts>>;
-
-/// Every `<sensor type=...>` Tessera knows.
-pub static SENSORS: &[SensorPlugin] = &[PERSPECTIVE, THINLENS, ORTHOGRAPHIC];
-
-/// Builds the sensor and reports unused parameters.
-pub fn build_sensor(obj: &Object, warnings: &mut Vec<String>) -> Result<SensorParts> {
-    let plugin = plugin::find(SENSORS, "sensor", obj)?;
-    let s = (plugin.build)(obj, warnings)?;
-    plugin.check_unused(obj)?;
-    Ok(s)
-}
 
 const TO_WORLD: Param = Param::transform(
     "to_world",

@@ -222,7 +222,7 @@ pub struct Object {
     /// when the scene was recentred on its camera (`recentre.rs`), else zero.
     pub(crate) frame_origin: glam::DVec3,
     /// On the root of a load: whose conventions the scene is rendered with.
-    pub(crate) dialect: super::Dialect,
+    pub(crate) dialect: super::conventions::Dialect,
     referenced: Cell<bool>,
 }
 
@@ -248,7 +248,7 @@ impl Object {
             search: Rc::new([]),
             load_warnings: Vec::new(),
             frame_origin: glam::DVec3::ZERO,
-            dialect: super::Dialect::Nori,
+            dialect: super::conventions::Dialect::Nori,
             referenced: Cell::new(false),
         }
     }

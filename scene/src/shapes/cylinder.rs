@@ -2,8 +2,8 @@
 //! segment from `p0` to `p1`, placed by `to_world`. The frame around the axis is the one Mitsuba
 //! 3 builds (its `Frame3f` of the axis direction), so uv agree. Computed in f64 before anything
 //! is stored.
+use super::{Geometry, ShapePlugin, RADIUS, TO_WORLD};
 use crate::plugin::{Default, Param, ParamType, Plugin, Range};
-use crate::shapes::{Geometry, ShapePlugin, RADIUS, TO_WORLD};
 use crate::util::Result;
 use crate::xml::Object;
 use glam::{DMat4, DVec3};
@@ -33,7 +33,7 @@ pub const CYLINDER: ShapePlugin = Plugin {
           p0 to p1, normals pointing away from the axis, placed by to_world, which must keep \
           the cross-section a circle (rotation, translation, a scale uniform across the axis; \
           it may stretch along the axis).",
-    params: &[P0, P1, RADIUS, TO_WORLD, crate::shapes::FLIP_NORMALS],
+    params: &[P0, P1, RADIUS, TO_WORLD, super::FLIP_NORMALS],
     nested: "an optional `<bsdf>` and `<emitter type=\"area\">`",
     build: build_cylinder,
 };

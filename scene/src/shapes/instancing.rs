@@ -5,9 +5,9 @@
 //!
 //! As in Mitsuba 3: a group holds only shapes (no nested groups or instances, no emitters); an
 //! instance refers to exactly one group, by `<ref>`. A group that no instance uses draws nothing.
+use super::{Geometry, ShapePlugin, TO_WORLD};
 use crate::error::InputError;
 use crate::plugin::Plugin;
-use crate::shapes::{Geometry, ShapePlugin, TO_WORLD};
 use crate::util::Result;
 use crate::xml::{Kind, Object};
 use std::collections::HashMap;

@@ -1,9 +1,8 @@
-//! The `<integrator>` plugins ([`INTEGRATORS`]), with Mitsuba 3's names and parameters plus
-//! Tessera's own (`heuristic`, `reuse`, `light_selection`). A scene without an integrator uses
-//! `path`. Each plugin reads its parameters into an [`IntegratorSpec`], which the command line
-//! may change (another name, another depth) before the core integrator is made from it.
-use crate::integrator_aov::{Layer, AOV, MOMENT};
-use crate::plugin::{self, Param, Plugin, Range};
+//! The integrators that trace light: Mitsuba 3's `path` and `direct` with Tessera's variants
+//! of each (a fixed strategy, Wakame's names), and the course integrators (Nori's `whitted`,
+//! `normals`, `ao`, `av`, `simple`), with their parameters.
+use super::spec::{IntegratorBuild, IntegratorPlugin, IntegratorSpec, Nest};
+use crate::plugin::{Param, Plugin, Range};
 use crate::util::vec3;
 use crate::util::Result;
 use crate::xml::Object;
@@ -14,155 +13,6 @@ use tessera_core::integrator::{
 };
 use tessera_core::light::LightSelection;
 use tessera_core::Color;
-
-/// An integrator's name and parameters as the scene file gives them; the command line may
-/// change the name or the depth and build again.
-#[derive(Clone, Debug)]
-pub struct IntegratorSpec {
-    /// Plugin name.
-    pub name: String,
-    /// Longest path (`None` = unbounded).
-    pub max_depth: Option<u32>,
-    /// Russian roulette start depth.
-    pub rr_depth: u32,
-    /// Hide emitters seen by the camera.
-    pub hide_emitters: bool,
-    /// Share light among 4x2 pixel groups (path tracers' `reuse`).
-    pub reuse: bool,
-    /// MIS heuristic, when the file names one.
-    pub heuristic: Option<Heuristic>,
-    /// Emitter samples (`direct`).
-    pub emitter_samples: u32,
-    /// BSDF samples (`direct`).
-    pub bsdf_samples: u32,
-    /// How emitter sampling picks a light.
-    pub light_selection: LightSelection,
-    /// The point light of Nori's `simple`: position and energy.
-    pub point_light: Option<(Vec3, Color)>,
-    /// Segment length of `av`.
-    pub visibility_length: f32,
-    /// Located warnings about what the file asks and the integrator does not do (a wrapper's
-    /// extra outputs), reported with the scene's other warnings.
-    pub warnings: Vec<String>,
-    /// Extra image channels (`aov`, `moment`), each group rendered by its own integrator with
-    /// the same seed and sampler; empty for every other integrator.
-    pub layers: Vec<Layer>,
-}
-
-impl Default for IntegratorSpec {
-    fn default() -> Self {
-        IntegratorSpec {
-            name: "path".into(),
-            max_depth: None,
-            rr_depth: 5,
-            hide_emitters: false,
-            reuse: false,
-            heuristic: None,
-            emitter_samples: 1,
-            bsdf_samples: 1,
-            light_selection: LightSelection::Contribution,
-            point_light: None,
-            visibility_length: 1.0,
-            warnings: Vec::new(),
-            layers: Vec::new(),
-        }
-    }
-}
-
-impl IntegratorSpec {
-    /// The integrator, or `None` for a name that is not an integrator of its own (unknown, a
-    /// wrapper such as `moment`, or `simple` without the light its file must give).
-    pub fn build(&self) -> Option<Integrator> {
-        let plugin = INTEGRATORS.iter().find(|p| p.is(&self.name))?;
-        if plugin.name == SIMPLE.name && self.point_light.is_none() {
-            return None;
-        }
-        Some((plugin.build.make?)(self))
-    }
-}
-
-/// How an integrator plugin is built: `read` takes the file's parameters into a spec, `make`
-/// turns a spec (perhaps changed by the command line) into the core integrator.
-pub struct IntegratorBuild {
-    /// Reads the parameters (the spec's name is already set).
-    pub read: fn(&Object, &mut IntegratorSpec) -> Result<()>,
-    /// Makes the core integrator (`None` for a wrapper, whose spec is its nested
-    /// integrator's).
-    pub make: Option<fn(&IntegratorSpec) -> Integrator>,
-}
-
-/// An integrator plugin.
-pub type IntegratorPlugin = Plugin<IntegratorBuild>;
-
-/// Every `<integrator type=...>` Tessera knows.
-pub static INTEGRATORS: &[IntegratorPlugin] = &[
-    path_plugin(
-        "path",
-        &["path_mis"],
-        "Unidirectional path tracing with next-event estimation and multiple importance \
-         sampling (Mitsuba 3's path).",
-        |s| path(s, Strategy::Mis),
-    ),
-    path_plugin(
-        "path_half",
-        &[],
-        "Path tracing that adds emitter and BSDF sampling with weight 1/2 each (a simpler \
-         unbiased combination than MIS, for comparison).",
-        |s| path(s, Strategy::Half),
-    ),
-    path_plugin(
-        "path_ems",
-        &[],
-        "Path tracing with emitter sampling only at every vertex (lights seen through delta \
-         bounces still count).",
-        |s| path(s, Strategy::Emitter),
-    ),
-    path_plugin(
-        "path_mats",
-        &[],
-        "Path tracing with BSDF sampling only: light is found by hitting it.",
-        |s| path(s, Strategy::Bsdf),
-    ),
-    DIRECT,
-    fixed_direct(
-        "direct_ems",
-        "The Wakame assignment's direct lighting by emitter sampling (one sample).",
-        |s| direct(s, 1, 0, Heuristic::Balance),
-    ),
-    fixed_direct(
-        "direct_mats",
-        "The Wakame assignment's direct lighting by BSDF sampling (one sample).",
-        |s| direct(s, 0, 1, Heuristic::Balance),
-    ),
-    DIRECT_MIS,
-    MOMENT,
-    AOV,
-    WHITTED,
-    SIMPLE,
-    AO,
-    AV,
-    NORMALS,
-];
-
-/// Reads the integrator element (or the default `path`) and reports unused parameters.
-pub fn read_integrator(obj: Option<&Object>) -> Result<IntegratorSpec> {
-    let Some(obj) = obj else {
-        return Ok(IntegratorSpec::default());
-    };
-    let plugin = plugin::find(INTEGRATORS, "integrator", obj)?;
-    let mut spec = IntegratorSpec {
-        name: obj.plugin.clone(),
-        ..Default::default()
-    };
-    (plugin.build.read)(obj, &mut spec)?;
-    plugin.check_unused(obj)?;
-    Ok(spec)
-}
-
-/// Every integrator name, for messages.
-pub fn integrator_names() -> String {
-    plugin::names(INTEGRATORS)
-}
 
 const MAX_DEPTH: Param = Param::integer(
     "max_depth",
@@ -247,7 +97,7 @@ const fn path_plugin(
     }
 }
 
-fn read_path(obj: &Object, spec: &mut IntegratorSpec) -> Result<()> {
+fn read_path(obj: &Object, spec: &mut IntegratorSpec, _: Nest) -> Result<()> {
     let max_depth = MAX_DEPTH.read_i64_where(obj, |d| (-1..=u32::MAX as i64).contains(&d))?;
     spec.max_depth = (max_depth >= 0).then_some(max_depth as u32);
     spec.rr_depth = RR_DEPTH.read_i64_where(obj, |d| (1..=u32::MAX as i64).contains(&d))? as u32;
@@ -325,7 +175,7 @@ pub const DIRECT: IntegratorPlugin = Plugin {
     },
 };
 
-fn read_direct(obj: &Object, spec: &mut IntegratorSpec) -> Result<()> {
+fn read_direct(obj: &Object, spec: &mut IntegratorSpec, _: Nest) -> Result<()> {
     let count = |p: &Param, default: i64| -> Result<u32> {
         Ok(p.read_i64_or(obj, default, |n| (0..=1 << 20).contains(&n))? as u32)
     };
@@ -352,7 +202,7 @@ const fn fixed_direct(
         params: &[HIDE_EMITTERS, LIGHT_SELECTION],
         nested: "",
         build: IntegratorBuild {
-            read: read_common,
+            read: |obj, spec, _| read_common(obj, spec),
             make: Some(make),
         },
     }
@@ -367,7 +217,7 @@ pub const DIRECT_MIS: IntegratorPlugin = Plugin {
     params: &[HEURISTIC, HIDE_EMITTERS, LIGHT_SELECTION],
     nested: "",
     build: IntegratorBuild {
-        read: |obj, spec| {
+        read: |obj, spec, _| {
             read_heuristic(obj, spec)?;
             read_common(obj, spec)
         },
@@ -388,7 +238,7 @@ const fn course(
         params: &[],
         nested: "",
         build: IntegratorBuild {
-            read: |_, _| Ok(()),
+            read: |_, _, _| Ok(()),
             make: Some(make),
         },
     }
@@ -436,7 +286,7 @@ pub const AV: IntegratorPlugin = Plugin {
     params: &[LENGTH],
     nested: "",
     build: IntegratorBuild {
-        read: |obj, spec| {
+        read: |obj, spec, _| {
             spec.visibility_length = LENGTH.read_f32(obj)?;
             Ok(())
         },
@@ -471,7 +321,7 @@ pub const SIMPLE: IntegratorPlugin = Plugin {
     params: &[LIGHT_POSITION, ENERGY],
     nested: "",
     build: IntegratorBuild {
-        read: |obj, spec| {
+        read: |obj, spec, _| {
             let position = obj
                 .point_opt(LIGHT_POSITION.name)?
                 .ok_or_else(|| obj.missing(LIGHT_POSITION.name))?;
@@ -487,23 +337,51 @@ pub const SIMPLE: IntegratorPlugin = Plugin {
     },
 };
 
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn declarations_match_what_the_builders_read() {
-        crate::plugin::check::check_family(
-            super::INTEGRATORS,
-            crate::xml::Kind::Integrator,
-            |obj| super::read_integrator(Some(obj)),
-            |name| match name {
-                "moment" => "<integrator type=\"path\"/>".into(),
-                "aov" => "<string name=\"aovs\" value=\"dd:depth\"/>".into(),
-                "simple" => "<point name=\"position\" value=\"0, 1, 0\"/>\
-                             <rgb name=\"energy\" value=\"1\"/>"
-                    .into(),
-                _ => String::new(),
-            },
-            &[],
-        );
-    }
-}
+/// `path`.
+pub const PATH: IntegratorPlugin = path_plugin(
+    "path",
+    &["path_mis"],
+    "Unidirectional path tracing with next-event estimation and multiple importance \
+     sampling (Mitsuba 3's path).",
+    |s| path(s, Strategy::Mis),
+);
+
+/// `path_half`.
+pub const PATH_HALF: IntegratorPlugin = path_plugin(
+    "path_half",
+    &[],
+    "Path tracing that adds emitter and BSDF sampling with weight 1/2 each (a simpler \
+     unbiased combination than MIS, for comparison).",
+    |s| path(s, Strategy::Half),
+);
+
+/// `path_ems`.
+pub const PATH_EMS: IntegratorPlugin = path_plugin(
+    "path_ems",
+    &[],
+    "Path tracing with emitter sampling only at every vertex (lights seen through delta \
+     bounces still count).",
+    |s| path(s, Strategy::Emitter),
+);
+
+/// `path_mats`.
+pub const PATH_MATS: IntegratorPlugin = path_plugin(
+    "path_mats",
+    &[],
+    "Path tracing with BSDF sampling only: light is found by hitting it.",
+    |s| path(s, Strategy::Bsdf),
+);
+
+/// `direct_ems`.
+pub const DIRECT_EMS: IntegratorPlugin = fixed_direct(
+    "direct_ems",
+    "The Wakame assignment's direct lighting by emitter sampling (one sample).",
+    |s| direct(s, 1, 0, Heuristic::Balance),
+);
+
+/// `direct_mats`.
+pub const DIRECT_MATS: IntegratorPlugin = fixed_direct(
+    "direct_mats",
+    "The Wakame assignment's direct lighting by BSDF sampling (one sample).",
+    |s| direct(s, 0, 1, Heuristic::Balance),
+);
