@@ -10,8 +10,8 @@
 //! (`(u1 - w) / (1 - w)`), as Mitsuba 3 does. A smooth sample reports the mixed density
 //! `(1 - w) p0 + w p1` and `weight = eval / pdf`; a delta sample keeps its own weight and its
 //! discrete probability times the probability of choosing its model.
+use super::model::Model;
 use super::sample::BsdfSample;
-use super::Bsdf;
 use crate::texture::Texture;
 use crate::Color;
 use alloc::boxed::Box;
@@ -19,16 +19,16 @@ use glam::{Vec2, Vec3};
 
 /// Linear blend of two models (`blendbsdf`, Chalmers' `blend`).
 #[derive(Clone, Debug)]
-pub struct Blend {
+pub struct Blend<B> {
     /// Share of `second`, in `[0, 1]`.
     pub weight: Texture,
     /// The model weighted by `1 - weight`.
-    pub first: Box<Bsdf>,
+    pub first: Box<B>,
     /// The model weighted by `weight`.
-    pub second: Box<Bsdf>,
+    pub second: Box<B>,
 }
 
-impl Blend {
+impl<B: Model> Blend<B> {
     fn w(&self, uv: Vec2) -> f32 {
         let w = self.weight.eval_1(uv);
         if w.is_finite() {

@@ -24,8 +24,8 @@
 //! reported `pdf` is the exact mixture of both strategies and `weight = eval / pdf`; a delta
 //! component of the base keeps its discrete probability times 1/2.
 use super::fresnel::schlick;
+use super::model::Model;
 use super::sample::BsdfSample;
-use super::Bsdf;
 use crate::math::{safe_sqrt, sincos_turns, Norm, INV_TWO_PI};
 use crate::Color;
 use alloc::boxed::Box;
@@ -114,15 +114,15 @@ impl Lobe {
 
 /// Chalmers' Blinn-Phong dielectric layer over a nested model (`blinnphong`).
 #[derive(Clone, Debug)]
-pub struct BlinnPhong {
+pub struct BlinnPhong<B> {
     lobe: Lobe,
-    pub(super) base: Option<Box<Bsdf>>,
+    pub(super) base: Option<Box<B>>,
 }
 
-impl BlinnPhong {
+impl<B: Model> BlinnPhong<B> {
     /// A coating of exponent `shininess >= 0` and Schlick `r0` in `[0, 1]` over `base` (which
     /// receives the light the coating transmits), if any.
-    pub fn new(shininess: f32, r0: f32, base: Option<Box<Bsdf>>) -> Self {
+    pub fn new(shininess: f32, r0: f32, base: Option<Box<B>>) -> Self {
         BlinnPhong {
             lobe: Lobe { shininess, r0 },
             base,

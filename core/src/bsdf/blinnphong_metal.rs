@@ -4,7 +4,7 @@
 //! Its scene parameters are declared with its loader, in
 //! `scene/src/materials/chalmers.rs`.
 //!
-//! `f = color F D G / (4 (n.wi)(n.wo))` with the terms of [`BlinnPhong`](super::BlinnPhong)'s
+//! `f = color F D G / (4 (n.wi)(n.wo))` with the terms of [`BlinnPhong`](super::blinnphong::BlinnPhong)'s
 //! lobe; the refracted share `1 - F` is absorbed (the tutorial's `refraction_brdf` of a metal
 //! is zero). One-sided. Sampling always draws the lobe (the tutorial's 50% choice of the
 //! absorbing "refraction" would only waste samples; the pdf is the lobe's exactly).

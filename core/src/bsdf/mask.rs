@@ -8,8 +8,8 @@
 //! delta component. Sampling chooses the nested model when `u1 < a` (reusing `u1 / a`); its
 //! smooth samples keep their weight and report the density `a p`, its delta samples their
 //! probability times `a`.
+use super::model::Model;
 use super::sample::BsdfSample;
-use super::Bsdf;
 use crate::texture::Texture;
 use crate::Color;
 use alloc::boxed::Box;
@@ -17,14 +17,14 @@ use glam::{Vec2, Vec3};
 
 /// Opacity mask over a model (`mask`).
 #[derive(Clone, Debug)]
-pub struct Mask {
+pub struct Mask<B> {
     /// Probability that the surface is there, in `[0, 1]`.
     pub opacity: Texture,
     /// The model where it is.
-    pub nested: Box<Bsdf>,
+    pub nested: Box<B>,
 }
 
-impl Mask {
+impl<B: Model> Mask<B> {
     fn a(&self, uv: Vec2) -> f32 {
         let a = self.opacity.eval_1(uv);
         if a.is_finite() {

@@ -16,6 +16,7 @@ pub mod fresnel;
 mod mask;
 pub mod microfacet;
 mod mirror;
+mod model;
 mod normalmap;
 pub mod perturbed;
 mod plastic;
@@ -43,6 +44,7 @@ pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
 pub use mask::Mask;
 pub use mirror::Mirror;
+pub use model::Model;
 pub use normalmap::NormalMap;
 pub use plastic::Plastic;
 pub use principled::{Principled, PrincipledIndex, PrincipledParams, SamplingRates};
@@ -79,7 +81,7 @@ pub enum Bsdf {
     /// Lambertian reflection (`diffuse`).
     Diffuse(Diffuse),
     /// A front and a back model on one surface (`twosided`).
-    TwoSided(TwoSided),
+    TwoSided(TwoSided<Bsdf>),
     /// Smooth metal with complex Fresnel (`conductor`).
     Conductor(Conductor),
     /// Rough metal, microfacet (`roughconductor`).
@@ -99,17 +101,17 @@ pub enum Bsdf {
     /// Wakame's Beckmann microfacet over diffuse (`microfacet`).
     WakameMicrofacet(WakameMicrofacet),
     /// Chalmers' Blinn-Phong dielectric layer over a nested model (`blinnphong`).
-    BlinnPhong(BlinnPhong),
+    BlinnPhong(BlinnPhong<Bsdf>),
     /// Chalmers' tinted Blinn-Phong metal (`blinnphong_metal`).
     BlinnPhongMetal(BlinnPhongMetal),
     /// Linear blend of two models (`blendbsdf`, Chalmers' `blend`).
-    Blend(Blend),
+    Blend(Blend<Bsdf>),
     /// Opacity mask over a model (`mask`).
-    Mask(Mask),
+    Mask(Mask<Bsdf>),
     /// Burley's Disney model as Mitsuba 3 writes it (`principled`).
     Principled(Principled),
     /// A model seen through a tangent-space normal map (`normalmap`).
-    NormalMap(NormalMap),
+    NormalMap(NormalMap<Bsdf>),
     /// Burley's thin-sheet variant as Mitsuba 3 writes it (`principledthin`).
     PrincipledThin(PrincipledThin),
 }
@@ -208,6 +210,35 @@ impl Bsdf {
             Bsdf::Diffuse(_) => true,
             Bsdf::TwoSided(t) => t.front.is_lambertian() && t.back.is_lambertian(),
             _ => false,
+        }
+    }
+}
+
+impl Model for Bsdf {
+    #[inline]
+    fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+        Bsdf::eval(self, wi, wo, uv)
+    }
+    #[inline]
+    fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
+        Bsdf::pdf(self, wi, wo, uv)
+    }
+    #[inline]
+    fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+        Bsdf::sample(self, wi, u1, u2, uv)
+    }
+    #[inline]
+    fn has_smooth(&self) -> bool {
+        Bsdf::has_smooth(self)
+    }
+    fn has_delta(&self) -> bool {
+        Bsdf::has_delta(self)
+    }
+    #[inline]
+    fn as_diffuse(&self) -> Option<&Diffuse> {
+        match self {
+            Bsdf::Diffuse(d) => Some(d),
+            _ => None,
         }
     }
 }

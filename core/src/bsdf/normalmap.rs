@@ -7,9 +7,9 @@
 //! around it, the flip of normals that face away, and the shadowing term are those of
 //! [`super::perturbed`]. Its scene parameters are declared with its loader, in
 //! `scene/src/materials/maps.rs`.
+use super::model::Model;
 use super::perturbed::{PerturbOptions, Tilted};
 use super::sample::BsdfSample;
-use super::Bsdf;
 use crate::texture::Texture;
 use crate::Color;
 use alloc::boxed::Box;
@@ -17,16 +17,16 @@ use glam::{Vec2, Vec3};
 
 /// A model seen through a tangent-space normal map (`normalmap`).
 #[derive(Clone, Debug)]
-pub struct NormalMap {
+pub struct NormalMap<B> {
     /// RGB texture of normals mapped to `[0, 1]` (`(n + 1) / 2`), read without sRGB decoding.
     pub normalmap: Texture,
     /// The model evaluated in the perturbed frame.
-    pub nested: Box<Bsdf>,
+    pub nested: Box<B>,
     /// How the perturbed frame is built and weighted.
     pub options: PerturbOptions,
 }
 
-impl NormalMap {
+impl<B: Model> NormalMap<B> {
     #[inline]
     fn tilted(&self, wi: Vec3, uv: Vec2) -> Tilted {
         let n = self.normalmap.eval(uv) * 2.0 - Color::ONE;
@@ -34,15 +34,15 @@ impl NormalMap {
     }
     /// The nested value in the perturbed frame.
     pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
-        self.tilted(wi, uv).eval(&self.nested, wi, wo, uv)
+        self.tilted(wi, uv).eval(&*self.nested, wi, wo, uv)
     }
     /// The nested density in the perturbed frame.
     pub fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
-        self.tilted(wi, uv).pdf(&self.nested, wi, wo, uv)
+        self.tilted(wi, uv).pdf(&*self.nested, wi, wo, uv)
     }
     /// Samples the nested model in the perturbed frame.
     pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
-        self.tilted(wi, uv).sample(&self.nested, wi, u1, u2, uv)
+        self.tilted(wi, uv).sample(&*self.nested, wi, u1, u2, uv)
     }
     /// Whether the nested model has a smooth component.
     pub fn has_smooth(&self) -> bool {

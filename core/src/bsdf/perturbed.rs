@@ -15,8 +15,8 @@
 //! Where Mitsuba divides by zero (a texture value of exactly `(1/2, 1/2, 1/2)`, whose normal
 //! has no length, or a normal along the tangent), the unperturbed frame is used instead, so no
 //! NaN is produced.
+use super::model::Model;
 use super::sample::BsdfSample;
-use super::Bsdf;
 use crate::math::{Frame, Norm};
 use crate::Color;
 use glam::{Vec2, Vec3};
@@ -91,7 +91,7 @@ impl Tilted {
     }
 
     /// `nested`'s value in the tilted frame (times the shadowing term).
-    pub fn eval(&self, nested: &Bsdf, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+    pub fn eval<B: Model>(&self, nested: &B, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
         let two = self.frame.to_local(wo);
         if !(wo.z * two.z > 0.0) {
             return Color::ZERO;
@@ -100,7 +100,7 @@ impl Tilted {
     }
 
     /// `nested`'s density in the tilted frame.
-    pub fn pdf(&self, nested: &Bsdf, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
+    pub fn pdf<B: Model>(&self, nested: &B, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
         let two = self.frame.to_local(wo);
         if !(wo.z * two.z > 0.0) {
             return 0.0;
@@ -109,9 +109,9 @@ impl Tilted {
     }
 
     /// Samples `nested` in the tilted frame; the direction is returned in the unperturbed one.
-    pub fn sample(
+    pub fn sample<B: Model>(
         &self,
-        nested: &Bsdf,
+        nested: &B,
         wi: Vec3,
         u1: f32,
         u2: Vec2,

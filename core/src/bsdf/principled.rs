@@ -18,7 +18,7 @@
 //! A lobe whose parameter the file does not give (or gives as the float 0) is off, as in
 //! Mitsuba: the `Option` fields. The index is `eta` or comes from `specular`
 //! (`2 / (1 - sqrt(0.08 specular)) - 1`). Sampling and the density are in
-//! [`super::principled_sample`], the lobes' formulas in [`super::principled_lobes`]. Its scene
+//! `principled_sample.rs` (above this file), the lobes' formulas in [`super::principled_lobes`]. Its scene
 //! parameters are declared with its loader, in `scene/src/materials/principled.rs`.
 use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetKind};

@@ -2,28 +2,31 @@
 //!
 //! A ray arriving from the back sees the back model as if the surface were flipped. Its scene
 //! parameters are declared with its loader, in `scene/src/materials/basic.rs`.
+use super::model::Model;
 use super::sample::BsdfSample;
-use super::Bsdf;
 use crate::Color;
 use alloc::boxed::Box;
 use glam::{Vec2, Vec3};
 
 /// Front and back BSDFs.
 #[derive(Clone, Debug)]
-pub struct TwoSided {
+pub struct TwoSided<B> {
     /// Model seen from the side the normal points to.
-    pub front: Box<Bsdf>,
+    pub front: Box<B>,
     /// Model seen from the other side.
-    pub back: Box<Bsdf>,
+    pub back: Box<B>,
 }
 
 /// Calls a side's method directly when it is `diffuse` (the common two-sided material, which
-/// then inlines), through the recursive `Bsdf` dispatch otherwise; the same values either way.
+/// then inlines), through the side's own dispatch otherwise; the same values either way.
 macro_rules! leaf {
     ($side:expr, $b:ident => $call:expr) => {
-        match $side {
-            Bsdf::Diffuse($b) => $call,
-            $b => $call,
+        match $side.as_diffuse() {
+            Some($b) => $call,
+            None => {
+                let $b = $side;
+                $call
+            }
         }
     };
 }
@@ -33,7 +36,7 @@ fn flip(v: Vec3) -> Vec3 {
     Vec3::new(v.x, v.y, -v.z)
 }
 
-impl TwoSided {
+impl<B: Model> TwoSided<B> {
     /// Evaluates the side `wi` is on.
     #[inline]
     pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {

@@ -5,6 +5,7 @@ mod instance;
 mod interaction;
 mod mesh;
 mod prim;
+mod prim_cast;
 mod shape;
 mod sphere;
 mod triangle;

@@ -1,9 +1,7 @@
 //! Primitives as the BVH stores them: which shape (and face) each is. A triangle's corners are
 //! kept apart, in blocks of four in the same order (`Scene::blocks`), so the
 //! leaf loop reads 37 bytes per triangle and nothing else.
-use super::{Disk, Shape, ShapeKind, Sphere, TriRay};
-use crate::math::{Aabb, Ray};
-use glam::Vec3;
+use super::Sphere;
 
 /// One intersectable primitive, referring back to the shape it belongs to.
 #[derive(Clone, Copy, Debug)]
@@ -54,33 +52,6 @@ pub struct Hit {
 }
 
 impl Prim {
-    /// Bounding box; `v` is the triangle's corners (ignored for other primitives). An
-    /// instance's box is the scene's to compute (empty here).
-    pub fn bounds(&self, v: &[Vec3; 3], disks: &[Disk], shapes: &[Shape]) -> Aabb {
-        match self {
-            Prim::Triangle { .. } => Aabb::point(v[0]).grow(v[1]).grow(v[2]),
-            Prim::Sphere { sphere, .. } => {
-                let r = Vec3::splat(sphere.radius);
-                Aabb {
-                    min: sphere.center - r,
-                    max: sphere.center + r,
-                }
-            }
-            Prim::Disk { disk, .. } => {
-                let d = &disks[*disk as usize];
-                let mut b = Aabb::EMPTY;
-                for (x, y) in [(-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)] {
-                    b = b.grow(d.to_world.point(Vec3::new(x, y, 0.0)));
-                }
-                b
-            }
-            Prim::Cylinder { shape } => match &shapes[*shape as usize].kind {
-                ShapeKind::Cylinder(c) => c.bounds(),
-                _ => Aabb::EMPTY,
-            },
-            Prim::Instance { .. } => Aabb::EMPTY,
-        }
-    }
     /// Shape index (`u32::MAX` for an instance, which is no shape: its hit is on one of its
     /// group's shapes).
     pub fn shape(&self) -> u32 {
@@ -90,34 +61,6 @@ impl Prim {
             | Prim::Disk { shape, .. }
             | Prim::Cylinder { shape } => shape,
             Prim::Instance { .. } => u32::MAX,
-        }
-    }
-    /// Intersection in `(0, t_max)`: `(t, uv)`. `v` is the triangle's corners (ignored for
-    /// other primitives) and `tri` the triangle test's per-ray part (`TriRay::new(ray)`).
-    /// An instance gives `None`: the scene tests it.
-    #[inline(always)]
-    pub fn intersect(
-        &self,
-        ray: &Ray,
-        tri: &TriRay,
-        v: &[Vec3; 3],
-        t_max: f32,
-        disks: &[Disk],
-        shapes: &[Shape],
-    ) -> Option<(f32, glam::Vec2)> {
-        match self {
-            Prim::Triangle { .. } => tri
-                .intersect(t_max, v[0], v[1], v[2])
-                .map(|(t, _, b1, b2)| (t, glam::Vec2::new(b1, b2))),
-            Prim::Sphere { sphere, .. } => {
-                sphere.intersect(ray, t_max).map(|t| (t, glam::Vec2::ZERO))
-            }
-            Prim::Disk { disk, .. } => disks[*disk as usize].intersect(ray, t_max),
-            Prim::Cylinder { shape } => match &shapes[*shape as usize].kind {
-                ShapeKind::Cylinder(c) => c.intersect(ray, t_max).map(|t| (t, glam::Vec2::ZERO)),
-                _ => None,
-            },
-            Prim::Instance { .. } => None,
         }
     }
 }

@@ -7,6 +7,7 @@ mod normals;
 mod path;
 mod path_state;
 mod probe;
+mod radiance;
 mod record;
 mod reuse;
 mod reuse_halves;
@@ -22,6 +23,7 @@ pub use moment::{MomentIntegrator, SRGB_TO_XYZ};
 pub use normals::NormalsIntegrator;
 pub use path::{PathIntegrator, Strategy};
 pub use probe::{Counters, NoProbe, PathEnd, Probe, RayKind};
+pub use radiance::Radiance;
 pub use record::{Event, PathRecord};
 pub use reuse::{GROUP, GROUP_H, GROUP_W};
 pub use simple::SimpleIntegrator;
@@ -52,7 +54,7 @@ pub enum Integrator {
     /// channels).
     Aov(AovIntegrator),
     /// A nested integrator's XYZ or its square (the `moment` integrator's channels).
-    Moment(MomentIntegrator),
+    Moment(MomentIntegrator<Integrator>),
 }
 
 impl Integrator {
@@ -86,5 +88,18 @@ impl Integrator {
             Integrator::Aov(a) => a.li_probed(scene, ray, probe),
             Integrator::Moment(m) => m.li_probed(scene, ray, sampler, probe),
         }
+    }
+}
+
+impl Radiance for Integrator {
+    #[inline]
+    fn li_probed<S: Sampler, P: Probe>(
+        &self,
+        scene: &Scene,
+        ray: Ray,
+        sampler: &mut S,
+        probe: &mut P,
+    ) -> Color {
+        Integrator::li_probed(self, scene, ray, sampler, probe)
     }
 }

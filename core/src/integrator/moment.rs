@@ -3,7 +3,8 @@
 //! Averaged over a pixel's samples, they are the first and second moments from which a
 //! pixel's sample variance follows. Rendered with the nested integrator's seed and sampler,
 //! every sample squares exactly the value the nested integrator's own render averages.
-use super::{Integrator, Probe};
+use super::probe::Probe;
+use super::radiance::Radiance;
 use crate::math::Ray;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
@@ -18,16 +19,17 @@ pub const SRGB_TO_XYZ: Mat3 = Mat3::from_cols_array(&[
     0.180423, 0.072169, 0.950227, // column B
 ]);
 
-/// The XYZ of a nested integrator's samples, or their squares.
+/// The XYZ of a nested integrator's samples, or their squares; `I` is the nested integrator's
+/// type (the `Integrator` enum, which holds this wrapper as one of its variants).
 #[derive(Clone, Debug)]
-pub struct MomentIntegrator {
+pub struct MomentIntegrator<I> {
     /// The integrator whose samples are converted.
-    pub inner: Box<Integrator>,
+    pub inner: Box<I>,
     /// Squares each XYZ value (the second moment) instead of passing it on (the first).
     pub square: bool,
 }
 
-impl MomentIntegrator {
+impl<I: Radiance> MomentIntegrator<I> {
     /// XYZ (or its square) of the nested integrator's value along `ray`.
     #[inline]
     pub fn li_probed<S: Sampler, P: Probe>(

@@ -9,25 +9,26 @@
 //! 2 x 2 patches, `color0` at the patch containing `uv = 0`. The scalar lookup
 //! ([`Checkerboard::eval_1`]) picks the same patch; Mitsuba 3.9.1's `eval_1` picks the opposite
 //! one (measured; its colour lookup agrees with ours), which Tessera does not copy.
+use super::lookup::Lookup;
 use super::to_uv::UvTransform;
-use super::Texture;
 use crate::Color;
 use alloc::boxed::Box;
 use glam::Vec2;
 
-/// Two textures in a checkerboard pattern.
+/// Two textures in a checkerboard pattern; `T` is the texture type of the patches (the
+/// `Texture` enum, which holds this pattern as one of its variants).
 #[derive(Clone, Debug)]
-pub struct Checkerboard {
+pub struct Checkerboard<T> {
     /// The patches containing `uv = (0, 0)` and `(1/2 + e, 1/2 + e)`.
-    pub color0: Box<Texture>,
+    pub color0: Box<T>,
     /// The other patches.
-    pub color1: Box<Texture>,
+    pub color1: Box<T>,
     /// Map applied to `uv` first.
     pub to_uv: UvTransform,
 }
 
-impl Checkerboard {
-    fn pick(&self, uv: Vec2) -> &Texture {
+impl<T: Lookup> Checkerboard<T> {
+    fn pick(&self, uv: Vec2) -> &T {
         let p = self.to_uv.apply(uv);
         let s = p.x - libm::floorf(p.x) > 0.5;
         let t = p.y - libm::floorf(p.y) > 0.5;

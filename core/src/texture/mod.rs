@@ -5,10 +5,12 @@
 //! constant, the luminance for a bitmap.
 mod bitmap;
 mod checkerboard;
+mod lookup;
 mod to_uv;
 
 pub use bitmap::{Bitmap, FilterType, WrapMode};
 pub use checkerboard::Checkerboard;
+pub use lookup::Lookup;
 pub use to_uv::UvTransform;
 
 use crate::Color;
@@ -22,7 +24,7 @@ pub enum Texture {
     /// An image (`bitmap`).
     Bitmap(Bitmap),
     /// A two-colour checkerboard (`checkerboard`).
-    Checkerboard(Checkerboard),
+    Checkerboard(Checkerboard<Texture>),
 }
 
 impl Texture {
@@ -73,5 +75,19 @@ impl Texture {
             Texture::Bitmap(b) => b.max_value(),
             Texture::Checkerboard(c) => c.max_value(),
         }
+    }
+}
+
+impl Lookup for Texture {
+    #[inline]
+    fn eval(&self, uv: Vec2) -> Color {
+        Texture::eval(self, uv)
+    }
+    #[inline]
+    fn eval_1(&self, uv: Vec2) -> f32 {
+        Texture::eval_1(self, uv)
+    }
+    fn max_value(&self) -> f32 {
+        Texture::max_value(self)
     }
 }
