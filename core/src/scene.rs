@@ -256,7 +256,7 @@ impl Scene {
 
     /// The context emitters sample in.
     #[inline]
-    pub fn emitter_ctx(&self) -> EmitterCtx<'_> {
+    pub(crate) fn emitter_ctx(&self) -> EmitterCtx<'_> {
         EmitterCtx {
             shapes: &self.shapes,
             disks: &self.disks,

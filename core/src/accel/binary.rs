@@ -25,7 +25,7 @@ pub struct BuildParams {
 
 impl BuildParams {
     /// For binary traversal (one box per step): small leaves.
-    pub const BINARY: BuildParams = BuildParams {
+    pub(crate) const BINARY: BuildParams = BuildParams {
         max_leaf: 4,
         traversal_cost: 0.5,
         block: 1,

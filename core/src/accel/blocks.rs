@@ -220,7 +220,7 @@ impl TriBlocks {
     /// [`TriBlocks::any`] with the SIMD tests of `simd` (blocks two at a time, as
     /// [`TriBlocks::closest_with`]; blocks without triangles skip the triangle test).
     #[inline(always)]
-    pub fn any_with<H: Hit8>(
+    pub(crate) fn any_with<H: Hit8>(
         &self,
         simd: H,
         first: usize,

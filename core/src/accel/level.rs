@@ -9,11 +9,11 @@ use alloc::vec::Vec;
 use glam::Vec3;
 
 /// The corners stored for a primitive that is not a triangle.
-pub const NOT_A_TRIANGLE: [Vec3; 3] = [Vec3::NAN; 3];
+pub(crate) const NOT_A_TRIANGLE: [Vec3; 3] = [Vec3::NAN; 3];
 
 /// Why a level could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum LevelError {
+pub(crate) enum LevelError {
     /// A disk index out of range.
     BadIndex,
     /// A mesh index out of range.
@@ -33,7 +33,12 @@ pub struct LevelPrims {
 
 impl LevelPrims {
     /// Appends the primitives of shape `si`.
-    pub fn push_shape(&mut self, si: usize, s: &Shape, disks: &[Disk]) -> Result<(), LevelError> {
+    pub(crate) fn push_shape(
+        &mut self,
+        si: usize,
+        s: &Shape,
+        disks: &[Disk],
+    ) -> Result<(), LevelError> {
         let shape = u32::try_from(si).map_err(|_| LevelError::TooLarge)?;
         match &s.kind {
             ShapeKind::Mesh(m) => {

@@ -159,7 +159,7 @@ pub fn hit8_avx2(boxes: &Boxes8, ray: &RayPre, t_max: f32) -> (u32, [f32; 8]) {
 /// effect on results (nothing on targets without a prefetch instruction here). No bounds check:
 /// prefetching an address outside the slice is harmless.
 #[inline(always)]
-pub fn prefetch_in<T>(slice: &[T], i: usize, bytes: usize) {
+pub(crate) fn prefetch_in<T>(slice: &[T], i: usize, bytes: usize) {
     #[cfg(target_arch = "x86_64")]
     {
         use core::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};

@@ -84,11 +84,6 @@ impl Bvh8 {
         (Bvh8::from_binary_with(&bin, how), order)
     }
 
-    /// Collapses a binary hierarchy with [`Collapse::DEFAULT`]. Detects AVX2 for the traversal.
-    pub fn from_binary(bin: &Bvh) -> Bvh8 {
-        Bvh8::from_binary_with(bin, Collapse::DEFAULT)
-    }
-
     /// Collapses a binary hierarchy into 8-wide nodes as `how` says (leaves are ranges of the
     /// binary build's primitive order). Detects AVX2 for the traversal.
     pub fn from_binary_with(bin: &Bvh, how: Collapse) -> Bvh8 {

@@ -43,7 +43,7 @@ pub(super) struct Lobe {
 impl Lobe {
     /// The share `T` of the base: `(1 - F(n.wi))(1 - F(n.wo))`, or `1 - F(n.wi)` for `wo`
     /// below the surface.
-    pub fn base_share(&self, wi: Vec3, wo: Vec3) -> f32 {
+    pub(crate) fn base_share(&self, wi: Vec3, wo: Vec3) -> f32 {
         let t_in = 1.0 - schlick(self.r0, wi.z);
         if wo.z > 0.0 {
             t_in * (1.0 - schlick(self.r0, wo.z))

@@ -91,7 +91,7 @@ pub fn fresnel_conductor(cos_i: f32, eta: Color, k: Color) -> Color {
 
 /// Schlick's approximation `r0 + (1 - r0)(1 - cos)^5`.
 #[inline]
-pub fn schlick(r0: f32, cos: f32) -> f32 {
+pub(crate) fn schlick(r0: f32, cos: f32) -> f32 {
     let m = (1.0 - cos).clamp(0.0, 1.0);
     let m2 = m * m;
     r0 + (1.0 - r0) * m2 * m2 * m
@@ -106,6 +106,6 @@ pub fn reflect(wi: Vec3, m: Vec3) -> Vec3 {
 /// Refraction of `wi` through the interface with unit normal `m`, given `cos_t` and `eta_ti`
 /// from [`fresnel_dielectric`] (evaluated with `cos_i = wi.m`).
 #[inline]
-pub fn refract(wi: Vec3, m: Vec3, cos_t: f32, eta_ti: f32) -> Vec3 {
+pub(crate) fn refract(wi: Vec3, m: Vec3, cos_t: f32, eta_ti: f32) -> Vec3 {
     m * (wi.dot(m) * eta_ti + cos_t) - wi * eta_ti
 }

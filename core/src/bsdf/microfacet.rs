@@ -68,7 +68,7 @@ impl Microfacet {
 
     /// Smith's masking term for direction `v` and microfacet normal `m`.
     #[inline]
-    pub fn g1(&self, v: Vec3, m: Vec3) -> f32 {
+    pub(crate) fn g1(&self, v: Vec3, m: Vec3) -> f32 {
         if v.dot(m) * v.z <= 0.0 {
             return 0.0;
         }
@@ -135,7 +135,7 @@ impl Microfacet {
     /// A direction for a glossy lobe over a diffuse base: with probability `p_glossy` (chosen
     /// by `u1`) the mirror of `wi` about a sampled microfacet normal, else cosine-weighted.
     #[inline]
-    pub fn sample_glossy_or_diffuse(
+    pub(crate) fn sample_glossy_or_diffuse(
         &self,
         wi: Vec3,
         u1: f32,

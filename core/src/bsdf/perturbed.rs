@@ -38,7 +38,7 @@ fn tan2(v: Vec3) -> f32 {
 
 /// The shadowing term for tilted normal `n` toward `wo` (both in the unperturbed frame).
 #[inline]
-pub fn shadow_terminator(n: Vec3, wo: Vec3) -> f32 {
+pub(crate) fn shadow_terminator(n: Vec3, wo: Vec3) -> f32 {
     let a2 = (0.125 * tan2(n)).min(1.0);
     let v = 2.0 / (1.0 + crate::math::sqrt(1.0 + a2 * tan2(wo)));
     if v.is_finite() {
@@ -50,7 +50,7 @@ pub fn shadow_terminator(n: Vec3, wo: Vec3) -> f32 {
 
 /// A tilted frame for one incident direction.
 #[derive(Clone, Copy, Debug)]
-pub struct Tilted {
+pub(crate) struct Tilted {
     /// The tilted frame, in unperturbed local coordinates.
     pub frame: Frame,
     options: PerturbOptions,

@@ -38,7 +38,7 @@ pub fn fresnel_diffuse_reflectance(eta: f32) -> f32 {
 
 /// Mean value of a texture over the unit uv square (per channel, then over channels), by the
 /// midpoint rule on a 64 x 64 grid: exact for constants.
-pub fn texture_mean(t: &Texture) -> f32 {
+pub(crate) fn texture_mean(t: &Texture) -> f32 {
     const N: usize = 64;
     let mut s = 0.0f64;
     for j in 0..N {
@@ -65,7 +65,7 @@ pub fn specular_sampling_weight(diffuse: &Texture, specular: &Texture) -> f32 {
 /// `r` for the incident direction and the sampling weight `w`; `None` if neither component can
 /// be chosen.
 #[inline]
-pub fn coating_probability(r: f32, w: f32) -> Option<f32> {
+pub(crate) fn coating_probability(r: f32, w: f32) -> Option<f32> {
     let ps = r * w;
     let pd = (1.0 - r) * (1.0 - w);
     let sum = ps + pd;
@@ -75,7 +75,7 @@ pub fn coating_probability(r: f32, w: f32) -> Option<f32> {
 /// The base's diffuse reflectance after internal scattering: `d / (1 - Fdr_int)` (linear) or
 /// `d / (1 - d Fdr_int)` per channel (nonlinear).
 #[inline]
-pub fn internal_scattering(d: glam::Vec3, fdr_int: f32, nonlinear: bool) -> glam::Vec3 {
+pub(crate) fn internal_scattering(d: glam::Vec3, fdr_int: f32, nonlinear: bool) -> glam::Vec3 {
     if nonlinear {
         d / (glam::Vec3::ONE - d * fdr_int)
     } else {
@@ -85,7 +85,7 @@ pub fn internal_scattering(d: glam::Vec3, fdr_int: f32, nonlinear: bool) -> glam
 
 /// Nodes and weights of the `n`-point Gauss-Legendre rule on `[-1, 1]` (Newton on the
 /// Legendre recurrence, in f64).
-pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
+pub(crate) fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
     let mut out = Vec::with_capacity(n);
     let nf = n as f64;
     for i in 0..n {
@@ -266,7 +266,7 @@ fn ggx_visible_slope(cos_t: f32, p: Vec2, sqrt_1mx2: f32) -> (f32, f32) {
 
 /// Linear interpolation in a table over `[0, 1]` (Mitsuba's `lerp_gather`).
 #[inline]
-pub fn lerp_table(table: &[f32; TABLE_RES], x: f32) -> f32 {
+pub(crate) fn lerp_table(table: &[f32; TABLE_RES], x: f32) -> f32 {
     let x = x * (TABLE_RES - 1) as f32;
     let i = (x.max(0.0) as usize).min(TABLE_RES - 2);
     let t = x - i as f32;

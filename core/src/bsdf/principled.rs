@@ -105,7 +105,7 @@ pub(super) struct Weights {
 
 impl Weights {
     /// Weight of the diffuse lobes, `(1 - metallic)(1 - spec_trans)`.
-    pub fn brdf(&self) -> f32 {
+    pub(crate) fn brdf(&self) -> f32 {
         (1.0 - self.metallic.unwrap_or(0.0)) * (1.0 - self.spec_trans)
     }
     /// Weight of the transmissive lobe, `(1 - metallic) spec_trans`.

@@ -29,7 +29,7 @@ pub fn mulsign(v: Vec3, s: f32) -> Vec3 {
 
 /// Schlick's weight `(1 - cos)^5`, with `1 - cos` clamped to `[0, 1]`.
 #[inline]
-pub fn schlick_weight(cos: f32) -> f32 {
+pub(crate) fn schlick_weight(cos: f32) -> f32 {
     let m = (1.0 - cos).clamp(0.0, 1.0);
     let m2 = m * m;
     m2 * m2 * m
@@ -40,7 +40,7 @@ pub fn schlick_weight(cos: f32) -> f32 {
 /// normal (negative from inside). When the incident side is the optically thinner one it
 /// uses `cos_i`, else the refracted cosine (0, so full reflection, beyond the critical angle).
 #[inline]
-pub fn schlick_fresnel(r0: f32, cos_i: f32, eta: f32) -> f32 {
+pub(crate) fn schlick_fresnel(r0: f32, cos_i: f32, eta: f32) -> f32 {
     let (eta_it, eta_ti) = if cos_i >= 0.0 {
         (eta, 1.0 / eta)
     } else {
@@ -57,14 +57,14 @@ pub fn schlick_fresnel(r0: f32, cos_i: f32, eta: f32) -> f32 {
 
 /// Normal-incidence reflectance `((eta - 1) / (eta + 1))^2`.
 #[inline]
-pub fn schlick_r0(eta: f32) -> f32 {
+pub(crate) fn schlick_r0(eta: f32) -> f32 {
     let r = (eta - 1.0) / (eta + 1.0);
     r * r
 }
 
 /// What the main lobe's Fresnel factor blends, at one point of the surface.
 #[derive(Clone, Copy, Debug)]
-pub struct FresnelBlend {
+pub(crate) struct FresnelBlend {
     /// Metallic weight, `None` when the material has no `metallic`.
     pub metallic: Option<f32>,
     /// Specular tint weight, `None` when the material has no `spec_tint`.
@@ -131,7 +131,7 @@ pub fn hue(c: Color) -> Color {
 /// Whether micro normal `m` agrees with the macro surface for a reflection (`wi` and `wo` on
 /// the side of `m` facing the incident side) or a refraction (`wo` on the other side).
 #[inline]
-pub fn micro_compatible(m: Vec3, wi: Vec3, wo: Vec3, cos_i: f32, reflection: bool) -> bool {
+pub(crate) fn micro_compatible(m: Vec3, wi: Vec3, wo: Vec3, cos_i: f32, reflection: bool) -> bool {
     let m = mulsign(m, cos_i);
     let o = wo.dot(m);
     wi.dot(m) > 0.0 && if reflection { o > 0.0 } else { o < 0.0 }
@@ -143,7 +143,13 @@ pub fn micro_compatible(m: Vec3, wi: Vec3, wo: Vec3, cos_i: f32, reflection: boo
 /// flattened subsurface `1.25 (Fss (1 / (cos_o + cos_i) - 0.5) + 0.5)`. Cosines are absolute
 /// (`ci`, `co`); `cos_d` is `wo.h`.
 #[inline]
-pub fn burley_diffuse(roughness: f32, flatness: Option<f32>, ci: f32, co: f32, cos_d: f32) -> f32 {
+pub(crate) fn burley_diffuse(
+    roughness: f32,
+    flatness: Option<f32>,
+    ci: f32,
+    co: f32,
+    cos_d: f32,
+) -> f32 {
     let (fo, fi) = (schlick_weight(co), schlick_weight(ci));
     let f_diff = (1.0 - 0.5 * fi) * (1.0 - 0.5 * fo);
     let rr = 2.0 * roughness * cos_d * cos_d;
@@ -162,7 +168,7 @@ pub fn burley_diffuse(roughness: f32, flatness: Option<f32>, ci: f32, co: f32, c
 /// The sheen's colour factor `Fd c_sheen` (weights and cosine excluded): Schlick's weight of
 /// `cos_d` (`wo.h`), tinted toward the base colour's hue by `tint` when given.
 #[inline]
-pub fn sheen_color(tint: Option<f32>, base: Color, cos_d: f32) -> Color {
+pub(crate) fn sheen_color(tint: Option<f32>, base: Color, cos_d: f32) -> Color {
     let fd = schlick_weight(cos_d.abs());
     match tint {
         Some(t) => hue(base).map(|c| lerp(1.0, c, t)) * fd,
@@ -173,7 +179,7 @@ pub fn sheen_color(tint: Option<f32>, base: Color, cos_d: f32) -> Color {
 /// The main lobe's GGX roughnesses `(alpha_u, alpha_v)`: `roughness^2`, stretched by the
 /// aspect `sqrt(1 - 0.9 anisotropic)` when the material has `anisotropic`; at least 1e-3.
 #[inline]
-pub fn main_alphas(roughness: f32, anisotropic: Option<f32>) -> (f32, f32) {
+pub(crate) fn main_alphas(roughness: f32, anisotropic: Option<f32>) -> (f32, f32) {
     let r2 = roughness * roughness;
     match anisotropic {
         None => {
@@ -189,7 +195,7 @@ pub fn main_alphas(roughness: f32, anisotropic: Option<f32>) -> (f32, f32) {
 
 /// The clearcoat's roughness for a gloss in `[0, 1]`: from 0.1 (gloss 0) to 0.001 (gloss 1).
 #[inline]
-pub fn clearcoat_alpha(gloss: f32) -> f32 {
+pub(crate) fn clearcoat_alpha(gloss: f32) -> f32 {
     lerp(0.1, 0.001, gloss)
 }
 
@@ -241,7 +247,7 @@ impl Gtr1 {
 /// normal `m` (the clearcoat's, with `alpha` 0.25): 1 at normal incidence, 0 when `v` sees
 /// the back of `m`.
 #[inline]
-pub fn smith_ggx1(v: Vec3, m: Vec3, alpha: f32) -> f32 {
+pub(crate) fn smith_ggx1(v: Vec3, m: Vec3, alpha: f32) -> f32 {
     if v.dot(m) * v.z <= 0.0 {
         return 0.0;
     }

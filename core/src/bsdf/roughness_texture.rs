@@ -43,7 +43,7 @@ impl RoughnessTexture {
 
 /// The distribution of a rough model at `uv`: `base` itself without textures.
 #[inline]
-pub fn distribution_at(
+pub(crate) fn distribution_at(
     base: &Microfacet,
     textures: &Option<RoughnessTexture>,
     uv: Vec2,

@@ -23,7 +23,7 @@ impl BsdfSample {
     /// A sample of a smooth (non-delta) reflection toward `wo`, weighted `f / pdf`; `None`
     /// unless `wo` is in the upper hemisphere and `pdf` is positive.
     #[inline]
-    pub fn smooth_reflection(wo: Vec3, f: Color, pdf: f32) -> Option<BsdfSample> {
+    pub(crate) fn smooth_reflection(wo: Vec3, f: Color, pdf: f32) -> Option<BsdfSample> {
         if !(wo.z > 0.0 && pdf > 0.0) {
             return None;
         }

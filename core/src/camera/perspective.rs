@@ -83,7 +83,7 @@ impl Perspective {
     /// The point at depth 1 on the ray through film position `pos` of a `width` x `height`
     /// film (pixels, continuous; `(0,0)` is the top-left corner), in camera space.
     #[inline]
-    pub fn image_point(&self, pos: Vec2, width: u32, height: u32) -> Vec3 {
+    pub(crate) fn image_point(&self, pos: Vec2, width: u32, height: u32) -> Vec3 {
         // Subtracting a zero offset is exact: without one, the directions are bit for bit those
         // of the plain pinhole.
         let x = (1.0 - 2.0 * pos.x / width as f32 - 2.0 * self.offset.x) * self.tan_x;

@@ -42,7 +42,7 @@ impl StepProfile {
 
     /// [`StepProfile::sample`], with the index of the step the offset lies in (0 for the step
     /// starting at `-radius`, `2 * STEPS - 1` for the last).
-    pub fn sample_step(&self, u: f32) -> (usize, f32) {
+    pub(crate) fn sample_step(&self, u: f32) -> (usize, f32) {
         let n = 2 * STEPS;
         let i = self.cdf.partition_point(|&c| c <= u).clamp(1, n) - 1;
         let (c0, c1) = (self.cdf[i], self.cdf[i + 1]);

@@ -108,7 +108,7 @@ impl DistantDisk {
     }
 
     /// Solid angle of the disk (sr).
-    pub fn solid_angle(&self) -> f32 {
+    pub(crate) fn solid_angle(&self) -> f32 {
         2.0 * PI * self.omc_max
     }
 }

@@ -151,7 +151,7 @@ impl EnvMap {
     }
 
     /// Integral of the radiance's luminance over the sphere of directions.
-    pub fn luminance_integral(&self) -> f32 {
+    pub(crate) fn luminance_integral(&self) -> f32 {
         self.integral
     }
 

@@ -82,14 +82,14 @@ impl Emitter {
         }
     }
     /// Whether the emitter is at infinity (seen by rays that escape the scene).
-    pub fn is_environment(&self) -> bool {
+    pub(crate) fn is_environment(&self) -> bool {
         matches!(
             self,
             Emitter::Constant(_) | Emitter::DistantDisk(_) | Emitter::EnvMap(_)
         )
     }
     /// Whether it is a delta light (in position or direction), which no ray can hit.
-    pub fn is_delta(&self) -> bool {
+    pub(crate) fn is_delta(&self) -> bool {
         matches!(
             self,
             Emitter::Point(_) | Emitter::Spot(_) | Emitter::Directional(_)

@@ -90,7 +90,7 @@ impl SpotLight {
 
     /// Integral of the falloff over the sphere of directions (sr): `2 pi (1 - (sin c - sin b) /
     /// (c - b))` for cutoff `c` and beam width `b`, `2 pi (1 - cos c)` when they coincide.
-    pub fn solid_angle(&self) -> f32 {
+    pub(crate) fn solid_angle(&self) -> f32 {
         let (c, b) = (self.cutoff, self.beam);
         let frac = if c - b > 1e-3 {
             1.0 - (libm::sinf(c) - libm::sinf(b)) / (c - b)

@@ -127,7 +127,7 @@ impl Cylinder {
 
     /// uv and dp/du at local coordinates `l = (cos, sin, z)`, as Mitsuba 3 defines them.
     #[inline]
-    pub fn uv_dpdu(&self, l: DVec3) -> (Vec2, Vec3) {
+    pub(crate) fn uv_dpdu(&self, l: DVec3) -> (Vec2, Vec3) {
         let mut phi = libm::atan2(l.y, l.x);
         if phi < 0.0 {
             phi += core::f64::consts::TAU;
@@ -151,7 +151,7 @@ impl Cylinder {
     }
 
     /// The uv of the point [`Cylinder::sample`] places for `u` (as a ray hit there gets it).
-    pub fn sample_uv(&self, u: Vec2) -> Vec2 {
+    pub(crate) fn sample_uv(&self, u: Vec2) -> Vec2 {
         let (s, c) = libm::sincos(f64::from(u.y) * core::f64::consts::TAU);
         self.uv_dpdu(DVec3::new(c, s, f64::from(u.x) * self.length))
             .0

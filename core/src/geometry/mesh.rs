@@ -98,7 +98,7 @@ impl Mesh {
         ]
     }
     /// Area of triangle `i`.
-    pub fn triangle_area(&self, i: usize) -> f32 {
+    pub(crate) fn triangle_area(&self, i: usize) -> f32 {
         let [a, b, c] = self.vertices(i);
         0.5 * (b - a).cross(c - a).norm()
     }
@@ -108,7 +108,7 @@ impl Mesh {
     }
     /// `1 / area()` (infinite for a mesh without area).
     #[inline]
-    pub fn inv_area(&self) -> f32 {
+    pub(crate) fn inv_area(&self) -> f32 {
         self.inv_area
     }
     /// Unit geometric normal of triangle `i` (`cross(p1 - p0, p2 - p0)`, so counter-clockwise
@@ -164,7 +164,7 @@ impl Mesh {
     /// Texture coordinates on triangle `i` at barycentrics `(b1, b2)` (as [`Mesh::hit`] finds
     /// them).
     #[inline]
-    pub fn uv_at(&self, i: usize, b1: f32, b2: f32) -> Vec2 {
+    pub(crate) fn uv_at(&self, i: usize, b1: f32, b2: f32) -> Vec2 {
         let (idx, _) = self.corners(i);
         self.uv(idx, b1, b2)
     }

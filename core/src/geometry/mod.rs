@@ -16,6 +16,6 @@ pub use instance::Instance;
 pub use interaction::{Interaction, SHADOW_EPSILON};
 pub use mesh::{interpolate_point, Mesh, TriangleHit};
 pub use prim::{Hit, Prim};
-pub use shape::{area_to_solid_angle, PositionSample, SampleToward, Shape, ShapeKind};
+pub use shape::{PositionSample, SampleToward, Shape, ShapeKind};
 pub use sphere::{ConeSample, Sphere};
 pub use triangle::{intersect_triangle, TriRay};

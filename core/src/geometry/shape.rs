@@ -145,7 +145,7 @@ impl Shape {
 
     /// A point uniformly distributed by area (density `1 / area`).
     #[inline]
-    pub fn sample_position(&self, u: Vec2, disks: &[Disk]) -> Option<PositionSample> {
+    pub(crate) fn sample_position(&self, u: Vec2, disks: &[Disk]) -> Option<PositionSample> {
         let (p, p_err, ng, ns, uv) = match &self.kind {
             ShapeKind::Mesh(m) => {
                 let (i, b1, b2) = m.sample(u)?;
@@ -244,7 +244,7 @@ impl Shape {
 
 /// Converts an area density at `p` (normal `n`) to a solid-angle density seen from `r`.
 #[inline]
-pub fn area_to_solid_angle(r: Vec3, p: Vec3, n: Vec3, pdf_area: f32) -> f32 {
+pub(crate) fn area_to_solid_angle(r: Vec3, p: Vec3, n: Vec3, pdf_area: f32) -> f32 {
     let d = p - r;
     let dist2 = d.length_squared();
     let cos = n.dot(d).abs() / sqrt(dist2);

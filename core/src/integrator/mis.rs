@@ -2,7 +2,7 @@
 
 /// Veach's power heuristic (exponent 2) for the strategy with density `a` against `b`.
 #[inline]
-pub fn power_heuristic(a: f32, b: f32) -> f32 {
+pub(crate) fn power_heuristic(a: f32, b: f32) -> f32 {
     if a.is_infinite() {
         return 1.0;
     }
@@ -15,7 +15,7 @@ pub fn power_heuristic(a: f32, b: f32) -> f32 {
 
 /// Veach's balance heuristic for the strategy with density `a` against `b`.
 #[inline]
-pub fn balance_heuristic(a: f32, b: f32) -> f32 {
+pub(crate) fn balance_heuristic(a: f32, b: f32) -> f32 {
     if a.is_infinite() {
         return 1.0;
     }

@@ -18,7 +18,7 @@ mod whitted;
 
 pub use aov::{albedo, Aov, AovIntegrator};
 pub use direct::DirectIntegrator;
-pub use mis::{balance_heuristic, power_heuristic, Heuristic};
+pub use mis::Heuristic;
 pub use moment::{MomentIntegrator, SRGB_TO_XYZ};
 pub use normals::NormalsIntegrator;
 pub use path::{PathIntegrator, Strategy};

@@ -16,7 +16,7 @@ use crate::scene::Scene;
 use crate::Color;
 
 /// Probability of following a specular bounce.
-pub const CONTINUE: f32 = 0.95;
+pub(crate) const CONTINUE: f32 = 0.95;
 
 /// Bounces after which a path is cut: reached with probability `0.95^1000`, about `5e-23`, so
 /// the cut changes no result that could be measured; it bounds the work of a pathological

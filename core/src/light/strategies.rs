@@ -82,7 +82,7 @@ pub fn sample_light<S: Sampler, P: Probe>(
 /// probability is `sel`'s, the selection of the vertex at `from`, else the scene's.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub fn emission_along<P: Probe>(
+pub(crate) fn emission_along<P: Probe>(
     scene: &Scene,
     from: Vec3,
     d: Vec3,

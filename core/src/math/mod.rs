@@ -20,12 +20,12 @@ pub const PI: f32 = core::f32::consts::PI;
 /// 1 / pi.
 pub const INV_PI: f32 = core::f32::consts::FRAC_1_PI;
 /// 1 / (2 pi).
-pub const INV_TWO_PI: f32 = 0.5 * core::f32::consts::FRAC_1_PI;
+pub(crate) const INV_TWO_PI: f32 = 0.5 * core::f32::consts::FRAC_1_PI;
 /// 1 / (4 pi).
-pub const INV_FOUR_PI: f32 = 0.25 * core::f32::consts::FRAC_1_PI;
+pub(crate) const INV_FOUR_PI: f32 = 0.25 * core::f32::consts::FRAC_1_PI;
 
 /// `sqrt(max(x, 0))`: safe against tiny negative rounding errors.
 #[inline]
-pub fn safe_sqrt(x: f32) -> f32 {
+pub(crate) fn safe_sqrt(x: f32) -> f32 {
     sqrt(x.max(0.0))
 }

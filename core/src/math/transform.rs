@@ -41,8 +41,4 @@ impl Transform {
     pub fn normal(&self, n: Vec3) -> Vec3 {
         self.inv.transpose().transform_vector3(n)
     }
-    /// Whether the transform flips orientation (negative determinant).
-    pub fn flips_handedness(&self) -> bool {
-        self.m.determinant() < 0.0
-    }
 }

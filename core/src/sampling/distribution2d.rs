@@ -69,7 +69,7 @@ impl Distribution2D {
     }
 
     /// Probability of cell (`i`, `j`) (column, row); 0 outside the grid.
-    pub fn cell_pmf(&self, i: usize, j: usize) -> f32 {
+    pub(crate) fn cell_pmf(&self, i: usize, j: usize) -> f32 {
         if i >= self.nx || j >= self.ny {
             return 0.0;
         }
@@ -91,7 +91,7 @@ impl Distribution2D {
     /// Picks a cell for `u` uniform in `[0,1)^2`: its column and row, `u` rescaled to `[0,1)^2`
     /// within the choice (uniform and independent of it, for placing a point in the cell by
     /// another density), and the cell's probability (positive).
-    pub fn sample_cell(&self, u: Vec2) -> Option<(usize, usize, Vec2, f32)> {
+    pub(crate) fn sample_cell(&self, u: Vec2) -> Option<(usize, usize, Vec2, f32)> {
         let (j, uy) = self.marginal.sample_reuse(u.y);
         let cond = self.conditional[j].as_ref()?;
         let (i, ux) = cond.sample_reuse(u.x);

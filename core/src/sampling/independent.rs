@@ -11,7 +11,7 @@ use rand_core::Rng;
 use rand_pcg::Pcg32;
 
 /// Draws a sample may use before it would run into the next sample's window.
-pub const SAMPLE_WINDOW: u64 = 1 << 32;
+pub(crate) const SAMPLE_WINDOW: u64 = 1 << 32;
 
 /// SplitMix64's finalizer: a bijective 64-bit mixer.
 #[inline]
@@ -23,7 +23,7 @@ fn mix64(mut z: u64) -> u64 {
 
 /// The 64-bit key of a pixel under a seed (distinct pixels give unrelated keys).
 #[inline]
-pub fn pixel_key(seed: u64, x: u32, y: u32) -> u64 {
+pub(crate) fn pixel_key(seed: u64, x: u32, y: u32) -> u64 {
     mix64(seed ^ mix64((((x as u64) << 32) | y as u64) ^ 0x9e37_79b9_7f4a_7c15))
 }
 

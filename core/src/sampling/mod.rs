@@ -13,7 +13,7 @@ mod zsobol_pixel;
 
 pub use discrete::Discrete1D;
 pub use distribution2d::Distribution2D;
-pub use independent::{pixel_key, IndependentSampler};
+pub use independent::IndependentSampler;
 pub use kind::{SamplerKind, SAMPLER_NAMES};
 pub use layout::{
     dimension_of, paired_dimension, Stage, BOUNCE_DIMENSIONS, CAMERA_DIMENSIONS, LENS_DIMENSION,

@@ -15,7 +15,7 @@
 /// The Laine-Karras-style permutation of a bit-reversed value: output bit `k` is input bit `k`
 /// flipped by a function of input bits `0..k` and the seed.
 #[inline]
-pub fn reversed_lk(mut n: u32, seed: u32) -> u32 {
+pub(crate) fn reversed_lk(mut n: u32, seed: u32) -> u32 {
     n ^= n.wrapping_mul(0x3d20_adea);
     n = n.wrapping_add(seed);
     n = n.wrapping_mul((seed >> 16) | 1);
@@ -40,7 +40,7 @@ pub fn mix64(mut z: u64) -> u64 {
 }
 
 /// The pixel multiplier of [`sample_seed`].
-pub const SAMPLE_SEED_MUL: u64 = 0x2545_f491_4f6c_dd1d;
+pub(crate) const SAMPLE_SEED_MUL: u64 = 0x2545_f491_4f6c_dd1d;
 
 /// The seed of the sample part's scramble in [`scramble_index`].
 #[inline]

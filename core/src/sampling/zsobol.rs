@@ -79,7 +79,7 @@ fn spread_bits(v: u32) -> u64 {
 /// The Morton (Z-order) code of a pixel: `x` on the even bits, `y` on the odd bits. Only the
 /// low 16 bits of each coordinate are kept (images are at most 65536 pixels wide).
 #[inline]
-pub fn morton2(x: u32, y: u32) -> u64 {
+pub(crate) fn morton2(x: u32, y: u32) -> u64 {
     spread_bits(x & 0xffff) | (spread_bits(y & 0xffff) << 1)
 }
 
@@ -98,7 +98,7 @@ pub fn to_unit(v: u32) -> f32 {
 /// The sample bits a draw scrambles: `within` (sample index modulo `2^k`, `k <= 32`) as the top
 /// `k` bits of a word, bit-reversed.
 #[inline]
-pub fn sample_reversed(within: u32, k: u32) -> u32 {
+pub(crate) fn sample_reversed(within: u32, k: u32) -> u32 {
     within.checked_shl(32 - k).unwrap_or(0).reverse_bits()
 }
 
@@ -172,7 +172,7 @@ impl ZSobolSampler {
     /// sample's epoch (the same block): equal to `ZSobolSampler::new` for it, with only the
     /// sample's own bits recomputed. `None` for a sample of another epoch.
     #[inline]
-    pub fn sibling(&self, index: u64) -> Option<ZSobolSampler> {
+    pub(crate) fn sibling(&self, index: u64) -> Option<ZSobolSampler> {
         let k = self.log2_spp;
         if index >> k != self.epoch {
             return None;
@@ -231,7 +231,7 @@ impl ZSobolSampler {
 
     /// [`pixel_draw`](Self::pixel_draw) from the dimension's hash `h`.
     #[inline]
-    pub fn pixel_draw_hashed(&self, h: u64) -> PixelDraw {
+    pub(crate) fn pixel_draw_hashed(&self, h: u64) -> PixelDraw {
         let k = self.log2_spp;
         let pixel_r = reversed_lk(self.pixel_reversed, h as u32);
         // The permuted index's bits above 32 (the top K bits of the pixel word), reversed: only
@@ -266,7 +266,7 @@ impl ZSobolSampler {
     /// Whether `other` is a sample of the same pixel block and epoch (so its
     /// [`pixel_draw`](Self::pixel_draw)s equal this one's).
     #[inline]
-    pub fn same_block(&self, other: &ZSobolSampler) -> bool {
+    pub(crate) fn same_block(&self, other: &ZSobolSampler) -> bool {
         self.key == other.key
             && self.log2_spp == other.log2_spp
             && self.pixel_reversed == other.pixel_reversed

@@ -50,7 +50,7 @@ pub fn indices(p: &PixelDraw, bits: &[u32; LANES], k: u32) -> [u32; LANES] {
 
 /// 1D values of the lanes from their indices ([`value_1d_of`] lane by lane).
 #[inline]
-pub fn values_1d(index: &[u32; LANES], seed_x: u32) -> [f32; LANES] {
+pub(crate) fn values_1d(index: &[u32; LANES], seed_x: u32) -> [f32; LANES] {
     let mut out = [0.0f32; LANES];
     for l in 0..LANES {
         out[l] = to_unit(value_1d_of(draw(index[l], seed_x, 0)));
@@ -61,7 +61,7 @@ pub fn values_1d(index: &[u32; LANES], seed_x: u32) -> [f32; LANES] {
 /// Unpaired 2D values of the lanes from their indices ([`value_2d_of`] lane by lane): Sobol
 /// dimensions 0 and 1, Owen-scrambled.
 #[inline]
-pub fn values_2d(index: &[u32; LANES], p: &PixelDraw) -> ([f32; LANES], [f32; LANES]) {
+pub(crate) fn values_2d(index: &[u32; LANES], p: &PixelDraw) -> ([f32; LANES], [f32; LANES]) {
     let (mut x, mut y) = ([0.0f32; LANES], [0.0f32; LANES]);
     for l in 0..LANES {
         let (a, b) = value_2d_of(draw(index[l], p.seed_x, p.seed_y));
@@ -74,7 +74,10 @@ pub fn values_2d(index: &[u32; LANES], p: &PixelDraw) -> ([f32; LANES], [f32; LA
 /// lane): Sobol dimensions 2 and 3 of the partner's index, Owen-scrambled with this dimension's
 /// seeds.
 #[inline]
-pub fn values_2d_paired(partner: &[u32; LANES], p: &PixelDraw) -> ([f32; LANES], [f32; LANES]) {
+pub(crate) fn values_2d_paired(
+    partner: &[u32; LANES],
+    p: &PixelDraw,
+) -> ([f32; LANES], [f32; LANES]) {
     let (mut x, mut y) = ([0.0f32; LANES], [0.0f32; LANES]);
     for l in 0..LANES {
         // The paired value reads only the seeds of its own draw.
@@ -98,7 +101,7 @@ fn draw(index: u32, seed_x: u32, seed_y: u32) -> DimensionDraw {
 /// [`CACHED_DIMENSIONS`]) the lanes' permuted indices, 1D values and 2D values, each filled on
 /// first use.
 #[derive(Clone, Debug)]
-pub struct Group {
+pub(crate) struct Group {
     /// Sample index of lane 0, or `u64::MAX` when the group holds nothing.
     base: u64,
     /// `K` of the pixel block the group belongs to.
@@ -164,19 +167,19 @@ impl Group {
 
     /// Whether dimension `d`'s 1D values are there.
     #[inline(always)]
-    pub fn has_1d(&self, d: usize) -> bool {
+    pub(crate) fn has_1d(&self, d: usize) -> bool {
         self.have_1d & (1 << d) != 0
     }
 
     /// Whether dimension `d`'s 2D values are there.
     #[inline(always)]
-    pub fn has_2d(&self, d: usize) -> bool {
+    pub(crate) fn has_2d(&self, d: usize) -> bool {
         self.have_2d & (1 << d) != 0
     }
 
     /// Computes dimension `d`'s 1D values (pixel part `p`).
     #[inline]
-    pub fn fill_1d(&mut self, d: usize, p: &PixelDraw) {
+    pub(crate) fn fill_1d(&mut self, d: usize, p: &PixelDraw) {
         let index = self.index(d, p);
         self.one[d] = values_1d(&index, p.seed_x);
         self.have_1d |= 1 << d;
@@ -184,7 +187,7 @@ impl Group {
 
     /// Computes dimension `d`'s unpaired 2D values (pixel part `p`).
     #[inline]
-    pub fn fill_2d(&mut self, d: usize, p: &PixelDraw) {
+    pub(crate) fn fill_2d(&mut self, d: usize, p: &PixelDraw) {
         let index = self.index(d, p);
         let (x, y) = values_2d(&index, p);
         self.two[d] = [x, y];
@@ -194,7 +197,13 @@ impl Group {
     /// Computes dimension `d`'s paired 2D values (pixel part `p`) from the indices of its
     /// partner dimension `partner` (pixel part `q`).
     #[inline]
-    pub fn fill_2d_paired(&mut self, d: usize, p: &PixelDraw, partner: usize, q: &PixelDraw) {
+    pub(crate) fn fill_2d_paired(
+        &mut self,
+        d: usize,
+        p: &PixelDraw,
+        partner: usize,
+        q: &PixelDraw,
+    ) {
         let index = self.index(partner, q);
         let (x, y) = values_2d_paired(&index, p);
         self.two[d] = [x, y];
@@ -203,13 +212,13 @@ impl Group {
 
     /// Lane `lane`'s 1D value of dimension `d` (filled).
     #[inline(always)]
-    pub fn get_1d(&self, d: usize, lane: usize) -> f32 {
+    pub(crate) fn get_1d(&self, d: usize, lane: usize) -> f32 {
         self.one[d][lane]
     }
 
     /// Lane `lane`'s 2D value of dimension `d` (filled).
     #[inline(always)]
-    pub fn get_2d(&self, d: usize, lane: usize) -> (f32, f32) {
+    pub(crate) fn get_2d(&self, d: usize, lane: usize) -> (f32, f32) {
         (self.two[d][0][lane], self.two[d][1][lane])
     }
 }

@@ -163,7 +163,7 @@ impl Bitmap {
     }
 
     /// The mean of the pixels.
-    pub fn mean_value(&self) -> Color {
+    pub(crate) fn mean_value(&self) -> Color {
         let sum = self
             .pixels
             .iter()

@@ -61,7 +61,7 @@ impl Texture {
     }
     /// The mean colour over one period of the texture (of the image's pixels, of the two
     /// checkerboard colours' means): a power estimate for lights, not a lookup.
-    pub fn mean_value(&self) -> Color {
+    pub(crate) fn mean_value(&self) -> Color {
         match self {
             Texture::Constant(c) => *c,
             Texture::Bitmap(b) => b.mean_value(),
