@@ -10,7 +10,7 @@ use tessera_core::texture::Texture;
 
 /// The BSDF table under construction.
 #[derive(Default)]
-pub struct Bsdfs {
+pub(crate) struct Bsdfs {
     /// Built BSDFs.
     pub list: Vec<Bsdf>,
     /// The plugin name each was built from (as the file wrote it).
@@ -22,7 +22,7 @@ pub struct Bsdfs {
 
 impl Bsdfs {
     /// Index of the BSDF for `obj`, building it on first use.
-    pub fn index_of(&mut self, obj: &Rc<Object>) -> Result<u32> {
+    pub(crate) fn index_of(&mut self, obj: &Rc<Object>) -> Result<u32> {
         let key = Rc::as_ptr(obj);
         if let Some(&i) = self.by_object.get(&key) {
             return Ok(i);
@@ -42,7 +42,7 @@ impl Bsdfs {
     }
     /// The default BSDF of shapes without one: one-sided diffuse, reflectance 0.5, or 0 for a
     /// shape that emits (both as Mitsuba 3 does; measured).
-    pub fn default_index(&mut self, emitting: bool) -> u32 {
+    pub(crate) fn default_index(&mut self, emitting: bool) -> u32 {
         let (slot, albedo) = if emitting {
             (&mut self.default_emitter, 0.0)
         } else {

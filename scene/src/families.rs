@@ -5,7 +5,7 @@ use crate::plugin::{Declared, Param, Plugin};
 use crate::xml::Kind;
 
 /// One family: its element, its title in the reference, its plugins' declarations.
-pub struct Family {
+pub(crate) struct Family {
     /// The element (`<bsdf>`, ...).
     pub kind: Kind,
     /// Its section title in the reference.
@@ -50,7 +50,11 @@ pub fn families() -> Vec<Family> {
 }
 
 /// The declared parameters of plugin `name` of element kind `kind`, if it is one.
-pub fn declared_params(families: &[Family], kind: Kind, name: &str) -> Option<&'static [Param]> {
+pub(crate) fn declared_params(
+    families: &[Family],
+    kind: Kind,
+    name: &str,
+) -> Option<&'static [Param]> {
     families
         .iter()
         .find(|f| f.kind == kind)?
@@ -62,7 +66,7 @@ pub fn declared_params(families: &[Family], kind: Kind, name: &str) -> Option<&'
 
 impl Family {
     /// Mitsuba 3's plugins of this family that the loader does not read, in Mitsuba's order.
-    pub fn not_read(&self) -> Vec<&'static str> {
+    pub(crate) fn not_read(&self) -> Vec<&'static str> {
         crate::mitsuba_names::MITSUBA_PLUGINS
             .iter()
             .filter(|(k, _)| *k == self.kind)

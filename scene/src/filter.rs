@@ -7,13 +7,13 @@ use crate::xml::Object;
 use tessera_core::camera::{Filter, GaussianFilter, LanczosFilter, MitchellFilter, TentFilter};
 
 /// A reconstruction filter plugin.
-pub type FilterPlugin = Plugin<fn(&Object) -> Result<Filter>>;
+pub(crate) type FilterPlugin = Plugin<fn(&Object) -> Result<Filter>>;
 
 /// Every `<rfilter type=...>` Tessera knows.
 pub static FILTERS: &[FilterPlugin] = &[GAUSSIAN, BOX, TENT, MITCHELL, CATMULLROM, LANCZOS];
 
 /// Builds a filter and reports unused parameters.
-pub fn build_filter(obj: &Object) -> Result<Filter> {
+pub(crate) fn build_filter(obj: &Object) -> Result<Filter> {
     let plugin = plugin::find(FILTERS, "rfilter", obj)?;
     let f = (plugin.build)(obj)?;
     plugin.check_unused(obj)?;
@@ -21,7 +21,7 @@ pub fn build_filter(obj: &Object) -> Result<Filter> {
 }
 
 /// `box`.
-pub const BOX: FilterPlugin = Plugin {
+pub(crate) const BOX: FilterPlugin = Plugin {
     name: "box",
     aliases: &[],
     doc: "Each sample counts for the pixel it falls in (radius 0.5 pixel).",
@@ -38,7 +38,7 @@ const STDDEV: Param = Param::float(
 );
 
 /// `gaussian`.
-pub const GAUSSIAN: FilterPlugin = Plugin {
+pub(crate) const GAUSSIAN: FilterPlugin = Plugin {
     name: "gaussian",
     aliases: &[],
     doc: "A truncated Gaussian, as Mitsuba 3's default; sampled exactly, so every sample weighs 1.",
@@ -55,7 +55,7 @@ const RADIUS: Param = Param::float(
 );
 
 /// `tent`.
-pub const TENT: FilterPlugin = Plugin {
+pub(crate) const TENT: FilterPlugin = Plugin {
     name: "tent",
     aliases: &[],
     doc: "A triangle, max(0, 1 - |x| / radius) along each axis: no ringing, less aliasing than \
@@ -79,7 +79,7 @@ const C: Param = Param::float(
 );
 
 /// `mitchell`.
-pub const MITCHELL: FilterPlugin = Plugin {
+pub(crate) const MITCHELL: FilterPlugin = Plugin {
     name: "mitchell",
     aliases: &[],
     doc: "The Mitchell-Netravali cubic, radius 2 pixels along each axis: a compromise between \
@@ -99,7 +99,7 @@ pub const MITCHELL: FilterPlugin = Plugin {
 };
 
 /// `catmullrom`.
-pub const CATMULLROM: FilterPlugin = Plugin {
+pub(crate) const CATMULLROM: FilterPlugin = Plugin {
     name: "catmullrom",
     aliases: &[],
     doc: "The Catmull-Rom spline, the Mitchell-Netravali cubic with B = 0 and C = 1/2: sharper \
@@ -117,7 +117,7 @@ const LOBES: Param = Param::integer(
 );
 
 /// `lanczos`.
-pub const LANCZOS: FilterPlugin = Plugin {
+pub(crate) const LANCZOS: FilterPlugin = Plugin {
     name: "lanczos",
     aliases: &[],
     doc: "The Lanczos-windowed sinc, sinc(x) sinc(x / lobes) along each axis: sharp, with strong \

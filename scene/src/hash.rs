@@ -45,7 +45,7 @@ pub fn scene_hash(scene_bytes: &[u8], defines: &[(String, String)]) -> u64 {
 
 /// A scene hash with a dialect chosen on the command line mixed in (a dialect the file declares
 /// is already in its bytes): the same file rendered with other conventions is another image.
-pub fn with_dialect(hash: u64, dialect: crate::xml::Dialect) -> u64 {
+pub(crate) fn with_dialect(hash: u64, dialect: crate::xml::Dialect) -> u64 {
     let mut h = Fnv1a(hash);
     h.update(b"dialect=");
     h.update(dialect.name().as_bytes());

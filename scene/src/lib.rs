@@ -50,7 +50,7 @@ mod sensor;
 mod shapes;
 mod util;
 
-pub use integrator::{integrator_names, IntegratorSpec, INTEGRATORS};
+pub use integrator::{IntegratorSpec, INTEGRATORS};
 pub use integrator::{Layer, LayerSource};
 pub use loaded::{LoadedScene, PluginNames};
 pub use sensor::{MAX_EDGE, MAX_PIXELS};

@@ -5,7 +5,7 @@
 use crate::xml::Kind;
 
 /// Mitsuba 3.9.1's plugins per element (its `src/<family>/*.cpp`).
-pub const MITSUBA_PLUGINS: &[(Kind, &[&str])] = &[
+pub(crate) const MITSUBA_PLUGINS: &[(Kind, &[&str])] = &[
     (
         Kind::Integrator,
         &[
@@ -125,7 +125,7 @@ pub const MITSUBA_PLUGINS: &[(Kind, &[&str])] = &[
 ];
 
 /// Whether `name` is one of Mitsuba 3's plugins of element `kind`.
-pub fn is_mitsuba_plugin(kind: Kind, name: &str) -> bool {
+pub(crate) fn is_mitsuba_plugin(kind: Kind, name: &str) -> bool {
     MITSUBA_PLUGINS
         .iter()
         .any(|(k, names)| *k == kind && names.contains(&name))

@@ -9,10 +9,10 @@ use crate::xml::Object;
 use tessera_core::sampling::SamplerKind;
 
 /// What a `<sampler>` gives: `(sample_count, seed, which sampler)`.
-pub type SamplerSettings = (u64, u64, SamplerKind);
+pub(crate) type SamplerSettings = (u64, u64, SamplerKind);
 
 /// A sampler plugin; the builder may add warnings.
-pub type SamplerPlugin = Plugin<fn(&Object, &mut Vec<String>) -> Result<SamplerSettings>>;
+pub(crate) type SamplerPlugin = Plugin<fn(&Object, &mut Vec<String>) -> Result<SamplerSettings>>;
 
 /// Every `<sampler type=...>` Tessera knows.
 pub static SAMPLERS: &[SamplerPlugin] = &[
@@ -26,7 +26,7 @@ pub static SAMPLERS: &[SamplerPlugin] = &[
 ];
 
 /// Reads a sampler and reports unused parameters.
-pub fn build_sampler(obj: &Object, warnings: &mut Vec<String>) -> Result<SamplerSettings> {
+pub(crate) fn build_sampler(obj: &Object, warnings: &mut Vec<String>) -> Result<SamplerSettings> {
     let plugin = plugin::find(SAMPLERS, "sampler", obj)?;
     let s = (plugin.build)(obj, warnings)?;
     plugin.check_unused(obj)?;
@@ -56,7 +56,7 @@ fn settings(obj: &Object, name: &str) -> Result<SamplerSettings> {
 }
 
 /// `independent`.
-pub const INDEPENDENT: SamplerPlugin = Plugin {
+pub(crate) const INDEPENDENT: SamplerPlugin = Plugin {
     name: "independent",
     aliases: &[],
     doc: "Independent uniform random numbers: a PCG32 stream per pixel and sample.",
@@ -66,7 +66,7 @@ pub const INDEPENDENT: SamplerPlugin = Plugin {
 };
 
 /// `zsobol`.
-pub const ZSOBOL: SamplerPlugin = Plugin {
+pub(crate) const ZSOBOL: SamplerPlugin = Plugin {
     name: "zsobol",
     aliases: &[],
     doc: "Tessera's low-discrepancy sampler: Owen-scrambled Sobol points in Morton order \

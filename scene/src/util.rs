@@ -16,7 +16,7 @@ pub fn transform(obj: &Object, name: &str) -> Result<Transform> {
 }
 
 /// A checked f32 transform from an f64 matrix (inverse computed in f64).
-pub fn to_transform(obj: &Object, name: &str, m: DMat4) -> Result<Transform> {
+pub(crate) fn to_transform(obj: &Object, name: &str, m: DMat4) -> Result<Transform> {
     let loc = obj
         .prop(name)
         .map(|p| p.loc.clone())

@@ -16,7 +16,7 @@ const RADIANCE: Param = Param::new(
 );
 
 /// `area`.
-pub const AREA: EmitterPlugin = Plugin {
+pub(crate) const AREA: EmitterPlugin = Plugin {
     name: "area",
     aliases: &[],
     doc: "A diffuse area light on a shape's front side; nested in a `<shape>`, or declared \

@@ -72,7 +72,7 @@ const BEAM_WIDTH: Param = Param::new(
 .with_unit("degrees");
 
 /// `spot`.
-pub const SPOT: EmitterPlugin = Plugin {
+pub(crate) const SPOT: EmitterPlugin = Plugin {
     name: "spot",
     aliases: &[],
     doc: "A point light shining down its local +z axis, with a smooth falloff between beam_width \
@@ -109,7 +109,7 @@ const DIRECTION: Param = Param::new(
 );
 
 /// `directional`.
-pub const DIRECTIONAL: EmitterPlugin = Plugin {
+pub(crate) const DIRECTIONAL: EmitterPlugin = Plugin {
     name: "directional",
     aliases: &[],
     doc: "Parallel light from one direction at infinity.",

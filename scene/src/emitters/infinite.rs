@@ -21,7 +21,7 @@ const CONSTANT_RADIANCE: Param = Param::rgb(
 );
 
 /// `constant`.
-pub const CONSTANT: EmitterPlugin = Plugin {
+pub(crate) const CONSTANT: EmitterPlugin = Plugin {
     name: "constant",
     aliases: &[],
     doc: "Uniform radiance from every direction at infinity.",
@@ -50,7 +50,7 @@ const THETA_A: Param = Param::new(
 .with_unit("degrees");
 
 /// `distantdisk`.
-pub const DISTANTDISK: EmitterPlugin = Plugin {
+pub(crate) const DISTANTDISK: EmitterPlugin = Plugin {
     name: "distantdisk",
     aliases: &[],
     doc: "The Wakame assignment's disk of uniform radiance at infinity (a sun), centred on the \
@@ -89,7 +89,7 @@ const MIS_COMPENSATION: Param = Param::boolean(
 .ignored();
 
 /// `envmap`.
-pub const ENVMAP: EmitterPlugin = Plugin {
+pub(crate) const ENVMAP: EmitterPlugin = Plugin {
     name: "envmap",
     aliases: &[],
     doc: "Radiance at infinity from a latitude-longitude image, sampled by its luminance.",

@@ -7,8 +7,9 @@ mod delta;
 mod infinite;
 mod table;
 
-pub use area::AREA;
-pub use table::{build_emitter, EMITTERS};
+pub(crate) use area::AREA;
+pub(crate) use table::build_emitter;
+pub use table::EMITTERS;
 
 use crate::plugin::Plugin;
 use crate::util::Result;
@@ -16,7 +17,7 @@ use crate::xml::Object;
 use tessera_core::emitter::Emitter;
 
 /// An emitter plugin, built with the index of the shape that carries it (area lights only).
-pub type EmitterPlugin = Plugin<fn(&Object, Option<u32>) -> Result<Emitter>>;
+pub(crate) type EmitterPlugin = Plugin<fn(&Object, Option<u32>) -> Result<Emitter>>;
 
 #[cfg(test)]
 mod tests {

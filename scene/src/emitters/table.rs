@@ -18,7 +18,7 @@ pub static EMITTERS: &[EmitterPlugin] = &[
 
 /// Builds an emitter: at scene level (`shape` is `None`) or nested in shape `shape` (which
 /// only an area light may be), and reports unused parameters.
-pub fn build_emitter(obj: &Object, shape: Option<u32>) -> Result<Emitter> {
+pub(crate) fn build_emitter(obj: &Object, shape: Option<u32>) -> Result<Emitter> {
     if shape.is_some() && obj.plugin != area::AREA.name {
         return Err(obj.error(format!(
             "a shape can only carry an \"area\" emitter, found \"{}\"",

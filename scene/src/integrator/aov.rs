@@ -67,7 +67,7 @@ pub const AOV: IntegratorPlugin = Plugin {
 };
 
 /// `moment`.
-pub const MOMENT: IntegratorPlugin = Plugin {
+pub(crate) const MOMENT: IntegratorPlugin = Plugin {
     name: "moment",
     aliases: &[],
     doc: "Mitsuba 3's moment wrapper: the colour image is the first nested integrator's; extra \

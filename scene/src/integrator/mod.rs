@@ -9,4 +9,5 @@ mod table;
 mod tracers;
 
 pub use spec::{IntegratorSpec, Layer, LayerSource};
-pub use table::{integrator_names, read_integrator, INTEGRATORS};
+pub use table::INTEGRATORS;
+pub(crate) use table::{integrator_names, read_integrator};

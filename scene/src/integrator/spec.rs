@@ -99,8 +99,8 @@ pub struct IntegratorBuild {
 }
 
 /// An integrator plugin.
-pub type IntegratorPlugin = Plugin<IntegratorBuild>;
+pub(crate) type IntegratorPlugin = Plugin<IntegratorBuild>;
 
 /// Reads a nested `<integrator>` (or the default) through the family's table; the table passes
 /// it to a wrapper's reader, so that the wrapper's file need not know the table.
-pub type Nest = fn(Option<&Object>) -> Result<IntegratorSpec>;
+pub(crate) type Nest = fn(Option<&Object>) -> Result<IntegratorSpec>;

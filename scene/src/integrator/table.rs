@@ -31,7 +31,7 @@ pub static INTEGRATORS: &[IntegratorPlugin] = &[
 ];
 
 /// Reads the integrator element (or the default `path`) and reports unused parameters.
-pub fn read_integrator(obj: Option<&Object>) -> Result<IntegratorSpec> {
+pub(crate) fn read_integrator(obj: Option<&Object>) -> Result<IntegratorSpec> {
     let Some(obj) = obj else {
         return Ok(IntegratorSpec::default());
     };
@@ -46,7 +46,7 @@ pub fn read_integrator(obj: Option<&Object>) -> Result<IntegratorSpec> {
 }
 
 /// Every integrator name, for messages.
-pub fn integrator_names() -> String {
+pub(crate) fn integrator_names() -> String {
     plugin::names(INTEGRATORS)
 }
 

@@ -148,7 +148,7 @@ const BSDF_SAMPLES: Param = Param::new(
 );
 
 /// `direct`.
-pub const DIRECT: IntegratorPlugin = Plugin {
+pub(crate) const DIRECT: IntegratorPlugin = Plugin {
     name: "direct",
     aliases: &[],
     doc: "Direct lighting only (Mitsuba 3's direct): emitter and BSDF samples combined by \
@@ -209,7 +209,7 @@ const fn fixed_direct(
 }
 
 /// `direct_mis`.
-pub const DIRECT_MIS: IntegratorPlugin = Plugin {
+pub(crate) const DIRECT_MIS: IntegratorPlugin = Plugin {
     name: "direct_mis",
     aliases: &[],
     doc: "The Wakame assignment's direct lighting: one emitter and one BSDF sample, combined by \
@@ -245,7 +245,7 @@ const fn course(
 }
 
 /// `whitted`.
-pub const WHITTED: IntegratorPlugin = course(
+pub(crate) const WHITTED: IntegratorPlugin = course(
     "whitted",
     "Nori's Whitted-style ray tracer: direct light by one emitter sample at surfaces with a \
      smooth BSDF; at mirrors and smooth glass one specular direction followed with probability \
@@ -254,7 +254,7 @@ pub const WHITTED: IntegratorPlugin = course(
 );
 
 /// `normals`.
-pub const NORMALS: IntegratorPlugin = course(
+pub(crate) const NORMALS: IntegratorPlugin = course(
     "normals",
     "Nori's normals view: the absolute shading normal at the first hit as a colour, black \
      where nothing is hit.",
@@ -262,7 +262,7 @@ pub const NORMALS: IntegratorPlugin = course(
 );
 
 /// `ao`.
-pub const AO: IntegratorPlugin = course(
+pub(crate) const AO: IntegratorPlugin = course(
     "ao",
     "Nori's ambient occlusion: the cosine-weighted fraction of the hemisphere above the first \
      hit from which a ray escapes (one ray per sample), black where nothing is hit.",
@@ -277,7 +277,7 @@ const LENGTH: Param = Param::float(
 );
 
 /// `av`.
-pub const AV: IntegratorPlugin = Plugin {
+pub(crate) const AV: IntegratorPlugin = Plugin {
     name: "av",
     aliases: &[],
     doc: "The Wakame assignment's average visibility: the uniformly weighted fraction of the \
@@ -313,7 +313,7 @@ const ENERGY: Param = Param::rgb(
 );
 
 /// `simple`.
-pub const SIMPLE: IntegratorPlugin = Plugin {
+pub(crate) const SIMPLE: IntegratorPlugin = Plugin {
     name: "simple",
     aliases: &[],
     doc: "Nori's point-light integrator: every surface is a white diffuse reflector lit by one \
@@ -338,7 +338,7 @@ pub const SIMPLE: IntegratorPlugin = Plugin {
 };
 
 /// `path`.
-pub const PATH: IntegratorPlugin = path_plugin(
+pub(crate) const PATH: IntegratorPlugin = path_plugin(
     "path",
     &["path_mis"],
     "Unidirectional path tracing with next-event estimation and multiple importance \
@@ -347,7 +347,7 @@ pub const PATH: IntegratorPlugin = path_plugin(
 );
 
 /// `path_half`.
-pub const PATH_HALF: IntegratorPlugin = path_plugin(
+pub(crate) const PATH_HALF: IntegratorPlugin = path_plugin(
     "path_half",
     &[],
     "Path tracing that adds emitter and BSDF sampling with weight 1/2 each (a simpler \
@@ -356,7 +356,7 @@ pub const PATH_HALF: IntegratorPlugin = path_plugin(
 );
 
 /// `path_ems`.
-pub const PATH_EMS: IntegratorPlugin = path_plugin(
+pub(crate) const PATH_EMS: IntegratorPlugin = path_plugin(
     "path_ems",
     &[],
     "Path tracing with emitter sampling only at every vertex (lights seen through delta \
@@ -365,7 +365,7 @@ pub const PATH_EMS: IntegratorPlugin = path_plugin(
 );
 
 /// `path_mats`.
-pub const PATH_MATS: IntegratorPlugin = path_plugin(
+pub(crate) const PATH_MATS: IntegratorPlugin = path_plugin(
     "path_mats",
     &[],
     "Path tracing with BSDF sampling only: light is found by hitting it.",
@@ -373,14 +373,14 @@ pub const PATH_MATS: IntegratorPlugin = path_plugin(
 );
 
 /// `direct_ems`.
-pub const DIRECT_EMS: IntegratorPlugin = fixed_direct(
+pub(crate) const DIRECT_EMS: IntegratorPlugin = fixed_direct(
     "direct_ems",
     "The Wakame assignment's direct lighting by emitter sampling (one sample).",
     |s| direct(s, 1, 0, Heuristic::Balance),
 );
 
 /// `direct_mats`.
-pub const DIRECT_MATS: IntegratorPlugin = fixed_direct(
+pub(crate) const DIRECT_MATS: IntegratorPlugin = fixed_direct(
     "direct_mats",
     "The Wakame assignment's direct lighting by BSDF sampling (one sample).",
     |s| direct(s, 0, 1, Heuristic::Balance),

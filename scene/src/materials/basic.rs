@@ -28,7 +28,7 @@ pub const DIFFUSE: BsdfPlugin = Plugin {
 };
 
 /// `twosided`.
-pub const TWOSIDED: BsdfPlugin = Plugin {
+pub(crate) const TWOSIDED: BsdfPlugin = Plugin {
     name: "twosided",
     aliases: &[],
     doc: "Makes a one-sided model two-sided: the back is the front model seen from below, or a \
@@ -56,7 +56,7 @@ const WEIGHT: Param = Param::texture(
 );
 
 /// `blendbsdf` (Chalmers' `blend`).
-pub const BLENDBSDF: BsdfPlugin = Plugin {
+pub(crate) const BLENDBSDF: BsdfPlugin = Plugin {
     name: "blendbsdf",
     aliases: &["blend"],
     doc: "A linear blend of two models.",
@@ -85,7 +85,7 @@ const OPACITY: Param = Param::texture(
 );
 
 /// `mask`.
-pub const MASK: BsdfPlugin = Plugin {
+pub(crate) const MASK: BsdfPlugin = Plugin {
     name: "mask",
     aliases: &[],
     doc: "An opacity mask over a model: cut-outs such as leaves.",

@@ -8,9 +8,9 @@ use crate::xml::Object;
 use tessera_core::bsdf::{BlinnPhong, BlinnPhongMetal, Bsdf};
 
 /// Default Blinn-Phong exponent.
-pub const DEFAULT_SHININESS: f64 = 25.0;
+pub(crate) const DEFAULT_SHININESS: f64 = 25.0;
 /// Default Schlick reflectance at normal incidence (a dielectric of index 1.5).
-pub const DEFAULT_R0: f64 = 0.04;
+pub(crate) const DEFAULT_R0: f64 = 0.04;
 
 const SHININESS: Param = Param::float(
     "shininess",
@@ -34,7 +34,7 @@ const FRESNEL: Param = Param::new(
 const COLOR: Param = Param::texture("color", [0.5; 3], Range::Unit, "the metal's tint");
 
 /// `blinnphong`.
-pub const BLINNPHONG: BsdfPlugin = Plugin {
+pub(crate) const BLINNPHONG: BsdfPlugin = Plugin {
     name: "blinnphong",
     aliases: &[],
     doc: "The Chalmers tutorial's dielectric layer: a Blinn-Phong lobe weighted by Schlick's \
@@ -49,7 +49,7 @@ pub const BLINNPHONG: BsdfPlugin = Plugin {
 };
 
 /// `blinnphong_metal`.
-pub const BLINNPHONG_METAL: BsdfPlugin = Plugin {
+pub(crate) const BLINNPHONG_METAL: BsdfPlugin = Plugin {
     name: "blinnphong_metal",
     aliases: &[],
     doc: "The Chalmers tutorial's metal: a tinted Blinn-Phong lobe.",

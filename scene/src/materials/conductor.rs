@@ -105,7 +105,7 @@ pub(crate) const SAMPLE_VISIBLE: Param = Param::boolean(
 );
 
 /// `conductor`.
-pub const CONDUCTOR: BsdfPlugin = Plugin {
+pub(crate) const CONDUCTOR: BsdfPlugin = Plugin {
     name: "conductor",
     aliases: &[],
     doc: "A smooth metal: mirror reflection weighted by the complex Fresnel factor.",
@@ -122,7 +122,7 @@ pub const CONDUCTOR: BsdfPlugin = Plugin {
 };
 
 /// `roughconductor`.
-pub const ROUGHCONDUCTOR: BsdfPlugin = Plugin {
+pub(crate) const ROUGHCONDUCTOR: BsdfPlugin = Plugin {
     name: "roughconductor",
     aliases: &[],
     doc: "A rough metal: a microfacet model (Beckmann or GGX, isotropic or anisotropic) with \

@@ -25,7 +25,7 @@ const SPECULAR_TRANSMITTANCE: Param = Param::texture(
 );
 
 /// `dielectric`.
-pub const DIELECTRIC: BsdfPlugin = smooth_glass(
+pub(crate) const DIELECTRIC: BsdfPlugin = smooth_glass(
     "dielectric",
     "Smooth glass: Fresnel-weighted mirror reflection and refraction.",
     |obj, _| {
@@ -39,7 +39,7 @@ pub const DIELECTRIC: BsdfPlugin = smooth_glass(
 );
 
 /// `thindielectric`.
-pub const THINDIELECTRIC: BsdfPlugin = smooth_glass(
+pub(crate) const THINDIELECTRIC: BsdfPlugin = smooth_glass(
     "thindielectric",
     "A thin glass sheet (a window pane): reflection and straight-through transmission, with the \
      inter-reflections inside the sheet summed.",
@@ -75,7 +75,7 @@ const fn smooth_glass(
 }
 
 /// `roughdielectric`.
-pub const ROUGHDIELECTRIC: BsdfPlugin = Plugin {
+pub(crate) const ROUGHDIELECTRIC: BsdfPlugin = Plugin {
     name: "roughdielectric",
     aliases: &[],
     doc:

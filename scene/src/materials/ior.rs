@@ -4,7 +4,7 @@ use crate::plugin::{Default, Param};
 use crate::xml::{Object, Value};
 
 /// Named indices of refraction (at 589 nm), as Mitsuba 3 accepts them.
-pub const NAMED: &[(&str, f64)] = &[
+pub(crate) const NAMED: &[(&str, f64)] = &[
     ("vacuum", 1.0),
     ("helium", 1.000036),
     ("hydrogen", 1.000132),
@@ -31,7 +31,7 @@ pub const NAMED: &[(&str, f64)] = &[
 ];
 
 /// The declared index of refraction `p` of `obj` (its default names a material).
-pub fn read_ior(obj: &Object, p: &Param) -> Result<f64> {
+pub(crate) fn read_ior(obj: &Object, p: &Param) -> Result<f64> {
     let Default::Str(default) = p.default else {
         unreachable!("index \"{}\" has no named default", p.name)
     };
@@ -40,7 +40,7 @@ pub fn read_ior(obj: &Object, p: &Param) -> Result<f64> {
 
 /// The indices `int` and `ext` of `obj` and their ratio `int / ext` (computed in double
 /// precision, then rounded), which must be finite and positive.
-pub fn read_eta(obj: &Object, int: &Param, ext: &Param) -> Result<(f64, f64, f32)> {
+pub(crate) fn read_eta(obj: &Object, int: &Param, ext: &Param) -> Result<(f64, f64, f32)> {
     let int_ior = read_ior(obj, int)?;
     let ext_ior = read_ior(obj, ext)?;
     let eta = (int_ior / ext_ior) as f32;
@@ -61,7 +61,7 @@ pub fn read_eta(obj: &Object, int: &Param, ext: &Param) -> Result<(f64, f64, f32
 
 /// Refuses equal indices `int_ior` and `ext_ior` (a rough interface between equal media has
 /// no reflection and an undefined refraction; Mitsuba 3 refuses it too).
-pub fn indices_differ<T: PartialEq + std::fmt::Display>(
+pub(crate) fn indices_differ<T: PartialEq + std::fmt::Display>(
     obj: &Object,
     int_ior: T,
     ext_ior: T,

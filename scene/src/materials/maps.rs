@@ -35,7 +35,7 @@ fn options(obj: &Object) -> Result<PerturbOptions> {
 }
 
 /// `normalmap`.
-pub const NORMALMAP_PLUGIN: BsdfPlugin = Plugin {
+pub(crate) const NORMALMAP_PLUGIN: BsdfPlugin = Plugin {
     name: "normalmap",
     aliases: &[],
     doc: "Normal mapping: the nested model is evaluated in a shading frame whose normal is read \

@@ -20,14 +20,15 @@ use crate::plugin::Plugin;
 use crate::xml::{Child, Kind, Object};
 use tessera_core::bsdf::Bsdf;
 
-pub use table::{build_bsdf, BSDFS};
+pub(crate) use table::build_bsdf;
+pub use table::BSDFS;
 
 /// A BSDF plugin. Its builder gets the object and the builder of nested BSDFs (the family's
 /// own, which the table passes down, so that a wrapper's file need not know the table).
-pub type BsdfPlugin = Plugin<fn(&Object, Nest) -> Result<Bsdf>>;
+pub(crate) type BsdfPlugin = Plugin<fn(&Object, Nest) -> Result<Bsdf>>;
 
 /// Builds a nested `<bsdf>` (recursively, through the family's table).
-pub type Nest = fn(&Object) -> Result<Bsdf>;
+pub(crate) type Nest = fn(&Object) -> Result<Bsdf>;
 
 /// The nested `<bsdf>` children of `obj`, in document order.
 pub fn nested(obj: &Object) -> Vec<&Child> {
@@ -38,7 +39,7 @@ pub fn nested(obj: &Object) -> Vec<&Child> {
 }
 
 /// Builds the nested BSDFs of `obj`, which must number between `min` and `max`.
-pub fn nested_bsdfs(obj: &Object, min: usize, max: usize, nest: Nest) -> Result<Vec<Bsdf>> {
+pub(crate) fn nested_bsdfs(obj: &Object, min: usize, max: usize, nest: Nest) -> Result<Vec<Bsdf>> {
     let kids = nested(obj);
     if kids.len() < min || kids.len() > max {
         let want = if min == max {

@@ -43,7 +43,7 @@ const ALPHA_V: Param = Param::float(
 );
 
 /// `plastic`.
-pub const PLASTIC: BsdfPlugin = Plugin {
+pub(crate) const PLASTIC: BsdfPlugin = Plugin {
     name: "plastic",
     aliases: &[],
     doc: "A smooth dielectric coating over a diffuse base: varnished wood, smooth plastic.",
@@ -67,7 +67,7 @@ pub const PLASTIC: BsdfPlugin = Plugin {
 };
 
 /// `roughplastic`.
-pub const ROUGHPLASTIC: BsdfPlugin = Plugin {
+pub(crate) const ROUGHPLASTIC: BsdfPlugin = Plugin {
     name: "roughplastic",
     aliases: &[],
     doc: "A rough dielectric coating (isotropic microfacets) over a diffuse base.",

@@ -114,7 +114,7 @@ const CLEARCOAT_RATE: Param = Param::float(
 );
 
 /// `principled`.
-pub const PRINCIPLED: BsdfPlugin = Plugin {
+pub(crate) const PRINCIPLED: BsdfPlugin = Plugin {
     name: "principled",
     aliases: &[],
     doc: "Burley's Disney BSDF as Mitsuba 3 writes it: diffuse with retro-reflection and sheen, \

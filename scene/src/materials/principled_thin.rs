@@ -59,7 +59,7 @@ const DIFF_TRANS_RATE: Param = Param::float(
 );
 
 /// `principledthin`.
-pub const PRINCIPLEDTHIN: BsdfPlugin = Plugin {
+pub(crate) const PRINCIPLEDTHIN: BsdfPlugin = Plugin {
     name: "principledthin",
     aliases: &[],
     doc: "Burley's thin-sheet Disney BSDF as Mitsuba 3 writes it, for surfaces without volume \

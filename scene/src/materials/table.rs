@@ -31,7 +31,7 @@ pub static BSDFS: &[BsdfPlugin] = &[
 ];
 
 /// Builds one BSDF (recursively for wrappers) and reports unused parameters.
-pub fn build_bsdf(obj: &Object) -> Result<Bsdf> {
+pub(crate) fn build_bsdf(obj: &Object) -> Result<Bsdf> {
     let plugin = plugin::find(BSDFS, "bsdf", obj)?;
     let b = (plugin.build)(obj, build_bsdf)?;
     plugin.check_unused(obj)?;

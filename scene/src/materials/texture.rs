@@ -14,7 +14,7 @@ use tessera_core::texture::{Bitmap, Checkerboard, FilterType, Texture, UvTransfo
 
 /// The declared texture parameter `p` of `obj`: its default colour when absent; every value
 /// in `[0, 1]` when its range is [`Range::Unit`], else only non-negative.
-pub fn read_texture(obj: &Object, p: &Param) -> Result<Texture> {
+pub(crate) fn read_texture(obj: &Object, p: &Param) -> Result<Texture> {
     texture(obj, p.name, rgb_default(p), p.range == Range::Unit)
 }
 
@@ -58,7 +58,7 @@ fn range(unit: bool) -> &'static str {
 
 /// A texture plugin: built for a parameter whose values must lie in [0, 1] (`unit`) or only
 /// be non-negative.
-pub type TexturePlugin = Plugin<fn(&Object, bool) -> Result<Texture>>;
+pub(crate) type TexturePlugin = Plugin<fn(&Object, bool) -> Result<Texture>>;
 
 /// Every `<texture type=...>` Tessera knows.
 pub static TEXTURES: &[TexturePlugin] = &[BITMAP, CHECKERBOARD];
@@ -80,7 +80,7 @@ const TO_UV: Param = Param::transform(
 );
 
 /// `checkerboard`.
-pub const CHECKERBOARD: TexturePlugin = Plugin {
+pub(crate) const CHECKERBOARD: TexturePlugin = Plugin {
     name: "checkerboard",
     aliases: &[],
     doc: "Two colours in a checkerboard of 2x2 squares over the unit uv square.",
@@ -121,7 +121,7 @@ const ACCEL: Param =
     Param::boolean("accel", true, "Mitsuba's GPU lookup option; has no effect").ignored();
 
 /// `bitmap`.
-pub const BITMAP: TexturePlugin = Plugin {
+pub(crate) const BITMAP: TexturePlugin = Plugin {
     name: "bitmap",
     aliases: &[],
     doc: "An image texture.",

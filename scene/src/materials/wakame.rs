@@ -7,7 +7,7 @@ use crate::xml::Object;
 use tessera_core::bsdf::{Bsdf, Mirror, WakameMicrofacet};
 
 /// `mirror`.
-pub const MIRROR: BsdfPlugin = Plugin {
+pub(crate) const MIRROR: BsdfPlugin = Plugin {
     name: "mirror",
     aliases: &[],
     doc: "Nori's perfect one-sided mirror.",
@@ -25,7 +25,7 @@ const KD: Param = Param::rgb(
 );
 
 /// `microfacet`.
-pub const MICROFACET: BsdfPlugin = Plugin {
+pub(crate) const MICROFACET: BsdfPlugin = Plugin {
     name: "microfacet",
     aliases: &[],
     doc: "The Wakame assignment's Beckmann microfacet reflection over a diffuse base (Nori's \

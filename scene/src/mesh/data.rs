@@ -11,7 +11,7 @@ pub const MAX_MESH_BYTES: u64 = 4 << 30;
 /// Reads a whole mesh file. Refuses what is not a regular file (a directory, `/dev/zero`, a
 /// pipe) and anything over [`MAX_MESH_BYTES`], checking the size before reading and while
 /// reading (a file that grows cannot make it read more).
-pub fn read_mesh_bytes(path: &Path) -> Result<Vec<u8>, InputError> {
+pub(crate) fn read_mesh_bytes(path: &Path) -> Result<Vec<u8>, InputError> {
     let err = |m: String| InputError::file(path, m);
     let f = std::fs::File::open(path).map_err(|e| err(format!("cannot read mesh: {e}")))?;
     let meta = f
@@ -84,7 +84,7 @@ impl MeshData {
     /// Smooth vertex normals: the average of the normals of the faces around each vertex, each
     /// weighted by the face's angle at that vertex (what Mitsuba 3 computes when a file has none
     /// and `face_normals` is false; measured against it).
-    pub fn compute_vertex_normals(&mut self) {
+    pub(crate) fn compute_vertex_normals(&mut self) {
         use glam::Vec3;
         let mut acc = vec![Vec3::ZERO; self.positions.len()];
         for t in &self.indices {

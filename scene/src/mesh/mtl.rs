@@ -59,7 +59,7 @@ fn check(ok: bool, loc: &Loc, what: String) -> Result<(), InputError> {
 }
 
 /// Reads an MTL file.
-pub fn load_mtl(path: &Path) -> Result<Vec<MtlMaterial>, InputError> {
+pub(crate) fn load_mtl(path: &Path) -> Result<Vec<MtlMaterial>, InputError> {
     // Capped like scene files (64 MiB), so `/dev/zero` or a pipe named by `mtllib` cannot
     // exhaust memory.
     let text = crate::xml::source::read_text(path).map_err(|e| {
@@ -72,7 +72,7 @@ pub fn load_mtl(path: &Path) -> Result<Vec<MtlMaterial>, InputError> {
 }
 
 /// Parses MTL text read from `path`.
-pub fn parse_mtl(text: &str, path: &Path) -> Result<Vec<MtlMaterial>, InputError> {
+pub(crate) fn parse_mtl(text: &str, path: &Path) -> Result<Vec<MtlMaterial>, InputError> {
     let file = Arc::new(path.to_path_buf());
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
     let mut out: Vec<MtlMaterial> = Vec::new();

@@ -36,7 +36,7 @@ const DEFAULT_R0: f32 = 0.04;
 
 /// An MTL material as Tessera renders it.
 #[derive(Clone, Debug)]
-pub struct MtlBsdf {
+pub(crate) struct MtlBsdf {
     /// The surface model.
     pub bsdf: Bsdf,
     /// Radiance of an area light on the material's faces (`Ke`), if any.
@@ -79,7 +79,7 @@ fn blend(w: f32, first: Bsdf, second: Bsdf) -> Bsdf {
 
 /// Builds the material `m` of an MTL library (texture files relative to it were resolved by
 /// the parser). Errors (an unreadable texture) are located at the statement.
-pub fn mtl_bsdf(m: &MtlMaterial) -> Result<MtlBsdf, InputError> {
+pub(crate) fn mtl_bsdf(m: &MtlMaterial) -> Result<MtlBsdf, InputError> {
     let kd =
         m.kd.as_ref()
             .map_or(Color::splat(0.5), |k| Color::from(k.value));

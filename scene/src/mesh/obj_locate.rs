@@ -7,7 +7,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 /// The first malformed number, non-finite coordinate or out-of-range face index, if any.
-pub fn locate_obj_error(path: &Path, text: &str) -> Option<InputError> {
+pub(crate) fn locate_obj_error(path: &Path, text: &str) -> Option<InputError> {
     let file = Arc::new(path.to_path_buf());
     let counts = |kw: &str| {
         text.lines()

@@ -12,7 +12,7 @@ use std::sync::Arc;
 
 /// A parser error, located at its line (and column when the parser gave one). Lines past the
 /// header of a binary file mean nothing to a reader, so those errors name the file only.
-pub fn parse_error(path: &Path, bytes: &[u8], e: &ParseError) -> InputError {
+pub(crate) fn parse_error(path: &Path, bytes: &[u8], e: &ParseError) -> InputError {
     let text = e.to_string();
     // Messages look like "Line 11: What went wrong.\n\tString: 'the line'\n\tError: ...".
     let body = text.split_once(": ").map_or(text.as_str(), |(_, b)| b);
@@ -65,7 +65,7 @@ fn parser_column(body: &str) -> Option<u32> {
 
 /// An error about record `index` of element `element`; `token` picks the whitespace-separated
 /// value on that record's line to point at (ASCII files), or the line's start when `None`.
-pub fn record_error(
+pub(crate) fn record_error(
     path: &Path,
     bytes: &[u8],
     header: &Header,

@@ -29,7 +29,7 @@ const DOUBLE_PRECISION: u32 = 0x2000;
 const MAX_EXPANSION: usize = 1100;
 
 /// Reads shape `index` of the `.serialized` file at `path` (object space).
-pub fn load_serialized(path: &Path, index: u64) -> Result<MeshData, InputError> {
+pub(crate) fn load_serialized(path: &Path, index: u64) -> Result<MeshData, InputError> {
     let bytes = read_mesh_bytes(path)?;
     parse_serialized(&bytes, index)
         .map_err(|m| InputError::file(path, format!("serialized mesh: {m}")))

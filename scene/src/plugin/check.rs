@@ -11,7 +11,7 @@ use std::path::Path;
 
 /// The XML element that gives `p` its default value, or `None` when the default cannot be
 /// written (required, absent, computed, identity).
-pub fn default_element(p: &Param) -> Option<String> {
+pub(crate) fn default_element(p: &Param) -> Option<String> {
     let (tag, value) = match (p.ty, p.default) {
         (_, Default::Float(v)) => ("float", format!("{v}")),
         (_, Default::Integer(v)) => ("integer", format!("{v}")),
@@ -48,7 +48,7 @@ fn build_one<T, B>(
 /// parameter under test (nested objects, required parameters); `skip` lists `(plugin,
 /// parameter)` pairs whose explicit default changes the meaning (one of a pair that must be
 /// given together).
-pub fn check_family<T: Debug, B>(
+pub(crate) fn check_family<T: Debug, B>(
     family: &[Plugin<B>],
     kind: Kind,
     build: impl Fn(&Object) -> Result<T, InputError> + Copy,

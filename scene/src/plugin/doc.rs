@@ -5,7 +5,7 @@ use super::Declared;
 use std::fmt::Write;
 
 /// The Markdown reference of one plugin of family `family` (`"bsdf"`, ...).
-pub fn plugin_markdown(family: &str, p: &Declared) -> String {
+pub(crate) fn plugin_markdown(family: &str, p: &Declared) -> String {
     let mut s = format!("### `{family}` `{}`", p.name);
     if !p.aliases.is_empty() {
         let a: Vec<String> = p.aliases.iter().map(|a| format!("`{a}`")).collect();

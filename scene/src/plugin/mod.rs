@@ -5,7 +5,7 @@
 #[cfg(test)]
 pub(crate) mod check;
 pub mod doc;
-pub mod param;
+pub(crate) mod param;
 mod read;
 
 pub use param::{Default, Param, ParamType, Range};

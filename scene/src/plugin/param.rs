@@ -132,7 +132,7 @@ impl Range {
     }
 
     /// `(lo, hi]`.
-    pub const fn open_closed(lo: f64, hi: f64) -> Range {
+    pub(crate) const fn open_closed(lo: f64, hi: f64) -> Range {
         Range::Between {
             lo,
             lo_closed: false,
@@ -355,12 +355,12 @@ impl Param {
     }
 
     /// The same parameter with a unit.
-    pub const fn with_unit(self, unit: &'static str) -> Self {
+    pub(crate) const fn with_unit(self, unit: &'static str) -> Self {
         Param { unit, ..self }
     }
 
     /// The range in words, with the unit: "in (0, 180] degrees".
-    pub fn describe_range(&self) -> String {
+    pub(crate) fn describe_range(&self) -> String {
         if self.unit.is_empty() {
             self.range.describe()
         } else {

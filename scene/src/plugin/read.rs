@@ -12,7 +12,7 @@ type Result<T> = std::result::Result<T, InputError>;
 
 impl Param {
     /// The error for a value outside the declared range (`what` says the range).
-    pub fn out_of_range(
+    pub(crate) fn out_of_range(
         &self,
         obj: &Object,
         what: &str,
@@ -30,7 +30,7 @@ impl Param {
     }
 
     /// A float: the declared default, or the file's value checked against the declared range.
-    pub fn read_f32(&self, obj: &Object) -> Result<f32> {
+    pub(crate) fn read_f32(&self, obj: &Object) -> Result<f32> {
         match self.default {
             Default::Float(d) => self.read_f32_or(obj, d),
             Default::Required => {
@@ -44,13 +44,13 @@ impl Param {
     }
 
     /// A float with a default computed by the builder (a [`Default::Note`]).
-    pub fn read_f32_or(&self, obj: &Object, default: f64) -> Result<f32> {
+    pub(crate) fn read_f32_or(&self, obj: &Object, default: f64) -> Result<f32> {
         let v = obj.float(self.name, default)?;
         self.checked(obj, v, |v| self.range.contains(v), &self.describe_range())
     }
 
     /// A float that must pass `ok`, a rule involving other parameters ([`Range::Note`] says it).
-    pub fn read_f32_where(
+    pub(crate) fn read_f32_where(
         &self,
         obj: &Object,
         default: f64,
@@ -61,7 +61,7 @@ impl Param {
     }
 
     /// A float, `None` when absent ([`Default::Absent`]).
-    pub fn read_f32_opt(&self, obj: &Object) -> Result<Option<f32>> {
+    pub(crate) fn read_f32_opt(&self, obj: &Object) -> Result<Option<f32>> {
         match obj.float_opt(self.name)? {
             None => Ok(None),
             Some(v) => self
@@ -78,7 +78,7 @@ impl Param {
     }
 
     /// An integer within the declared range.
-    pub fn read_i64(&self, obj: &Object) -> Result<i64> {
+    pub(crate) fn read_i64(&self, obj: &Object) -> Result<i64> {
         let v = match self.default {
             Default::Integer(d) => obj.integer(self.name, d)?,
             Default::Required => obj
@@ -93,7 +93,7 @@ impl Param {
     }
 
     /// An integer that must pass `ok` ([`Range::Note`] says the rule).
-    pub fn read_i64_where(&self, obj: &Object, ok: impl Fn(i64) -> bool) -> Result<i64> {
+    pub(crate) fn read_i64_where(&self, obj: &Object, ok: impl Fn(i64) -> bool) -> Result<i64> {
         match self.default {
             Default::Integer(d) => self.read_i64_or(obj, d, ok),
             other => unreachable!("\"{}\" has no integer default ({other:?})", self.name),
@@ -102,7 +102,12 @@ impl Param {
 
     /// An integer with a default computed by the builder (a [`Default::Note`]), which must
     /// pass `ok`.
-    pub fn read_i64_or(&self, obj: &Object, default: i64, ok: impl Fn(i64) -> bool) -> Result<i64> {
+    pub(crate) fn read_i64_or(
+        &self,
+        obj: &Object,
+        default: i64,
+        ok: impl Fn(i64) -> bool,
+    ) -> Result<i64> {
         let v = obj.integer(self.name, default)?;
         if !ok(v) {
             return Err(self.out_of_range(obj, &self.describe_range(), v));
@@ -111,7 +116,7 @@ impl Param {
     }
 
     /// A boolean.
-    pub fn read_bool(&self, obj: &Object) -> Result<bool> {
+    pub(crate) fn read_bool(&self, obj: &Object) -> Result<bool> {
         match self.default {
             Default::Boolean(d) => obj.boolean(self.name, d),
             other => unreachable!("\"{}\" has no boolean default ({other:?})", self.name),
@@ -119,7 +124,7 @@ impl Param {
     }
 
     /// A string (the declared default, or a located "missing" error when it is required).
-    pub fn read_string(&self, obj: &Object) -> Result<String> {
+    pub(crate) fn read_string(&self, obj: &Object) -> Result<String> {
         match self.default {
             Default::Str(d) => obj.string(self.name, d),
             Default::Required => obj
@@ -130,7 +135,7 @@ impl Param {
     }
 
     /// One of the declared names: the file's value (or the default), returned as declared.
-    pub fn read_choice(&self, obj: &Object) -> Result<&'static str> {
+    pub(crate) fn read_choice(&self, obj: &Object) -> Result<&'static str> {
         match (self.read_choice_opt(obj)?, self.default) {
             (Some(name), _) => Ok(name),
             (None, Default::Str(d)) => Ok(d),
@@ -141,7 +146,7 @@ impl Param {
 
     /// One of the declared names as the file gives it, `None` when absent (the builder then
     /// applies a default of its own, a [`Default::Note`]).
-    pub fn read_choice_opt(&self, obj: &Object) -> Result<Option<&'static str>> {
+    pub(crate) fn read_choice_opt(&self, obj: &Object) -> Result<Option<&'static str>> {
         let Some(s) = obj.string_opt(self.name)? else {
             return Ok(None);
         };
@@ -192,7 +197,7 @@ impl Param {
     }
 
     /// A colour the file may leave out (`None` then), checked as [`Param::read_color`] checks.
-    pub fn read_color_opt(&self, obj: &Object) -> Result<Option<Color>> {
+    pub(crate) fn read_color_opt(&self, obj: &Object) -> Result<Option<Color>> {
         let Some(c) = obj.rgb_opt(self.name)? else {
             return Ok(None);
         };
@@ -204,7 +209,7 @@ impl Param {
     }
 
     /// A transform, checked invertible and finite (identity when absent).
-    pub fn read_transform(&self, obj: &Object) -> Result<Transform> {
+    pub(crate) fn read_transform(&self, obj: &Object) -> Result<Transform> {
         transform(obj, self.name)
     }
 }

@@ -14,12 +14,12 @@ pub const MAX_EDGE: i64 = 1 << 16;
 pub const MAX_PIXELS: i64 = 1 << 26;
 
 /// A film: its size and crop window.
-pub type FilmPlugin = Plugin<fn(&Object) -> Result<FilmSize>>;
+pub(crate) type FilmPlugin = Plugin<fn(&Object) -> Result<FilmSize>>;
 
 /// The size a film gives the image: the whole film's, and the window of it that is rendered
 /// (`[x, y, width, height]`, pixels), if not all of it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct FilmSize {
+pub(crate) struct FilmSize {
     pub width: u32,
     pub height: u32,
     pub crop: Option<[u32; 4]>,
@@ -98,7 +98,7 @@ const CROP_HEIGHT: Param = Param::new(
 );
 
 /// `hdrfilm`.
-pub const HDRFILM: FilmPlugin = Plugin {
+pub(crate) const HDRFILM: FilmPlugin = Plugin {
     name: "hdrfilm",
     aliases: &[],
     doc: "The image's size (the outputs' formats come from their file names).",

@@ -15,11 +15,12 @@ use tessera_core::sampling::SamplerKind;
 pub use film::{FILMS, MAX_EDGE, MAX_PIXELS};
 pub use orthographic::ORTHOGRAPHIC;
 pub use perspective::{PERSPECTIVE, THINLENS};
-pub use table::{build_sensor, SENSORS};
+pub(crate) use table::build_sensor;
+pub use table::SENSORS;
 
 /// The sensor and what hangs off it.
 #[derive(Debug)]
-pub struct SensorParts {
+pub(crate) struct SensorParts {
     pub camera: Camera,
     pub filter: Filter,
     pub spp: Option<u64>,
@@ -28,7 +29,7 @@ pub struct SensorParts {
 }
 
 /// A sensor plugin; the builder may add warnings (from its sampler).
-pub type SensorPlugin = Plugin<fn(&Object, &mut Vec<String>) -> Result<SensorParts>>;
+pub(crate) type SensorPlugin = Plugin<fn(&Object, &mut Vec<String>) -> Result<SensorParts>>;
 
 const TO_WORLD: Param = Param::transform(
     "to_world",

@@ -8,7 +8,7 @@ use crate::xml::Object;
 pub static SENSORS: &[SensorPlugin] = &[PERSPECTIVE, THINLENS, ORTHOGRAPHIC];
 
 /// Builds the sensor and reports unused parameters.
-pub fn build_sensor(obj: &Object, warnings: &mut Vec<String>) -> Result<SensorParts> {
+pub(crate) fn build_sensor(obj: &Object, warnings: &mut Vec<String>) -> Result<SensorParts> {
     let plugin = plugin::find(SENSORS, "sensor", obj)?;
     let s = (plugin.build)(obj, warnings)?;
     plugin.check_unused(obj)?;

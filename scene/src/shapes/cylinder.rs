@@ -26,7 +26,7 @@ const P1: Param = Param::new(
 );
 
 /// `cylinder`.
-pub const CYLINDER: ShapePlugin = Plugin {
+pub(crate) const CYLINDER: ShapePlugin = Plugin {
     name: "cylinder",
     aliases: &[],
     doc: "An analytic open cylinder (no end caps) of the given radius around the segment from \

@@ -14,7 +14,7 @@ use std::collections::HashMap;
 use tessera_core::geometry::Instance;
 
 /// `shapegroup`.
-pub const SHAPEGROUP: ShapePlugin = Plugin {
+pub(crate) const SHAPEGROUP: ShapePlugin = Plugin {
     name: "shapegroup",
     aliases: &[],
     doc: "A group of shapes drawn only through `instance`s, stored once however many instances \
@@ -25,7 +25,7 @@ pub const SHAPEGROUP: ShapePlugin = Plugin {
 };
 
 /// `instance`.
-pub const INSTANCE: ShapePlugin = Plugin {
+pub(crate) const INSTANCE: ShapePlugin = Plugin {
     name: "instance",
     aliases: &[],
     doc: "A copy of a `shapegroup` placed by to_world (any invertible affine transform; normals \
@@ -47,7 +47,7 @@ pub struct Groups {
 }
 
 /// Builds one member shape of a group and returns the indices of the shapes it added.
-pub type AddShape<'a> = dyn FnMut(&Object) -> Result<Vec<u32>> + 'a;
+pub(crate) type AddShape<'a> = dyn FnMut(&Object) -> Result<Vec<u32>> + 'a;
 
 impl Groups {
     /// The index of group `obj`, building its member shapes with `add` the first time.
@@ -107,7 +107,7 @@ impl Groups {
     }
 
     /// Each group's member shapes, by group index.
-    pub fn into_shape_lists(self) -> Vec<Vec<u32>> {
+    pub(crate) fn into_shape_lists(self) -> Vec<Vec<u32>> {
         self.lists
     }
 }

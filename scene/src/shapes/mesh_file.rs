@@ -53,7 +53,7 @@ const SHAPE_INDEX: Param = Param::integer(
 );
 
 /// `serialized`.
-pub const SERIALIZED: ShapePlugin = Plugin {
+pub(crate) const SERIALIZED: ShapePlugin = Plugin {
     name: "serialized",
     aliases: &[],
     doc: "A mesh of a Mitsuba `.serialized` file (zlib-compressed, format versions 3 and 4, as \

@@ -9,7 +9,8 @@ mod mesh_file;
 mod simple;
 mod table;
 
-pub use table::{build_shape, SHAPES};
+pub(crate) use table::build_shape;
+pub use table::SHAPES;
 
 use crate::mesh::MtlBsdf;
 use crate::plugin::{Param, Plugin, Range};
@@ -48,10 +49,10 @@ impl Geometry {
 }
 
 /// A shape plugin.
-pub type ShapePlugin = Plugin<fn(&Object) -> Result<Geometry>>;
+pub(crate) type ShapePlugin = Plugin<fn(&Object) -> Result<Geometry>>;
 
 /// A part of an OBJ mesh with its MTL material.
-pub struct MtlPart {
+pub(crate) struct MtlPart {
     /// The faces of the material, in world space.
     pub mesh: Mesh,
     /// The material's BSDF and emission.

@@ -19,7 +19,7 @@ const CENTER: Param = Param::new(
 );
 
 /// `sphere`.
-pub const SPHERE: ShapePlugin = Plugin {
+pub(crate) const SPHERE: ShapePlugin = Plugin {
     name: "sphere",
     aliases: &[],
     doc: "An analytic sphere, placed by to_world * translate(center) * scale(radius) as in \
@@ -54,7 +54,7 @@ fn build_sphere(obj: &Object) -> Result<Geometry> {
 }
 
 /// `rectangle`.
-pub const RECTANGLE: ShapePlugin = Plugin {
+pub(crate) const RECTANGLE: ShapePlugin = Plugin {
     name: "rectangle",
     aliases: &[],
     doc: "The square [-1, 1]^2 at z = 0, facing +z, placed by to_world.",
@@ -64,7 +64,7 @@ pub const RECTANGLE: ShapePlugin = Plugin {
 };
 
 /// `cube`.
-pub const CUBE: ShapePlugin = Plugin {
+pub(crate) const CUBE: ShapePlugin = Plugin {
     name: "cube",
     aliases: &[],
     doc: "The cube [-1, 1]^3, facing out, placed by to_world.",
@@ -79,7 +79,7 @@ fn unit_mesh(obj: &Object, data: MeshData) -> Result<Geometry> {
 }
 
 /// `disk`.
-pub const DISK: ShapePlugin = Plugin {
+pub(crate) const DISK: ShapePlugin = Plugin {
     name: "disk",
     aliases: &[],
     doc: "The unit disk at z = 0, facing +z, placed by to_world (an analytic shape).",

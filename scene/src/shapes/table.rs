@@ -40,7 +40,7 @@ pub struct ShapeParts<'a> {
 
 /// Builds the geometry of a shape object and finds its bsdf / emitter children. The caller
 /// reports unused parameters (`ShapeParts::plugin`) once it has built the children.
-pub fn build_shape(obj: &Object) -> Result<ShapeParts<'_>> {
+pub(crate) fn build_shape(obj: &Object) -> Result<ShapeParts<'_>> {
     let flip_normals = FLIP_NORMALS.read_bool(obj)?;
     let plugin = plugin::find(SHAPES, "shape", obj)?;
     let Geometry {

@@ -12,7 +12,7 @@ use crate::error::{InputError, Loc};
 type Result<T> = std::result::Result<T, InputError>;
 
 /// One attribute: its name, its value after substitution, and where it is.
-pub struct Attr {
+pub(crate) struct Attr {
     /// The attribute name.
     pub name: String,
     /// The value, with `$name` parameters replaced.
@@ -22,7 +22,7 @@ pub struct Attr {
 }
 
 /// The attributes of an element.
-pub struct Attrs {
+pub(crate) struct Attrs {
     /// The element name as written in the file (for messages).
     pub tag: String,
     /// Where the element starts.
@@ -90,7 +90,7 @@ impl Attrs {
     }
 
     /// The attribute called `name`, or a located error saying it is missing.
-    pub fn require(&self, name: &str) -> Result<&Attr> {
+    pub(crate) fn require(&self, name: &str) -> Result<&Attr> {
         self.get(name).ok_or_else(|| {
             self.error(format!(
                 "<{}> is missing the \"{name}\" attribute",

@@ -3,15 +3,15 @@
 //! `scripts/cie_tables.py` (the values Mitsuba 3 integrates against); data only.
 
 /// The first tabulated wavelength (nm).
-pub const CIE_MIN: f64 = 360.0;
+pub(crate) const CIE_MIN: f64 = 360.0;
 /// The last tabulated wavelength (nm).
-pub const CIE_MAX: f64 = 830.0;
+pub(crate) const CIE_MAX: f64 = 830.0;
 /// The number of samples (every 5 nm).
-pub const CIE_SAMPLES: usize = 95;
+pub(crate) const CIE_SAMPLES: usize = 95;
 
 /// CIE 1931 X colour matching function.
 #[rustfmt::skip]
-pub const CIE_X: [f32; CIE_SAMPLES] = [
+pub(crate) const CIE_X: [f32; CIE_SAMPLES] = [
     0.0001299, 0.0002321, 0.0004149, 0.0007416, 0.001368, 0.002236, 0.004243, 0.00765, 0.01431,
     0.02319, 0.04351, 0.07763, 0.13438, 0.21477, 0.2839, 0.3285, 0.34828, 0.34806, 0.3362, 0.3187,
     0.2908, 0.2511, 0.19536, 0.1421, 0.09564, 0.05795001, 0.03201, 0.0147, 0.0049, 0.0024, 0.0093,
@@ -27,7 +27,7 @@ pub const CIE_X: [f32; CIE_SAMPLES] = [
 
 /// CIE 1931 Y colour matching function.
 #[rustfmt::skip]
-pub const CIE_Y: [f32; CIE_SAMPLES] = [
+pub(crate) const CIE_Y: [f32; CIE_SAMPLES] = [
     3.917e-06, 6.965e-06, 1.239e-05, 2.202e-05, 3.9e-05, 6.4e-05, 0.00012, 0.000217, 0.000396,
     0.00064, 0.00121, 0.00218, 0.004, 0.0073, 0.0116, 0.01684, 0.023, 0.0298, 0.038, 0.048, 0.06,
     0.0739, 0.09098, 0.1126, 0.13902, 0.1693, 0.20802, 0.2586, 0.323, 0.4073, 0.503, 0.6082, 0.71,
@@ -42,7 +42,7 @@ pub const CIE_Y: [f32; CIE_SAMPLES] = [
 
 /// CIE 1931 Z colour matching function.
 #[rustfmt::skip]
-pub const CIE_Z: [f32; CIE_SAMPLES] = [
+pub(crate) const CIE_Z: [f32; CIE_SAMPLES] = [
     0.0006061, 0.001086, 0.001946, 0.003486, 0.006450001, 0.01054999, 0.02005001, 0.03621,
     0.06785001, 0.1102, 0.2074, 0.3713, 0.6456, 1.03905, 1.3856, 1.62296, 1.74706, 1.7826,
     1.77211, 1.7441, 1.6692, 1.5281, 1.28764, 1.0419, 0.8129501, 0.6162, 0.46518, 0.3533, 0.272,

@@ -34,7 +34,7 @@ pub enum Dialect {
 
 impl Dialect {
     /// Every dialect, in the order messages list them.
-    pub const ALL: [Dialect; 2] = [Dialect::Nori, Dialect::Wakame];
+    pub(crate) const ALL: [Dialect; 2] = [Dialect::Nori, Dialect::Wakame];
 
     /// The dialect's name on the command line and in the processing instruction.
     pub fn name(self) -> &'static str {
@@ -61,7 +61,7 @@ impl Dialect {
     /// The camera placement that renders this dialect's image with Tessera's camera, from the
     /// placement the file gives: Wakame's mirrors the camera's local x axis (exactly: a sign
     /// flip of one column of the matrix and one row of its inverse).
-    pub fn camera_to_world(self, to_world: Transform) -> Transform {
+    pub(crate) fn camera_to_world(self, to_world: Transform) -> Transform {
         match self {
             Dialect::Nori => to_world,
             Dialect::Wakame => {
@@ -84,7 +84,7 @@ impl fmt::Display for Dialect {
 /// The dialect a document's `<?tessera dialect="..."?>` processing instruction names, if it has
 /// one before its root element. Processing instructions with other targets are skipped; a
 /// `tessera` instruction with anything else in it is an error at its location.
-pub fn read_instruction(
+pub(crate) fn read_instruction(
     doc: &roxmltree::Document<'_>,
     loc: impl Fn(usize) -> Loc,
 ) -> Result<Option<Dialect>, InputError> {

@@ -9,7 +9,7 @@
 use super::object::Kind;
 
 /// The Mitsuba element name for an element name as written.
-pub fn element_alias(tag: &str) -> &str {
+pub(crate) fn element_alias(tag: &str) -> &str {
     match tag {
         "mesh" => "shape",
         "camera" => "sensor",
@@ -42,7 +42,7 @@ pub fn snake_case(name: &str) -> String {
 
 /// The normalized name of a parameter (property or named child) of an object of `kind` with
 /// plugin type `plugin`.
-pub fn param_name(name: &str, kind: Kind, plugin: &str) -> String {
+pub(crate) fn param_name(name: &str, kind: Kind, plugin: &str) -> String {
     if kind == Kind::RFilter && plugin == "mitchell" && matches!(name, "B" | "C") {
         return name.to_string();
     }

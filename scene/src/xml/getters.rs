@@ -49,7 +49,7 @@ impl Object {
     }
 
     /// A float (an integer is accepted too), or `None` when absent.
-    pub fn float_opt(&self, name: &str) -> Result<Option<f64>> {
+    pub(crate) fn float_opt(&self, name: &str) -> Result<Option<f64>> {
         const WANT: &str = "a float";
         match self.lookup(name, WANT)? {
             None => Ok(None),
@@ -67,7 +67,7 @@ impl Object {
     }
 
     /// An integer, or `None` when absent.
-    pub fn integer_opt(&self, name: &str) -> Result<Option<i64>> {
+    pub(crate) fn integer_opt(&self, name: &str) -> Result<Option<i64>> {
         const WANT: &str = "an integer";
         match self.lookup(name, WANT)? {
             None => Ok(None),
@@ -84,7 +84,7 @@ impl Object {
     }
 
     /// A boolean, or `None` when absent.
-    pub fn boolean_opt(&self, name: &str) -> Result<Option<bool>> {
+    pub(crate) fn boolean_opt(&self, name: &str) -> Result<Option<bool>> {
         const WANT: &str = "a boolean";
         match self.lookup(name, WANT)? {
             None => Ok(None),
@@ -120,7 +120,7 @@ impl Object {
     }
 
     /// An rgb color (a float or integer means grey), or `None` when absent.
-    pub fn rgb_opt(&self, name: &str) -> Result<Option<[f64; 3]>> {
+    pub(crate) fn rgb_opt(&self, name: &str) -> Result<Option<[f64; 3]>> {
         const WANT: &str = "an rgb color (or a float)";
         match self.lookup(name, WANT)? {
             None => Ok(None),
@@ -139,7 +139,7 @@ impl Object {
     }
 
     /// A point (a `<vector>` is accepted too, as in Mitsuba), or `None` when absent.
-    pub fn point_opt(&self, name: &str) -> Result<Option<[f64; 3]>> {
+    pub(crate) fn point_opt(&self, name: &str) -> Result<Option<[f64; 3]>> {
         const WANT: &str = "a point";
         match self.lookup(name, WANT)? {
             None => Ok(None),
@@ -156,7 +156,7 @@ impl Object {
     }
 
     /// A vector (a `<point>` is accepted too, as in Mitsuba), or `None` when absent.
-    pub fn vector_opt(&self, name: &str) -> Result<Option<[f64; 3]>> {
+    pub(crate) fn vector_opt(&self, name: &str) -> Result<Option<[f64; 3]>> {
         const WANT: &str = "a vector";
         match self.lookup(name, WANT)? {
             None => Ok(None),
@@ -173,7 +173,7 @@ impl Object {
     }
 
     /// A transform, or `None` when absent.
-    pub fn transform_opt(&self, name: &str) -> Result<Option<DMat4>> {
+    pub(crate) fn transform_opt(&self, name: &str) -> Result<Option<DMat4>> {
         const WANT: &str = "a transform";
         match self.lookup(name, WANT)? {
             None => Ok(None),

@@ -53,7 +53,7 @@ pub fn load_file(path: &Path, defines: &[(String, String)]) -> Result<Object, In
 }
 
 /// Reads a scene file's text (checked: a regular file, at most 64 MiB, UTF-8).
-pub fn read_file(path: &Path) -> Result<String, InputError> {
+pub(crate) fn read_file(path: &Path) -> Result<String, InputError> {
     source::read_text(path).map_err(|m| InputError::file(path, m))
 }
 
@@ -69,7 +69,7 @@ pub fn load_str(
 
 /// [`load_str`] with the conventions of `dialect` whatever the text declares (`None`: the
 /// text's, see [`Dialect`]).
-pub fn load_str_as(
+pub(crate) fn load_str_as(
     text: &str,
     virtual_path: &Path,
     defines: &[(String, String)],

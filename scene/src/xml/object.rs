@@ -42,7 +42,7 @@ pub enum Kind {
 
 impl Kind {
     /// All kinds.
-    pub const ALL: [Kind; 11] = [
+    pub(crate) const ALL: [Kind; 11] = [
         Kind::Scene,
         Kind::Integrator,
         Kind::Sensor,
@@ -74,7 +74,7 @@ impl Kind {
     }
 
     /// The kind for a (Mitsuba) element name.
-    pub fn from_tag(tag: &str) -> Option<Kind> {
+    pub(crate) fn from_tag(tag: &str) -> Option<Kind> {
         Kind::ALL.into_iter().find(|k| k.tag() == tag)
     }
 }
@@ -110,7 +110,7 @@ pub enum Value {
 
 impl Value {
     /// The type's name as used in messages (`"float"`, `"rgb"`, ...).
-    pub fn type_name(&self) -> &'static str {
+    pub(crate) fn type_name(&self) -> &'static str {
         match self {
             Value::Float(_) => "float",
             Value::Integer(_) => "integer",
@@ -153,7 +153,7 @@ impl Prop {
     }
 
     /// Whether a getter asked for this property.
-    pub fn is_used(&self) -> bool {
+    pub(crate) fn is_used(&self) -> bool {
         self.used.get()
     }
 }
@@ -191,7 +191,7 @@ impl Child {
     }
 
     /// Whether the builder consumed this child.
-    pub fn is_used(&self) -> bool {
+    pub(crate) fn is_used(&self) -> bool {
         self.used.get()
     }
 }
@@ -277,12 +277,12 @@ impl Object {
     }
 
     /// Whether some `<ref>` refers to this object.
-    pub fn is_referenced(&self) -> bool {
+    pub(crate) fn is_referenced(&self) -> bool {
         self.referenced.get()
     }
 
     /// Records that a `<ref>` refers to this object.
-    pub fn mark_referenced(&self) {
+    pub(crate) fn mark_referenced(&self) {
         self.referenced.set(true);
     }
 

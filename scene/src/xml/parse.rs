@@ -183,13 +183,13 @@ impl Parser {
     }
 
     /// Renders the file with `dialect`'s conventions whatever the file says.
-    pub fn with_dialect(mut self, dialect: Option<Dialect>) -> Self {
+    pub(crate) fn with_dialect(mut self, dialect: Option<Dialect>) -> Self {
         self.dialect = dialect;
         self
     }
 
     /// Parses a whole scene file's text; `path` names it in locations and resolves includes.
-    pub fn load_text(&mut self, text: &str, path: &Path) -> Result<Object> {
+    pub(crate) fn load_text(&mut self, text: &str, path: &Path) -> Result<Object> {
         check_size(text).map_err(|m| InputError::file(path, m))?;
         let text = strip_bom(text);
         let file = Arc::new(path.to_path_buf());

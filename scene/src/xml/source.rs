@@ -19,7 +19,7 @@ const CHUNK: usize = 4096;
 /// while reading, so a stream of unknown size (a pipe, `/dev/zero`) stops at the limit too.
 ///
 /// Errors are `Err(message)` without location; the caller decides where to attach them.
-pub fn read_text(path: &Path) -> Result<String, String> {
+pub(crate) fn read_text(path: &Path) -> Result<String, String> {
     use std::io::Read;
     let f = std::fs::File::open(path).map_err(|e| format!("cannot read file: {e}"))?;
     let meta = f.metadata().map_err(|e| format!("cannot read file: {e}"))?;
@@ -42,7 +42,7 @@ pub fn read_text(path: &Path) -> Result<String, String> {
 }
 
 /// Refuses a text over [`MAX_FILE_BYTES`].
-pub fn check_size(text: &str) -> Result<(), String> {
+pub(crate) fn check_size(text: &str) -> Result<(), String> {
     if text.len() as u64 > MAX_FILE_BYTES {
         return Err(too_large(text.len() as u64));
     }
@@ -54,7 +54,7 @@ fn too_large(len: u64) -> String {
 }
 
 /// Parses XML text, converting roxmltree's errors into located [`InputError`]s.
-pub fn parse_document<'t>(
+pub(crate) fn parse_document<'t>(
     text: &'t str,
     file: &Arc<PathBuf>,
 ) -> Result<roxmltree::Document<'t>, InputError> {
@@ -107,7 +107,7 @@ fn convert_error(e: &roxmltree::Error, file: &Arc<PathBuf>, text: &str) -> Input
 }
 
 /// A parsed file's name and a fast offset-to-position table.
-pub struct Source<'t> {
+pub(crate) struct Source<'t> {
     /// The file's path as given (used in every location).
     pub file: Arc<PathBuf>,
     /// The directory relative paths (includes) are resolved against.

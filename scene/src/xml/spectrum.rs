@@ -15,7 +15,7 @@ use super::object::Kind;
 
 /// How a spectrum is used, which decides its conversion.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SpectrumUse {
+pub(crate) enum SpectrumUse {
     /// Emitted light (a parameter of an `<emitter>`): no D65 weight, unbounded.
     Emitted,
     /// A parameter Mitsuba reads unbounded (an index of refraction, a roughness).
@@ -89,7 +89,7 @@ fn xyz_to_srgb(xyz: [f64; 3]) -> [f64; 3] {
 }
 
 /// The RGB of a flat spectrum of value `v` used as `how`.
-pub fn uniform_to_rgb(v: f64, how: SpectrumUse) -> [f64; 3] {
+pub(crate) fn uniform_to_rgb(v: f64, how: SpectrumUse) -> [f64; 3] {
     match how {
         SpectrumUse::Emitted => xyz_to_srgb([v; 3]),
         _ => [v; 3],
@@ -99,7 +99,7 @@ pub fn uniform_to_rgb(v: f64, how: SpectrumUse) -> [f64; 3] {
 /// The RGB of a spectrum given as increasing `wavelengths` (nm) and `values`, used as `how`,
 /// and, when that colour had to be clamped (out of gamut), the colour before clamping.
 /// Needs at least two entries (checked by [`check_list`]).
-pub fn list_to_rgb(
+pub(crate) fn list_to_rgb(
     wavelengths: &[f64],
     values: &[f64],
     how: SpectrumUse,
@@ -147,7 +147,7 @@ pub fn check_list(wavelengths: &[f64]) -> Result<(), String> {
 }
 
 /// Parses `"400:0.1, 500:0.2"` (pairs separated by commas or whitespace).
-pub fn parse_pairs(s: &str) -> Result<(Vec<f64>, Vec<f64>), String> {
+pub(crate) fn parse_pairs(s: &str) -> Result<(Vec<f64>, Vec<f64>), String> {
     let mut w = Vec::new();
     let mut v = Vec::new();
     for item in super::values::split_list(s) {
@@ -166,7 +166,7 @@ pub fn parse_pairs(s: &str) -> Result<(Vec<f64>, Vec<f64>), String> {
 
 /// Parses a spectrum file: lines "wavelength value" (anything after the two numbers is
 /// ignored); lines starting with `#`, and empty lines, are skipped.
-pub fn parse_file(text: &str) -> Result<(Vec<f64>, Vec<f64>), String> {
+pub(crate) fn parse_file(text: &str) -> Result<(Vec<f64>, Vec<f64>), String> {
     let mut w = Vec::new();
     let mut v = Vec::new();
     for (n, line) in text.lines().enumerate() {

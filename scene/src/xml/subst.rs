@@ -10,17 +10,17 @@ use std::borrow::Cow;
 use std::collections::HashMap;
 
 /// True for the characters a parameter name is made of.
-pub fn is_name_char(c: char) -> bool {
+pub(crate) fn is_name_char(c: char) -> bool {
     c.is_ascii_alphanumeric() || c == '_'
 }
 
 /// True when `name` is a valid parameter name (non-empty, `[A-Za-z0-9_]` only).
-pub fn is_valid_name(name: &str) -> bool {
+pub(crate) fn is_valid_name(name: &str) -> bool {
     !name.is_empty() && name.chars().all(is_name_char)
 }
 
 /// Replaces every `$name` in `value`; `Err(message)` names the first unknown parameter.
-pub fn substitute<'v>(
+pub(crate) fn substitute<'v>(
     value: &'v str,
     params: &HashMap<String, String>,
 ) -> Result<Cow<'v, str>, String> {

@@ -12,7 +12,7 @@ use crate::error::InputError;
 type Result<T> = std::result::Result<T, InputError>;
 
 /// Whether `tag` is a transform operation element.
-pub fn is_op(tag: &str) -> bool {
+pub(crate) fn is_op(tag: &str) -> bool {
     matches!(tag, "translate" | "scale" | "rotate" | "matrix" | "lookat")
 }
 
@@ -75,7 +75,7 @@ fn rotation_as_given(a: DVec3, radians: f64) -> DMat4 {
 
 /// The matrix of one operation element (its attributes already read); located warnings go to
 /// `warnings`.
-pub fn op_matrix(a: &Attrs, warnings: &mut Vec<String>) -> Result<DMat4> {
+pub(crate) fn op_matrix(a: &Attrs, warnings: &mut Vec<String>) -> Result<DMat4> {
     let tag = a.tag.as_str();
     match tag {
         "translate" => {

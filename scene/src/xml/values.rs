@@ -4,13 +4,13 @@
 //! Numbers must be finite. Errors are plain messages; callers attach the location.
 
 /// Splits a list on commas and whitespace, skipping empty items.
-pub fn split_list(s: &str) -> impl Iterator<Item = &str> {
+pub(crate) fn split_list(s: &str) -> impl Iterator<Item = &str> {
     s.split(|c: char| c == ',' || c.is_whitespace())
         .filter(|t| !t.is_empty())
 }
 
 /// Parses a finite floating-point number (surrounding whitespace allowed).
-pub fn parse_float(s: &str) -> Result<f64, String> {
+pub(crate) fn parse_float(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
         Ok(v) if v.is_finite() => Ok(v),
         Ok(_) => Err(format!("\"{s}\" is not a finite number")),
@@ -19,14 +19,14 @@ pub fn parse_float(s: &str) -> Result<f64, String> {
 }
 
 /// Parses a 64-bit signed integer (surrounding whitespace allowed).
-pub fn parse_int(s: &str) -> Result<i64, String> {
+pub(crate) fn parse_int(s: &str) -> Result<i64, String> {
     s.trim()
         .parse::<i64>()
         .map_err(|_| format!("\"{s}\" is not an integer"))
 }
 
 /// Parses `true` or `false` (any letter case, as Mitsuba does).
-pub fn parse_bool(s: &str) -> Result<bool, String> {
+pub(crate) fn parse_bool(s: &str) -> Result<bool, String> {
     let t = s.trim();
     if t.eq_ignore_ascii_case("true") {
         Ok(true)
@@ -38,12 +38,12 @@ pub fn parse_bool(s: &str) -> Result<bool, String> {
 }
 
 /// Parses a list of finite numbers.
-pub fn parse_floats(s: &str) -> Result<Vec<f64>, String> {
+pub(crate) fn parse_floats(s: &str) -> Result<Vec<f64>, String> {
     split_list(s).map(parse_float).collect()
 }
 
 /// Parses exactly three numbers, or one number repeated three times when `allow_one`.
-pub fn parse_vec3(s: &str, allow_one: bool) -> Result<[f64; 3], String> {
+pub(crate) fn parse_vec3(s: &str, allow_one: bool) -> Result<[f64; 3], String> {
     let v = parse_floats(s)?;
     match v.len() {
         3 => Ok([v[0], v[1], v[2]]),
