@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 pub use tessera_scene::image::{read_image, Format, RgbImage};
 
 /// The sRGB transfer function of a linear value clamped to [0, 1], as an 8-bit code.
-pub fn srgb8(v: f32) -> u8 {
+pub(crate) fn srgb8(v: f32) -> u8 {
     let v = if v.is_finite() {
         v.clamp(0.0, 1.0)
     } else {

@@ -42,7 +42,7 @@ pub fn render_maybe_stats(
 
 /// The counts as aligned `name  value` lines, with the scene's primitive kinds and the
 /// non-finite samples dropped.
-pub fn format_stats(scene: &Scene, c: &Counters, dropped: u64) -> String {
+pub(crate) fn format_stats(scene: &Scene, c: &Counters, dropped: u64) -> String {
     let f = &scene.features;
     let prims = |has: bool| if has { "yes" } else { "no" };
     let mut rows: Vec<(String, String)> = c

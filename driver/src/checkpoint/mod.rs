@@ -51,9 +51,9 @@ use tessera_core::film::PixelAccum;
 /// The file's first 8 bytes.
 pub const MAGIC: [u8; 8] = *b"TESSCKPT";
 /// The format version this build writes (it also reads versions 1 and 2).
-pub const VERSION: u32 = 3;
+pub(crate) const VERSION: u32 = 3;
 /// Longest integrator description accepted.
-pub const MAX_DESCRIPTION: usize = 4096;
+pub(crate) const MAX_DESCRIPTION: usize = 4096;
 const HEADER: usize = 64;
 const PIXEL: usize = 64;
 

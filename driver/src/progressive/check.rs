@@ -25,7 +25,7 @@ pub struct CheckState {
 
 /// State between check points.
 #[derive(Clone, Debug)]
-pub struct ErrorCheck {
+pub(crate) struct ErrorCheck {
     target: f64,
     /// The previous check point.
     previous: Option<CheckState>,
@@ -79,7 +79,7 @@ impl ErrorCheck {
 
 /// The end of a uniform pass from `low` spp that would end at `end`, cut at the next power of two
 /// above `low`, so that every power of two is a pass end.
-pub fn clamp_to_check_point(low: u64, end: u64) -> u64 {
+pub(crate) fn clamp_to_check_point(low: u64, end: u64) -> u64 {
     end.min(
         low.saturating_add(1)
             .checked_next_power_of_two()

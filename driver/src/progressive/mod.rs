@@ -112,7 +112,8 @@ pub fn spp_range(fb: &Framebuffer) -> (u64, u64) {
 
 /// The writer's signature: `write(fb, passes_done, check_point)`, the last argument being the
 /// latest check point of a render with a target error.
-pub type Writer<'a> = dyn FnMut(&Framebuffer, u64, Option<&CheckState>) -> Result<(), String> + 'a;
+pub(crate) type Writer<'a> =
+    dyn FnMut(&Framebuffer, u64, Option<&CheckState>) -> Result<(), String> + 'a;
 
 /// Renders passes into `fb` (which may hold a resumed render) until `plan` says stop or `stop`
 /// is set. `progress` is called as tiles arrive; `write` after each pass when the write interval

@@ -58,7 +58,7 @@ impl PixelSelection {
 
     /// The rectangles to render, each inside one tile of the image's tile grid (so a crop is
     /// cut along tile edges into several rectangles), in scanline order of the grid.
-    pub fn rects(&self, width: u32, height: u32, tile_size: u32) -> Vec<Tile> {
+    pub(crate) fn rects(&self, width: u32, height: u32, tile_size: u32) -> Vec<Tile> {
         let all = tiles(width, height, tile_size);
         match *self {
             PixelSelection::All => all,
