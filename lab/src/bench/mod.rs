@@ -171,7 +171,7 @@ impl Row {
     }
 
     /// Parses a CSV line written by [`Row::to_csv`] (or by `scripts/mitsuba_bench.py`).
-    pub fn from_csv(line: &str) -> Result<Row, String> {
+    pub(crate) fn from_csv(line: &str) -> Result<Row, String> {
         let f: Vec<&str> = line.split(',').map(str::trim).collect();
         if f.len() != 9 {
             return Err(format!("expected 9 fields, found {}", f.len()));

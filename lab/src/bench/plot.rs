@@ -83,7 +83,7 @@ fn power_of_ten(t: &TextPainter, pm: &mut Pixmap, e: i32, x: f32, y: f32, anchor
 }
 
 /// Draws the report's curves; `target` adds a dashed horizontal line at that relMSE.
-pub fn render_plot(rows: &[Row], title: &str, target: Option<f64>) -> Option<Pixmap> {
+pub(crate) fn render_plot(rows: &[Row], title: &str, target: Option<f64>) -> Option<Pixmap> {
     let mut pm = Pixmap::new(WIDTH, HEIGHT)?;
     pm.fill(Color::WHITE);
     let text = TextPainter::new();

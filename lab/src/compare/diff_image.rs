@@ -40,7 +40,7 @@ fn viridis(t: f64) -> [u8; 3] {
 }
 
 /// Relative error of each pixel (`None` where either image is not finite).
-pub fn relative_errors(a: &RgbImage, b: &RgbImage) -> Vec<Option<f64>> {
+pub(crate) fn relative_errors(a: &RgbImage, b: &RgbImage) -> Vec<Option<f64>> {
     a.data
         .iter()
         .zip(&b.data)
@@ -77,7 +77,7 @@ fn put(pm: &mut Pixmap, x: u32, y: u32, rgb: [u8; 3]) {
 }
 
 /// Draws the difference image of `a` against the reference `b` (same size).
-pub fn draw_diff(a: &RgbImage, b: &RgbImage) -> Option<Pixmap> {
+pub(crate) fn draw_diff(a: &RgbImage, b: &RgbImage) -> Option<Pixmap> {
     let errs = relative_errors(a, b);
     let (lo, hi) = scale(&errs);
     // Small images are enlarged by whole pixels so the bar and labels fit beside them.

@@ -72,7 +72,7 @@ fn rounding_t_test(m: &Moments, reference: f64) -> TTest {
 }
 
 /// Nori's luminance weights (Rec. 709 primaries), as used by its `ttest`.
-pub const LUMINANCE_WEIGHTS: [f64; 3] = [0.212671, 0.715160, 0.072169];
+pub(crate) const LUMINANCE_WEIGHTS: [f64; 3] = [0.212671, 0.715160, 0.072169];
 
 /// Nori's luminance of a linear RGB value.
 pub fn luminance(c: DVec3) -> f64 {

@@ -87,7 +87,7 @@ impl BsdfChi2 {
     }
 
     /// [`BsdfChi2::run`] for any sampler with its claimed `pdf` and `eval` (at a fixed `wi`).
-    pub fn run_with(
+    pub(crate) fn run_with(
         &self,
         mut sample: impl FnMut(f32, Vec2) -> Option<BsdfSample>,
         pdf_of: impl Fn(Vec3) -> f32,

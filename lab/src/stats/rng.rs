@@ -52,7 +52,8 @@ impl Pcg32 {
     }
 
     /// Uniform in `[0, 1)` with 53 random bits.
-    pub fn next_f64(&mut self) -> f64 {
+    #[cfg(test)]
+    fn next_f64(&mut self) -> f64 {
         let hi = u64::from(self.next_u32() >> 5); // 27 bits
         let lo = u64::from(self.next_u32() >> 6); // 26 bits
         ((hi << 26) | lo) as f64 * (1.0 / 9_007_199_254_740_992.0)
@@ -66,7 +67,8 @@ impl Pcg32 {
     }
 
     /// A standard normal variate (Box–Muller), for tests of estimators.
-    pub fn next_normal(&mut self) -> f64 {
+    #[cfg(test)]
+    fn next_normal(&mut self) -> f64 {
         let u1 = 1.0 - self.next_f64(); // (0, 1]: the log is finite
         let u2 = self.next_f64();
         (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()

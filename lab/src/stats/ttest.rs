@@ -102,7 +102,7 @@ impl Moments {
     }
 
     /// Standard error of the mean, `sqrt(variance / n)`.
-    pub fn std_error(&self) -> f64 {
+    pub(crate) fn std_error(&self) -> f64 {
         (self.variance() / self.n as f64).sqrt()
     }
 

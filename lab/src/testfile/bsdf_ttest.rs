@@ -22,7 +22,7 @@ use tessera_scene::error::InputError;
 use tessera_scene::xml::Object;
 
 /// `wi` for an incident angle in degrees (Nori's `sphericalDirection(θ, 0)`).
-pub fn incident_direction(degrees: f64) -> Vec3 {
+pub(crate) fn incident_direction(degrees: f64) -> Vec3 {
     let t = degrees.to_radians();
     Vec3::new(t.sin() as f32, 0.0, t.cos() as f32)
 }

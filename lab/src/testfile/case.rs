@@ -10,7 +10,7 @@ pub const TEST_UV: [f32; 2] = [0.5, 0.5];
 pub const MIN_SIGNIFICANCE: f64 = 1e-6;
 
 /// Smallest accepted `sampleCount` of a t-test (the test leans on the central limit theorem).
-pub const MIN_TTEST_SAMPLES: i64 = 100;
+pub(crate) const MIN_TTEST_SAMPLES: i64 = 100;
 
 /// One t-tested case (a scene, or a BSDF at one incident angle).
 #[derive(Clone, Debug)]

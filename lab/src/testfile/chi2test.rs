@@ -126,7 +126,7 @@ pub fn plan(root: &Object, seed: u64) -> Result<Chi2Plan, InputError> {
 
 /// Runs the planned cases with `test(bsdf, wi, seed)` (normally [`BsdfChi2::run`]), calling
 /// `report` after each.
-pub fn execute(
+pub(crate) fn execute(
     plan: &Chi2Plan,
     mut test: impl FnMut(&Bsdf, Vec3, u64) -> Chi2Result,
     mut report: impl FnMut(&Case),

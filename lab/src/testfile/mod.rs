@@ -24,7 +24,7 @@ pub mod chi2test;
 mod read;
 pub mod scene_ttest;
 
-pub use case::{Case, CaseResult, Chi2Case, MIN_SIGNIFICANCE, MIN_TTEST_SAMPLES, TEST_UV};
+pub use case::{Case, CaseResult, Chi2Case, MIN_SIGNIFICANCE, TEST_UV};
 use tessera_scene::error::InputError;
 use tessera_scene::xml::{Kind, Object};
 
