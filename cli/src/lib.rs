@@ -4,17 +4,17 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 pub mod bench;
 pub mod compare;
-pub mod decor;
+pub(crate) mod decor;
 pub mod define;
 pub mod info;
 pub mod merge;
 pub mod plugins;
-pub mod probe_args;
+pub(crate) mod probe_args;
 pub mod render;
-pub mod render_args;
+pub(crate) mod render_args;
 pub mod render_layers;
 pub mod render_once;
-pub mod split_args;
+pub(crate) mod split_args;
 pub mod test;
 
 use clap::{Parser, Subcommand};

@@ -13,7 +13,7 @@ use tessera::render::{Framebuffer, RenderOptions};
 use tessera_scene::LoadedScene;
 
 /// Refuses the flags a render with extra channels does not support (one line).
-pub fn check_args(args: &RenderArgs, loaded: &LoadedScene) -> Result<(), String> {
+pub(crate) fn check_args(args: &RenderArgs, loaded: &LoadedScene) -> Result<(), String> {
     if loaded.integrator_spec.layers.is_empty() {
         return Ok(());
     }

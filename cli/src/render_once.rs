@@ -19,7 +19,7 @@ pub fn wanted(args: &RenderArgs) -> bool {
 }
 
 /// The first progressive flag given, which a one-pass render cannot honour.
-pub fn progressive_flag(args: &RenderArgs) -> Option<&'static str> {
+pub(crate) fn progressive_flag(args: &RenderArgs) -> Option<&'static str> {
     [
         (args.time.is_some(), "--time"),
         (args.forever, "--forever"),

@@ -42,7 +42,7 @@ impl SplitArgs {
     }
 
     /// Whether only a piece of the image is rendered (outputs are then parts).
-    pub fn is_split(&self) -> bool {
+    pub(crate) fn is_split(&self) -> bool {
         self.crop.is_some() || self.tiles.is_some() || self.sample_range.is_some()
     }
 
@@ -79,7 +79,7 @@ impl SplitArgs {
 
 /// Writes one output of a render: for a split render (`part` given) a part file if `path` is an
 /// `.exr`, else the selection's bounding box as an image; for a whole render the image.
-pub fn write_render_output(
+pub(crate) fn write_render_output(
     path: &Path,
     fb: &Framebuffer,
     part: Option<&PartInfo>,

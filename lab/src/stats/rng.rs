@@ -68,7 +68,7 @@ impl Pcg32 {
 
     /// A standard normal variate (Box–Muller), for tests of estimators.
     #[cfg(test)]
-    fn next_normal(&mut self) -> f64 {
+    pub(crate) fn next_normal(&mut self) -> f64 {
         let u1 = 1.0 - self.next_f64(); // (0, 1]: the log is finite
         let u2 = self.next_f64();
         (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
