@@ -337,7 +337,7 @@ impl Scene {
                 uv: ih.uv,
             };
             let it = self.shapes[gp.shape() as usize].interaction(&ohit, gp, &oray, &self.disks);
-            return Some(inst.to_world_interaction(&it, ray));
+            return Some(inst.interaction_to_world(&it, ray));
         }
         let shape = &self.shapes[prim.shape() as usize];
         Some(shape.interaction(&hit, prim, ray, &self.disks))

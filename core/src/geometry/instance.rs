@@ -46,7 +46,7 @@ impl Instance {
     /// The object-space interaction `it` (found with [`Instance::to_object`] of `ray`) in world
     /// space.
     #[inline]
-    pub(crate) fn to_world_interaction(&self, it: &Interaction, ray: &Ray) -> Interaction {
+    pub(crate) fn interaction_to_world(&self, it: &Interaction, ray: &Ray) -> Interaction {
         let tf = &self.to_world;
         let m = tf.m;
         let p = tf.point(it.p);
