@@ -254,7 +254,10 @@ fn polarization_only_parameters_are_warned() {
     println!("{w:?}");
     assert_eq!(w.len(), 2, "{w:?}");
     assert!(w[0].starts_with("/nowhere/p.xml:2:"), "{w:?}");
-    assert!(w[0].contains("\"theta\"") && w[1].contains("\"polarizing\""), "{w:?}");
+    assert!(
+        w[0].contains("\"theta\"") && w[1].contains("\"polarizing\""),
+        "{w:?}"
+    );
     let w = warnings(r#"<bsdf type="polarizer" id="b"/>"#);
     assert!(w.is_empty(), "{w:?}");
 }

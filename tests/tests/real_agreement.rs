@@ -290,6 +290,9 @@ fn real_scenes_with_a_wrong_model_disagree() {
         let (p, what) =
             worst_against_reference_rect(&ours, like, s.spp, &reference, s.ref_spp, BLOCK);
         eprintln!("{scene}, wrong model: worst p = {p:.3e} at {what}");
-        assert!(p < alpha, "{scene}: the wrong model went unnoticed (p = {p:.3e})");
+        assert!(
+            p < alpha,
+            "{scene}: the wrong model went unnoticed (p = {p:.3e})"
+        );
     }
 }
