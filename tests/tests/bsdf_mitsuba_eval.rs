@@ -233,7 +233,8 @@ fn a_wrong_normal_map_or_roughness_texture_is_caught() {
 fn a_slightly_wrong_pplastic_is_caught() {
     // Controls: each `pplastic` table against its material with one thing changed a little
     // (eta 1.33 -> 1.36; the two roughnesses swapped; roughplastic, the coupled model of the
-    // same parameters, in place of pplastic; the checkerboard albedo replaced by its mean).
+    // same parameters, in place of pplastic; the checkerboard albedo replaced by its mean; the
+    // eta bitmap replaced by its mean, 1.5).
     let tex = Path::new(env!("CARGO_MANIFEST_DIR")).join("bsdf_cases/textures");
     let wrap = |plugin: &str, body: &str| {
         format!(r#"<scene version="3.0.0"><bsdf type="{plugin}">{body}</bsdf></scene>"#)
@@ -262,6 +263,15 @@ fn a_slightly_wrong_pplastic_is_caught() {
                     </texture><rgb name="specular_reflectance" value="0.5, 0.6, 0.7"/>"#,
                     tex.join("roughness.png").display()
                 ),
+            ),
+        ),
+        (
+            "pplastic_eta_texture",
+            wrap(
+                "pplastic",
+                r#"<float name="eta" value="1.5"/><float name="alpha_u" value="0.3"/>
+                <float name="alpha_v" value="0.1"/>
+                <rgb name="diffuse_reflectance" value="0.3, 0.6, 0.2"/>"#,
             ),
         ),
     ];

@@ -32,7 +32,8 @@ pub const PPLASTIC: BsdfPlugin = Plugin {
           by the Fresnel transmittance into and out of the surface, simply added (no \
           interreflection between the two, unlike roughplastic). One-sided. The specular term \
           is sampled with probability s / (d + s) of the textures' means (s = 1 without \
-          specular_reflectance). Stricter than Mitsuba 3 where it would compute nonsense: \
+          specular_reflectance). eta and the roughness may be textures, read as scalars (a \
+          bitmap's luminance). Stricter than Mitsuba 3 where it would compute nonsense: \
           alpha must be positive (Mitsuba raises it to 1e-4; Tessera too below 1e-4), eta \
           positive, and ext_ior is refused beside eta (Mitsuba leaves it unreferenced).",
     params: &[
