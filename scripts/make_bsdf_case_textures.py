@@ -10,6 +10,7 @@ tangent frame and the flip of normals facing away all matter.
 normal_tilt_green_flipped.png: the same with the green channel inverted (the other tangent-space
 handedness), for the tests' controls.
 roughness.png: a 4x4 grey-and-colour ramp read as a scalar roughness (its luminance).
+eta.exr: a 4x4 linear ramp of relative indices between 1.2 and 1.8 (grey), for a textured eta.
 """
 import os
 
@@ -48,6 +49,14 @@ def roughness_map():
     return np.round(img * 255.0).astype(np.uint8)
 
 
+def eta_map():
+    img = np.zeros((4, 4, 3), dtype=np.float32)
+    for y in range(4):
+        for x in range(4):
+            img[y, x] = 1.2 + 0.15 * x + 0.05 * y
+    return img
+
+
 def main():
     os.makedirs(OUT, exist_ok=True)
     flipped = normal_map()
@@ -56,6 +65,7 @@ def main():
         ("normal_tilt.png", normal_map()),
         ("normal_tilt_green_flipped.png", flipped),
         ("roughness.png", roughness_map()),
+        ("eta.exr", eta_map()),
     ):
         bmp = mi.Bitmap(data, pixel_format=mi.Bitmap.PixelFormat.RGB)
         bmp.set_srgb_gamma(False)

@@ -228,3 +228,58 @@ fn a_wrong_normal_map_or_roughness_texture_is_caught() {
         );
     }
 }
+
+#[test]
+fn a_slightly_wrong_pplastic_is_caught() {
+    // Controls: each `pplastic` table against its material with one thing changed a little
+    // (eta 1.33 -> 1.36; the two roughnesses swapped; roughplastic, the coupled model of the
+    // same parameters, in place of pplastic; the checkerboard albedo replaced by its mean; the
+    // eta bitmap replaced by its mean, 1.5).
+    let tex = Path::new(env!("CARGO_MANIFEST_DIR")).join("bsdf_cases/textures");
+    let wrap = |plugin: &str, body: &str| {
+        format!(r#"<scene version="3.0.0"><bsdf type="{plugin}">{body}</bsdf></scene>"#)
+    };
+    let aniso = |eta: &str, au: &str, av: &str| {
+        wrap(
+            "pplastic",
+            &format!(
+                r#"<string name="distribution" value="ggx"/><float name="alpha_u" value="{au}"/>
+                <float name="alpha_v" value="{av}"/><float name="eta" value="{eta}"/>
+                <rgb name="diffuse_reflectance" value="0.05, 0.03, 0.1"/>"#
+            ),
+        )
+    };
+    let controls = [
+        ("pplastic_aniso_eta", aniso("1.36", "0.08", "0.45")),
+        ("pplastic_aniso_eta", aniso("1.33", "0.45", "0.08")),
+        ("pplastic_default", wrap("roughplastic", "")),
+        (
+            "pplastic_textured",
+            wrap(
+                "pplastic",
+                &format!(
+                    r#"<rgb name="diffuse_reflectance" value="0.425, 0.3, 0.6"/>
+                    <texture name="alpha" type="bitmap"><string name="filename" value="{}"/>
+                    </texture><rgb name="specular_reflectance" value="0.5, 0.6, 0.7"/>"#,
+                    tex.join("roughness.png").display()
+                ),
+            ),
+        ),
+        (
+            "pplastic_eta_texture",
+            wrap(
+                "pplastic",
+                r#"<float name="eta" value="1.5"/><float name="alpha_u" value="0.3"/>
+                <float name="alpha_v" value="0.1"/>
+                <rgb name="diffuse_reflectance" value="0.3, 0.6, 0.2"/>"#,
+            ),
+        ),
+    ];
+    for (table, xml) in controls {
+        let bad = check_table_against(table, &xml);
+        println!("{table}, changed: {} mismatches", bad.len());
+        assert!(!bad.is_empty(), "{table}: the change is not caught");
+    }
+    // The unchanged material passes the same route (the controls fail for their change).
+    assert!(check_table_against("pplastic_aniso_eta", &aniso("1.33", "0.08", "0.45")).is_empty());
+}

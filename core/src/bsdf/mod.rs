@@ -21,6 +21,8 @@ mod normalmap;
 pub mod perturbed;
 mod plastic;
 pub mod plastic_common;
+mod polarizer;
+mod pplastic;
 mod principled;
 pub mod principled_lobes;
 mod principled_sample;
@@ -47,6 +49,8 @@ pub use mirror::Mirror;
 pub use model::Model;
 pub use normalmap::NormalMap;
 pub use plastic::Plastic;
+pub use polarizer::Polarizer;
+pub use pplastic::PolarizedPlastic;
 pub use principled::{Principled, PrincipledIndex, PrincipledParams, SamplingRates};
 pub use principled_thin::{PrincipledThin, PrincipledThinParams, ThinSamplingRates};
 pub use roughconductor::RoughConductor;
@@ -114,6 +118,10 @@ pub enum Bsdf {
     NormalMap(NormalMap<Bsdf>),
     /// Burley's thin-sheet variant as Mitsuba 3 writes it (`principledthin`).
     PrincipledThin(PrincipledThin),
+    /// Mitsuba 3's polarized plastic as unpolarized light sees it (`pplastic`).
+    PolarizedPlastic(PolarizedPlastic),
+    /// Mitsuba 3's linear polarizer as unpolarized light sees it: a pass-through (`polarizer`).
+    Polarizer(Polarizer),
 }
 
 macro_rules! dispatch {
@@ -137,6 +145,8 @@ macro_rules! dispatch {
             Bsdf::Principled($b) => $e,
             Bsdf::NormalMap($b) => $e,
             Bsdf::PrincipledThin($b) => $e,
+            Bsdf::PolarizedPlastic($b) => $e,
+            Bsdf::Polarizer($b) => $e,
         }
     };
 }
@@ -176,7 +186,7 @@ impl Bsdf {
     fn own_inputs(&self) -> (bool, bool) {
         match self {
             Bsdf::Diffuse(_) | Bsdf::RoughConductor(_) | Bsdf::BlinnPhongMetal(_) => (false, true),
-            Bsdf::Conductor(_) | Bsdf::Mirror(_) => (false, false),
+            Bsdf::Conductor(_) | Bsdf::Mirror(_) | Bsdf::Polarizer(_) => (false, false),
             Bsdf::Dielectric(_) | Bsdf::ThinDielectric(_) => (true, false),
             Bsdf::TwoSided(_) => self.nested_inputs(),
             _ => (true, true),

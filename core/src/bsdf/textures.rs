@@ -59,6 +59,13 @@ impl Bsdf {
                 b.nested.for_each_texture(f);
             }
             Bsdf::PrincipledThin(b) => b.for_each_texture(f),
+            Bsdf::PolarizedPlastic(b) => {
+                [&b.diffuse, &b.specular, &b.eta]
+                    .into_iter()
+                    .for_each(&mut *f);
+                roughness_textures(&b.roughness, f);
+            }
+            Bsdf::Polarizer(b) => f(&b.transmittance),
         }
     }
 }

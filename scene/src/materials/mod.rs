@@ -9,6 +9,7 @@ mod image_cache;
 pub(crate) mod ior;
 mod maps;
 mod plastic;
+mod polarized;
 mod principled;
 mod principled_thin;
 mod table;
@@ -85,7 +86,12 @@ mod tests {
                 .to_string()
             },
             // Given alone, alpha_u (or alpha_v) asks for its partner.
-            &[("roughplastic", "alpha_u"), ("roughplastic", "alpha_v")],
+            &[
+                ("roughplastic", "alpha_u"),
+                ("roughplastic", "alpha_v"),
+                ("pplastic", "alpha_u"),
+                ("pplastic", "alpha_v"),
+            ],
         );
     }
 }

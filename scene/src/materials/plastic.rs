@@ -12,18 +12,21 @@ use crate::xml::Object;
 use tessera_core::bsdf::{Bsdf, Plastic, RoughPlastic};
 use tessera_core::texture::Texture;
 
-const DIFFUSE_REFLECTANCE: Param = Param::texture(
+/// `diffuse_reflectance` of the plastics.
+pub(super) const DIFFUSE_REFLECTANCE: Param = Param::texture(
     "diffuse_reflectance",
     [0.5; 3],
     Range::Unit,
     "albedo of the diffuse base",
 );
-const INT_IOR: Param = Param::ior(
+/// `int_ior` of the plastics.
+pub(super) const INT_IOR: Param = Param::ior(
     "int_ior",
     "polypropylene",
     "index of refraction of the coating",
 );
-const EXT_IOR: Param = Param::ior("ext_ior", "air", "index of refraction outside");
+/// `ext_ior` of the plastics.
+pub(super) const EXT_IOR: Param = Param::ior("ext_ior", "air", "index of refraction outside");
 const NONLINEAR: Param = Param::boolean(
     "nonlinear",
     false,

@@ -1,7 +1,8 @@
 //! The BSDF family's table and its builder: the one file that knows every BSDF plugin.
 use super::BsdfPlugin;
 use super::{
-    basic, chalmers, conductor, dielectric, maps, plastic, principled, principled_thin, wakame,
+    basic, chalmers, conductor, dielectric, maps, plastic, polarized, principled, principled_thin,
+    wakame,
 };
 use crate::plugin;
 use crate::util::Result;
@@ -13,6 +14,7 @@ pub static BSDFS: &[BsdfPlugin] = &[
     basic::DIFFUSE,
     plastic::PLASTIC,
     plastic::ROUGHPLASTIC,
+    polarized::PPLASTIC,
     conductor::CONDUCTOR,
     conductor::ROUGHCONDUCTOR,
     dielectric::DIELECTRIC,
@@ -23,6 +25,7 @@ pub static BSDFS: &[BsdfPlugin] = &[
     basic::TWOSIDED,
     basic::BLENDBSDF,
     basic::MASK,
+    polarized::POLARIZER,
     maps::NORMALMAP_PLUGIN,
     wakame::MIRROR,
     wakame::MICROFACET,
