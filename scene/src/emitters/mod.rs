@@ -1,10 +1,11 @@
 //! The emitter plugins: one [`Plugin`] per `<emitter type=...>` (`EMITTERS`): `area` (nested
-//! in a shape) in `area.rs`; the delta lights `point`, `spot`, `directional` in `delta.rs`; the
-//! lights at infinity `constant`, `envmap`, `distantdisk` in `infinite.rs`. The plugin files in
-//! `tessera_core::emitter` give each light's conventions.
+//! in a shape) in `area.rs`; the delta lights `point`, `spot`, `directional` in `delta.rs` and
+//! `projector` in `projector.rs`; the lights at infinity `constant`, `envmap`, `distantdisk` in
+//! `infinite.rs`. The plugin files in `tessera_core::emitter` give each light's conventions.
 pub(crate) mod area;
 mod delta;
 mod infinite;
+mod projector;
 mod table;
 
 pub(crate) use area::AREA;
