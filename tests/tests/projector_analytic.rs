@@ -21,7 +21,7 @@ use glam::{Vec2, Vec3};
 use tessera::image_io::{write_image, RgbImage};
 use tessera_core::emitter::Emitter;
 use tessera_core::geometry::Interaction;
-use tessera_core::math::Frame;
+use tessera_core::math::{Frame, Norm};
 use tessera_lab::stats::{sidak_alpha, t_test_mean, Moments, Pcg32};
 use tessera_tests::load_xml;
 
@@ -170,7 +170,7 @@ fn each_texel_lights_its_place_on_a_facing_plane() {
 /// the origin looking along +z) over `|x|, |y| <= half`, per channel.
 fn flux(e: &Emitter, z0: f32, slope: f32, half: f32, n: usize, seed: u64) -> [Moments; 3] {
     let mut rng = Pcg32::new(seed);
-    let normal = Vec3::new(slope, 0.0, -1.0).normalize();
+    let normal = Vec3::new(slope, 0.0, -1.0).unit();
     // Area of the region on the tilted plane per unit of projected (x, y) area.
     let stretch = (1.0 + slope * slope).sqrt() as f64;
     let area = (2.0 * half as f64).powi(2) * stretch;
