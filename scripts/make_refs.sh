@@ -20,6 +20,11 @@ PYTHON="${PYTHON:-python3}"
 # An area light with a bitmap radiance (tests/tests/textured_light_agreement.rs).
 "$PYTHON" scripts/mitsuba_ref.py scenes/textured_light.xml -o scenes/refs/textured_light_64x64_mitsuba.exr \
     --spp 16384 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
+# A projector and a textured spot light (tests/tests/projector_agreement.rs).
+"$PYTHON" scripts/mitsuba_ref.py scenes/projector.xml -o scenes/refs/projector_64x64_mitsuba.exr \
+    --spp 16384 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
+"$PYTHON" scripts/mitsuba_ref.py scenes/spot_texture.xml -o scenes/refs/spot_texture_64x64_mitsuba.exr \
+    --spp 16384 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
 # A filter with negative lobes (tests/tests/filter_agreement.rs).
 "$PYTHON" scripts/mitsuba_ref.py scenes/cbox.xml -o scenes/refs/cbox_64x64_lanczos_mitsuba.exr \
     --spp 8192 --seed 0 -D res=64 -D rfilter=lanczos --variant scalar_rgb

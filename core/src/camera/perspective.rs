@@ -74,6 +74,11 @@ impl Perspective {
         }
     }
 
+    /// Half the image's width and height at depth 1 (the tangents of the half fields of view).
+    pub fn half_extent(&self) -> Vec2 {
+        Vec2::new(self.tan_x, self.tan_y)
+    }
+
     /// The same projection with its principal point moved by `offset` (Mitsuba 3's
     /// `principal_point_offset_x`/`_y`: fractions of the film's width and height).
     pub fn with_principal_point_offset(self, offset: Vec2) -> Self {

@@ -6,6 +6,7 @@ mod directional;
 mod distant_disk;
 mod envmap;
 mod point;
+mod projector;
 mod sample;
 mod spot;
 
@@ -15,6 +16,7 @@ pub use directional::DirectionalLight;
 pub use distant_disk::DistantDisk;
 pub use envmap::EnvMap;
 pub use point::PointLight;
+pub use projector::Projector;
 pub use sample::{luminance, EmitterCtx, EmitterSample};
 pub use spot::SpotLight;
 
@@ -33,6 +35,8 @@ pub enum Emitter {
     Point(PointLight),
     /// A point light with an angular falloff around its axis.
     Spot(SpotLight),
+    /// A point light projecting an image through a frustum.
+    Projector(Projector),
     /// Parallel light from one direction at infinity.
     Directional(DirectionalLight),
     /// A disk of uniform radiance at infinity (a sun).
@@ -50,6 +54,7 @@ impl Emitter {
             Emitter::Constant(e) => e.sample(it, u),
             Emitter::Point(e) => e.sample(it),
             Emitter::Spot(e) => e.sample(it),
+            Emitter::Projector(e) => e.sample(it),
             Emitter::Directional(e) => e.sample(it),
             Emitter::DistantDisk(e) => e.sample(it, u),
             Emitter::EnvMap(e) => e.sample(it, u),
@@ -66,7 +71,8 @@ impl Emitter {
                 4.0 * PI * PI * ctx.scene_radius * ctx.scene_radius * luminance(e.radiance)
             }
             Emitter::Point(e) => 4.0 * PI * luminance(e.intensity),
-            Emitter::Spot(e) => e.solid_angle() * luminance(e.intensity),
+            Emitter::Spot(e) => e.solid_angle() * e.luminance(),
+            Emitter::Projector(e) => e.power(),
             Emitter::Directional(e) => {
                 PI * ctx.scene_radius * ctx.scene_radius * luminance(e.irradiance)
             }
@@ -92,7 +98,7 @@ impl Emitter {
     pub(crate) fn is_delta(&self) -> bool {
         matches!(
             self,
-            Emitter::Point(_) | Emitter::Spot(_) | Emitter::Directional(_)
+            Emitter::Point(_) | Emitter::Spot(_) | Emitter::Projector(_) | Emitter::Directional(_)
         )
     }
     /// Radiance of an environment emitter along an escaping ray direction `d`.

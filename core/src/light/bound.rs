@@ -4,9 +4,10 @@
 //! The estimate is the irradiance the light would give a surface at the point facing it:
 //! radiance times the solid angle it subtends (exact for a sphere; area times the cosine at the
 //! light over the squared distance for a flat light, a quarter of the area for any other shape,
-//! both capped at a hemisphere), intensity over the squared distance for point and spot lights,
-//! irradiance for directional lights, radiance times pi for environments. It only steers a
-//! choice whose probabilities are exact, so a poor estimate costs variance, never bias.
+//! both capped at a hemisphere), intensity over the squared distance for point, spot and
+//! projector lights (on the axis, for a texture's mean), irradiance for directional lights,
+//! radiance times pi for environments. It only steers a choice whose probabilities are exact,
+//! so a poor estimate costs variance, never bias.
 use crate::emitter::{luminance, Emitter, EmitterCtx};
 use crate::geometry::ShapeKind;
 use crate::math::{sqrt, Norm, PI};
@@ -143,7 +144,11 @@ impl LightBound {
             },
             Emitter::Spot(s) => LightBound::Point {
                 position: s.position,
-                lum: luminance(s.intensity).max(0.0),
+                lum: s.luminance().max(0.0),
+            },
+            Emitter::Projector(p) => LightBound::Point {
+                position: p.position,
+                lum: p.axis_luminance().max(0.0),
             },
             Emitter::Directional(d) => LightBound::Direction {
                 to_light: -d.direction,

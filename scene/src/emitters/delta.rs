@@ -1,11 +1,14 @@
-//! The delta lights: `point`, `spot` and `directional` (a point or a direction, no area).
+//! The delta lights: `point`, `spot` and `directional` (a point or a direction, no area). The
+//! `projector`, also a point light, has its own file.
 use super::EmitterPlugin;
+use crate::materials::texture::texture;
 use crate::plugin::{Default, Param, ParamType, Plugin, Range};
 use crate::util::{at_prop, vec3, Result};
 use crate::xml::Object;
 use glam::DVec3;
 use tessera_core::emitter::{DirectionalLight, Emitter, PointLight, SpotLight};
 use tessera_core::math::Norm;
+use tessera_core::texture::Texture;
 
 const INTENSITY: Param = Param::rgb(
     "intensity",
@@ -27,7 +30,8 @@ const POSITION: Param = Param::new(
     Range::Any,
     "where the light is",
 );
-const TO_WORLD: Param = Param::transform("to_world", "placement of the light");
+/// Where the light is and which way it looks (shared with `projector`).
+pub(super) const TO_WORLD: Param = Param::transform("to_world", "placement of the light");
 
 /// `point`.
 pub const POINT: EmitterPlugin = Plugin {
@@ -71,13 +75,22 @@ const BEAM_WIDTH: Param = Param::new(
 )
 .with_unit("degrees");
 
+const TEXTURE: Param = Param::new(
+    "texture",
+    ParamType::Texture,
+    Default::Absent,
+    Range::Note("a bitmap or checkerboard (not a constant); finite and non-negative"),
+    "image projected into the cone, multiplying the intensity: the cone is inscribed in its \
+     unit square, local +x toward u = 1 and +y toward v = 1",
+);
+
 /// `spot`.
 pub(crate) const SPOT: EmitterPlugin = Plugin {
     name: "spot",
     aliases: &[],
     doc: "A point light shining down its local +z axis, with a smooth falloff between beam_width \
           and cutoff_angle.",
-    params: &[INTENSITY, CUTOFF_ANGLE, BEAM_WIDTH, TO_WORLD],
+    params: &[INTENSITY, CUTOFF_ANGLE, BEAM_WIDTH, TEXTURE, TO_WORLD],
     nested: "",
     build: build_spot,
 };
@@ -89,9 +102,23 @@ fn build_spot(obj: &Object, _: Option<u32>) -> Result<Emitter> {
         (0.0..=f64::from(cutoff)).contains(&v)
     })?;
     let to_world = TO_WORLD.read_transform(obj)?;
-    Ok(Emitter::Spot(SpotLight::new(
-        intensity, cutoff, beam, &to_world,
-    )))
+    let spot = SpotLight::new(intensity, cutoff, beam, &to_world);
+    if !obj.has(TEXTURE.name) {
+        return Ok(Emitter::Spot(spot));
+    }
+    let t = texture(obj, TEXTURE.name, [1.0; 3], false)?;
+    if let Texture::Constant(_) = t {
+        return Err(at_prop(
+            obj,
+            TEXTURE.name,
+            format!(
+                "\"texture\" of {} must vary over the cone (a bitmap or checkerboard texture); \
+                 a constant belongs in \"intensity\"",
+                obj.describe()
+            ),
+        ));
+    }
+    Ok(Emitter::Spot(spot.with_texture(t)))
 }
 
 const IRRADIANCE: Param = Param::rgb(

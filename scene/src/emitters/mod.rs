@@ -1,10 +1,11 @@
 //! The emitter plugins: one [`Plugin`] per `<emitter type=...>` (`EMITTERS`): `area` (nested
-//! in a shape) in `area.rs`; the delta lights `point`, `spot`, `directional` in `delta.rs`; the
-//! lights at infinity `constant`, `envmap`, `distantdisk` in `infinite.rs`. The plugin files in
-//! `tessera_core::emitter` give each light's conventions.
+//! in a shape) in `area.rs`; the delta lights `point`, `spot`, `directional` in `delta.rs` and
+//! `projector` in `projector.rs`; the lights at infinity `constant`, `envmap`, `distantdisk` in
+//! `infinite.rs`. The plugin files in `tessera_core::emitter` give each light's conventions.
 pub(crate) mod area;
 mod delta;
 mod infinite;
+mod projector;
 mod table;
 
 pub(crate) use area::AREA;
@@ -66,9 +67,11 @@ mod tests {
                         .to_string()
                 }
                 "envmap" => format!("<string name=\"filename\" value=\"{sky}\"/>"),
+                // fov_axis is read with fov, focal_length only without it.
+                "projector" => "<float name=\"fov\" value=\"45\"/>".to_string(),
                 _ => String::new(),
             },
-            &[],
+            &[("projector", "focal_length")],
         );
     }
 
@@ -94,6 +97,57 @@ mod tests {
             "<emitter type=\"spot\"><rgb name=\"intensity\" value=\"1, -1, 1\"/></emitter>",
             "<rgb",
             "non-negative",
+        );
+    }
+
+    #[test]
+    fn a_spot_texture_must_vary() {
+        check(
+            "<emitter type=\"spot\"><rgb name=\"texture\" value=\"0.5\"/></emitter>",
+            "<rgb",
+            "must vary over the cone",
+        );
+        check(
+            "<emitter type=\"spot\"><texture type=\"checkerboard\" name=\"texture\">\
+             <rgb name=\"color0\" value=\"-1\"/></texture></emitter>",
+            "<rgb",
+            "non-negative",
+        );
+        // Control: a checkerboard loads.
+        let text = scene(
+            "<emitter type=\"spot\"><texture type=\"checkerboard\" name=\"texture\"/></emitter>",
+        );
+        crate::load_scene_str(&text, Path::new("/nowhere/test.xml"), &[]).expect("loads");
+    }
+
+    #[test]
+    fn projector_values_are_checked() {
+        check(
+            "<emitter type=\"projector\"><float name=\"fov\" value=\"180\"/></emitter>",
+            "<float",
+            "fov",
+        );
+        check(
+            "<emitter type=\"projector\"><float name=\"scale\" value=\"-2\"/></emitter>",
+            "<float",
+            "scale",
+        );
+        check(
+            "<emitter type=\"projector\"><string name=\"focal_length\" value=\"wide\"/></emitter>",
+            "<string",
+            "focal_length",
+        );
+        check(
+            "<emitter type=\"projector\"><texture type=\"bitmap\" name=\"irradiance\">\
+             <string name=\"filename\" value=\"missing.png\"/></texture></emitter>",
+            "<string",
+            "cannot read image",
+        );
+        check(
+            "<emitter type=\"projector\"><float name=\"fov\" value=\"30\"/>\
+             <float name=\"near_clip\" value=\"1\"/></emitter>",
+            "<float name=\"near",
+            "near_clip",
         );
     }
 

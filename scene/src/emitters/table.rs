@@ -1,5 +1,5 @@
 //! The emitter family's table and its builder.
-use super::{area, delta, infinite, EmitterPlugin};
+use super::{area, delta, infinite, projector, EmitterPlugin};
 use crate::plugin;
 use crate::util::Result;
 use crate::xml::Object;
@@ -10,6 +10,7 @@ pub static EMITTERS: &[EmitterPlugin] = &[
     area::AREA,
     delta::POINT,
     delta::SPOT,
+    projector::PROJECTOR,
     delta::DIRECTIONAL,
     infinite::CONSTANT,
     infinite::ENVMAP,

@@ -2,6 +2,7 @@
 //! `thinlens` and `orthographic`, with the `<film>` ([`FILMS`]), `<rfilter>` and `<sampler>`
 //! that may hang off them. The parameters every sensor shares are declared here.
 mod film;
+mod fov;
 mod orthographic;
 mod perspective;
 mod table;
@@ -13,6 +14,7 @@ use tessera_core::camera::{Camera, Crop, Filter};
 use tessera_core::sampling::SamplerKind;
 
 pub use film::{FILMS, MAX_EDGE, MAX_PIXELS};
+pub(crate) use fov::{read_fov, FOCAL_LENGTH, FOV, FOV_AXIS};
 pub use orthographic::ORTHOGRAPHIC;
 pub use perspective::{PERSPECTIVE, THINLENS};
 pub(crate) use table::build_sensor;

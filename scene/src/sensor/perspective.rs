@@ -4,35 +4,15 @@
 //! parser refuses them as unreferenced); Tessera gives them the same meaning as on
 //! `perspective`.
 use super::film::{edge, read_film, EDGE};
+use super::fov::{read_fov, FOCAL_LENGTH, FOV, FOV_AXIS};
 use super::{parts, read_clips, read_shutter, SensorParts, SensorPlugin};
 use super::{FAR_CLIP, NEAR_CLIP, SHUTTER_CLOSE, SHUTTER_OPEN, TO_WORLD};
 use crate::plugin::{Default, Param, ParamType, Plugin, Range};
-use crate::util::{at_prop, Result};
+use crate::util::Result;
 use crate::xml::Object;
 use glam::Vec2;
-use tessera_core::camera::{Camera, FovAxis, Perspective, Projection, ThinLens};
+use tessera_core::camera::{Camera, Perspective, Projection, ThinLens};
 
-const FOV: Param = Param::new(
-    "fov",
-    ParamType::Float,
-    Default::Absent,
-    Range::open(0.0, 180.0),
-    "field of view along fov_axis (else focal_length sets it)",
-)
-.with_unit("degrees");
-const FOV_AXIS: Param = Param::choice(
-    "fov_axis",
-    "x",
-    &["x", "y", "diagonal", "smaller", "larger"],
-    "the image axis fov spans",
-);
-const FOCAL_LENGTH: Param = Param::new(
-    "focal_length",
-    ParamType::String,
-    Default::Str("50mm"),
-    Range::Note("a positive length like \"50mm\""),
-    "focal length on a 36x24 mm frame (a diagonal field of view), when fov is absent",
-);
 const PRINCIPAL_X: Param = Param::float(
     "principal_point_offset_x",
     0.0,
@@ -196,39 +176,5 @@ fn read_principal_point(obj: &Object) -> Result<Vec2> {
     Ok(Vec2::new(
         PRINCIPAL_X.read_f32(obj)?,
         PRINCIPAL_Y.read_f32(obj)?,
-    ))
-}
-
-/// The field of view in degrees and the axis it spans: `fov` and `fov_axis`, else
-/// `focal_length` on a 36x24 mm frame's diagonal.
-fn read_fov(obj: &Object) -> Result<(f32, FovAxis)> {
-    if let Some(fov) = FOV.read_f32_opt(obj)? {
-        let axis = match FOV_AXIS.read_choice(obj)? {
-            "y" => FovAxis::Y,
-            "diagonal" => FovAxis::Diagonal,
-            "smaller" => FovAxis::Smaller,
-            "larger" => FovAxis::Larger,
-            _ => FovAxis::X,
-        };
-        return Ok((fov, axis));
-    }
-    let s = FOCAL_LENGTH.read_string(obj)?;
-    let f: f64 = s
-        .trim_end_matches("mm")
-        .trim()
-        .parse()
-        .ok()
-        .filter(|f: &f64| *f > 0.0 && f.is_finite())
-        .ok_or_else(|| {
-            at_prop(
-                obj,
-                "focal_length",
-                format!("\"focal_length\" must be a positive length like \"50mm\", found \"{s}\""),
-            )
-        })?;
-    let diag = (36.0f64 * 36.0 + 24.0 * 24.0).sqrt();
-    Ok((
-        (2.0 * (diag / (2.0 * f)).atan()).to_degrees() as f32,
-        FovAxis::Diagonal,
     ))
 }
