@@ -222,6 +222,7 @@ pub fn worst_against_reference_rect(
 
 pub mod analytic_scenes;
 pub mod bsdf;
+pub mod bsdf_checks;
 pub mod cap;
 pub mod rng;
 pub mod soup;

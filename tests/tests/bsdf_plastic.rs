@@ -12,9 +12,10 @@ use tessera_core::bsdf::microfacet::MicrofacetKind;
 use tessera_core::bsdf::plastic_common::fresnel_diffuse_reflectance;
 use tessera_core::bsdf::{Bsdf, RoughPlastic};
 use tessera_core::texture::Texture;
-use tessera_lab::stats::{sampled_albedo, sidak_alpha, BsdfChi2, Pcg32, SphereChi2};
+use tessera_lab::stats::{sampled_albedo, sidak_alpha, Pcg32};
 use tessera_scene::error::InputError;
 use tessera_tests::bsdf::{assert_cases_rejected_on_their_line, build_bsdf_xml};
+use tessera_tests::bsdf_checks::{assert_chi2_cases, chi2_against_density};
 
 /// Chi-square tests in this file: 5 `plastic` cases, 11 `roughplastic` cases.
 const N_CHI2: usize = 16;
@@ -40,21 +41,10 @@ fn dir(deg: f32) -> Vec3 {
 }
 
 fn chi2_cases(cases: &[(&str, &str, f32)], first_seed: u64) {
-    let a = alpha();
-    let mut failed = Vec::new();
-    for (k, &(name, xml, deg)) in cases.iter().enumerate() {
-        let b = bsdf(xml);
-        let r = BsdfChi2 {
-            samples: 500_000,
-            ..BsdfChi2::default()
-        }
-        .run(&b, dir(deg), UV, first_seed + k as u64);
-        println!("{name} at {deg} deg: {r}");
-        if !r.passes(a) {
-            failed.push(format!("{name} at {deg} deg: {r}"));
-        }
-    }
-    assert!(failed.is_empty(), "alpha = {a:.3e}:\n{}", failed.join("\n"));
+    let cases = cases
+        .iter()
+        .map(|&(name, xml, deg)| (format!("{name} at {deg} deg"), bsdf(xml), dir(deg)));
+    assert_chi2_cases(cases, UV, first_seed, N_CHI2);
 }
 
 const PLASTIC_COLOR: &str = r#"<bsdf type="plastic">
@@ -123,22 +113,7 @@ fn a_wrong_component_probability_is_rejected() {
         bsdf(r#"<bsdf type="plastic"><float name="diffuse_reflectance" value="0.2"/></bsdf>"#);
     let wi = dir(10.0);
     // The non-delta samples of `drawn` judged against `pdf_of`'s pdf.
-    let run = |pdf_of: &Bsdf| {
-        let mut rng = Pcg32::new(99);
-        SphereChi2 {
-            theta_bins: 20,
-            phi_bins: 40,
-            samples: 500_000,
-        }
-        .run(
-            |u| {
-                let s = drawn.sample(wi, rng.next_f32(), u, UV)?;
-                (!s.delta).then_some(s.wo)
-            },
-            |w| f64::from(pdf_of.pdf(wi, w, UV)),
-            7,
-        )
-    };
+    let run = |pdf_of: &Bsdf| chi2_against_density(&drawn, pdf_of, wi, UV, 99, 7);
     let r = run(&claimed);
     println!("control: {r}");
     assert!(!r.passes(alpha()), "{r}");
