@@ -10,7 +10,9 @@ use tessera_core::render::RenderJob;
 use tessera_scene::LoadedScene;
 
 mod scenes;
+mod support;
 use scenes::load;
+use support::pixel_bits;
 
 fn render_with(
     l: &LoadedScene,
@@ -32,20 +34,6 @@ fn render_with(
     });
     assert_eq!(last.0, last.1, "progress did not reach every tile");
     fb
-}
-
-/// Every bit of a pixel's accumulator.
-fn pixel_bits(p: &PixelAccum) -> [u64; 8] {
-    [
-        p.sum[0].to_bits(),
-        p.sum[1].to_bits(),
-        p.sum[2].to_bits(),
-        p.sum_sq[0].to_bits(),
-        p.sum_sq[1].to_bits(),
-        p.sum_sq[2].to_bits(),
-        p.count,
-        p.dropped,
-    ]
 }
 
 /// Asserts `b` is bit for bit the same image as `a` (naming the first differing pixel).

@@ -9,7 +9,9 @@ use tessera_core::render::RenderJob;
 use tessera_scene::LoadedScene;
 
 mod scenes;
+mod support;
 use scenes::load;
+use support::pixel_bits;
 
 fn render_with(
     l: &LoadedScene,
@@ -26,24 +28,11 @@ fn render_with(
     render(&job, samples, &opts, &mut |_, _| {})
 }
 
-fn bits(p: &PixelAccum) -> [u64; 8] {
-    [
-        p.sum[0].to_bits(),
-        p.sum[1].to_bits(),
-        p.sum[2].to_bits(),
-        p.sum_sq[0].to_bits(),
-        p.sum_sq[1].to_bits(),
-        p.sum_sq[2].to_bits(),
-        p.count,
-        p.dropped,
-    ]
-}
-
 fn same(a: &Framebuffer, b: &Framebuffer) -> bool {
     a.pixels
         .iter()
         .zip(&b.pixels)
-        .all(|(p, q)| bits(p) == bits(q))
+        .all(|(p, q)| pixel_bits(p) == pixel_bits(q))
 }
 
 /// cbox at an odd resolution (groups clipped at the right and bottom edges), `reuse` on.
@@ -109,8 +98,8 @@ fn one_sample_replayed_alone_matches_the_render() {
                 let mut want = PixelAccum::default();
                 want.add(c);
                 assert_eq!(
-                    bits(fb.at(x, y)),
-                    bits(&want),
+                    pixel_bits(fb.at(x, y)),
+                    pixel_bits(&want),
                     "{sampler} ({x}, {y}) #{index}"
                 );
             }
@@ -132,7 +121,7 @@ fn reuse_shares_light_and_off_changes_nothing() {
         .pixels
         .iter()
         .zip(&shared.pixels)
-        .filter(|(p, q)| bits(p) != bits(q))
+        .filter(|(p, q)| pixel_bits(p) != pixel_bits(q))
         .count();
     assert!(
         changed > plain.pixels.len() / 2,
