@@ -224,6 +224,7 @@ pub mod analytic_scenes;
 pub mod bsdf;
 pub mod bsdf_checks;
 pub mod cap;
+pub mod filter_reference;
 pub mod rng;
 pub mod soup;
 pub mod stress;
