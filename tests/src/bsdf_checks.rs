@@ -1,13 +1,15 @@
 //! Checks that several material test files run the same way: a list of chi-square cases judged
 //! together at one Šidák level, a sampler judged against another material's density (the
 //! controls), finite and self-consistent values at extreme parameters, the sampled albedo
-//! against a quadrature of `eval`, and what the path loop is told about a smooth material.
+//! against a quadrature of `eval`, reciprocity, and what the path loop is told about a smooth
+//! material.
 //! Each file keeps its own cases, seeds and bounds; only the loops live here.
 use glam::{Vec2, Vec3};
 use tessera_core::bsdf::{Bsdf, BsdfTraits};
+use tessera_core::sampling::warp::square_to_cosine_hemisphere;
 use tessera_lab::stats::{sampled_albedo, sidak_alpha, Chi2Result, Pcg32, SphereChi2};
 
-use crate::bsdf::{uniform_direction, CHI2_HALF};
+use crate::bsdf::{assert_chi2_passes, uniform_direction, CHI2_HALF};
 
 /// Runs [`CHI2_HALF`] on each case `(label, bsdf, wi)` (case `k` with seed `first_seed + k`),
 /// prints every result and asserts that all pass at the Šidák-corrected level of 0.01 over the
@@ -122,13 +124,88 @@ pub fn quadrature_albedo(b: &Bsdf, wi: Vec3, uv: Vec2, nz: usize, np: usize) -> 
     s * 4.0 * std::f64::consts::PI / (nz * np) as f64
 }
 
-/// The first channel's sampled albedo of `b` from `wi` (400,000 samples, seed 6) with its
-/// standard error, and the [`quadrature_albedo`] of `eval` on 2000 x 400 cells:
-/// `(mean, standard error, quadrature)`.
-pub fn sampled_and_quadrature_albedo(b: &Bsdf, wi: Vec3, uv: Vec2) -> (f64, f64, f64) {
-    let (m, se) = sampled_albedo(b, wi, uv, 400_000, 6);
-    let q = quadrature_albedo(b, wi, uv, 2000, 400);
-    (f64::from(m.x), f64::from(se.x), q)
+/// The first channel's sampled albedo of a material (the mean sample weight, transmission
+/// included) beside the quadrature of its `eval` over the sphere.
+pub struct AlbedoAgreement {
+    /// Mean sample weight.
+    pub sampled: f64,
+    /// Its standard error.
+    pub se: f64,
+    /// [`quadrature_albedo`] of `eval`.
+    pub quadrature: f64,
+}
+
+impl AlbedoAgreement {
+    /// `b`'s sampled albedo from `wi` (400,000 samples, seed 6) and the quadrature of its
+    /// `eval` on 2000 x 400 cells.
+    pub fn of(b: &Bsdf, wi: Vec3, uv: Vec2) -> Self {
+        let (m, se) = sampled_albedo(b, wi, uv, 400_000, 6);
+        AlbedoAgreement {
+            sampled: f64::from(m.x),
+            se: f64::from(se.x),
+            quadrature: quadrature_albedo(b, wi, uv, 2000, 400),
+        }
+    }
+
+    /// The two agree within 4 standard errors plus 1e-3 for the quadrature.
+    pub fn agrees(&self) -> bool {
+        (self.sampled - self.quadrature).abs() <= 4.0 * self.se + 1e-3
+    }
+
+    /// The two differ by more than 4 standard errors plus 1e-3 (what a control must show; a
+    /// NaN neither agrees nor differs).
+    pub fn differs(&self) -> bool {
+        (self.sampled - self.quadrature).abs() > 4.0 * self.se + 1e-3
+    }
+}
+
+impl std::fmt::Display for AlbedoAgreement {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        write!(
+            f,
+            "sampled {:.5} +- {:.5}, quadrature {:.5}",
+            self.sampled, self.se, self.quadrature
+        )
+    }
+}
+
+/// The control of a chi-square file: the directions `drawn` samples from `wi` are rejected
+/// against the density of `claimed` (a wrong lobe probability) at the Šidák-corrected level of
+/// 0.01 over the file's `n_tests` chi-square tests, and pass against their own density. Both
+/// use [`chi2_against_density`] with lobe seed 99 and chi-square seed 7.
+pub fn assert_wrong_density_rejected(
+    drawn: &Bsdf,
+    claimed: &Bsdf,
+    wi: Vec3,
+    uv: Vec2,
+    n_tests: usize,
+) {
+    let alpha = sidak_alpha(0.01, n_tests);
+    let r = chi2_against_density(drawn, claimed, wi, uv, 99, 7);
+    println!("control: {r}");
+    assert!(!r.passes(alpha), "control not rejected: {r}");
+    let r = chi2_against_density(drawn, drawn, wi, uv, 99, 7);
+    assert_chi2_passes("same directions, own density", &r, n_tests);
+}
+
+/// Largest violation of `f(wi, wo) = f(wo, wi)` (with `f = eval / cos theta_o`) over 20,000
+/// front-side direction pairs (cosine-distributed from `Pcg32::new(seed)`, pairs with a cosine
+/// under 0.02 skipped), relative to the larger value, or to `floor` where that is larger.
+pub fn reciprocity_error(eval: impl Fn(Vec3, Vec3) -> Vec3, seed: u64, floor: f32) -> f32 {
+    let mut rng = Pcg32::new(seed);
+    let mut worst = 0.0f32;
+    for _ in 0..20_000 {
+        let a = square_to_cosine_hemisphere(rng.next_vec2());
+        let b = square_to_cosine_hemisphere(rng.next_vec2());
+        if a.z < 0.02 || b.z < 0.02 {
+            continue;
+        }
+        let fab = eval(a, b) / b.z;
+        let fba = eval(b, a) / a.z;
+        let d = (fab - fba).abs().max_element() / fab.max(fba).max_element().max(floor);
+        worst = worst.max(d);
+    }
+    worst
 }
 
 /// Asserts what the path loop is told about a material with smooth lobes only: it samples with

@@ -9,14 +9,13 @@
 
 use glam::{Vec2, Vec3};
 use tessera_core::bsdf::Bsdf;
-use tessera_lab::stats::{sidak_alpha, Pcg32};
+use tessera_lab::stats::Pcg32;
 use tessera_tests::bsdf::{
-    assert_cases_rejected_on_their_line, assert_chi2_passes, dir_at, load_bsdf_xml,
-    uniform_direction,
+    assert_cases_rejected_on_their_line, dir_at, load_bsdf_xml, uniform_direction,
 };
 use tessera_tests::bsdf_checks::{
     assert_chi2_cases, assert_finite_and_consistent, assert_smooth_two_input_traits,
-    chi2_against_density, sampled_and_quadrature_albedo, texture_count,
+    assert_wrong_density_rejected, texture_count, AlbedoAgreement,
 };
 
 /// Chi-square tests in this file: the cases of `samples_its_pdf`.
@@ -79,13 +78,7 @@ fn a_wrong_lobe_probability_is_rejected() {
         r#"{GLASS}<float name="specular_transmittance_sampling_rate" value="1.5"/>"#
     ));
     let wi = dir(20.0);
-    // (The sheet's samples are never delta, so every sample is judged.)
-    let run = |pdf_of: &Bsdf| chi2_against_density(&drawn, pdf_of, wi, UV, 99, 7);
-    let alpha = sidak_alpha(0.01, N_CHI2);
-    let r = run(&claimed);
-    println!("control: {r}");
-    assert!(!r.passes(alpha), "control not rejected: {r}");
-    assert_chi2_passes("same directions, own density", &run(&drawn), N_CHI2);
+    assert_wrong_density_rejected(&drawn, &claimed, wi, UV, N_CHI2);
 }
 
 /// The sheet is the same from both sides: mirroring `wi` and `wo` through it changes neither
@@ -141,21 +134,18 @@ fn finite_at_extremes() {
 fn sampled_albedo_equals_quadrature_of_eval() {
     let rough = r#"<float name="spec_trans" value="0.6"/><float name="roughness" value="0.7"/>
         <float name="diff_trans" value="1"/><float name="eta" value="1.4"/>"#;
-    let check = |props: &str, deg: f32| sampled_and_quadrature_albedo(&thin(props), dir(deg), UV);
+    let check = |props: &str, deg: f32| AlbedoAgreement::of(&thin(props), dir(deg), UV);
     for (name, props, deg) in [("leaf", LEAF, 30.0), ("rough sheet", rough, 140.0)] {
-        let (m, se, q) = check(props, deg);
-        println!("{name} at {deg} deg: sampled {m:.5} +- {se:.5}, quadrature {q:.5}");
-        assert!(
-            (m - q).abs() <= 4.0 * se + 1e-3,
-            "{name}: {m} +- {se} vs {q}"
-        );
+        let a = check(props, deg);
+        println!("{name} at {deg} deg: {a}");
+        assert!(a.agrees(), "{name}: {a}");
     }
-    let (m, se, q) = check(
+    let a = check(
         &format!(r#"{LEAF}<float name="diffuse_transmittance_sampling_rate" value="0"/>"#),
         30.0,
     );
-    println!("control, transmission never sampled: sampled {m:.5} +- {se:.5}, quadrature {q:.5}");
-    assert!((m - q).abs() > 4.0 * se + 1e-3, "control not caught");
+    println!("control, transmission never sampled: {a}");
+    assert!(a.differs(), "control not caught");
 }
 
 /// Every bad parameter is an error located at the property (line 3 of the inline file).
