@@ -9,7 +9,7 @@ use tessera_core::glam::{DMat4, DVec3};
 use tessera_core::math::Norm;
 use tessera_lab::stats::{sidak_alpha, t_test_from_sums};
 use tessera_tests::analytic_scenes::{
-    self as scenes, closed_sphere, over_diffuse_plane, sphere_light,
+    self as scenes, closed_sphere, over_diffuse_plane, sphere_light, LIGHT_SAMPLING_INTEGRATORS,
 };
 use tessera_tests::{load_xml, render_loaded};
 
@@ -153,14 +153,7 @@ fn point_light() -> String {
 fn point_light_over_diffuse_plane() {
     let (i, h) = (20.0f64, 2.0f64);
     let expected = [0.7f64, 0.5, 0.3].map(|a| a * i / (std::f64::consts::PI * h * h));
-    for integ in [
-        "path_ems",
-        "path_half",
-        "path_mis",
-        "direct_ems",
-        "direct_mis",
-        "direct",
-    ] {
+    for integ in LIGHT_SAMPLING_INTEGRATORS {
         let depth = integ.starts_with("path").then_some(2);
         check(
             &format!("point light {integ}"),

@@ -10,6 +10,7 @@
 use std::f64::consts::PI;
 use tessera::image_io::{write_image, RgbImage};
 use tessera_lab::stats::{sidak_alpha, t_test_from_sums};
+use tessera_tests::analytic_scenes::{one_pixel_over_square, LIGHT_SAMPLING_INTEGRATORS};
 use tessera_tests::{load_xml, render_loaded};
 
 /// Number of t-tests in this file (cases x integrators x channels), for the Sidak correction:
@@ -60,21 +61,11 @@ fn check(label: &str, xml: &str, defines: &[(&str, &str)], spp: u64, expected: [
 /// these tests, and a small square keeps the hit point exact to f32 precision, which a steep
 /// falloff would notice) seen at its origin from (5, 0, 2), with `lights` added.
 fn plane_scene(lights: &str) -> String {
-    format!(
-        r#"<scene version="3.0.0">
-  <default name="integrator" value="path_mis"/>
-  <integrator type="$integrator"><integer name="max_depth" value="2"/></integrator>
-  <sensor type="perspective">
-    <float name="fov" value="0.001"/>
-    <transform name="to_world"><lookat origin="5, 0, 2" target="0, 0, 0" up="0, 0, 1"/></transform>
-    <film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>
-  </sensor>
-  <shape type="rectangle">
-    <transform name="to_world"><scale value="10"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.5, 0.3"/></bsdf>
-  </shape>
-  {lights}
-</scene>"#
+    one_pixel_over_square(
+        r#"<default name="integrator" value="path_mis"/>
+  <integrator type="$integrator"><integer name="max_depth" value="2"/></integrator>"#,
+        r#"origin="5, 0, 2" target="0, 0, 0" up="0, 0, 1""#,
+        lights,
     )
 }
 
@@ -99,14 +90,7 @@ fn sphere_scene(lights: &str) -> String {
 /// Checks a delta-light scene with the two integrators that sample lights, and that BSDF
 /// sampling alone gives exactly 0.
 fn check_delta(label: &str, xml: &str, expected: [f64; 3]) {
-    for integ in [
-        "path_ems",
-        "path_half",
-        "path_mis",
-        "direct_ems",
-        "direct_mis",
-        "direct",
-    ] {
+    for integ in LIGHT_SAMPLING_INTEGRATORS {
         check(
             &format!("{label} {integ}"),
             xml,
