@@ -12,7 +12,7 @@ use tessera_scene::LoadedScene;
 mod scenes;
 mod support;
 use scenes::load;
-use support::pixel_bits;
+use support::{differing_pixels, pixel_bits};
 
 fn render_with(
     l: &LoadedScene,
@@ -162,12 +162,7 @@ fn different_seeds_give_different_images() {
     let l = load("cbox.xml", &[("res", "24"), ("spp", "4")]);
     let a = render_with(&l, 0..4, 2, 16, l.seed);
     let b = render_with(&l, 0..4, 2, 16, l.seed.wrapping_add(1));
-    let differing = a
-        .pixels
-        .iter()
-        .zip(&b.pixels)
-        .filter(|(p, q)| pixel_bits(p) != pixel_bits(q))
-        .count();
+    let differing = differing_pixels(&a, &b);
     assert!(
         differing > a.pixels.len() / 2,
         "only {differing} of {} pixels differ between seeds {} and {}",

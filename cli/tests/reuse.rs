@@ -11,7 +11,7 @@ use tessera_scene::LoadedScene;
 mod scenes;
 mod support;
 use scenes::load;
-use support::pixel_bits;
+use support::{differing_pixels, pixel_bits};
 
 fn render_with(
     l: &LoadedScene,
@@ -117,12 +117,7 @@ fn reuse_shares_light_and_off_changes_nothing() {
     // With reuse, most pixels change (their indirect light now comes from four paths).
     l.set_integrator(Some("path+reuse"), None).unwrap();
     let shared = render_with(&l, 0..2, 2, 16);
-    let changed = plain
-        .pixels
-        .iter()
-        .zip(&shared.pixels)
-        .filter(|(p, q)| pixel_bits(p) != pixel_bits(q))
-        .count();
+    let changed = differing_pixels(&plain, &shared);
     assert!(
         changed > plain.pixels.len() / 2,
         "only {changed} pixels changed"

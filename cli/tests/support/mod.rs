@@ -131,3 +131,12 @@ pub fn pixel_bits(p: &PixelAccum) -> [u64; 8] {
         p.dropped,
     ]
 }
+
+/// How many pixels of `a` and `b` differ in any bit of their accumulators.
+pub fn differing_pixels(a: &Framebuffer, b: &Framebuffer) -> usize {
+    a.pixels
+        .iter()
+        .zip(&b.pixels)
+        .filter(|(p, q)| pixel_bits(p) != pixel_bits(q))
+        .count()
+}
