@@ -1,5 +1,7 @@
-//! Scenes with closed-form answers, shared by the analytic t-tests (`analytic.rs`) and the
-//! sampler tests (`sampler_zsobol_render.rs`), built from one camera block and one lit plane.
+//! Scenes with closed-form answers, shared by the analytic t-tests (`analytic.rs`,
+//! `emitters_analytic.rs`, `course_integrators.rs`), the sampler tests
+//! (`sampler_zsobol_render.rs`) and the stress tests, built from one camera block and one lit
+//! plane or square.
 
 /// The integrators that sample lights directly, so they find a delta light (point, spot,
 /// directional); `path_mats` and `direct_mats` sample only the BSDF and never do.
