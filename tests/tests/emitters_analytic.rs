@@ -87,6 +87,20 @@ fn sphere_scene(lights: &str) -> String {
     )
 }
 
+/// [`check`] with every integrator of [`INTEGRATORS`] (label `"{label} {integrator}"`), each
+/// with `spp(integrator)` samples.
+fn check_all_integrators(label: &str, xml: &str, spp: impl Fn(&str) -> u64, expected: [f64; 3]) {
+    for integ in INTEGRATORS {
+        check(
+            &format!("{label} {integ}"),
+            xml,
+            &[("integrator", integ)],
+            spp(integ),
+            expected,
+        );
+    }
+}
+
 /// Checks a delta-light scene with the two integrators that sample lights, and that BSDF
 /// sampling alone gives exactly 0.
 fn check_delta(label: &str, xml: &str, expected: [f64; 3]) {
@@ -200,20 +214,15 @@ fn distant_disk_over_plane() {
   </emitter>"#
         ));
         let s2 = theta.to_radians().sin().powi(2);
-        for integ in INTEGRATORS {
-            let spp = if (integ.ends_with("mats") || integ == "path_half") && theta < 10.0 {
+        let spp = |integ: &str| {
+            if (integ.ends_with("mats") || integ == "path_half") && theta < 10.0 {
                 1_000_000
             } else {
                 200_000
-            };
-            check(
-                &format!("distantdisk {theta} deg {integ}"),
-                &xml,
-                &[("integrator", integ)],
-                spp,
-                ALBEDO.map(|a| a * l * s2),
-            );
-        }
+            }
+        };
+        let label = format!("distantdisk {theta} deg");
+        check_all_integrators(&label, &xml, spp, ALBEDO.map(|a| a * l * s2));
     }
 }
 
@@ -241,20 +250,15 @@ fn opposing_disks_under_a_distant_disk() {
     );
     let tb = (0.5f64 / 1.5).atan();
     let ring = 30f64.to_radians().sin().powi(2) - tb.sin().powi(2);
-    for integ in INTEGRATORS {
-        let spp = if integ.ends_with("mats") || integ == "path_half" {
+    let spp = |integ: &str| {
+        if integ.ends_with("mats") || integ == "path_half" {
             600_000
         } else {
             200_000
-        };
-        check(
-            &format!("opposing disks, distantdisk 30 deg {integ}"),
-            &xml,
-            &[("integrator", integ)],
-            spp,
-            ALBEDO.map(|a| a * l * ring),
-        );
-    }
+        }
+    };
+    let label = "opposing disks, distantdisk 30 deg";
+    check_all_integrators(label, &xml, spp, ALBEDO.map(|a| a * l * ring));
 }
 
 /// A disk of half angle 20 degrees whose centre is 40 degrees from the normal, given in Nori's
@@ -272,15 +276,7 @@ fn distant_disk_tilted_nori_names() {
     );
     let expected =
         ALBEDO.map(|a| a * l * 20f64.to_radians().sin().powi(2) * 40f64.to_radians().cos());
-    for integ in INTEGRATORS {
-        check(
-            &format!("distantdisk tilted {integ}"),
-            &xml,
-            &[("integrator", integ)],
-            200_000,
-            expected,
-        );
-    }
+    check_all_integrators("distantdisk tilted", &xml, |_| 200_000, expected);
 }
 
 /// At 180 degrees the distant disk is a constant environment: a diffuse sphere reflects
@@ -293,15 +289,12 @@ fn distant_disk_180_is_a_constant_environment() {
     <float name="theta_a" value="180"/>
   </emitter>"#,
     );
-    for integ in INTEGRATORS {
-        check(
-            &format!("distantdisk 180 sphere {integ}"),
-            &xml,
-            &[("integrator", integ)],
-            100_000,
-            [0.3, 0.75, 1.2],
-        );
-    }
+    check_all_integrators(
+        "distantdisk 180 sphere",
+        &xml,
+        |_| 100_000,
+        [0.3, 0.75, 1.2],
+    );
 }
 
 /// An environment map of one colour (a 8x4 EXR written here) with `scale` and a rotation is a
@@ -325,15 +318,12 @@ fn constant_envmap_on_a_sphere() {
   </emitter>"#,
         path.display()
     ));
-    for integ in INTEGRATORS {
-        check(
-            &format!("constant envmap sphere {integ}"),
-            &xml,
-            &[("integrator", integ)],
-            100_000,
-            [0.2 * 0.75, 0.5 * 1.5, 0.8 * 3.0],
-        );
-    }
+    check_all_integrators(
+        "constant envmap sphere",
+        &xml,
+        |_| 100_000,
+        [0.2 * 0.75, 0.5 * 1.5, 0.8 * 3.0],
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -369,15 +359,7 @@ fn envmap_lit_at_its_pole_over_plane() {
     let a = PI / 4.0;
     let k = 2.0 * (a.sin().powi(2) / 2.0 + (2.0 * a).cos() / 4.0 - (2.0 * a).sin() / (8.0 * a));
     let expected = [0, 1, 2].map(|i| ALBEDO[i] * k * f64::from(c[i]));
-    for integ in INTEGRATORS {
-        check(
-            &format!("envmap lit at its pole {integ}"),
-            &xml,
-            &[("integrator", integ)],
-            200_000,
-            expected,
-        );
-    }
+    check_all_integrators("envmap lit at its pole", &xml, |_| 200_000, expected);
     let _ = std::fs::remove_dir_all(&dir);
 }
 
