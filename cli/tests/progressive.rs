@@ -65,6 +65,17 @@ fn cmd(extra: &[&str]) -> Command {
     c
 }
 
+/// `tessera render cbox ARGS OUT` (ARGS ending with `-o`), run to its end.
+fn render_cbox_to(args: &[&str], out: &Path) -> Output {
+    Command::new(BIN)
+        .arg("render")
+        .arg(cbox())
+        .args(args)
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
 fn run(extra: &[&str]) -> Output {
     cmd(extra).output().unwrap()
 }
@@ -394,26 +405,20 @@ fn time_budget_stops_the_render() {
     let dir = temp_dir("time");
     let out = dir.path("t.exr");
     let t = Instant::now();
-    let o = Command::new(BIN)
-        .arg("render")
-        .arg(cbox())
-        .args(["-D", "res=12", "--threads", "2", "--time", "0.5", "-o"])
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = render_cbox_to(
+        &["-D", "res=12", "--threads", "2", "--time", "0.5", "-o"],
+        &out,
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("time budget spent"), "{}", stderr(&o));
     assert!(out.exists());
     // Generous: only that it did stop, not how precisely.
     assert!(t.elapsed() < Duration::from_secs(120));
     // With a small --spp as well, the target comes first.
-    let o = Command::new(BIN)
-        .arg("render")
-        .arg(cbox())
-        .args(["-D", "res=12", "--time", "1000", "--spp", "3", "-o"])
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = render_cbox_to(
+        &["-D", "res=12", "--time", "1000", "--spp", "3", "-o"],
+        &out,
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("at 3 spp"), "{}", stderr(&o));
     assert!(!stderr(&o).contains("time budget"));
@@ -426,10 +431,8 @@ fn resolution_scale_gives_the_smaller_film() {
     let (a, b, c) = (dir.path("a.pfm"), dir.path("b.pfm"), dir.path("c.pfm"));
     let o = run(&["--spp", "2", "-o", a.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let o = Command::new(BIN)
-        .arg("render")
-        .arg(cbox())
-        .args([
+    let o = render_cbox_to(
+        &[
             "-D",
             "res=24",
             "--spp",
@@ -438,20 +441,13 @@ fn resolution_scale_gives_the_smaller_film() {
             "--resolution-scale",
             "0.5",
             "-o",
-        ])
-        .arg(&b)
-        .output()
-        .unwrap();
+        ],
+        &b,
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
     // Control: the unscaled 24-pixel film is another image; a zero scale is refused.
-    let o = Command::new(BIN)
-        .arg("render")
-        .arg(cbox())
-        .args(["-D", "res=24", "--spp", "2", "-q", "-o"])
-        .arg(&c)
-        .output()
-        .unwrap();
+    let o = render_cbox_to(&["-D", "res=24", "--spp", "2", "-q", "-o"], &c);
     assert!(o.status.success(), "{}", stderr(&o));
     assert_ne!(std::fs::read(&a).unwrap(), std::fs::read(&c).unwrap());
     one_line_exit_2(
