@@ -12,7 +12,7 @@ use tessera_scene::LoadedScene;
 mod scenes;
 mod support;
 use scenes::load;
-use support::{differing_pixels, pixel_bits};
+use support::differing_pixels;
 
 fn render_with(
     l: &LoadedScene,
@@ -43,7 +43,7 @@ fn assert_same_bits(a: &Framebuffer, b: &Framebuffer, what: &str) {
     assert_eq!(a.pixels.len(), b.pixels.len(), "{what}");
     for (i, (p, q)) in a.pixels.iter().zip(&b.pixels).enumerate() {
         assert!(
-            pixel_bits(p) == pixel_bits(q),
+            p.to_words() == q.to_words(),
             "{what}: pixel ({}, {}) differs: {p:?} vs {q:?}",
             i as u32 % a.width,
             i as u32 / a.width
@@ -145,8 +145,8 @@ fn one_sample_replayed_alone_matches_the_render() {
             let mut want = PixelAccum::default();
             want.add(c);
             assert_eq!(
-                pixel_bits(acc),
-                pixel_bits(&want),
+                acc.to_words(),
+                want.to_words(),
                 "pixel ({x}, {y}) sample {index}: render {acc:?}, replay {c:?}"
             );
             assert_eq!(acc.count, 1, "pixel ({x}, {y}) sample {index} was dropped");
@@ -176,5 +176,5 @@ fn different_seeds_give_different_images() {
         .pixels
         .iter()
         .zip(&c.pixels)
-        .any(|(p, q)| pixel_bits(p) != pixel_bits(q)));
+        .any(|(p, q)| p.to_words() != q.to_words()));
 }

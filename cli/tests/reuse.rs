@@ -11,7 +11,7 @@ use tessera_scene::LoadedScene;
 mod scenes;
 mod support;
 use scenes::load;
-use support::{differing_pixels, pixel_bits};
+use support::differing_pixels;
 
 fn render_with(
     l: &LoadedScene,
@@ -32,7 +32,7 @@ fn same(a: &Framebuffer, b: &Framebuffer) -> bool {
     a.pixels
         .iter()
         .zip(&b.pixels)
-        .all(|(p, q)| pixel_bits(p) == pixel_bits(q))
+        .all(|(p, q)| p.to_words() == q.to_words())
 }
 
 /// cbox at an odd resolution (groups clipped at the right and bottom edges), `reuse` on.
@@ -98,8 +98,8 @@ fn one_sample_replayed_alone_matches_the_render() {
                 let mut want = PixelAccum::default();
                 want.add(c);
                 assert_eq!(
-                    pixel_bits(fb.at(x, y)),
-                    pixel_bits(&want),
+                    fb.at(x, y).to_words(),
+                    want.to_words(),
                     "{sampler} ({x}, {y}) #{index}"
                 );
             }

@@ -6,7 +6,6 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use tessera::progressive::{self, Outcome, Plan};
 use tessera::render::{render, Framebuffer, RenderOptions};
 use tessera_core::adaptive::AdaptiveParams;
-use tessera_core::film::PixelAccum;
 use tessera_core::render::RenderJob;
 use tessera_scene::LoadedScene;
 
@@ -118,25 +117,11 @@ pub fn sample_counts(fb: &Framebuffer) -> Vec<u64> {
     fb.pixels.iter().map(|p| p.count + p.dropped).collect()
 }
 
-/// Every bit of a pixel's accumulator.
-pub fn pixel_bits(p: &PixelAccum) -> [u64; 8] {
-    [
-        p.sum[0].to_bits(),
-        p.sum[1].to_bits(),
-        p.sum[2].to_bits(),
-        p.sum_sq[0].to_bits(),
-        p.sum_sq[1].to_bits(),
-        p.sum_sq[2].to_bits(),
-        p.count,
-        p.dropped,
-    ]
-}
-
 /// How many pixels of `a` and `b` differ in any bit of their accumulators.
 pub fn differing_pixels(a: &Framebuffer, b: &Framebuffer) -> usize {
     a.pixels
         .iter()
         .zip(&b.pixels)
-        .filter(|(p, q)| pixel_bits(p) != pixel_bits(q))
+        .filter(|(p, q)| p.to_words() != q.to_words())
         .count()
 }
