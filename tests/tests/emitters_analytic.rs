@@ -87,6 +87,16 @@ fn sphere_scene(lights: &str) -> String {
     )
 }
 
+/// Samples for `integ` on a distant disk scene: `slow` for the integrators that reach the disk
+/// only (or half the time) by BSDF sampling, 200,000 for the others.
+fn spp_for(integ: &str, slow: u64) -> u64 {
+    if integ.ends_with("mats") || integ == "path_half" {
+        slow
+    } else {
+        200_000
+    }
+}
+
 /// [`check`] with every integrator of [`INTEGRATORS`] (label `"{label} {integrator}"`), each
 /// with `spp(integrator)` samples.
 fn check_all_integrators(label: &str, xml: &str, spp: impl Fn(&str) -> u64, expected: [f64; 3]) {
@@ -214,13 +224,8 @@ fn distant_disk_over_plane() {
   </emitter>"#
         ));
         let s2 = theta.to_radians().sin().powi(2);
-        let spp = |integ: &str| {
-            if (integ.ends_with("mats") || integ == "path_half") && theta < 10.0 {
-                1_000_000
-            } else {
-                200_000
-            }
-        };
+        let slow = if theta < 10.0 { 1_000_000 } else { 200_000 };
+        let spp = |integ: &str| spp_for(integ, slow);
         let label = format!("distantdisk {theta} deg");
         check_all_integrators(&label, &xml, spp, ALBEDO.map(|a| a * l * s2));
     }
@@ -250,13 +255,7 @@ fn opposing_disks_under_a_distant_disk() {
     );
     let tb = (0.5f64 / 1.5).atan();
     let ring = 30f64.to_radians().sin().powi(2) - tb.sin().powi(2);
-    let spp = |integ: &str| {
-        if integ.ends_with("mats") || integ == "path_half" {
-            600_000
-        } else {
-            200_000
-        }
-    };
+    let spp = |integ: &str| spp_for(integ, 600_000);
     let label = "opposing disks, distantdisk 30 deg";
     check_all_integrators(label, &xml, spp, ALBEDO.map(|a| a * l * ring));
 }
