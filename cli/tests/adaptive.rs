@@ -8,26 +8,19 @@ use std::path::{Path, PathBuf};
 use tessera::checkpoint::{read_checkpoint, write_checkpoint, CheckpointMeta, Continuation};
 use tessera::image_io::read_image;
 use tessera::progressive::{Ending, Plan};
-use tessera::render::{render, Framebuffer, RenderOptions};
+use tessera::render::Framebuffer;
 use tessera_core::adaptive::{AdaptiveParams, ZSOBOL_BLOCK_FACTOR};
-use tessera_core::render::RenderJob;
 use tessera_lab::bench::errors;
-use tessera_scene::{load_scene, LoadedScene};
+use tessera_scene::LoadedScene;
 
+mod scenes;
 mod support;
-use support::{run, stderr};
-
-fn scene_path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("../scenes/{name}.xml"))
-}
+use support::{render_adaptive, render_plain, run, sample_counts, stderr};
 
 /// `name` at `res` x `res`, box filter, zsobol set up for 64 samples per pixel.
 fn load(name: &str, res: u32) -> LoadedScene {
-    let defines: Vec<(String, String)> = [("res", res.to_string()), ("rfilter", "box".into())]
-        .into_iter()
-        .map(|(k, v)| (k.to_string(), v))
-        .collect();
-    let mut l = load_scene(&scene_path(name), &defines).expect("scene loads");
+    let res = res.to_string();
+    let mut l = scenes::load(&format!("{name}.xml"), &[("res", &res), ("rfilter", "box")]);
     l.set_sampler(Some("zsobol"), 64).unwrap();
     l
 }
@@ -41,29 +34,7 @@ fn adaptive(
     seed: u64,
     params: AdaptiveParams,
 ) -> Framebuffer {
-    let (w, h) = (l.scene.camera.width, l.scene.camera.height);
-    let mut fb = Framebuffer::new(w, h);
-    let plan = Plan {
-        target: Some(spp),
-        adaptive: Some(params),
-        ..Default::default()
-    };
-    support::run_plan(support::job(l, seed, threads, tile_size), &mut fb, &plan);
-    fb
-}
-
-fn plain(l: &LoadedScene, spp: u64, seed: u64) -> Framebuffer {
-    let opts = RenderOptions {
-        threads: 2,
-        tile_size: 16,
-        pixels: Default::default(),
-    };
-    let job = RenderJob::new(&l.scene, &l.integrator, seed);
-    render(&job, 0..spp, &opts, &mut |_, _| {})
-}
-
-fn counts(fb: &Framebuffer) -> Vec<u64> {
-    fb.pixels.iter().map(|p| p.count + p.dropped).collect()
+    render_adaptive(support::job(l, seed, threads, tile_size), spp, params).0
 }
 
 #[test]
@@ -79,7 +50,7 @@ fn same_bits_for_any_thread_count_and_tile_size() {
         );
     }
     // It spent exactly the mean asked for, and not evenly.
-    let c = counts(&a);
+    let c = sample_counts(&a);
     assert_eq!(c.iter().sum::<u64>(), 16 * 24 * 24);
     let (lo, hi) = (c.iter().min().unwrap(), c.iter().max().unwrap());
     assert!(*lo >= 2 && hi > &32, "counts {lo}..{hi}");
@@ -94,13 +65,13 @@ fn a_uniform_share_of_one_is_the_plain_render() {
         uniform: 1.0,
         ..Default::default()
     };
-    assert_eq!(adaptive(&l, 16, 2, 5, 3, p), plain(&l, 16, 3));
+    assert_eq!(adaptive(&l, 16, 2, 5, 3, p), render_plain(&l, 16, 3));
     // A mean that is not a power of two ends with a shorter last pass.
-    assert_eq!(adaptive(&l, 12, 2, 5, 3, p), plain(&l, 12, 3));
+    assert_eq!(adaptive(&l, 12, 2, 5, 3, p), render_plain(&l, 12, 3));
     // Control: the default share does not give the plain render.
     assert_ne!(
         adaptive(&l, 16, 2, 5, 3, AdaptiveParams::default()),
-        plain(&l, 16, 3)
+        render_plain(&l, 16, 3)
     );
 }
 
@@ -196,7 +167,7 @@ fn mean_relmse(name: &str, spp: u64) -> (f64, f64) {
     for seed in 0..3 {
         let fa = adaptive(&l, spp, 2, 16, seed, AdaptiveParams::default());
         a += errors(&fa.rgb(), &reference.data).relmse / 3.0;
-        u += errors(&plain(&l, spp, seed).rgb(), &reference.data).relmse / 3.0;
+        u += errors(&render_plain(&l, spp, seed).rgb(), &reference.data).relmse / 3.0;
     }
     (a, u)
 }
@@ -236,7 +207,9 @@ impl Drop for Tmp {
 #[test]
 fn command_line() {
     let t = Tmp::new("cli");
-    let scene = scene_path("cbox").to_string_lossy().into_owned();
+    let scene = scenes::scene_path("cbox.xml")
+        .to_string_lossy()
+        .into_owned();
     let base = [
         scene.as_str(),
         "-D",
@@ -329,7 +302,7 @@ fn command_line() {
     // bench: --adaptive adds the adaptive curve, --adaptive-only measures just it.
     let reference = t.file("ref.exr");
     let l = load("cbox", 16);
-    let fb = plain(&l, 32, 99);
+    let fb = render_plain(&l, 32, 99);
     let img = tessera::image_io::RgbImage {
         width: fb.width,
         height: fb.height,

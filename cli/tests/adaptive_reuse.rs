@@ -8,24 +8,21 @@
 use std::path::Path;
 use tessera::image_io::read_image;
 use tessera::progressive::{Ending, Plan};
-use tessera::render::{render, render_span, Framebuffer, RenderOptions, Span};
+use tessera::render::{render_span, Framebuffer, RenderOptions, Span};
 use tessera_core::adaptive::AdaptiveParams;
 use tessera_core::integrator::{NoProbe, GROUP_H, GROUP_W};
 use tessera_core::render::RenderJob;
 use tessera_lab::bench::errors;
-use tessera_scene::{load_scene, LoadedScene};
+use tessera_scene::LoadedScene;
 
+mod scenes;
 mod support;
-use support::{run, stderr};
+use support::{render_adaptive, render_plain, run, sample_counts, stderr};
 
 /// cbox at `res` x `res`, box filter, zsobol for 64 samples per pixel, path reuse on.
 fn load(res: u32) -> LoadedScene {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/cbox.xml");
-    let defines = vec![
-        ("res".to_string(), res.to_string()),
-        ("rfilter".to_string(), "box".to_string()),
-    ];
-    let mut l = load_scene(&path, &defines).expect("scene loads");
+    let res = res.to_string();
+    let mut l = scenes::load("cbox.xml", &[("res", &res), ("rfilter", "box")]);
     l.set_integrator(Some("path+reuse"), None).unwrap();
     l.set_sampler(Some("zsobol"), 64).unwrap();
     l
@@ -43,31 +40,9 @@ fn adaptive_with(
     seed: u64,
     params: AdaptiveParams,
 ) -> Framebuffer {
-    let (w, h) = (l.scene.camera.width, l.scene.camera.height);
-    let mut fb = Framebuffer::new(w, h);
-    let plan = Plan {
-        target: Some(spp),
-        adaptive: Some(params),
-        ..Default::default()
-    };
-    let out = support::run_plan(support::job(l, seed, threads, tile), &mut fb, &plan);
+    let (fb, out) = render_adaptive(support::job(l, seed, threads, tile), spp, params);
     assert_eq!(out.ending, Ending::Target);
     fb
-}
-
-fn plain(l: &LoadedScene, spp: u64, seed: u64) -> Framebuffer {
-    let opts = RenderOptions {
-        threads: 2,
-        tile_size: 16,
-        pixels: Default::default(),
-    };
-    let job = RenderJob::new(&l.scene, &l.integrator, seed);
-    render(&job, 0..spp, &opts, &mut |_, _| {})
-}
-
-/// Each pixel's sample count (`count + dropped`).
-fn counts(fb: &Framebuffer) -> Vec<u64> {
-    fb.pixels.iter().map(|p| p.count + p.dropped).collect()
 }
 
 #[test]
@@ -108,7 +83,7 @@ fn uneven_targets_give_the_same_bits_for_any_tile_size() {
         fb
     };
     let a = pass(1, 32);
-    assert_eq!(counts(&a), targets);
+    assert_eq!(sample_counts(&a), targets);
     for (threads, tile) in [(2, 5), (2, 6), (3, 1)] {
         assert!(pass(threads, tile) == a, "{threads} threads, tile {tile}");
     }
@@ -121,7 +96,7 @@ fn uneven_targets_give_the_same_bits_for_any_tile_size() {
 fn groups_take_equal_counts() {
     let l = load(24);
     let fb = adaptive(&l, 16, 2, 16, 1);
-    let c = counts(&fb);
+    let c = sample_counts(&fb);
     assert_eq!(c.iter().sum::<u64>(), 16 * 24 * 24);
     let (gw, gh) = (GROUP_W as usize, GROUP_H as usize);
     let mut uneven = 0;
@@ -148,9 +123,9 @@ fn a_uniform_share_of_one_is_the_plain_reuse_render() {
         uniform: 1.0,
         ..Default::default()
     };
-    assert!(adaptive_with(&l, 16, 2, 5, 3, p) == plain(&l, 16, 3));
+    assert!(adaptive_with(&l, 16, 2, 5, 3, p) == render_plain(&l, 16, 3));
     // Control: the default share does not give the plain render.
-    assert!(adaptive(&l, 16, 2, 5, 3) != plain(&l, 16, 3));
+    assert!(adaptive(&l, 16, 2, 5, 3) != render_plain(&l, 16, 3));
 }
 
 /// Stopped inside an adaptive pass (tiles of 7, rounded to 8, so a stop falls between whole
@@ -197,7 +172,7 @@ fn lower_error_than_plain_reuse_at_equal_samples() {
     let (mut a, mut u) = (0.0, 0.0);
     for seed in 0..3 {
         a += errors(&adaptive(&l, 16, 2, 16, seed).rgb(), &reference.data).relmse / 3.0;
-        u += errors(&plain(&l, 16, seed).rgb(), &reference.data).relmse / 3.0;
+        u += errors(&render_plain(&l, 16, seed).rgb(), &reference.data).relmse / 3.0;
     }
     assert!(a < 0.85 * u, "adaptive + reuse {a:.3e}, reuse {u:.3e}");
 }

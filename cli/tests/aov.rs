@@ -3,19 +3,10 @@
 //! `tessera::layers::read_channels_exr`); a PNG output holds the colour, with one warning; flags
 //! the extra channels do not support are a one-line error.
 use std::path::Path;
-use std::process::{Command, Output};
 use tessera::layers::read_channels_exr;
 
-fn run(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_tessera"))
-        .args(args)
-        .output()
-        .expect("cannot run tessera")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+mod support;
+use support::{run, stderr};
 
 #[test]
 fn render_writes_mitsuba_channel_names_to_exr() {

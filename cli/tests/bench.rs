@@ -5,7 +5,7 @@
 //! depends on timing.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 use tessera::image_io::{read_image, write_image, RgbImage};
 use tessera::render::{render, render_span, Framebuffer, RenderOptions, Span};
 use tessera_core::integrator::NoProbe;
@@ -13,7 +13,9 @@ use tessera_core::render::RenderJob;
 use tessera_lab::bench::{errors, read_csv, run_waves, WaveLimits, CSV_HEADER};
 use tessera_scene::{load_scene, LoadedScene};
 
-const BIN: &str = env!("CARGO_BIN_EXE_tessera");
+mod support;
+use support::run_os;
+use support::temp_dir::TempDir;
 
 fn cbox() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/cbox.xml")
@@ -49,35 +51,9 @@ fn render_seeded(
     render(&job, samples, &opts(threads), &mut |_, _| {})
 }
 
-/// A fresh directory, removed on drop.
-struct Tmp(PathBuf);
-impl Tmp {
-    fn new(name: &str) -> Tmp {
-        let p = std::env::temp_dir().join(format!("tessera-bench-{}-{name}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&p);
-        std::fs::create_dir_all(&p).unwrap();
-        Tmp(p)
-    }
-    fn entries(&self) -> Vec<String> {
-        let mut v: Vec<String> = std::fs::read_dir(&self.0)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        v.sort();
-        v
-    }
-}
-impl Drop for Tmp {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-fn run(args: &[&std::ffi::OsStr]) -> Output {
-    Command::new(BIN)
-        .args(args)
-        .output()
-        .expect("cannot run tessera")
+/// A fresh directory (`tessera-bench-...`), removed on drop.
+fn temp_dir(name: &str) -> TempDir {
+    TempDir::new("tessera-bench", name)
 }
 
 fn os(s: &str) -> &std::ffi::OsStr {
@@ -98,7 +74,7 @@ fn bench_small(reference: &Path, rest: &[&std::ffi::OsStr]) -> Output {
         reference.as_os_str(),
     ];
     args.extend_from_slice(rest);
-    run(&args)
+    run_os(&args)
 }
 
 /// A reference of the small box: its own 16 spp render with another seed.
@@ -181,7 +157,7 @@ fn relmse_rmse_mae_of_a_known_image_pair() {
 
 #[test]
 fn cli_writes_the_report_and_plots() {
-    let tmp = Tmp::new("cli");
+    let tmp = temp_dir("cli");
     let l = small_cbox();
     let reference = write_reference(&tmp.0, &l);
     let (csv, png) = (tmp.0.join("r.csv"), tmp.0.join("r.png"));
@@ -240,7 +216,7 @@ fn cli_writes_the_report_and_plots() {
 
     // --plot-only draws an existing (e.g. combined) report.
     let png2 = tmp.0.join("only.png");
-    let o = run(&[
+    let o = run_os(&[
         os("bench"),
         os("--plot-only"),
         csv.as_os_str(),
@@ -252,7 +228,7 @@ fn cli_writes_the_report_and_plots() {
 }
 
 /// Exit 2, one line on stderr containing `want`, and no report or plot written.
-fn assert_bad_input(tmp: &Tmp, o: &Output, want: &str, before: &[String]) {
+fn assert_bad_input(tmp: &TempDir, o: &Output, want: &str, before: &[String]) {
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert_eq!(err.trim_end().lines().count(), 1, "{err}");
@@ -263,7 +239,7 @@ fn assert_bad_input(tmp: &Tmp, o: &Output, want: &str, before: &[String]) {
 
 #[test]
 fn bad_references_and_reports_are_one_line_errors() {
-    let tmp = Tmp::new("bad");
+    let tmp = temp_dir("bad");
     let l = small_cbox();
     let reference = write_reference(&tmp.0, &l);
     let garbage = tmp.0.join("garbage.exr");
@@ -273,7 +249,7 @@ fn bad_references_and_reports_are_one_line_errors() {
     let before = tmp.entries();
     let csv = tmp.0.join("r.csv");
     let bench = |reference: &Path, res: &str| {
-        run(&[
+        run_os(&[
             os("bench"),
             cbox().as_os_str(),
             os("-D"),
@@ -299,7 +275,7 @@ fn bad_references_and_reports_are_one_line_errors() {
     assert_bad_input(&tmp, &o, "garbage.exr: cannot read image", &before);
     let o = bench(&tmp.0.join("missing.exr"), "res=12");
     assert_bad_input(&tmp, &o, "missing.exr: cannot read image", &before);
-    let o = run(&[
+    let o = run_os(&[
         os("bench"),
         os("--plot-only"),
         not_csv.as_os_str(),
@@ -307,7 +283,7 @@ fn bad_references_and_reports_are_one_line_errors() {
         tmp.0.join("p.png").as_os_str(),
     ]);
     assert_bad_input(&tmp, &o, "not.csv:1: not a bench report", &before);
-    let o = run(&[os("bench"), cbox().as_os_str(), os("-o"), csv.as_os_str()]);
+    let o = run_os(&[os("bench"), cbox().as_os_str(), os("-o"), csv.as_os_str()]);
     assert_bad_input(&tmp, &o, "--reference", &before);
 }
 
@@ -315,7 +291,7 @@ fn bad_references_and_reports_are_one_line_errors() {
 /// images (exactly those renders: the errors are recomputed here); `--seeds 0` is a usage error.
 #[test]
 fn seeds_average_the_errors_of_each_seeds_images() {
-    let tmp = Tmp::new("seeds");
+    let tmp = temp_dir("seeds");
     let l = small_cbox();
     let reference = write_reference(&tmp.0, &l);
     let csv = tmp.0.join("r.csv");
@@ -369,7 +345,7 @@ fn seeds_average_the_errors_of_each_seeds_images() {
 /// bit for bit, as one run) with each wave's least time; `--repeats 0` is a usage error.
 #[test]
 fn repeats_keep_the_images_and_the_least_times() {
-    let tmp = Tmp::new("repeats");
+    let tmp = temp_dir("repeats");
     let l = small_cbox();
     let reference = write_reference(&tmp.0, &l);
     let csv = tmp.0.join("r.csv");
@@ -427,7 +403,7 @@ fn repeats_keep_the_images_and_the_least_times() {
 /// curve, or several, is a one-line usage error that writes no plot.
 #[test]
 fn ratio_to_prints_ratios_and_bounds_for_each_target() {
-    let tmp = Tmp::new("ratio");
+    let tmp = temp_dir("ratio");
     let csv = tmp.0.join("r.csv");
     // Tessera: relMSE 0.02 at 1 s, 0.005 at 4 s (0.01 at 2 s), 0.0005 at 16 s (0.001 at
     // 4 * 4^(ln 5 / ln 10) = 10.54 s). The peer: 0.02 at 2 s, 0.005 at 8 s (0.01 at 4 s), and it stops there.
@@ -450,7 +426,7 @@ fn ratio_to_prints_ratios_and_bounds_for_each_target() {
             png.as_os_str(),
         ];
         a.extend(extra.iter().map(|s| os(s)));
-        run(&a)
+        run_os(&a)
     };
     let o = plot_only(&[
         "--target-relmse",

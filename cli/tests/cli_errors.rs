@@ -8,10 +8,11 @@
 //! `tests/fixtures/` are copied beside them. Outputs go to a separate, initially empty `out/`.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::process::Output;
 
-const BIN: &str = env!("CARGO_BIN_EXE_tessera");
+mod support;
+use support::temp_dir::TempDir;
+use support::{run_os, stderr as stderr_of};
 
 fn fixtures() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures")
@@ -23,24 +24,22 @@ fn cbox() -> PathBuf {
 
 /// A fresh temporary directory with `in/` (scene files) and `out/` (outputs); removed on drop.
 struct Tmp {
-    root: PathBuf,
+    _root: TempDir,
     input: PathBuf,
     out: PathBuf,
 }
 
 impl Tmp {
     fn new(name: &str) -> Tmp {
-        static N: AtomicUsize = AtomicUsize::new(0);
-        let root = std::env::temp_dir().join(format!(
-            "tessera-cli-errors-{}-{}-{name}",
-            std::process::id(),
-            N.fetch_add(1, Ordering::Relaxed)
-        ));
-        let _ = std::fs::remove_dir_all(&root);
-        let (input, out) = (root.join("in"), root.join("out"));
+        let root = TempDir::new("tessera-cli-errors", name);
+        let (input, out) = (root.0.join("in"), root.0.join("out"));
         std::fs::create_dir_all(&input).unwrap();
         std::fs::create_dir_all(&out).unwrap();
-        Tmp { root, input, out }
+        Tmp {
+            _root: root,
+            input,
+            out,
+        }
     }
 
     /// Writes `text` to `in/name` and returns its path.
@@ -58,26 +57,8 @@ impl Tmp {
 
     /// The names of everything in `out/`.
     fn out_entries(&self) -> Vec<String> {
-        let mut v: Vec<String> = std::fs::read_dir(&self.out)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        v.sort();
-        v
+        support::temp_dir::entries(&self.out)
     }
-}
-
-impl Drop for Tmp {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.root);
-    }
-}
-
-fn run(args: &[&std::ffi::OsStr]) -> Output {
-    Command::new(BIN)
-        .args(args)
-        .output()
-        .expect("cannot run the tessera binary")
 }
 
 /// `tessera render <scene> -o <out> -q <extra...>`.
@@ -90,11 +71,7 @@ fn render(scene: &Path, out: &Path, extra: &[&str]) -> Output {
         "-q".as_ref(),
     ];
     args.extend(extra.iter().map(|s| std::ffi::OsStr::new(*s)));
-    run(&args)
-}
-
-fn stderr_of(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
+    run_os(&args)
 }
 
 /// `path:LINE:COL` of the first (and only) occurrence of `needle` in `text` (1-based; the
@@ -566,7 +543,7 @@ fn failed_write_exits_1_and_leaves_nothing() {
     let tmp = Tmp::new("one-fails");
     let good = tmp.out.join("good.pfm");
     let bad = tmp.out.join("no_such_dir").join("bad.pfm");
-    let o = run(&[
+    let o = run_os(&[
         "render".as_ref(),
         cbox().as_os_str(),
         "-o".as_ref(),
@@ -589,7 +566,7 @@ fn failed_write_exits_1_and_leaves_nothing() {
 fn good_render_writes_valid_images() {
     let tmp = Tmp::new("success");
     let outs = ["image.png", "image.exr", "image.pfm"].map(|n| tmp.out.join(n));
-    let o = run(&[
+    let o = run_os(&[
         "render".as_ref(),
         cbox().as_os_str(),
         "-o".as_ref(),

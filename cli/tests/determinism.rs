@@ -10,7 +10,9 @@ use tessera_core::render::RenderJob;
 use tessera_scene::LoadedScene;
 
 mod scenes;
+mod support;
 use scenes::load;
+use support::differing_pixels;
 
 fn render_with(
     l: &LoadedScene,
@@ -34,20 +36,6 @@ fn render_with(
     fb
 }
 
-/// Every bit of a pixel's accumulator.
-fn pixel_bits(p: &PixelAccum) -> [u64; 8] {
-    [
-        p.sum[0].to_bits(),
-        p.sum[1].to_bits(),
-        p.sum[2].to_bits(),
-        p.sum_sq[0].to_bits(),
-        p.sum_sq[1].to_bits(),
-        p.sum_sq[2].to_bits(),
-        p.count,
-        p.dropped,
-    ]
-}
-
 /// Asserts `b` is bit for bit the same image as `a` (naming the first differing pixel).
 fn assert_same_bits(a: &Framebuffer, b: &Framebuffer, what: &str) {
     assert_eq!((a.width, a.height), (b.width, b.height), "{what}: size");
@@ -55,7 +43,7 @@ fn assert_same_bits(a: &Framebuffer, b: &Framebuffer, what: &str) {
     assert_eq!(a.pixels.len(), b.pixels.len(), "{what}");
     for (i, (p, q)) in a.pixels.iter().zip(&b.pixels).enumerate() {
         assert!(
-            pixel_bits(p) == pixel_bits(q),
+            p.to_words() == q.to_words(),
             "{what}: pixel ({}, {}) differs: {p:?} vs {q:?}",
             i as u32 % a.width,
             i as u32 / a.width
@@ -157,8 +145,8 @@ fn one_sample_replayed_alone_matches_the_render() {
             let mut want = PixelAccum::default();
             want.add(c);
             assert_eq!(
-                pixel_bits(acc),
-                pixel_bits(&want),
+                acc.to_words(),
+                want.to_words(),
                 "pixel ({x}, {y}) sample {index}: render {acc:?}, replay {c:?}"
             );
             assert_eq!(acc.count, 1, "pixel ({x}, {y}) sample {index} was dropped");
@@ -174,12 +162,7 @@ fn different_seeds_give_different_images() {
     let l = load("cbox.xml", &[("res", "24"), ("spp", "4")]);
     let a = render_with(&l, 0..4, 2, 16, l.seed);
     let b = render_with(&l, 0..4, 2, 16, l.seed.wrapping_add(1));
-    let differing = a
-        .pixels
-        .iter()
-        .zip(&b.pixels)
-        .filter(|(p, q)| pixel_bits(p) != pixel_bits(q))
-        .count();
+    let differing = differing_pixels(&a, &b);
     assert!(
         differing > a.pixels.len() / 2,
         "only {differing} of {} pixels differ between seeds {} and {}",
@@ -193,5 +176,5 @@ fn different_seeds_give_different_images() {
         .pixels
         .iter()
         .zip(&c.pixels)
-        .any(|(p, q)| pixel_bits(p) != pixel_bits(q)));
+        .any(|(p, q)| p.to_words() != q.to_words()));
 }

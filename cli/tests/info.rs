@@ -1,18 +1,9 @@
 //! `tessera info`: what a scene holds, counted from the scene the renderer would render, and bad
 //! input refused like `render` refuses it.
 use std::path::Path;
-use std::process::{Command, Output};
 
-fn run(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_tessera"))
-        .args(args)
-        .output()
-        .expect("cannot run tessera")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+mod support;
+use support::{run, stderr};
 
 fn scenes() -> &'static Path {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes"))

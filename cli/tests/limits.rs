@@ -10,51 +10,21 @@
 //! The controls show the limits bite: the same commands with sane values succeed.
 #![cfg(unix)]
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
+
+mod support;
+use support::stderr as stderr_of;
+use support::temp_dir::TempDir;
 
 const BIN: &str = env!("CARGO_BIN_EXE_tessera");
 
 /// Address-space limit for the binary, in KiB (`ulimit -v`).
 const MEM_KIB: u64 = 2_000_000;
 
-/// A fresh temporary directory, removed on drop.
-struct Tmp(PathBuf);
-
-impl Tmp {
-    fn new(name: &str) -> Tmp {
-        static N: AtomicUsize = AtomicUsize::new(0);
-        let root = std::env::temp_dir().join(format!(
-            "tessera-limits-{}-{}-{name}",
-            std::process::id(),
-            N.fetch_add(1, Ordering::Relaxed)
-        ));
-        let _ = std::fs::remove_dir_all(&root);
-        std::fs::create_dir_all(&root).unwrap();
-        Tmp(root)
-    }
-
-    fn write(&self, name: &str, bytes: impl AsRef<[u8]>) -> PathBuf {
-        let p = self.0.join(name);
-        std::fs::write(&p, bytes).unwrap();
-        p
-    }
-
-    fn entries(&self) -> Vec<String> {
-        let mut v: Vec<String> = std::fs::read_dir(&self.0)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        v.sort();
-        v
-    }
-}
-
-impl Drop for Tmp {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
+/// A fresh temporary directory (`tessera-limits-...`), removed on drop.
+fn temp_dir(name: &str) -> TempDir {
+    TempDir::new("tessera-limits", name)
 }
 
 /// Runs `tessera args...` through `sh` with `ulimits` (e.g. `ulimit -v 2000000`) applied first
@@ -82,10 +52,6 @@ fn render(scene: &Path, out: &Path, extra: &[&str]) -> Output {
     ];
     args.extend(extra);
     run_limited(&format!("ulimit -v {MEM_KIB}"), &args)
-}
-
-fn stderr_of(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 /// `path:LINE:COL` of the only occurrence of `needle` in `text`.
@@ -136,7 +102,7 @@ fn scene(w: &str, h: &str, spp: &str, body: &str) -> String {
 
 #[test]
 fn control_small_scene_renders_under_the_memory_limit() {
-    let tmp = Tmp::new("control");
+    let tmp = temp_dir("control");
     let path = tmp.write("scene.xml", scene("4", "4", "2", ""));
     let out = tmp.0.join("image.pfm");
     let o = render(&path, &out, &[]);
@@ -247,7 +213,7 @@ fn absurd_film_sizes_and_sample_counts() {
         ),
     ];
     for (case, w, h, spp, needle, message) in cases {
-        let tmp = Tmp::new("film");
+        let tmp = temp_dir("film");
         let text = scene(w, h, spp, "");
         let path = tmp.write("scene.xml", &text);
         let out = tmp.0.join("image.png");
@@ -258,7 +224,7 @@ fn absurd_film_sizes_and_sample_counts() {
 
 #[test]
 fn command_line_sample_count_that_overflows_u64() {
-    let tmp = Tmp::new("cli-spp");
+    let tmp = temp_dir("cli-spp");
     let path = tmp.write("scene.xml", scene("4", "4", "1", ""));
     let out = tmp.0.join("image.png");
     let o = render(&path, &out, &["--spp", "18446744073709551616"]);
@@ -270,7 +236,7 @@ fn include_cycles_and_depth() {
     let inc =
         |f: &str| format!("<scene version=\"3.0.0\">\n    <include filename=\"{f}\"/>\n</scene>\n");
     // A file that includes itself.
-    let tmp = Tmp::new("self");
+    let tmp = temp_dir("self");
     let text = inc("self.xml");
     let path = tmp.write("self.xml", &text);
     let out = tmp.0.join("image.png");
@@ -284,7 +250,7 @@ fn include_cycles_and_depth() {
     );
 
     // a.xml -> b.xml -> a.xml: the error is at b.xml's include.
-    let tmp = Tmp::new("cycle");
+    let tmp = temp_dir("cycle");
     let a = tmp.write("a.xml", inc("b.xml"));
     let b_text = inc("a.xml");
     let b = tmp.write("b.xml", &b_text);
@@ -299,7 +265,7 @@ fn include_cycles_and_depth() {
     );
 
     // A chain of 40 files: refused at the 32nd file's include.
-    let tmp = Tmp::new("chain");
+    let tmp = temp_dir("chain");
     for i in 0..40 {
         tmp.write(&format!("c{i}.xml"), inc(&format!("c{}.xml", i + 1)));
     }
@@ -311,7 +277,7 @@ fn include_cycles_and_depth() {
     assert_refused("chain of 40", &o, &want, "nested deeper than 32", &out);
 
     // Control: a chain of 20 loads and renders.
-    let tmp = Tmp::new("chain-ok");
+    let tmp = temp_dir("chain-ok");
     for i in 0..20 {
         tmp.write(&format!("c{i}.xml"), inc(&format!("c{}.xml", i + 1)));
     }
@@ -330,7 +296,7 @@ fn deep_element_nesting_and_entity_expansion() {
         "<bsdf type=\"twosided\">".repeat(n),
         "</bsdf>".repeat(n)
     );
-    let tmp = Tmp::new("deep");
+    let tmp = temp_dir("deep");
     let text = scene("4", "4", "1", &body);
     let path = tmp.write("scene.xml", &text);
     let out = tmp.0.join("image.png");
@@ -342,7 +308,7 @@ fn deep_element_nesting_and_entity_expansion() {
     assert_refused("deep nesting", &o, &want, "nested deeper than 64", &out);
 
     // A million nested elements of an unknown kind: the first is refused.
-    let tmp = Tmp::new("deep-unknown");
+    let tmp = temp_dir("deep-unknown");
     let n = 1_000_000;
     let text = format!(
         "<scene>\n{}{}\n</scene>\n",
@@ -356,7 +322,7 @@ fn deep_element_nesting_and_entity_expansion() {
     assert_refused("deep unknown", &o, &want, "unknown element <a>", &out);
 
     // Billion laughs: DTDs are refused before any entity is expanded.
-    let tmp = Tmp::new("laughs");
+    let tmp = temp_dir("laughs");
     let mut dtd = String::from("<!DOCTYPE scene [<!ENTITY l0 \"lol\">");
     for i in 1..10 {
         let prev = format!("&l{};", i - 1).repeat(10);
@@ -452,7 +418,7 @@ fn huge_meshes_referenced_by_mistake() {
         ),
     ];
     for (case, name, bytes, message) in cases {
-        let tmp = Tmp::new("huge-mesh");
+        let tmp = temp_dir("huge-mesh");
         let mesh = tmp.write(name, &bytes);
         let kind = &name[2..];
         let text = mesh_scene(kind, name);
@@ -477,7 +443,7 @@ fn huge_meshes_referenced_by_mistake() {
             ply("binary_little_endian", "3", "1", &binary_triangle()),
         ),
     ] {
-        let tmp = Tmp::new("mesh-ok");
+        let tmp = temp_dir("mesh-ok");
         tmp.write(name, &bytes);
         let path = tmp.write("scene.xml", mesh_scene("ply", name));
         let out = tmp.0.join("image.png");
@@ -493,7 +459,7 @@ fn huge_meshes_referenced_by_mistake() {
 
 #[test]
 fn special_files_as_mesh_or_scene() {
-    let tmp = Tmp::new("special");
+    let tmp = temp_dir("special");
     std::fs::create_dir(tmp.0.join("dir.obj")).unwrap();
     for (kind, file, message) in [
         ("obj", "/dev/zero", "not a regular file"),
@@ -550,7 +516,7 @@ fn special_files_as_mesh_or_scene() {
 #[test]
 fn failed_write_keeps_the_previous_output() {
     // A 64x64 PFM is 49 KB; `ulimit -f 8` (8 KiB) makes the write fail in the middle.
-    let tmp = Tmp::new("fsize");
+    let tmp = temp_dir("fsize");
     let path = tmp.write("scene.xml", scene("64", "64", "1", ""));
     let out = tmp.write("image.pfm", "the previous good output");
     let args = [
@@ -587,7 +553,7 @@ fn failed_write_keeps_the_previous_output() {
 
 #[test]
 fn output_onto_a_directory_or_a_read_only_directory() {
-    let tmp = Tmp::new("outdir");
+    let tmp = temp_dir("outdir");
     let path = tmp.write("scene.xml", scene("4", "4", "1", ""));
     // An existing directory with the output's name: exit 1, the directory is left as it was.
     let out = tmp.0.join("image.png");

@@ -10,7 +10,7 @@
 
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 use tessera::checkpoint::{
     load_checkpoint, read_checkpoint, write_checkpoint, CheckpointMeta, Continuation,
@@ -20,6 +20,10 @@ use tessera::render::{render, render_span, Framebuffer, RenderOptions, Span};
 use tessera_core::integrator::NoProbe;
 use tessera_core::render::RenderJob;
 use tessera_scene::{load_scene, LoadedScene};
+
+mod support;
+use support::stderr;
+use support::temp_dir::TempDir;
 
 const BIN: &str = env!("CARGO_BIN_EXE_tessera");
 const RES: &str = "12";
@@ -36,30 +40,9 @@ fn load() -> LoadedScene {
     load_scene(&cbox(), &d).unwrap()
 }
 
-/// A fresh temporary directory, removed on drop.
-struct Tmp(PathBuf);
-
-impl Tmp {
-    fn new(name: &str) -> Tmp {
-        static N: AtomicUsize = AtomicUsize::new(0);
-        let p = std::env::temp_dir().join(format!(
-            "tessera-progressive-{}-{}-{name}",
-            std::process::id(),
-            N.fetch_add(1, Ordering::Relaxed)
-        ));
-        let _ = std::fs::remove_dir_all(&p);
-        std::fs::create_dir_all(&p).unwrap();
-        Tmp(p)
-    }
-    fn path(&self, name: &str) -> PathBuf {
-        self.0.join(name)
-    }
-}
-
-impl Drop for Tmp {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
+/// A fresh temporary directory (`tessera-progressive-...`), removed on drop.
+fn temp_dir(name: &str) -> TempDir {
+    TempDir::new("tessera-progressive", name)
 }
 
 /// `tessera render cbox -D res=12 --tile-size 4 --threads 2 -q` plus `extra`.
@@ -82,12 +65,19 @@ fn cmd(extra: &[&str]) -> Command {
     c
 }
 
-fn run(extra: &[&str]) -> Output {
-    cmd(extra).output().unwrap()
+/// `tessera render cbox ARGS OUT` (ARGS ending with `-o`), run to its end.
+fn render_cbox_to(args: &[&str], out: &Path) -> Output {
+    Command::new(BIN)
+        .arg("render")
+        .arg(cbox())
+        .args(args)
+        .arg(out)
+        .output()
+        .unwrap()
 }
 
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
+fn run(extra: &[&str]) -> Output {
+    cmd(extra).output().unwrap()
 }
 
 /// Waits until `path` exists (the run wrote its first checkpoint), or panics after 5 minutes.
@@ -144,7 +134,7 @@ fn reference(spp: u64) -> Framebuffer {
     render(&job, 0..spp, &opts, &mut |_, _| {})
 }
 
-fn pfm_bytes(fb: &Framebuffer, dir: &Tmp) -> Vec<u8> {
+fn pfm_bytes(fb: &Framebuffer, dir: &TempDir) -> Vec<u8> {
     let p = dir.path("reference.pfm");
     let img = RgbImage {
         width: fb.width,
@@ -168,7 +158,7 @@ fn one_line_exit_2(o: &Output, needles: &[&str]) {
 /// uninterrupted render; a resume to another total spp gives other bits (control).
 #[test]
 fn interrupted_and_resumed_render_is_bit_identical() {
-    let dir = Tmp::new("resume");
+    let dir = temp_dir("resume");
     let ck = dir.path("render.ckpt");
     let out = dir.path("out.pfm");
     let ck_s = ck.to_str().unwrap();
@@ -284,7 +274,7 @@ fn mixed_counts_continue_to_one_render() {
         render_span::<NoProbe>(&job, &opts, &mut fb, span, Some(&stop), &mut |_, _| {}).complete;
     assert!(!complete, "a set stop flag did not stop the pass");
     assert!(fb == before, "a stopped pass changed pixels");
-    let dir = Tmp::new("mixed");
+    let dir = temp_dir("mixed");
     let meta = CheckpointMeta {
         width: w,
         height: h,
@@ -317,7 +307,7 @@ fn mixed_counts_continue_to_one_render() {
 }
 
 /// A valid small checkpoint to refuse in the tests below.
-fn small_checkpoint(dir: &Tmp) -> PathBuf {
+fn small_checkpoint(dir: &TempDir) -> PathBuf {
     let ck = dir.path("small.ckpt");
     let o = run(&[
         "--spp",
@@ -333,7 +323,7 @@ fn small_checkpoint(dir: &Tmp) -> PathBuf {
 
 #[test]
 fn resume_of_another_render_is_refused() {
-    let dir = Tmp::new("mismatch");
+    let dir = temp_dir("mismatch");
     let ck = small_checkpoint(&dir);
     let ck_s = ck.to_str().unwrap();
     let out = dir.path("o.pfm");
@@ -373,7 +363,7 @@ fn resume_of_another_render_is_refused() {
 
 #[test]
 fn damaged_checkpoints_are_refused() {
-    let dir = Tmp::new("damaged");
+    let dir = temp_dir("damaged");
     let ck = small_checkpoint(&dir);
     let bytes = std::fs::read(&ck).unwrap();
     let out = dir.path("o.pfm");
@@ -412,29 +402,23 @@ fn damaged_checkpoints_are_refused() {
 
 #[test]
 fn time_budget_stops_the_render() {
-    let dir = Tmp::new("time");
+    let dir = temp_dir("time");
     let out = dir.path("t.exr");
     let t = Instant::now();
-    let o = Command::new(BIN)
-        .arg("render")
-        .arg(cbox())
-        .args(["-D", "res=12", "--threads", "2", "--time", "0.5", "-o"])
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = render_cbox_to(
+        &["-D", "res=12", "--threads", "2", "--time", "0.5", "-o"],
+        &out,
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("time budget spent"), "{}", stderr(&o));
     assert!(out.exists());
     // Generous: only that it did stop, not how precisely.
     assert!(t.elapsed() < Duration::from_secs(120));
     // With a small --spp as well, the target comes first.
-    let o = Command::new(BIN)
-        .arg("render")
-        .arg(cbox())
-        .args(["-D", "res=12", "--time", "1000", "--spp", "3", "-o"])
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = render_cbox_to(
+        &["-D", "res=12", "--time", "1000", "--spp", "3", "-o"],
+        &out,
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("at 3 spp"), "{}", stderr(&o));
     assert!(!stderr(&o).contains("time budget"));
@@ -443,14 +427,12 @@ fn time_budget_stops_the_render() {
 /// `--resolution-scale 0.5` of a 24-pixel film is the 12-pixel film: the same bits.
 #[test]
 fn resolution_scale_gives_the_smaller_film() {
-    let dir = Tmp::new("scale");
+    let dir = temp_dir("scale");
     let (a, b, c) = (dir.path("a.pfm"), dir.path("b.pfm"), dir.path("c.pfm"));
     let o = run(&["--spp", "2", "-o", a.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let o = Command::new(BIN)
-        .arg("render")
-        .arg(cbox())
-        .args([
+    let o = render_cbox_to(
+        &[
             "-D",
             "res=24",
             "--spp",
@@ -459,20 +441,13 @@ fn resolution_scale_gives_the_smaller_film() {
             "--resolution-scale",
             "0.5",
             "-o",
-        ])
-        .arg(&b)
-        .output()
-        .unwrap();
+        ],
+        &b,
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
     // Control: the unscaled 24-pixel film is another image; a zero scale is refused.
-    let o = Command::new(BIN)
-        .arg("render")
-        .arg(cbox())
-        .args(["-D", "res=24", "--spp", "2", "-q", "-o"])
-        .arg(&c)
-        .output()
-        .unwrap();
+    let o = render_cbox_to(&["-D", "res=24", "--spp", "2", "-q", "-o"], &c);
     assert!(o.status.success(), "{}", stderr(&o));
     assert_ne!(std::fs::read(&a).unwrap(), std::fs::read(&c).unwrap());
     one_line_exit_2(

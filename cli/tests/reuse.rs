@@ -9,7 +9,9 @@ use tessera_core::render::RenderJob;
 use tessera_scene::LoadedScene;
 
 mod scenes;
+mod support;
 use scenes::load;
+use support::differing_pixels;
 
 fn render_with(
     l: &LoadedScene,
@@ -26,24 +28,11 @@ fn render_with(
     render(&job, samples, &opts, &mut |_, _| {})
 }
 
-fn bits(p: &PixelAccum) -> [u64; 8] {
-    [
-        p.sum[0].to_bits(),
-        p.sum[1].to_bits(),
-        p.sum[2].to_bits(),
-        p.sum_sq[0].to_bits(),
-        p.sum_sq[1].to_bits(),
-        p.sum_sq[2].to_bits(),
-        p.count,
-        p.dropped,
-    ]
-}
-
 fn same(a: &Framebuffer, b: &Framebuffer) -> bool {
     a.pixels
         .iter()
         .zip(&b.pixels)
-        .all(|(p, q)| bits(p) == bits(q))
+        .all(|(p, q)| p.to_words() == q.to_words())
 }
 
 /// cbox at an odd resolution (groups clipped at the right and bottom edges), `reuse` on.
@@ -109,8 +98,8 @@ fn one_sample_replayed_alone_matches_the_render() {
                 let mut want = PixelAccum::default();
                 want.add(c);
                 assert_eq!(
-                    bits(fb.at(x, y)),
-                    bits(&want),
+                    fb.at(x, y).to_words(),
+                    want.to_words(),
                     "{sampler} ({x}, {y}) #{index}"
                 );
             }
@@ -128,12 +117,7 @@ fn reuse_shares_light_and_off_changes_nothing() {
     // With reuse, most pixels change (their indirect light now comes from four paths).
     l.set_integrator(Some("path+reuse"), None).unwrap();
     let shared = render_with(&l, 0..2, 2, 16);
-    let changed = plain
-        .pixels
-        .iter()
-        .zip(&shared.pixels)
-        .filter(|(p, q)| bits(p) != bits(q))
-        .count();
+    let changed = differing_pixels(&plain, &shared);
     assert!(
         changed > plain.pixels.len() / 2,
         "only {changed} pixels changed"

@@ -2,13 +2,25 @@
 //! exit code 2; `tessera bench --sampler independent,zsobol` measures both in one report, the
 //! `sampler` column naming each.
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Output};
 use tessera_lab::bench::read_csv;
 
 const BIN: &str = env!("CARGO_BIN_EXE_tessera");
 
-fn cbox() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/cbox.xml")
+/// Runs `tessera SUB scenes/cbox.xml -D res=8 ARGS...`.
+fn on_cbox(sub: &str, args: &[&str]) -> Output {
+    Command::new(BIN)
+        .arg(sub)
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/cbox.xml"))
+        .args(["-D", "res=8"])
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+/// A path of the test's temporary folder as text.
+fn text(p: &Path) -> &str {
+    p.to_str().expect("temporary paths are UTF-8")
 }
 
 fn tmp(name: &str) -> PathBuf {
@@ -22,13 +34,7 @@ fn tmp(name: &str) -> PathBuf {
 fn unknown_sampler_is_a_usage_error() {
     let dir = tmp("unknown");
     let out = dir.join("o.exr");
-    let o = Command::new(BIN)
-        .arg("render")
-        .arg(cbox())
-        .args(["-D", "res=8", "--sampler", "sobolx", "-o"])
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = on_cbox("render", &["--sampler", "sobolx", "-o", text(&out)]);
     assert_unknown(&o);
     assert!(!out.exists());
     let _ = std::fs::remove_dir_all(&dir);
@@ -45,44 +51,38 @@ fn assert_unknown(o: &std::process::Output) {
 fn bench_measures_both_samplers_in_one_report() {
     let dir = tmp("bench");
     let reference = dir.join("ref.exr");
-    let o = Command::new(BIN)
-        .arg("render")
-        .arg(cbox())
-        .args([
-            "-D",
-            "res=8",
+    let o = on_cbox(
+        "render",
+        &[
             "-D",
             "rfilter=box",
             "--spp",
             "16",
             "--quiet",
             "--sampler",
-        ])
-        .arg("zsobol")
-        .arg("-o")
-        .arg(&reference)
-        .output()
-        .unwrap();
+            "zsobol",
+            "-o",
+            text(&reference),
+        ],
+    );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let csv = dir.join("r.csv");
-    let o = Command::new(BIN)
-        .arg("bench")
-        .arg(cbox())
-        .args([
-            "-D",
-            "res=8",
+    let o = on_cbox(
+        "bench",
+        &[
             "-D",
             "rfilter=box",
             "--max-spp",
             "4",
             "--quiet",
-        ])
-        .args(["--sampler", "independent,zsobol", "--reference"])
-        .arg(&reference)
-        .arg("-o")
-        .arg(&csv)
-        .output()
-        .unwrap();
+            "--sampler",
+            "independent,zsobol",
+            "--reference",
+            text(&reference),
+            "-o",
+            text(&csv),
+        ],
+    );
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(stdout.contains("path (zsobol)"), "{stdout}");
@@ -101,15 +101,17 @@ fn bench_measures_both_samplers_in_one_report() {
     );
     // An unknown name is refused before anything is measured.
     let bad = dir.join("bad.csv");
-    let o = Command::new(BIN)
-        .arg("bench")
-        .arg(cbox())
-        .args(["-D", "res=8", "--sampler", "zsobol,sobolx", "--reference"])
-        .arg(&reference)
-        .arg("-o")
-        .arg(&bad)
-        .output()
-        .unwrap();
+    let o = on_cbox(
+        "bench",
+        &[
+            "--sampler",
+            "zsobol,sobolx",
+            "--reference",
+            text(&reference),
+            "-o",
+            text(&bad),
+        ],
+    );
     assert_unknown(&o);
     assert!(!bad.exists());
     let _ = std::fs::remove_dir_all(&dir);

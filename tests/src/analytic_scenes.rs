@@ -1,5 +1,18 @@
-//! Scenes with closed-form answers, shared by the analytic t-tests (`analytic.rs`) and the
-//! sampler tests (`sampler_zsobol_render.rs`), built from one camera block and one lit plane.
+//! Scenes with closed-form answers, shared by the analytic t-tests (`analytic.rs`,
+//! `emitters_analytic.rs`, `course_integrators.rs`), the sampler tests
+//! (`sampler_zsobol_render.rs`) and the stress tests, built from one camera block and one lit
+//! plane or square.
+
+/// The integrators that sample lights directly, so they find a delta light (point, spot,
+/// directional); `path_mats` and `direct_mats` sample only the BSDF and never do.
+pub const LIGHT_SAMPLING_INTEGRATORS: [&str; 6] = [
+    "path_ems",
+    "path_half",
+    "path_mis",
+    "direct_ems",
+    "direct_mis",
+    "direct",
+];
 
 /// A scene of a perspective camera (field of view `fov` degrees, `lookat` the attributes of a
 /// `<lookat>` tag, a box-filtered `res x res` film) and the XML elements in `body`.
@@ -12,6 +25,27 @@ pub fn scene(fov: f64, lookat: &str, res: u32, body: &str) -> String {
     <film type="hdrfilm"><integer name="width" value="{res}"/><integer name="height" value="{res}"/><rfilter type="box"/></film>
   </sensor>
 {body}
+</scene>"#
+    )
+}
+
+/// A 1x1 view (field of view 0.001 degrees, box filter) from the `<lookat>` attributes
+/// `lookat` of a 20 x 20 diffuse square at z = 0 (reflectance 0.7, 0.5, 0.3), with `head`
+/// (integrator, defaults) before the sensor and `body` (lights, occluders) after the square.
+pub fn one_pixel_over_square(head: &str, lookat: &str, body: &str) -> String {
+    format!(
+        r#"<scene version="3.0.0">
+  {head}
+  <sensor type="perspective">
+    <float name="fov" value="0.001"/>
+    <transform name="to_world"><lookat {lookat}/></transform>
+    <film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>
+  </sensor>
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="10"/></transform>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.5, 0.3"/></bsdf>
+  </shape>
+  {body}
 </scene>"#
     )
 }

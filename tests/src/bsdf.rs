@@ -1,5 +1,6 @@
 //! Helpers shared by the material tests: build one `<bsdf>` from XML text, directions by angle,
-//! the chi-square configuration and check, and the located-error check for bad parameters.
+//! the chi-square configuration and check, the located-error check for bad parameters, and the
+//! case files of `tests/bsdf_cases/` with their tables of Mitsuba's values.
 use glam::{Vec2, Vec3};
 use tessera_core::bsdf::Bsdf;
 use tessera_lab::stats::{sidak_alpha, BsdfChi2, Chi2Result};
@@ -109,4 +110,25 @@ pub fn assert_cases_rejected_on_their_line(cases: &[(&str, &str, &str)], nori: b
         assert!(text.contains(needle), "{text}");
         assert_eq!(e.loc.as_ref().map(|l| l.line), Some(3), "{text}");
     }
+}
+
+/// The material files of `tests/bsdf_cases/` (`*.xml`, each beside the CSV table of Mitsuba's
+/// values that `scripts/mitsuba_bsdf_eval.py` made), sorted by name.
+pub fn bsdf_case_files() -> Vec<std::path::PathBuf> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("bsdf_cases");
+    let mut v: Vec<std::path::PathBuf> = std::fs::read_dir(&dir)
+        .expect("tests/bsdf_cases exists")
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "xml"))
+        .collect();
+    v.sort();
+    v
+}
+
+/// The numeric rows of a CSV table of reference values: every line but comments (`#`) and the
+/// header (the line starting with `header`), split at commas and parsed.
+pub fn csv_rows<'a>(text: &'a str, header: &'a str) -> impl Iterator<Item = Vec<f32>> + 'a {
+    text.lines()
+        .filter(move |l| !l.starts_with('#') && !l.starts_with(header))
+        .map(|line| line.split(',').map(|x| x.parse().unwrap()).collect())
 }

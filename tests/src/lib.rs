@@ -28,6 +28,28 @@ pub fn load_file(name: &str, defines: &[(&str, &str)]) -> LoadedScene {
     load_scene(&scenes_dir().join(name), &defines).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// Loads scene file `name` from `scenes/` with its text changed by `edit` (relative paths still
+/// resolve beside it). Panics when the edit changes nothing: the scene file no longer holds
+/// what the test edits, and the test needs updating.
+pub fn load_file_edited(
+    name: &str,
+    edit: impl FnOnce(&str) -> String,
+    defines: &[(&str, &str)],
+) -> LoadedScene {
+    let path = scenes_dir().join(name);
+    let text = std::fs::read_to_string(&path).expect("scene file");
+    let edited = edit(&text);
+    assert_ne!(
+        text, edited,
+        "{name}: the edit changed nothing; update this test"
+    );
+    let defines: Vec<(String, String)> = defines
+        .iter()
+        .map(|(a, b)| (a.to_string(), b.to_string()))
+        .collect();
+    load_scene_str(&edited, &path, &defines).unwrap_or_else(|e| panic!("{e}"))
+}
+
 /// Renders a loaded scene with `spp` samples on 2 threads.
 pub fn render_loaded(l: &LoadedScene, spp: u64, seed: u64) -> Framebuffer {
     render_two_threads(&l.scene, &l.integrator, spp, seed)
@@ -222,7 +244,9 @@ pub fn worst_against_reference_rect(
 
 pub mod analytic_scenes;
 pub mod bsdf;
+pub mod bsdf_checks;
 pub mod cap;
+pub mod filter_reference;
 pub mod rng;
 pub mod soup;
 pub mod stress;

@@ -143,6 +143,13 @@ pub fn random_spheres(rng: &mut SplitMix, n: usize) -> Vec<Sphere> {
         .collect()
 }
 
+/// A scene of [`random_spheres`] (`n % 4` of them, drawn first) and a [`random_soup`] of `n`
+/// triangles.
+pub fn random_soup_scene(rng: &mut SplitMix, n: usize) -> Scene {
+    let spheres = random_spheres(rng, n % 4);
+    scene(random_soup(rng, n), spheres)
+}
+
 /// `n` rays from a cube of side 50 toward points of the soup's cube; 30% with a random extent
 /// below 40.
 pub fn random_rays(rng: &mut SplitMix, n: usize) -> Vec<Ray> {

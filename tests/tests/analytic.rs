@@ -9,7 +9,7 @@ use tessera_core::glam::{DMat4, DVec3};
 use tessera_core::math::Norm;
 use tessera_lab::stats::{sidak_alpha, t_test_from_sums};
 use tessera_tests::analytic_scenes::{
-    self as scenes, closed_sphere, over_diffuse_plane, sphere_light,
+    self as scenes, closed_sphere, over_diffuse_plane, sphere_light, LIGHT_SAMPLING_INTEGRATORS,
 };
 use tessera_tests::{load_xml, render_loaded};
 
@@ -113,28 +113,35 @@ fn inside_closed_emitting_sphere() {
     }
 }
 
-/// Directly below a sphere light of radius r at height h over a diffuse plane:
-/// a L r^2 / h^2 (direct lighting only, max_depth 2).
-#[test]
-fn sphere_light_over_diffuse_plane() {
-    let (l, r, h) = (10.0f64, 0.5f64, 3.0f64);
-    let expected = [0.7f64, 0.5, 0.3].map(|a| a * l * r * r / (h * h));
+/// [`check`] of a scene lit directly by an area light, with every integrator: the path tracers
+/// at max_depth 2 (direct light only), BSDF sampling alone (`*_mats`) with `mats_spp` samples,
+/// the others with 100,000.
+fn check_direct_light(label: &str, xml: &str, mats_spp: u64, expected: [f64; 3]) {
     for integ in PATHS.iter().chain(&DIRECTS) {
         let spp = if integ.ends_with("mats") {
-            2_000_000
+            mats_spp
         } else {
             100_000
         };
         let depth = integ.starts_with("path").then_some(2);
         check(
-            &format!("sphere light {integ}"),
-            &sphere_light(),
+            &format!("{label} {integ}"),
+            xml,
             integ,
             depth,
             spp,
             expected,
         );
     }
+}
+
+/// Directly below a sphere light of radius r at height h over a diffuse plane:
+/// a L r^2 / h^2 (direct lighting only, max_depth 2).
+#[test]
+fn sphere_light_over_diffuse_plane() {
+    let (l, r, h) = (10.0f64, 0.5f64, 3.0f64);
+    let expected = [0.7f64, 0.5, 0.3].map(|a| a * l * r * r / (h * h));
+    check_direct_light("sphere light", &sphere_light(), 2_000_000, expected);
 }
 
 /// The diffuse plane lit by a point light (intensity 20) 2 above the point the camera sees.
@@ -153,14 +160,7 @@ fn point_light() -> String {
 fn point_light_over_diffuse_plane() {
     let (i, h) = (20.0f64, 2.0f64);
     let expected = [0.7f64, 0.5, 0.3].map(|a| a * i / (std::f64::consts::PI * h * h));
-    for integ in [
-        "path_ems",
-        "path_half",
-        "path_mis",
-        "direct_ems",
-        "direct_mis",
-        "direct",
-    ] {
+    for integ in LIGHT_SAMPLING_INTEGRATORS {
         let depth = integ.starts_with("path").then_some(2);
         check(
             &format!("point light {integ}"),
@@ -236,22 +236,7 @@ fn polygonal_emitters_match_lamberts_formula() {
             "case {k}: the light barely reaches the point (E = {e})"
         );
         let expected = [0.7f64, 0.5, 0.3].map(|a| a * e / std::f64::consts::PI);
-        for integ in PATHS.iter().chain(&DIRECTS) {
-            let spp = if integ.ends_with("mats") {
-                400_000
-            } else {
-                100_000
-            };
-            let depth = integ.starts_with("path").then_some(2);
-            check(
-                &format!("polygon {k} {integ}"),
-                &xml,
-                integ,
-                depth,
-                spp,
-                expected,
-            );
-        }
+        check_direct_light(&format!("polygon {k}"), &xml, 400_000, expected);
     }
 }
 

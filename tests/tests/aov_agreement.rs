@@ -98,15 +98,19 @@ const MITSUBA_ORDER: &[&str] = &[
     "pos.Z", "alb.R", "alb.G", "alb.B",
 ];
 
-#[test]
-fn aov_channels_match_mitsuba() {
-    let l = load_scene(&scene_path(), &[]).unwrap_or_else(|e| panic!("{e}"));
-    let names: Vec<&str> = l
-        .integrator_spec
+/// The names of the extra channels `l`'s integrator writes, in order.
+fn layer_names(l: &LoadedScene) -> Vec<&str> {
+    l.integrator_spec
         .layers
         .iter()
         .flat_map(|layer| layer.names.iter().map(String::as_str))
-        .collect();
+        .collect()
+}
+
+#[test]
+fn aov_channels_match_mitsuba() {
+    let l = load_scene(&scene_path(), &[]).unwrap_or_else(|e| panic!("{e}"));
+    let names = layer_names(&l);
     assert_eq!(names, MITSUBA_ORDER);
     let r = reference();
     let mut in_file: Vec<&str> = r.iter().map(|c| c.0.as_str()).collect();
@@ -181,12 +185,7 @@ fn moment_scene() -> LoadedScene {
 #[test]
 fn moment_second_moment_is_the_mean_of_squared_samples() {
     let l = moment_scene();
-    let names: Vec<&str> = l
-        .integrator_spec
-        .layers
-        .iter()
-        .flat_map(|layer| layer.names.iter().map(String::as_str))
-        .collect();
+    let names = layer_names(&l);
     assert_eq!(
         names,
         [

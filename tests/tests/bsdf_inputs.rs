@@ -4,23 +4,16 @@
 //! the same bits, over many directions and inputs. Control: the materials that claim an input do
 //! change with it somewhere, so the comparison can fail.
 use glam::{Vec2, Vec3};
-use std::path::Path;
 use tessera_core::bsdf::{Bsdf, BsdfSample, Mirror};
 use tessera_lab::stats::Pcg32;
 use tessera_scene::load_bsdf_file;
-use tessera_tests::bsdf::{load_bsdf_xml, uniform_direction};
+use tessera_tests::bsdf::{bsdf_case_files, load_bsdf_xml, uniform_direction};
 
 const UV: Vec2 = Vec2::new(0.25, 0.75);
 const TRIALS: usize = 4000;
 
 fn materials() -> Vec<(String, Bsdf)> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("bsdf_cases");
-    let mut paths: Vec<_> = std::fs::read_dir(&dir)
-        .expect("tests/bsdf_cases exists")
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "xml"))
-        .collect();
-    paths.sort();
+    let paths = bsdf_case_files();
     let mut v: Vec<(String, Bsdf)> = paths
         .iter()
         .map(|p| {

@@ -9,26 +9,16 @@
 //! tolerance only covers rounding; a wrong factor, sign convention or Fresnel term fails. A
 //! case file without its table fails too.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use glam::{Vec2, Vec3};
 use tessera_scene::load_bsdf_file;
+use tessera_tests::bsdf::{bsdf_case_files, csv_rows};
 
 const UV: Vec2 = Vec2::new(0.25, 0.75);
 
 fn close(a: f32, b: f32) -> bool {
     (a - b).abs() <= 1e-3 * a.abs().max(b.abs()) + 1e-5
-}
-
-fn cases() -> Vec<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("bsdf_cases");
-    let mut v: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .expect("tests/bsdf_cases exists")
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "xml"))
-        .collect();
-    v.sort();
-    v
 }
 
 fn check(case: &Path) -> Vec<String> {
@@ -48,11 +38,7 @@ fn check(case: &Path) -> Vec<String> {
     };
     let mut bad = Vec::new();
     let mut rows = 0;
-    for line in text
-        .lines()
-        .filter(|l| !l.starts_with('#') && !l.starts_with("wi_x"))
-    {
-        let v: Vec<f32> = line.split(',').map(|x| x.parse().unwrap()).collect();
+    for v in csv_rows(&text, "wi_x") {
         let wi = Vec3::new(v[0], v[1], v[2]);
         let wo = Vec3::new(v[3], v[4], v[5]);
         let want = Vec3::new(v[6], v[7], v[8]);
@@ -75,7 +61,7 @@ fn check(case: &Path) -> Vec<String> {
 
 #[test]
 fn every_case_matches_mitsuba() {
-    let cases = cases();
+    let cases = bsdf_case_files();
     assert!(!cases.is_empty());
     let mut failures = Vec::new();
     for c in &cases {

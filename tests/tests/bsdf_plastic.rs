@@ -12,18 +12,17 @@ use tessera_core::bsdf::microfacet::MicrofacetKind;
 use tessera_core::bsdf::plastic_common::fresnel_diffuse_reflectance;
 use tessera_core::bsdf::{Bsdf, RoughPlastic};
 use tessera_core::texture::Texture;
-use tessera_lab::stats::{sampled_albedo, sidak_alpha, BsdfChi2, Pcg32, SphereChi2};
+use tessera_lab::stats::{sampled_albedo, Pcg32};
 use tessera_scene::error::InputError;
 use tessera_tests::bsdf::{assert_cases_rejected_on_their_line, build_bsdf_xml};
+use tessera_tests::bsdf_checks::{
+    assert_chi2_cases, assert_wrong_density_rejected, reciprocity_error,
+};
 
 /// Chi-square tests in this file: 5 `plastic` cases, 11 `roughplastic` cases.
 const N_CHI2: usize = 16;
 
 const UV: Vec2 = Vec2::new(0.25, 0.75);
-
-fn alpha() -> f64 {
-    sidak_alpha(0.01, N_CHI2)
-}
 
 fn build(xml: &str) -> Result<Bsdf, InputError> {
     build_bsdf_xml(xml, false)
@@ -40,21 +39,10 @@ fn dir(deg: f32) -> Vec3 {
 }
 
 fn chi2_cases(cases: &[(&str, &str, f32)], first_seed: u64) {
-    let a = alpha();
-    let mut failed = Vec::new();
-    for (k, &(name, xml, deg)) in cases.iter().enumerate() {
-        let b = bsdf(xml);
-        let r = BsdfChi2 {
-            samples: 500_000,
-            ..BsdfChi2::default()
-        }
-        .run(&b, dir(deg), UV, first_seed + k as u64);
-        println!("{name} at {deg} deg: {r}");
-        if !r.passes(a) {
-            failed.push(format!("{name} at {deg} deg: {r}"));
-        }
-    }
-    assert!(failed.is_empty(), "alpha = {a:.3e}:\n{}", failed.join("\n"));
+    let cases = cases
+        .iter()
+        .map(|&(name, xml, deg)| (format!("{name} at {deg} deg"), bsdf(xml), dir(deg)));
+    assert_chi2_cases(cases, UV, first_seed, N_CHI2);
 }
 
 const PLASTIC_COLOR: &str = r#"<bsdf type="plastic">
@@ -122,29 +110,8 @@ fn a_wrong_component_probability_is_rejected() {
     let claimed =
         bsdf(r#"<bsdf type="plastic"><float name="diffuse_reflectance" value="0.2"/></bsdf>"#);
     let wi = dir(10.0);
-    // The non-delta samples of `drawn` judged against `pdf_of`'s pdf.
-    let run = |pdf_of: &Bsdf| {
-        let mut rng = Pcg32::new(99);
-        SphereChi2 {
-            theta_bins: 20,
-            phi_bins: 40,
-            samples: 500_000,
-        }
-        .run(
-            |u| {
-                let s = drawn.sample(wi, rng.next_f32(), u, UV)?;
-                (!s.delta).then_some(s.wo)
-            },
-            |w| f64::from(pdf_of.pdf(wi, w, UV)),
-            7,
-        )
-    };
-    let r = run(&claimed);
-    println!("control: {r}");
-    assert!(!r.passes(alpha()), "{r}");
-    // The same harness with the right pdf passes.
-    let r = run(&drawn);
-    assert!(r.passes(alpha()), "{r}");
+    // The non-delta samples of `drawn` against `claimed`'s pdf, then against its own.
+    assert_wrong_density_rejected(&drawn, &claimed, wi, UV, N_CHI2);
 }
 
 /// White plastic (diffuse and specular reflectance 1). Its exact directional albedo is
@@ -207,25 +174,6 @@ fn white_roughplastic_albedo_is_at_most_one() {
     }
 }
 
-/// Largest violation of `f(wi, wo) = f(wo, wi)` (with `f = eval / cos theta_o`) over a grid of
-/// front-side direction pairs, relative to the larger value.
-fn reciprocity_error(eval: impl Fn(Vec3, Vec3) -> Vec3) -> f32 {
-    let mut rng = Pcg32::new(5);
-    let mut worst = 0.0f32;
-    for _ in 0..20_000 {
-        let a = tessera_core::sampling::warp::square_to_cosine_hemisphere(rng.next_vec2());
-        let b = tessera_core::sampling::warp::square_to_cosine_hemisphere(rng.next_vec2());
-        if a.z < 0.02 || b.z < 0.02 {
-            continue;
-        }
-        let fab = eval(a, b) / b.z;
-        let fba = eval(b, a) / a.z;
-        let d = (fab - fba).abs().max_element() / fab.max(fba).max_element().max(1e-6);
-        worst = worst.max(d);
-    }
-    worst
-}
-
 /// Both Mitsuba plastics are reciprocal: the coating's Fresnel factor depends on `h.wi = h.wo`
 /// and the base's on `T(cos theta_i) T(cos theta_o)`. Control: a factor `1 + 0.05 cos theta_i`
 /// breaks it and is caught.
@@ -240,12 +188,12 @@ fn plastics_are_reciprocal() {
         ),
     ];
     for b in &models {
-        let e = reciprocity_error(|wi, wo| b.eval(wi, wo, UV));
+        let e = reciprocity_error(|wi, wo| b.eval(wi, wo, UV), 5, 1e-6);
         println!("reciprocity error {e:.2e}");
         assert!(e < 1e-4, "{e}");
     }
     let b = &models[1];
-    let e = reciprocity_error(|wi, wo| b.eval(wi, wo, UV) * (1.0 + 0.05 * wi.z));
+    let e = reciprocity_error(|wi, wo| b.eval(wi, wo, UV) * (1.0 + 0.05 * wi.z), 5, 1e-6);
     assert!(e > 1e-3, "control not caught: {e}");
 }
 

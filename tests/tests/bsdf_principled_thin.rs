@@ -8,11 +8,14 @@
 //! the file; test `k` uses seed `k`. Run with `--nocapture` to see every p-value.
 
 use glam::{Vec2, Vec3};
-use tessera_core::bsdf::{Bsdf, BsdfTraits};
-use tessera_lab::stats::{sampled_albedo, sidak_alpha, Pcg32, SphereChi2};
+use tessera_core::bsdf::Bsdf;
+use tessera_lab::stats::Pcg32;
 use tessera_tests::bsdf::{
-    assert_cases_rejected_on_their_line, assert_chi2_passes, dir_at, load_bsdf_xml,
-    uniform_direction, CHI2_HALF,
+    assert_cases_rejected_on_their_line, dir_at, load_bsdf_xml, uniform_direction,
+};
+use tessera_tests::bsdf_checks::{
+    assert_chi2_cases, assert_finite_and_consistent, assert_smooth_two_input_traits,
+    assert_wrong_density_rejected, texture_count, AlbedoAgreement,
 };
 
 /// Chi-square tests in this file: the cases of `samples_its_pdf`.
@@ -61,16 +64,9 @@ fn samples_its_pdf() {
         ("rough glass, eta 0.5", r#"<float name="spec_trans" value="1"/>
             <float name="roughness" value="0.9"/><float name="eta" value="0.5"/>"#, 60.0),
     ];
-    let a = sidak_alpha(0.01, N_CHI2);
-    let mut failed = Vec::new();
-    for (k, (name, props, deg)) in cases.iter().enumerate() {
-        let r = CHI2_HALF.run(&thin(props), dir(*deg), UV, k as u64);
-        println!("{name} at {deg} deg: {r}");
-        if !r.passes(a) {
-            failed.push(format!("{name} at {deg} deg: {r}"));
-        }
-    }
-    assert!(failed.is_empty(), "alpha = {a:.3e}:\n{}", failed.join("\n"));
+    let cases =
+        cases.map(|(name, props, deg)| (format!("{name} at {deg} deg"), thin(props), dir(deg)));
+    assert_chi2_cases(cases, UV, 0, N_CHI2);
 }
 
 /// Control: directions sampled with specular transmission rate 1, judged against the density
@@ -82,24 +78,7 @@ fn a_wrong_lobe_probability_is_rejected() {
         r#"{GLASS}<float name="specular_transmittance_sampling_rate" value="1.5"/>"#
     ));
     let wi = dir(20.0);
-    let run = |pdf_of: &Bsdf| {
-        let mut rng = Pcg32::new(99);
-        SphereChi2 {
-            theta_bins: 20,
-            phi_bins: 40,
-            samples: 500_000,
-        }
-        .run(
-            |u| Some(drawn.sample(wi, rng.next_f32(), u, UV)?.wo),
-            |w| f64::from(pdf_of.pdf(wi, w, UV)),
-            7,
-        )
-    };
-    let alpha = sidak_alpha(0.01, N_CHI2);
-    let r = run(&claimed);
-    println!("control: {r}");
-    assert!(!r.passes(alpha), "control not rejected: {r}");
-    assert_chi2_passes("same directions, own density", &run(&drawn), N_CHI2);
+    assert_wrong_density_rejected(&drawn, &claimed, wi, UV, N_CHI2);
 }
 
 /// The sheet is the same from both sides: mirroring `wi` and `wo` through it changes neither
@@ -142,59 +121,9 @@ fn finite_at_extremes() {
         -Vec3::Z,
     ];
     let mut rng = Pcg32::new(3);
-    let close = |a: f32, c: f32| (a - c).abs() <= 1e-3 * a.abs().max(c.abs()) + 1e-6;
     for props in extremes {
-        let b = thin(props);
-        let (n, mut inconsistent) = (20_000, 0);
-        for k in 0..n {
-            let wi = if k < 300 {
-                grazing[k % grazing.len()]
-            } else {
-                uniform_direction(rng.next_vec2(), true)
-            };
-            let wo = if k % 3 == 0 {
-                grazing[(k / 3) % grazing.len()]
-            } else {
-                uniform_direction(rng.next_vec2(), true)
-            };
-            let (f, p) = (b.eval(wi, wo, UV), b.pdf(wi, wo, UV));
-            assert!(
-                f.is_finite() && f.min_element() >= 0.0 && p.is_finite() && p >= 0.0,
-                "{props}: wi {wi} wo {wo}: eval {f} pdf {p}"
-            );
-            if let Some(s) = b.sample(wi, rng.next_f32(), rng.next_vec2(), UV) {
-                assert!(
-                    s.weight.is_finite() && s.weight.min_element() >= 0.0 && s.pdf > 0.0,
-                    "{props}: wi {wi}: {s:?}"
-                );
-                let fw = s.weight * s.pdf;
-                let f = b.eval(wi, s.wo, UV);
-                if !(close(s.pdf, b.pdf(wi, s.wo, UV)) && (0..3).all(|c| close(fw[c], f[c]))) {
-                    inconsistent += 1;
-                }
-            }
-        }
-        assert!(
-            inconsistent <= n / 10_000,
-            "{props}: {inconsistent} inconsistent samples"
-        );
+        assert_finite_and_consistent(&thin(props), props, &grazing, UV, &mut rng);
     }
-}
-
-/// `integral eval(wi, wo) dwo` over the sphere by the midpoint rule on cells of equal solid
-/// angle, first channel, in f64.
-fn quadrature_albedo(b: &Bsdf, wi: Vec3, nz: usize, np: usize) -> f64 {
-    let mut s = 0.0f64;
-    for i in 0..nz {
-        let z = -1.0 + 2.0 * (i as f64 + 0.5) / nz as f64;
-        let r = (1.0 - z * z).max(0.0).sqrt();
-        for j in 0..np {
-            let p = std::f64::consts::TAU * (j as f64 + 0.5) / np as f64;
-            let wo = Vec3::new((r * p.cos()) as f32, (r * p.sin()) as f32, z as f32);
-            s += f64::from(b.eval(wi, wo, UV).x);
-        }
-    }
-    s * 4.0 * std::f64::consts::PI / (nz * np) as f64
 }
 
 /// Sampling reaches everything `eval` gives: the mean sample weight equals the quadrature of
@@ -205,26 +134,18 @@ fn quadrature_albedo(b: &Bsdf, wi: Vec3, nz: usize, np: usize) -> f64 {
 fn sampled_albedo_equals_quadrature_of_eval() {
     let rough = r#"<float name="spec_trans" value="0.6"/><float name="roughness" value="0.7"/>
         <float name="diff_trans" value="1"/><float name="eta" value="1.4"/>"#;
-    let check = |props: &str, deg: f32| {
-        let b = thin(props);
-        let (m, se) = sampled_albedo(&b, dir(deg), UV, 400_000, 6);
-        let q = quadrature_albedo(&b, dir(deg), 2000, 400);
-        (f64::from(m.x), f64::from(se.x), q)
-    };
+    let check = |props: &str, deg: f32| AlbedoAgreement::of(&thin(props), dir(deg), UV);
     for (name, props, deg) in [("leaf", LEAF, 30.0), ("rough sheet", rough, 140.0)] {
-        let (m, se, q) = check(props, deg);
-        println!("{name} at {deg} deg: sampled {m:.5} +- {se:.5}, quadrature {q:.5}");
-        assert!(
-            (m - q).abs() <= 4.0 * se + 1e-3,
-            "{name}: {m} +- {se} vs {q}"
-        );
+        let a = check(props, deg);
+        println!("{name} at {deg} deg: {a}");
+        assert!(a.agrees(), "{name}: {a}");
     }
-    let (m, se, q) = check(
+    let a = check(
         &format!(r#"{LEAF}<float name="diffuse_transmittance_sampling_rate" value="0"/>"#),
         30.0,
     );
-    println!("control, transmission never sampled: sampled {m:.5} +- {se:.5}, quadrature {q:.5}");
-    assert!((m - q).abs() > 4.0 * se + 1e-3, "control not caught");
+    println!("control, transmission never sampled: {a}");
+    assert!(a.differs(), "control not caught");
 }
 
 /// Every bad parameter is an error located at the property (line 3 of the inline file).
@@ -247,23 +168,12 @@ fn bad_parameters_are_located_errors() {
 #[test]
 fn traits_and_textures() {
     let b = thin(GLASS);
-    assert_eq!(
-        BsdfTraits::of(&b),
-        BsdfTraits {
-            uses_u1: true,
-            uses_u2: true,
-            has_smooth: true,
-            lambertian: false,
-        }
-    );
-    assert!(!b.has_delta());
-    let count = |b: &Bsdf| {
-        let mut n = 0;
-        b.for_each_texture(&mut |_| n += 1);
-        n
-    };
+    assert_smooth_two_input_traits(&b);
     // base colour, roughness, eta; then anisotropic, spec_trans, spec_tint, diff_trans.
-    assert_eq!(count(&thin("")), 3);
-    assert_eq!(count(&b), 7);
-    assert_eq!(count(&thin(r#"<float name="diff_trans" value="0"/>"#)), 3);
+    assert_eq!(texture_count(&thin("")), 3);
+    assert_eq!(texture_count(&b), 7);
+    assert_eq!(
+        texture_count(&thin(r#"<float name="diff_trans" value="0"/>"#)),
+        3
+    );
 }

@@ -211,32 +211,19 @@ fn bad_bsdf_ttest_input_is_a_located_error() {
 fn bad_chi2test_input_is_a_located_error() {
     let chi2 =
         |params: &str| format!("<test type=\"chi2test\">\n  {params}\n  {DIFFUSE}\n</test>\n");
-    // Too few samples to have power: 10 x 20 cells need 50 each on average.
-    bad_input(
-        &chi2(r#"<integer name="sampleCount" value="5000"/>"#),
-        "<integer",
-        "too few samples",
-    );
-    bad_input(
-        &chi2(r#"<integer name="resolution" value="1"/>"#),
-        "<integer",
-        "\"resolution\" must be at least 2",
-    );
-    bad_input(
-        &chi2(r#"<integer name="minExpFrequency" value="3"/>"#),
-        "<integer",
-        "\"minExpFrequency\" = 3 is not supported",
-    );
-    bad_input(
-        &chi2(r#"<float name="significanceLevel" value="0"/>"#),
-        "<float",
-        "\"significanceLevel\" must be at least",
-    );
-    bad_input(
-        &chi2(r#"<string name="references" value="1"/>"#),
-        "<string",
-        "unused parameter \"references\"",
-    );
+    // (parameter, where the error points, what it says)
+    #[rustfmt::skip]
+    let cases = [
+        // Too few samples to have power: 10 x 20 cells need 50 each on average.
+        (r#"<integer name="sampleCount" value="5000"/>"#, "<integer", "too few samples"),
+        (r#"<integer name="resolution" value="1"/>"#, "<integer", "\"resolution\" must be at least 2"),
+        (r#"<integer name="minExpFrequency" value="3"/>"#, "<integer", "\"minExpFrequency\" = 3 is not supported"),
+        (r#"<float name="significanceLevel" value="0"/>"#, "<float", "\"significanceLevel\" must be at least"),
+        (r#"<string name="references" value="1"/>"#, "<string", "unused parameter \"references\""),
+    ];
+    for (param, at, says) in cases {
+        bad_input(&chi2(param), at, says);
+    }
     bad_input(
         "<test type=\"chi2test\">\n  <integer name=\"testCount\" value=\"2\"/>\n</test>\n",
         "<test",

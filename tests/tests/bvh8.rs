@@ -19,7 +19,7 @@ use tessera_core::math::{Aabb, Norm, Ray};
 
 use tessera_tests::rng::SplitMix as Rng;
 use tessera_tests::soup::{
-    check_scene_casts, mesh_scene, random_rays, random_soup, random_spheres, scene,
+    check_scene_casts, mesh_scene, random_rays, random_soup, random_soup_scene, scene,
 };
 use tessera_tests::wide::{compare, WideScene};
 
@@ -28,8 +28,7 @@ fn agrees_with_brute_force_on_soups() {
     let mut rng = Rng(21);
     let mut hits = 0;
     for n in [1usize, 2, 7, 8, 9, 33, 64, 500, 5000] {
-        let spheres = random_spheres(&mut rng, n % 4);
-        let s = scene(random_soup(&mut rng, n), spheres);
+        let s = random_soup_scene(&mut rng, n);
         let w8 = WideScene::<Bvh8>::new(&s);
         let rays = random_rays(&mut rng, 2000);
         let (h, bad) = compare(&s, &w8, &rays);

@@ -8,6 +8,7 @@
 use std::f64::consts::PI;
 use tessera_core::film::PixelAccum;
 use tessera_lab::stats::{sidak_alpha, t_test_from_sums};
+use tessera_tests::analytic_scenes::one_pixel_over_square;
 use tessera_tests::{load_xml, render_loaded};
 
 /// t-tests in this file: ao, av (two lengths), whitted (mirror, diffuse), 3 channels each.
@@ -15,21 +16,8 @@ const N_TESTS: usize = 5 * 3;
 
 /// A 1x1 view from (0, 0, `eye`) straight down, `integrator` and `body` added.
 fn scene(eye: f64, integrator: &str, body: &str) -> String {
-    format!(
-        r#"<scene version="3.0.0">
-  {integrator}
-  <sensor type="perspective">
-    <float name="fov" value="0.001"/>
-    <transform name="to_world"><lookat origin="0, 0, {eye}" target="0, 0, 0" up="0, 1, 0"/></transform>
-    <film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>
-  </sensor>
-  <shape type="rectangle">
-    <transform name="to_world"><scale value="10"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.5, 0.3"/></bsdf>
-  </shape>
-  {body}
-</scene>"#
-    )
+    let lookat = format!(r#"origin="0, 0, {eye}" target="0, 0, 0" up="0, 1, 0""#);
+    one_pixel_over_square(integrator, &lookat, body)
 }
 
 /// An occluding disk of radius `r` at height `h` above the origin, facing down.

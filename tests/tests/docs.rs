@@ -210,6 +210,22 @@ fn size_check_control_flags_a_long_readme() {
     assert!(size_problem(122_584).is_some());
 }
 
+/// What `find` reports in the text of each of `files` (given the text and the file's path),
+/// each finding prefixed with the file's path from the repository root.
+fn findings_in(files: &[PathBuf], find: impl Fn(&str, &Path) -> Vec<String>) -> Vec<String> {
+    let mut found = Vec::new();
+    for f in files {
+        let text = fs::read_to_string(f).unwrap();
+        for p in find(&text, f) {
+            found.push(format!(
+                "{}:{p}",
+                f.strip_prefix(root()).unwrap_or(f).display()
+            ));
+        }
+    }
+    found
+}
+
 #[test]
 fn every_relative_link_points_at_a_file() {
     let files = doc_files();
@@ -218,16 +234,7 @@ fn every_relative_link_points_at_a_file() {
         "found only {} Markdown files",
         files.len()
     );
-    let mut broken = Vec::new();
-    for f in &files {
-        let text = fs::read_to_string(f).unwrap();
-        for b in broken_links(&text, f.parent().unwrap()) {
-            broken.push(format!(
-                "{}:{b}",
-                f.strip_prefix(root()).unwrap_or(f).display()
-            ));
-        }
-    }
+    let broken = findings_in(&files, |text, f| broken_links(text, f.parent().unwrap()));
     assert!(broken.is_empty(), "broken links:\n{}", broken.join("\n"));
 }
 
@@ -255,16 +262,7 @@ fn no_session_or_issue_numbers() {
         "found only {} tracked text files",
         files.len()
     );
-    let mut found = Vec::new();
-    for f in &files {
-        let text = fs::read_to_string(f).unwrap();
-        for p in dated_phrases(&text) {
-            found.push(format!(
-                "{}:{p}",
-                f.strip_prefix(root()).unwrap_or(f).display()
-            ));
-        }
-    }
+    let found = findings_in(&files, |text, _| dated_phrases(text));
     assert!(found.is_empty(), "dated narrative:\n{}", found.join("\n"));
 }
 

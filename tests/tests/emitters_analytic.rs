@@ -10,6 +10,7 @@
 use std::f64::consts::PI;
 use tessera::image_io::{write_image, RgbImage};
 use tessera_lab::stats::{sidak_alpha, t_test_from_sums};
+use tessera_tests::analytic_scenes::{one_pixel_over_square, LIGHT_SAMPLING_INTEGRATORS};
 use tessera_tests::{load_xml, render_loaded};
 
 /// Number of t-tests in this file (cases x integrators x channels), for the Sidak correction:
@@ -60,21 +61,11 @@ fn check(label: &str, xml: &str, defines: &[(&str, &str)], spp: u64, expected: [
 /// these tests, and a small square keeps the hit point exact to f32 precision, which a steep
 /// falloff would notice) seen at its origin from (5, 0, 2), with `lights` added.
 fn plane_scene(lights: &str) -> String {
-    format!(
-        r#"<scene version="3.0.0">
-  <default name="integrator" value="path_mis"/>
-  <integrator type="$integrator"><integer name="max_depth" value="2"/></integrator>
-  <sensor type="perspective">
-    <float name="fov" value="0.001"/>
-    <transform name="to_world"><lookat origin="5, 0, 2" target="0, 0, 0" up="0, 0, 1"/></transform>
-    <film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>
-  </sensor>
-  <shape type="rectangle">
-    <transform name="to_world"><scale value="10"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.5, 0.3"/></bsdf>
-  </shape>
-  {lights}
-</scene>"#
+    one_pixel_over_square(
+        r#"<default name="integrator" value="path_mis"/>
+  <integrator type="$integrator"><integer name="max_depth" value="2"/></integrator>"#,
+        r#"origin="5, 0, 2" target="0, 0, 0" up="0, 0, 1""#,
+        lights,
     )
 }
 
@@ -96,17 +87,34 @@ fn sphere_scene(lights: &str) -> String {
     )
 }
 
+/// Samples for `integ` on a distant disk scene: `slow` for the integrators that reach the disk
+/// only (or half the time) by BSDF sampling, 200,000 for the others.
+fn spp_for(integ: &str, slow: u64) -> u64 {
+    if integ.ends_with("mats") || integ == "path_half" {
+        slow
+    } else {
+        200_000
+    }
+}
+
+/// [`check`] with every integrator of [`INTEGRATORS`] (label `"{label} {integrator}"`), each
+/// with `spp(integrator)` samples.
+fn check_all_integrators(label: &str, xml: &str, spp: impl Fn(&str) -> u64, expected: [f64; 3]) {
+    for integ in INTEGRATORS {
+        check(
+            &format!("{label} {integ}"),
+            xml,
+            &[("integrator", integ)],
+            spp(integ),
+            expected,
+        );
+    }
+}
+
 /// Checks a delta-light scene with the two integrators that sample lights, and that BSDF
 /// sampling alone gives exactly 0.
 fn check_delta(label: &str, xml: &str, expected: [f64; 3]) {
-    for integ in [
-        "path_ems",
-        "path_half",
-        "path_mis",
-        "direct_ems",
-        "direct_mis",
-        "direct",
-    ] {
+    for integ in LIGHT_SAMPLING_INTEGRATORS {
         check(
             &format!("{label} {integ}"),
             xml,
@@ -216,20 +224,10 @@ fn distant_disk_over_plane() {
   </emitter>"#
         ));
         let s2 = theta.to_radians().sin().powi(2);
-        for integ in INTEGRATORS {
-            let spp = if (integ.ends_with("mats") || integ == "path_half") && theta < 10.0 {
-                1_000_000
-            } else {
-                200_000
-            };
-            check(
-                &format!("distantdisk {theta} deg {integ}"),
-                &xml,
-                &[("integrator", integ)],
-                spp,
-                ALBEDO.map(|a| a * l * s2),
-            );
-        }
+        let slow = if theta < 10.0 { 1_000_000 } else { 200_000 };
+        let spp = |integ: &str| spp_for(integ, slow);
+        let label = format!("distantdisk {theta} deg");
+        check_all_integrators(&label, &xml, spp, ALBEDO.map(|a| a * l * s2));
     }
 }
 
@@ -257,20 +255,9 @@ fn opposing_disks_under_a_distant_disk() {
     );
     let tb = (0.5f64 / 1.5).atan();
     let ring = 30f64.to_radians().sin().powi(2) - tb.sin().powi(2);
-    for integ in INTEGRATORS {
-        let spp = if integ.ends_with("mats") || integ == "path_half" {
-            600_000
-        } else {
-            200_000
-        };
-        check(
-            &format!("opposing disks, distantdisk 30 deg {integ}"),
-            &xml,
-            &[("integrator", integ)],
-            spp,
-            ALBEDO.map(|a| a * l * ring),
-        );
-    }
+    let spp = |integ: &str| spp_for(integ, 600_000);
+    let label = "opposing disks, distantdisk 30 deg";
+    check_all_integrators(label, &xml, spp, ALBEDO.map(|a| a * l * ring));
 }
 
 /// A disk of half angle 20 degrees whose centre is 40 degrees from the normal, given in Nori's
@@ -288,15 +275,7 @@ fn distant_disk_tilted_nori_names() {
     );
     let expected =
         ALBEDO.map(|a| a * l * 20f64.to_radians().sin().powi(2) * 40f64.to_radians().cos());
-    for integ in INTEGRATORS {
-        check(
-            &format!("distantdisk tilted {integ}"),
-            &xml,
-            &[("integrator", integ)],
-            200_000,
-            expected,
-        );
-    }
+    check_all_integrators("distantdisk tilted", &xml, |_| 200_000, expected);
 }
 
 /// At 180 degrees the distant disk is a constant environment: a diffuse sphere reflects
@@ -309,15 +288,12 @@ fn distant_disk_180_is_a_constant_environment() {
     <float name="theta_a" value="180"/>
   </emitter>"#,
     );
-    for integ in INTEGRATORS {
-        check(
-            &format!("distantdisk 180 sphere {integ}"),
-            &xml,
-            &[("integrator", integ)],
-            100_000,
-            [0.3, 0.75, 1.2],
-        );
-    }
+    check_all_integrators(
+        "distantdisk 180 sphere",
+        &xml,
+        |_| 100_000,
+        [0.3, 0.75, 1.2],
+    );
 }
 
 /// An environment map of one colour (a 8x4 EXR written here) with `scale` and a rotation is a
@@ -341,15 +317,12 @@ fn constant_envmap_on_a_sphere() {
   </emitter>"#,
         path.display()
     ));
-    for integ in INTEGRATORS {
-        check(
-            &format!("constant envmap sphere {integ}"),
-            &xml,
-            &[("integrator", integ)],
-            100_000,
-            [0.2 * 0.75, 0.5 * 1.5, 0.8 * 3.0],
-        );
-    }
+    check_all_integrators(
+        "constant envmap sphere",
+        &xml,
+        |_| 100_000,
+        [0.2 * 0.75, 0.5 * 1.5, 0.8 * 3.0],
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -385,15 +358,7 @@ fn envmap_lit_at_its_pole_over_plane() {
     let a = PI / 4.0;
     let k = 2.0 * (a.sin().powi(2) / 2.0 + (2.0 * a).cos() / 4.0 - (2.0 * a).sin() / (8.0 * a));
     let expected = [0, 1, 2].map(|i| ALBEDO[i] * k * f64::from(c[i]));
-    for integ in INTEGRATORS {
-        check(
-            &format!("envmap lit at its pole {integ}"),
-            &xml,
-            &[("integrator", integ)],
-            200_000,
-            expected,
-        );
-    }
+    check_all_integrators("envmap lit at its pole", &xml, |_| 200_000, expected);
     let _ = std::fs::remove_dir_all(&dir);
 }
 

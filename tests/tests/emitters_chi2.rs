@@ -17,6 +17,7 @@ use tessera_core::geometry::Interaction;
 use tessera_core::sampling::Distribution2D;
 use tessera_core::Color;
 use tessera_lab::stats::{sidak_alpha, Chi2Result, PlaneChi2, SphereChi2};
+use tessera_tests::bsdf::assert_chi2_passes;
 use tessera_tests::cap::{cap_coords, cap_dir, frame_around};
 
 /// Number of chi-square tests in this file (one per seed):
@@ -36,9 +37,7 @@ fn alpha() -> f64 {
 
 /// Prints the result and asserts that it passes at the corrected level.
 fn check(name: &str, r: &Chi2Result) {
-    let a = alpha();
-    println!("{name}: {r}");
-    assert!(r.passes(a), "{name}: {r} (alpha = {a:.3e})");
+    assert_chi2_passes(name, r, N_TESTS);
 }
 
 /// A reference point for emitter sampling (lights at infinity ignore it).
@@ -211,7 +210,13 @@ fn disk_sphere_test(name: &str, deg: f64, rot: DMat3, seed: u64) {
         deg as f32,
         rot.as_mat3(),
     ));
-    let mut s = Sampler::new(&e);
+    sphere_test(name, &e, seed);
+}
+
+/// `e`'s samples on the whole sphere (10 x 20 cells) against its `pdf_environment`, and each
+/// sample against the emitter's own values.
+fn sphere_test(name: &str, e: &Emitter, seed: u64) {
+    let mut s = Sampler::new(e);
     let r = SphereChi2 {
         theta_bins: 10,
         phi_bins: 20,
@@ -356,20 +361,7 @@ fn t09_envmap_sphere() {
     let rot = rotation(DVec3::new(1.0, 0.3, 0.2), 64.0);
     let (w, h) = (6, 4);
     let env = EnvMap::new(structured_image(w, h), w, h, 1.0, rot.as_mat3()).expect("a valid map");
-    let e = Emitter::EnvMap(env);
-    let mut s = Sampler::new(&e);
-    let r = SphereChi2 {
-        theta_bins: 10,
-        phi_bins: 20,
-        samples: SAMPLES,
-    }
-    .run(
-        |u| s.sample(u),
-        |d| f64::from(e.pdf_environment(Vec3::ZERO, d)),
-        9,
-    );
-    check("envmap 6x4 rotated (sphere)", &r);
-    s.check_consistent("envmap 6x4 rotated (sphere)");
+    sphere_test("envmap 6x4 rotated (sphere)", &Emitter::EnvMap(env), 9);
 }
 
 /// The tests have power (not counted in [`N_TESTS`]: it must fail): samples of a 30 degree disk

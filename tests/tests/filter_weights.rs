@@ -17,6 +17,7 @@
 
 use tessera_core::camera::{Filter, LanczosFilter, MitchellFilter};
 use tessera_lab::stats::{sidak_alpha, t_test_mean, Moments, Pcg32};
+use tessera_tests::filter_reference::{lanczos, mitchell};
 use tessera_tests::{load_xml, region_stats, render_loaded, z_p_value};
 
 const STEPS: usize = 31;
@@ -58,35 +59,6 @@ impl Steps {
         }
         sum
     }
-}
-
-fn mitchell(b: f64, c: f64, x: f64) -> f64 {
-    let x = x.abs();
-    let v = if x < 1.0 {
-        (12.0 - 9.0 * b - 6.0 * c) * x.powi(3) + (-18.0 + 12.0 * b + 6.0 * c) * x * x + 6.0
-            - 2.0 * b
-    } else if x < 2.0 {
-        (-b - 6.0 * c) * x.powi(3)
-            + (6.0 * b + 30.0 * c) * x * x
-            + (-12.0 * b - 48.0 * c) * x
-            + 8.0 * b
-            + 24.0 * c
-    } else {
-        0.0
-    };
-    v / 6.0
-}
-
-fn lanczos(lobes: f64, x: f64) -> f64 {
-    let x = x.abs();
-    if x < 1e-7 {
-        return 1.0;
-    }
-    if x > lobes {
-        return 0.0;
-    }
-    let (a, b) = (std::f64::consts::PI * x, std::f64::consts::PI * x / lobes);
-    a.sin() * b.sin() / (a * b)
 }
 
 /// The three filters, each with its independent step table.

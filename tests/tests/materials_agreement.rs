@@ -12,7 +12,8 @@ use tessera::image_io::read_image;
 use tessera_lab::stats::sidak_alpha;
 use tessera_scene::LoadedScene;
 use tessera_tests::{
-    load_file, render_like_mitsuba, render_loaded, scenes_dir, worst_against_reference,
+    load_file, load_file_edited, render_like_mitsuba, render_loaded, scenes_dir,
+    worst_against_reference,
 };
 
 const RES: u32 = 64;
@@ -33,21 +34,8 @@ fn loaded(scene: &str) -> LoadedScene {
 }
 
 fn loaded_edited(scene: &str, from: &str, to: &str) -> LoadedScene {
-    let text = std::fs::read_to_string(scenes_dir().join(scene)).expect("scene file");
-    let edited = text.replacen(from, to, 1);
-    assert_ne!(
-        text, edited,
-        "{scene} no longer contains {from:?}; update this test"
-    );
-    tessera_scene::load_scene_str(
-        &edited,
-        &scenes_dir().join(scene),
-        &[
-            ("res".into(), "64".into()),
-            ("rfilter".into(), "box".into()),
-        ],
-    )
-    .expect("edited scene loads")
+    let edit = |text: &str| text.replacen(from, to, 1);
+    load_file_edited(scene, edit, &[("res", "64"), ("rfilter", "box")])
 }
 
 /// Worst region p-value of `l` against the Mitsuba reference `refname`.
@@ -59,15 +47,20 @@ fn worst(l: &LoadedScene, refname: &str, seed: u64) -> (f64, String) {
     worst_against_reference(&ours, &like, SPP, &reference, 16384.0, RES, BLOCK)
 }
 
-#[test]
-fn material_showcase_matches_mitsuba() {
-    let (p, what) = worst(&loaded("materials.xml"), "materials_64x64_mitsuba.exr", 21);
-    println!("materials: worst p = {p:.3e} at {what}");
+/// Asserts that the unedited scene file `name.xml` agrees with the reference `refname`.
+fn assert_matches(name: &str, refname: &str, seed: u64) {
+    let (p, what) = worst(&loaded(&format!("{name}.xml")), refname, seed);
+    println!("{name}: worst p = {p:.3e} at {what}");
     assert!(
         p >= alpha(),
-        "materials: p = {p:.3e} < {:.3e} at {what}",
+        "{name}: p = {p:.3e} < {:.3e} at {what}",
         alpha()
     );
+}
+
+#[test]
+fn material_showcase_matches_mitsuba() {
+    assert_matches("materials", "materials_64x64_mitsuba.exr", 21);
 }
 
 #[test]
@@ -87,13 +80,7 @@ fn material_showcase_comparison_sees_water_instead_of_glass() {
 
 #[test]
 fn veach_mis_scene_matches_mitsuba() {
-    let (p, what) = worst(&loaded("veach_mis.xml"), "veach_mis_64x64_mitsuba.exr", 23);
-    println!("veach_mis: worst p = {p:.3e} at {what}");
-    assert!(
-        p >= alpha(),
-        "veach_mis: p = {p:.3e} < {:.3e} at {what}",
-        alpha()
-    );
+    assert_matches("veach_mis", "veach_mis_64x64_mitsuba.exr", 23);
 }
 
 #[test]

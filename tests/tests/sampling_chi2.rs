@@ -21,7 +21,9 @@ use tessera_core::sampling::{warp, Discrete1D};
 use tessera_lab::stats::{
     chi2_test, sidak_alpha, Chi2Result, Pcg32, PlaneChi2, SphereChi2, DEFAULT_MIN_EXPECTED,
 };
+use tessera_tests::bsdf::assert_chi2_passes;
 use tessera_tests::cap::{cap_coords, cap_dir, frame_around};
+use tessera_tests::filter_reference::{lanczos, mitchell};
 
 /// Number of chi-square tests in this file (one per seed):
 ///  1 uniform sphere, 2 cosine hemisphere, 3-5 uniform cone (cos_max 0.9, 0, -0.5),
@@ -41,9 +43,7 @@ fn alpha() -> f64 {
 
 /// Prints the result and asserts that it passes at the corrected level.
 fn check(name: &str, r: &Chi2Result) {
-    let a = alpha();
-    println!("{name}: {r}");
-    assert!(r.passes(a), "{name}: {r} (alpha = {a:.3e})");
+    assert_chi2_passes(name, r, N_TESTS);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -819,9 +819,14 @@ fn tent_step_density(r: f64, x: f64) -> f64 {
 
 /// Chi-square of the tent filter of radius `r` against the step density of radius `claimed`.
 fn tent_chi2(r: f32, claimed: f64) -> Chi2Result {
-    // [-r, r]^2 mapped to [0, 1]^2 (density × 4 r²), one cell per step.
     let filter = Filter::Tent(TentFilter::new(r));
-    let r = f64::from(r);
+    filter_chi2(&filter, f64::from(r), |x| tent_step_density(claimed, x), 19)
+}
+
+/// Chi-square of `filter`'s offsets over `[-r, r]^2` against the product density
+/// `density(x) density(y)`, one cell per step of the tables.
+fn filter_chi2(filter: &Filter, r: f64, density: impl Fn(f64) -> f64, seed: u64) -> Chi2Result {
+    // [-r, r]^2 mapped to [0, 1]^2 (density × 4 r²), one cell per step.
     PlaneChi2 {
         bins_x: 2 * G_STEPS,
         bins_y: 2 * G_STEPS,
@@ -837,9 +842,9 @@ fn tent_chi2(r: f32, claimed: f64) -> Chi2Result {
                 (2.0 * f64::from(p.x) - 1.0) * r,
                 (2.0 * f64::from(p.y) - 1.0) * r,
             );
-            4.0 * r * r * tent_step_density(claimed, x) * tent_step_density(claimed, y)
+            4.0 * r * r * density(x) * density(y)
         },
-        19,
+        seed,
     )
 }
 
@@ -879,60 +884,9 @@ impl SignedSteps {
     }
 }
 
-/// The Mitchell-Netravali cubic with parameters `b`, `c` (radius 2).
-fn mitchell(b: f64, c: f64, x: f64) -> f64 {
-    let x = x.abs();
-    let v = if x < 1.0 {
-        (12.0 - 9.0 * b - 6.0 * c) * x.powi(3) + (-18.0 + 12.0 * b + 6.0 * c) * x * x + 6.0
-            - 2.0 * b
-    } else if x < 2.0 {
-        (-b - 6.0 * c) * x.powi(3)
-            + (6.0 * b + 30.0 * c) * x * x
-            + (-12.0 * b - 48.0 * c) * x
-            + 8.0 * b
-            + 24.0 * c
-    } else {
-        0.0
-    };
-    v / 6.0
-}
-
-/// The Lanczos filter with `lobes` lobes.
-fn lanczos(lobes: f64, x: f64) -> f64 {
-    let x = x.abs();
-    if x < 1e-7 {
-        return 1.0;
-    }
-    if x > lobes {
-        return 0.0;
-    }
-    let (a, b) = (std::f64::consts::PI * x, std::f64::consts::PI * x / lobes);
-    a.sin() * b.sin() / (a * b)
-}
-
 /// Chi-square of `filter`'s offsets against the density `g(f(x)) g(f(y))` of `steps`.
 fn signed_chi2(filter: &Filter, steps: &SignedSteps, g: fn(f64) -> f64, seed: u64) -> Chi2Result {
-    // [-r, r]^2 mapped to [0, 1]^2 (density × 4 r²), one cell per step.
-    let r = steps.r;
-    PlaneChi2 {
-        bins_x: 2 * G_STEPS,
-        bins_y: 2 * G_STEPS,
-        samples: SAMPLES,
-    }
-    .run(
-        |u| {
-            let s = filter.sample(u).as_dvec2();
-            Some(((s + DVec2::splat(r)) / (2.0 * r)).as_vec2())
-        },
-        |p| {
-            let (x, y) = (
-                (2.0 * f64::from(p.x) - 1.0) * r,
-                (2.0 * f64::from(p.y) - 1.0) * r,
-            );
-            4.0 * r * r * steps.density(g, x) * steps.density(g, y)
-        },
-        seed,
-    )
+    filter_chi2(filter, steps.r, |x| steps.density(g, x), seed)
 }
 
 #[test]

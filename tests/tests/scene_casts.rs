@@ -12,15 +12,14 @@ use tessera_core::glam::Vec3;
 use tessera_core::math::Ray;
 
 use tessera_tests::rng::SplitMix as Rng;
-use tessera_tests::soup::{check_scene_casts, random_rays, random_soup, random_spheres, scene};
+use tessera_tests::soup::{check_scene_casts, random_rays, random_soup, random_soup_scene, scene};
 
 #[test]
 fn agree_with_brute_force_on_soups() {
     let mut rng = Rng(7);
     let mut hits = 0;
     for n in [1usize, 2, 3, 4, 5, 9, 64, 500, 5000] {
-        let spheres = random_spheres(&mut rng, n % 4);
-        let s = scene(random_soup(&mut rng, n), spheres);
+        let s = random_soup_scene(&mut rng, n);
         let rays = random_rays(&mut rng, 3000);
         hits += check_scene_casts(&s, &rays);
     }

@@ -24,6 +24,14 @@ fn xml(body: &str) -> String {
     )
 }
 
+/// Asserts that each named counter of `c` is zero, printing all counters otherwise (a macro:
+/// the counters are named fields).
+macro_rules! assert_zero {
+    ($c:expr, $($field:ident),+) => {
+        $(assert_eq!($c.$field, 0, "{}: {:?}", stringify!($field), $c);)+
+    };
+}
+
 const DIFFUSE_SPHERE: &str = r#"<shape type="sphere"><point name="center" value="0, 0, 0"/><float name="radius" value="1"/>
         <bsdf type="diffuse"><rgb name="reflectance" value="0.6"/></bsdf></shape>"#;
 const FLOOR: &str = r#"<shape type="rectangle"><transform name="to_world"><scale value="10"/><rotate x="1" angle="-90"/><translate y="-1"/></transform>
@@ -62,16 +70,7 @@ fn stats(l: &LoadedScene) -> Counters {
 #[test]
 fn no_emitters_no_shadow_rays_no_emitter_samples() {
     let c = stats(&load(&[DIFFUSE_SPHERE, FLOOR], None, None));
-    assert_eq!(
-        (
-            c.shadow_rays,
-            c.emitter_samples,
-            c.bsdf_evals,
-            c.mis_weights
-        ),
-        (0, 0, 0, 0),
-        "{c:?}"
-    );
+    assert_zero!(c, shadow_rays, emitter_samples, bsdf_evals, mis_weights);
     assert!(c.continuation_rays > 0 && c.bsdf_samples > 0, "{c:?}");
     // Control: one emitter, and there are shadow rays and emitter samples.
     let c = stats(&load(&[DIFFUSE_SPHERE, FLOOR, AREA_SPHERE], None, None));
@@ -146,15 +145,12 @@ fn max_depth_one_sees_only_emitters() {
         None,
         Some(1),
     ));
-    assert_eq!(
-        (
-            c.shadow_rays,
-            c.bsdf_samples,
-            c.continuation_rays,
-            c.emitter_samples
-        ),
-        (0, 0, 0, 0),
-        "{c:?}"
+    assert_zero!(
+        c,
+        shadow_rays,
+        bsdf_samples,
+        continuation_rays,
+        emitter_samples
     );
     assert!(c.emission_hits > 0, "{c:?}");
 }
@@ -209,16 +205,7 @@ fn strategies_without_mis_compute_no_weights_or_bsdf_densities() {
         Some("path_mats"),
         None,
     ));
-    assert_eq!(
-        (
-            c.shadow_rays,
-            c.emitter_samples,
-            c.bsdf_evals,
-            c.mis_weights
-        ),
-        (0, 0, 0, 0),
-        "{c:?}"
-    );
+    assert_zero!(c, shadow_rays, emitter_samples, bsdf_evals, mis_weights);
     assert!(c.emission_hits > 0, "{c:?}");
 }
 

@@ -11,6 +11,7 @@ use tessera_core::geometry::intersect_triangle;
 use tessera_core::glam::DVec3;
 use tessera_core::math::{Norm, Ray};
 use tessera_lab::stats::sidak_alpha;
+use tessera_tests::analytic_scenes as scenes;
 use tessera_tests::stress::{assert_pixel_within, scratch_dir, Placement};
 use tessera_tests::{load_xml, render_loaded};
 
@@ -75,23 +76,18 @@ fn messy_cube() -> std::path::PathBuf {
 #[test]
 fn camera_inside_a_messy_closed_mesh() {
     let obj = messy_cube();
-    let xml = format!(
-        r#"<scene version="3.0.0">
-  <sensor type="perspective">
-    <float name="fov" value="1"/>
-    <transform name="to_world"><lookat origin="0.9, -0.95, 0.97" target="1, -1, 1" up="0, 1, 0"/></transform>
-    <film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>
-  </sensor>
-  <shape type="obj">
+    let body = format!(
+        r#"  <shape type="obj">
     <string name="filename" value="{}"/>
     <boolean name="face_normals" value="true"/>
     <boolean name="flip_normals" value="true"/>
     <bsdf type="diffuse"><rgb name="reflectance" value="0.3, 0.5, 0.7"/></bsdf>
     <emitter type="area"><rgb name="radiance" value="1"/></emitter>
-  </shape>
-</scene>"#,
+  </shape>"#,
         obj.display()
     );
+    let lookat = r#"origin="0.9, -0.95, 0.97" target="1, -1, 1" up="0, 1, 0""#;
+    let xml = scenes::scene(1.0, lookat, 1, &body);
     let mut l = load_xml(&xml, &[]);
     l.set_integrator(Some("path_mis"), Some(-1))
         .expect("integrator");
@@ -221,20 +217,15 @@ fn normals_pointing_the_wrong_way() {
         "v -5 -5 0\nv 5 -5 0\nv 5 5 0\nv -5 5 0\nvn 0 0 -1\nvn 0.1 0 -1\nvn 0 0 -1\nvn 0 0.1 -1\n\
          f 1//1 2//2 3//3 4//4\n",
     );
-    let xml = format!(
-        r#"<scene version="3.0.0">
-  <sensor type="perspective">
-    <float name="fov" value="40"/>
-    <transform name="to_world"><lookat origin="0, -4, 3" target="0, 0, 0" up="0, 0, 1"/></transform>
-    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/><rfilter type="box"/></film>
-  </sensor>
-  <shape type="obj"><string name="filename" value="{}"/>
+    let body = format!(
+        r#"  <shape type="obj"><string name="filename" value="{}"/>
     <bsdf type="roughplastic"><float name="alpha" value="0.2"/></bsdf></shape>
   <shape type="sphere"><point name="center" value="0, 0, 2"/><float name="radius" value="0.3"/>
-    <emitter type="area"><rgb name="radiance" value="10"/></emitter></shape>
-</scene>"#,
+    <emitter type="area"><rgb name="radiance" value="10"/></emitter></shape>"#,
         obj.display()
     );
+    let lookat = r#"origin="0, -4, 3" target="0, 0, 0" up="0, 0, 1""#;
+    let xml = scenes::scene(40.0, lookat, 8, &body);
     for integ in ["path_mis", "path_mats", "path_ems"] {
         let mut l = load_xml(&xml, &[]);
         l.set_integrator(Some(integ), Some(-1)).expect("integrator");

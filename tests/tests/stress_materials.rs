@@ -8,9 +8,13 @@
 //!   pixel reads the environment, 1.5, to f32 precision), a white diffuse sphere in a white
 //!   furnace reads 1, a black one 0.
 //! - Control: radiance 3e38 (f32 max 3.4e38) does overflow, and those samples are counted.
+use tessera_tests::analytic_scenes as scenes;
 use tessera_tests::{load_xml, render_loaded};
 
 const SPP: u64 = 64;
+
+/// The camera at (0, 0, 5) looking at the origin (`<lookat>` attributes).
+const LOOK_DOWN_Z: &str = r#"origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0""#;
 
 /// A sphere of `bsdf` in a constant environment of radiance `env`, with an optional sphere
 /// light of radiance `light` beside it; `res` x `res` pixels looking at the sphere.
@@ -21,22 +25,16 @@ fn scene(bsdf: &str, env: &str, light: Option<&str>, res: u32) -> String {
     <emitter type="area"><rgb name="radiance" value="{l}"/></emitter></shape>"#
         )
     });
-    format!(
-        r#"<scene version="3.0.0">
-  <sensor type="perspective">
-    <float name="fov" value="30"/>
-    <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
-    <film type="hdrfilm"><integer name="width" value="{res}"/><integer name="height" value="{res}"/><rfilter type="box"/></film>
-  </sensor>
-  <shape type="sphere">{bsdf}</shape>
+    let body = format!(
+        r#"  <shape type="sphere">{bsdf}</shape>
   <shape type="rectangle">
     <transform name="to_world"><scale value="5"/><translate z="-1"/></transform>
     <bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf>
   </shape>
   {light}
-  <emitter type="constant"><rgb name="radiance" value="{env}"/></emitter>
-</scene>"#
-    )
+  <emitter type="constant"><rgb name="radiance" value="{env}"/></emitter>"#
+    );
+    scenes::scene(30.0, LOOK_DOWN_Z, res, &body)
 }
 
 /// Renders with `integrator` and returns (pixels with a non-finite mean, samples dropped,
@@ -109,17 +107,11 @@ fn index_one_vanishes_and_extreme_albedos_are_exact() {
         (MATERIALS[9], "1", 1.0),
     ];
     for (bsdf, env, want) in cases {
-        let xml = format!(
-            r#"<scene version="3.0.0">
-  <sensor type="perspective">
-    <float name="fov" value="10"/>
-    <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
-    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/><rfilter type="box"/></film>
-  </sensor>
-  <shape type="sphere">{bsdf}</shape>
-  <emitter type="constant"><rgb name="radiance" value="{env}"/></emitter>
-</scene>"#
+        let body = format!(
+            r#"  <shape type="sphere">{bsdf}</shape>
+  <emitter type="constant"><rgb name="radiance" value="{env}"/></emitter>"#
         );
+        let xml = scenes::scene(10.0, LOOK_DOWN_Z, 8, &body);
         let (_, dropped, _, fb) = render_check(&xml, "path_mats");
         assert_eq!(dropped, 0, "{bsdf}");
         for y in 0..8 {

@@ -93,33 +93,38 @@ fn sphere_light(pl: &Placement) -> String {
 /// The three analytic scenes of tests/tests/analytic.rs at every placement.
 #[test]
 fn analytic_scenes_at_every_scale() {
+    // (scene, max_depth, closed form, the scene's size for its resolution)
+    type Case = (&'static str, fn(&Placement) -> String, i64, [f64; 3], f64);
+    let cases: [Case; 3] = [
+        ("furnace sphere", furnace_sphere, -1, [0.3, 0.75, 1.2], 1.0),
+        (
+            "closed emitting sphere",
+            closed_sphere,
+            -1,
+            [0.3f64, 0.5, 0.7].map(|a| 1.0 / (1.0 - a)),
+            2.0,
+        ),
+        (
+            "sphere light over plane",
+            sphere_light,
+            2,
+            [0.7f64, 0.5, 0.3].map(|a| a * 10.0 * 0.25 / 9.0),
+            // The light's height sets this scene's size.
+            3.0,
+        ),
+    ];
     for pl in Placement::all().into_iter().chain([Placement::far()]) {
         let label = pl.label();
-        let fb = render_with(&furnace_sphere(&pl), "path_mis", -1, 20_000);
-        assert_pixel_within(
-            &format!("furnace sphere, {label}"),
-            fb.at(0, 0),
-            [0.3, 0.75, 1.2],
-            alpha(),
-            pl.resolution(1.0),
-        );
-        let fb = render_with(&closed_sphere(&pl), "path_mis", -1, 20_000);
-        assert_pixel_within(
-            &format!("closed emitting sphere, {label}"),
-            fb.at(0, 0),
-            [0.3f64, 0.5, 0.7].map(|a| 1.0 / (1.0 - a)),
-            alpha(),
-            pl.resolution(2.0),
-        );
-        let fb = render_with(&sphere_light(&pl), "path_mis", 2, 20_000);
-        assert_pixel_within(
-            &format!("sphere light over plane, {label}"),
-            fb.at(0, 0),
-            [0.7f64, 0.5, 0.3].map(|a| a * 10.0 * 0.25 / 9.0),
-            alpha(),
-            // The light's height sets this scene's size.
-            pl.resolution(3.0),
-        );
+        for (name, scene, depth, expected, size) in cases {
+            let fb = render_with(&scene(&pl), "path_mis", depth, 20_000);
+            assert_pixel_within(
+                &format!("{name}, {label}"),
+                fb.at(0, 0),
+                expected,
+                alpha(),
+                pl.resolution(size),
+            );
+        }
     }
 }
 

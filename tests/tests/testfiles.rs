@@ -8,11 +8,12 @@ fn file() -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/test-lambert.xml")
 }
 
-#[test]
-fn lambert_point_and_furnace_test_file_passes() {
-    let root = tessera_scene::xml::load_file(&file(), &[]).expect("test file loads");
+/// Runs the test file at `path` (under `tests/`) and asserts that it has `cases` cases and that
+/// every one passes, listing the failures.
+fn assert_test_file_passes(path: &Path, cases: usize) {
+    let root = tessera_scene::xml::load_file(path, &[]).expect("test file loads");
     let results = run_test_object(&root, 0, |_| {}).expect("test file runs");
-    assert_eq!(results.len(), 29);
+    assert_eq!(results.len(), cases);
     let failed: Vec<String> = results
         .iter()
         .filter(|r| !r.passed)
@@ -26,25 +27,17 @@ fn lambert_point_and_furnace_test_file_passes() {
     assert!(failed.is_empty(), "failed cases: {failed:#?}");
 }
 
+#[test]
+fn lambert_point_and_furnace_test_file_passes() {
+    assert_test_file_passes(&file(), 29);
+}
+
 /// Spot, directional, distant disk (straight and tilted), constant and envmap lights over the
 /// same floor, each with every integrator that can see it (scripts/make_ttest_files.py).
 #[test]
 fn lights_test_file_passes() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/test-lights.xml");
-    let root = tessera_scene::xml::load_file(&path, &[]).expect("test file loads");
-    let results = run_test_object(&root, 0, |_| {}).expect("test file runs");
-    assert_eq!(results.len(), 42);
-    let failed: Vec<String> = results
-        .iter()
-        .filter(|r| !r.passed)
-        .map(|r| {
-            format!(
-                "{} ({:.6} vs {:.6}, {})",
-                r.label, r.mean, r.reference, r.test
-            )
-        })
-        .collect();
-    assert!(failed.is_empty(), "failed cases: {failed:#?}");
+    assert_test_file_passes(&path, 42);
 }
 
 #[test]

@@ -13,7 +13,8 @@ use tessera::render::Framebuffer;
 use tessera_lab::stats::sidak_alpha;
 use tessera_scene::LoadedScene;
 use tessera_tests::{
-    load_file, region_stats, render_loaded, scenes_dir, worst_against_reference, worst_region,
+    load_file, load_file_edited, region_stats, render_loaded, scenes_dir, worst_against_reference,
+    worst_region,
 };
 
 const RES: u32 = 64;
@@ -70,25 +71,14 @@ fn light_sampling_and_mis_agree() {
 
 /// The scene with its light's texture mirrored in v.
 fn mirrored() -> LoadedScene {
-    let text = std::fs::read_to_string(scenes_dir().join(SCENE)).expect("scene file");
     let from = r#"<string name="filename" value="textures/tess_rgb.png"/>"#;
-    let mirrored = text.replace(
-        from,
-        &format!(r#"{from}<transform name="to_uv"><scale x="1" y="-1"/></transform>"#),
-    );
-    assert_ne!(
-        text, mirrored,
-        "the scene's texture changed; update this test"
-    );
-    tessera_scene::load_scene_str(
-        &mirrored,
-        &scenes_dir().join(SCENE),
-        &[
-            ("res".into(), "64".into()),
-            ("rfilter".into(), "box".into()),
-        ],
-    )
-    .expect("scene")
+    let mirror = |text: &str| {
+        text.replace(
+            from,
+            &format!(r#"{from}<transform name="to_uv"><scale x="1" y="-1"/></transform>"#),
+        )
+    };
+    load_file_edited(SCENE, mirror, &[("res", "64"), ("rfilter", "box")])
 }
 
 #[test]

@@ -16,6 +16,7 @@ use tessera_core::math::Norm;
 
 use glam::{Vec2, Vec3};
 use tessera_scene::{load_bsdf_file, load_scene_str};
+use tessera_tests::bsdf::csv_rows;
 
 fn close(a: f32, b: f32) -> bool {
     (a - b).abs() <= 1e-3 * a.abs().max(b.abs()) + 1e-5
@@ -43,11 +44,7 @@ fn check(xml: &Path, csv: &Path) -> Vec<String> {
         .unwrap_or_else(|e| panic!("{}: {e} (run scripts/mitsuba_uv_eval.py)", csv.display()));
     let mut bad = Vec::new();
     let mut rows = 0;
-    for line in text
-        .lines()
-        .filter(|l| !l.starts_with('#') && !l.starts_with("u,"))
-    {
-        let v: Vec<f32> = line.split(',').map(|x| x.parse().unwrap()).collect();
+    for v in csv_rows(&text, "u,") {
         let uv = Vec2::new(v[0], v[1]);
         let want = Vec3::new(v[2], v[3], v[4]);
         let f = bsdf.eval(wi(), wo(), uv);

@@ -1,11 +1,15 @@
 //! Helpers shared by the driver's integration tests (a directory, so Cargo does not build it as a
-//! test of its own).
+//! test of its own). Each test file uses a part of them, so the rest is not dead code there.
+#![allow(dead_code)]
 use std::process::{Command, Output};
 use std::sync::atomic::{AtomicBool, Ordering};
 use tessera::progressive::{self, Outcome, Plan};
-use tessera::render::{Framebuffer, RenderOptions};
+use tessera::render::{render, Framebuffer, RenderOptions};
+use tessera_core::adaptive::AdaptiveParams;
 use tessera_core::render::RenderJob;
 use tessera_scene::LoadedScene;
+
+pub mod temp_dir;
 
 /// A render job with its threads and tile edge.
 #[derive(Clone, Copy)]
@@ -61,6 +65,14 @@ fn run_passes(job: Job, fb: &mut Framebuffer, plan: &Plan, stop_in: Option<u64>)
     .expect("renders")
 }
 
+/// Runs the `tessera` binary with `args` given as OS strings (paths among them).
+pub fn run_os(args: &[&std::ffi::OsStr]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_tessera"))
+        .args(args)
+        .output()
+        .expect("cannot run the tessera binary")
+}
+
 /// Runs the `tessera` binary with `args`.
 pub fn run(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_tessera"))
@@ -72,4 +84,44 @@ pub fn run(args: &[&str]) -> Output {
 /// A command's standard error as text.
 pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Samples `0..spp` of `l` with `seed`, rendered at once (no passes) on 2 threads in 16-pixel
+/// tiles.
+pub fn render_plain(l: &LoadedScene, spp: u64, seed: u64) -> Framebuffer {
+    let opts = RenderOptions {
+        threads: 2,
+        tile_size: 16,
+        pixels: Default::default(),
+    };
+    let job = RenderJob::new(&l.scene, &l.integrator, seed);
+    render(&job, 0..spp, &opts, &mut |_, _| {})
+}
+
+/// An adaptive render of `l` to a mean of `spp` samples per pixel, from a blank framebuffer,
+/// with how it ended.
+pub fn render_adaptive(job: Job, spp: u64, params: AdaptiveParams) -> (Framebuffer, Outcome) {
+    let camera = &job.render.scene.camera;
+    let mut fb = Framebuffer::new(camera.width, camera.height);
+    let plan = Plan {
+        target: Some(spp),
+        adaptive: Some(params),
+        ..Default::default()
+    };
+    let out = run_plan(job, &mut fb, &plan);
+    (fb, out)
+}
+
+/// Each pixel's sample count (`count + dropped`).
+pub fn sample_counts(fb: &Framebuffer) -> Vec<u64> {
+    fb.pixels.iter().map(|p| p.count + p.dropped).collect()
+}
+
+/// How many pixels of `a` and `b` differ in any bit of their accumulators.
+pub fn differing_pixels(a: &Framebuffer, b: &Framebuffer) -> usize {
+    a.pixels
+        .iter()
+        .zip(&b.pixels)
+        .filter(|(p, q)| p.to_words() != q.to_words())
+        .count()
 }
