@@ -95,7 +95,7 @@ impl Projector {
 
     /// Luminance of the intensity on the axis for the texture's mean (`pi scale E`): a
     /// strength estimate, not a lookup.
-    pub fn axis_luminance(&self) -> f32 {
+    pub(crate) fn axis_luminance(&self) -> f32 {
         PI * self.scale * luminance(self.irradiance.mean_value())
     }
 

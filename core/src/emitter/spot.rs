@@ -77,7 +77,7 @@ impl SpotLight {
 
     /// Where the local direction `d` (inside the cone) looks the texture up.
     #[inline]
-    pub fn texture_uv(&self, d: Vec3) -> Vec2 {
+    pub(crate) fn texture_uv(&self, d: Vec3) -> Vec2 {
         let k = 0.5 / (d.z * self.tan_cutoff);
         Vec2::new(0.5 + d.x * k, 0.5 + d.y * k)
     }

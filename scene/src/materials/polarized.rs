@@ -24,7 +24,7 @@ const ETA: Param = Param::new(
 );
 
 /// `pplastic`.
-pub const PPLASTIC: BsdfPlugin = Plugin {
+pub(crate) const PPLASTIC: BsdfPlugin = Plugin {
     name: "pplastic",
     aliases: &[],
     doc: "Mitsuba 3's polarized plastic as its RGB variants render it: a rough dielectric \
@@ -126,7 +126,7 @@ const POLARIZING: Param = Param::boolean(
 .ignored();
 
 /// `polarizer`.
-pub const POLARIZER: BsdfPlugin = Plugin {
+pub(crate) const POLARIZER: BsdfPlugin = Plugin {
     name: "polarizer",
     aliases: &[],
     doc: "Mitsuba 3's linear polarizer as its RGB variants render it: a sheet that light passes \
