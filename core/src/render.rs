@@ -5,7 +5,9 @@
 //! (and, with path reuse, of which pixels of the pixel's group take that index), so any loop
 //! over pixels and sample ranges, in any order and on any thread, gives the same bits.
 use crate::film::PixelAccum;
-use crate::integrator::{Integrator, NoProbe, PathIntegrator, Probe, GROUP, GROUP_H, GROUP_W};
+use crate::integrator::{
+    Integrator, NoProbe, PathIntegrator, Probe, Radiance, GROUP, GROUP_H, GROUP_W,
+};
 use crate::sampling::{IndependentSampler, Sampler, SamplerKind, ZSobolPixel};
 use crate::scene::Scene;
 use crate::Color;

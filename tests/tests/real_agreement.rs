@@ -208,7 +208,10 @@ fn every_manifest_scene_is_compared_or_accounted_for() {
         assert!(real_dir().join(s).is_file(), "{s} is listed but missing");
     }
     for (u, _) in UNRESOLVED {
-        assert!(compared.iter().any(|s| s == u), "{u}: unresolved but not compared");
+        assert!(
+            compared.iter().any(|s| s == u),
+            "{u}: unresolved but not compared"
+        );
     }
 }
 

@@ -68,10 +68,12 @@ impl Integrator {
             _ => self.li_probed(scene, ray, sampler, &mut NoProbe),
         }
     }
+}
 
-    /// [`Integrator::li`], telling `probe` about the work done; the same value for any probe.
+/// [`Integrator::li`], telling `probe` about the work done; the same value for any probe.
+impl Radiance for Integrator {
     #[inline]
-    pub fn li_probed<S: Sampler, P: Probe>(
+    fn li_probed<S: Sampler, P: Probe>(
         &self,
         scene: &Scene,
         ray: Ray,
@@ -88,18 +90,5 @@ impl Integrator {
             Integrator::Aov(a) => a.li_probed(scene, ray, probe),
             Integrator::Moment(m) => m.li_probed(scene, ray, sampler, probe),
         }
-    }
-}
-
-impl Radiance for Integrator {
-    #[inline]
-    fn li_probed<S: Sampler, P: Probe>(
-        &self,
-        scene: &Scene,
-        ray: Ray,
-        sampler: &mut S,
-        probe: &mut P,
-    ) -> Color {
-        Integrator::li_probed(self, scene, ray, sampler, probe)
     }
 }
