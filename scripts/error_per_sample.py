@@ -7,11 +7,11 @@ Usage:
         [--tessera target/release/tessera] [--variant scalar_rgb] [-D name=value ...]
         [--make-reference SPP]
 
-relMSE = mean((a - b)^2 / (b^2 + 0.01)) over every pixel and channel, as `tessera bench` and
-`scripts/mitsuba_bench.py` compute it. Each renderer renders the scene --seeds times at --spp
-samples per pixel (Tessera with seeds 1..N, Mitsuba with 0..N-1); the script prints per
-renderer the mean relMSE, its standard error, and the median (the mean of a scene with small
-bright lights is dominated by rare outliers, the median is not).
+relMSE = mean((a - b)^2 / (b^2 + 0.01)) over every pixel and channel, computed by
+`scripts/mitsuba_bench.py`'s `errors`, as `tessera bench` computes it. Each renderer renders the
+scene --seeds times at --spp samples per pixel (Tessera with seeds 1..N, Mitsuba with 0..N-1);
+the script prints per renderer the mean relMSE, its standard error, and the median (the mean
+of a scene with small bright lights is dominated by rare outliers, the median is not).
 
 With --make-reference SPP, the reference is first rendered by Mitsuba (passes of 512 spp with
 seeds 1000, 1001, ..., averaged in float64) and written to --reference.
@@ -23,6 +23,8 @@ import tempfile
 
 import numpy as np
 import mitsuba as mi
+
+from mitsuba_bench import errors, rgb
 
 
 def main():
@@ -44,10 +46,10 @@ def main():
         acc = sum(np.array(mi.render(scene, spp=512, seed=1000 + p), dtype=np.float64)
                   for p in range(passes))
         mi.Bitmap((acc / passes).astype(np.float32)).write(a.reference)
-    ref = np.array(mi.Bitmap(a.reference), dtype=np.float64)[..., :3]
+    ref = rgb(mi.Bitmap(a.reference))
 
     def relmse(img):
-        return float(np.mean((img[..., :3] - ref) ** 2 / (ref ** 2 + 0.01)))
+        return errors(rgb(img), ref)[1]
 
     def report(name, v):
         v = np.array(v)
@@ -55,7 +57,7 @@ def main():
               f'median {np.median(v):.4g}, {len(v)} renders of {a.spp} spp')
 
     report(f'mitsuba {a.variant}',
-           [relmse(np.array(mi.render(scene, spp=a.spp, seed=s), dtype=np.float64))
+           [relmse(mi.render(scene, spp=a.spp, seed=s))
             for s in range(a.seeds)])
     out = os.path.join(tempfile.mkdtemp(), 't.exr')
     t = []
@@ -64,7 +66,7 @@ def main():
         for d in a.D:
             cmd += ['-D', d]
         subprocess.run(cmd, check=True, capture_output=True)
-        t.append(relmse(np.array(mi.Bitmap(out), dtype=np.float64)))
+        t.append(relmse(mi.Bitmap(out)))
     report('tessera', t)
 
 

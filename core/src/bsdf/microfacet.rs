@@ -110,6 +110,17 @@ impl Microfacet {
         }
     }
 
+    /// Density of `wo`, the mirror of `wi` about the normal `h` drawn by [`Microfacet::sample`]
+    /// (the Jacobian of the reflection, `1 / (4 wo.h)`, folded in).
+    #[inline]
+    pub(crate) fn reflected_pdf(&self, wi: Vec3, wo: Vec3, h: Vec3) -> f32 {
+        if self.sample_visible {
+            self.d(h) * self.g1(wi, h) / (4.0 * wi.z)
+        } else {
+            self.pdf(wi, h) / (4.0 * wo.dot(h))
+        }
+    }
+
     /// Samples a microfacet normal for `wi` (`wi.z > 0` when sampling visible normals); returns
     /// the normal and its density.
     #[inline]

@@ -106,10 +106,8 @@ impl PolarizedPlastic {
         let h = (wi + wo).unit();
         let spec = if wi.dot(h) <= 0.0 || wo.dot(h) <= 0.0 {
             0.0
-        } else if md.sample_visible {
-            md.d(h) * md.g1(wi, h) / (4.0 * wi.z)
         } else {
-            md.pdf(wi, h) / (4.0 * wo.dot(h))
+            md.reflected_pdf(wi, wo, h)
         };
         let w = self.spec_weight;
         let p = w * spec + (1.0 - w) * cosine_hemisphere_pdf(wo);

@@ -117,11 +117,7 @@ impl RoughPlastic {
             return 0.0;
         };
         let h = (wi + wo).unit();
-        let spec = if self.distr.sample_visible {
-            self.distr.d(h) * self.distr.g1(wi, h) / (4.0 * wi.z)
-        } else {
-            self.distr.pdf(wi, h) / (4.0 * wo.dot(h))
-        };
+        let spec = self.distr.reflected_pdf(wi, wo, h);
         let p = ps * spec + (1.0 - ps) * cosine_hemisphere_pdf(wo);
         if p.is_finite() {
             p
