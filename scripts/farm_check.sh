@@ -45,10 +45,14 @@ report="$tmp/report.txt"
 cleanup() {
     local rc=$?
     set +e
-    if [ -s "$tmp/jobs" ] && [ -s "$tmp/slurm/slurm.conf" ]; then
+    trap '' INT TERM PIPE # a second Ctrl-C or a closed output must not stop the cleanup
+    # Cancel our jobs while the controller still runs (bounded: a few seconds at most).
+    if [ -s "$tmp/jobs" ] && [ -s "$tmp/slurmctld.pid" ] && kill -0 "$(cat "$tmp/slurmctld.pid")" 2>/dev/null; then
         export SLURM_CONF="$tmp/slurm/slurm.conf"
-        while read -r j; do scancel "$j" 2>/dev/null; done <"$tmp/jobs"
-        for _ in $(seq 1 50); do [ -z "$(squeue -h 2>/dev/null)" ] && break; sleep 0.2; done
+        # shellcheck disable=SC2046
+        timeout 5 scancel $(cat "$tmp/jobs") 2>/dev/null
+        local until=$((SECONDS + 10))
+        while [ $SECONDS -lt $until ] && [ -n "$(timeout 2 squeue -h 2>/dev/null)" ]; do sleep 0.2; done
     fi
     for d in slurmd slurmctld munged; do
         if [ -s "$tmp/$d.pid" ]; then
@@ -197,7 +201,11 @@ wait_for() { # SECONDS COMMAND...: true once COMMAND succeeds
 }
 munge_ok() { munge -n 2>/dev/null | unmunge >/dev/null 2>&1; }
 node_idle() { [ "$(sinfo -h -n "$node" -o %t 2>/dev/null)" = idle ]; }
-jobs_gone() { [ -z "$(squeue -h -j "$1" -o %i 2>/dev/null)" ]; }
+jobs_gone() {
+    local out
+    out=$(squeue -h -j "$1" -o %i 2>/dev/null) || return 1
+    [ -z "$out" ]
+}
 
 start_munge() {
     if munge_ok; then
@@ -330,10 +338,14 @@ make_scenes
 say "$(tessera --version), $(nproc) CPUs, $(hostname -s); scenes ${RES}x${RES}, $SPP spp, $N tile sets"
 
 set +e
-(set -e; engine_parallel)
+# Each engine runs in a subshell with errexit on (its first failing command ends it); the subshell
+# has its own signal traps, so Ctrl-C ends it and then the main shell's cleanup runs.
+(trap 'exit 130' INT; trap 'exit 143' TERM; set -e; engine_parallel)
 p_rc=$?
-(set -e; engine_slurm)
+[ $p_rc -lt 128 ] || exit $p_rc
+(trap 'exit 130' INT; trap 'exit 143' TERM; set -e; engine_slurm)
 s_rc=$?
+[ $s_rc -lt 128 ] || exit $s_rc
 set -e
 # An engine that stopped early (its messages are above) still gets its line.
 [ $p_rc -eq 0 ] || echo "parallel  stopped: FAIL (exit code $p_rc; messages above)" >>"$report"
