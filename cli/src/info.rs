@@ -98,7 +98,20 @@ pub fn report(file: &str, loaded: &LoadedScene, seconds: f64) -> String {
     let depth = spec.max_depth.map_or("unbounded".into(), |d| d.to_string());
     row("integrator", format!("{} (max_depth {depth})", spec.name));
     row("sampler", s.sampler.name().to_string());
-    row("filter", s.filter.name().to_string());
+    row(
+        "filter",
+        match &s.splat {
+            Some(f) => {
+                let side = 2 * f.reach() + 1;
+                format!(
+                    "{}, splatted over {side}x{side} pixels ({} bytes a pixel)",
+                    s.filter.name(),
+                    4 * f.stride()
+                )
+            }
+            None => format!("{}, each sample in its own pixel", s.filter.name()),
+        },
+    );
     row("shapes", by_plugin(&loaded.names.shapes));
     let (mut tris, mut spheres, mut disks, mut cylinders) = (0usize, 0usize, 0usize, 0usize);
     for p in &s.prims {

@@ -108,6 +108,9 @@ pub fn run(args: &RenderArgs) -> i32 {
     if let Err(e) = loaded.set_sampler(args.sampler.as_deref(), scene_spp) {
         return usage(e);
     }
+    if args.filter_sampling {
+        loaded.scene.splat = None;
+    }
     if let Some(f) = args.resolution_scale {
         if let Err(e) = scale_resolution(&mut loaded.scene.camera, f) {
             return usage(e);
@@ -145,7 +148,7 @@ pub fn run(args: &RenderArgs) -> i32 {
             }
         ),
     };
-    let mut fb = Framebuffer::new(w, h);
+    let mut fb = Framebuffer::with_footprint(w, h, loaded.scene.splat.as_ref());
     let mut resumed_target = None;
     let mut pending = None;
     let mut resumed_check = None;
@@ -161,6 +164,16 @@ pub fn run(args: &RenderArgs) -> i32 {
         meta.seconds = ck.meta.seconds;
         resumed_target = (ck.meta.target_spp > 0).then_some(ck.meta.target_spp);
         fb.pixels = ck.pixels;
+        match (&mut fb.splats, ck.splats) {
+            (None, None) => {}
+            (Some(s), Some(sums)) if sums.len() == s.sums.len() => s.sums = sums,
+            _ => {
+                return usage(format!(
+                    "{}: the checkpoint's reconstruction (splatted or not, and the filter's reach) is not this render's",
+                    path.display()
+                ))
+            }
+        }
         pending = ck.pending;
         // The check point matters only to a render that checks (it stays in the file otherwise
         // only until the next write).
@@ -239,6 +252,7 @@ pub fn run(args: &RenderArgs) -> i32 {
                 Continuation {
                     pending: None,
                     check,
+                    splats: None,
                 },
             )
         },
@@ -260,6 +274,7 @@ pub fn run(args: &RenderArgs) -> i32 {
     let more = Continuation {
         pending: pending.as_deref(),
         check: check.as_ref(),
+        splats: None,
     };
     let written = match loaded.integrator_spec.layers.is_empty() {
         true => save(&fb, passes, more),
@@ -315,6 +330,11 @@ fn write_all(
         decor.write(o, fb, meta.seconds)?;
     }
     if let Some(c) = checkpoint {
+        // The splatted sums are the framebuffer's, whatever the caller passed.
+        let more = Continuation {
+            splats: fb.splats.as_ref(),
+            ..more
+        };
         write_checkpoint(c, meta, &fb.pixels, more)?;
     }
     Ok(())

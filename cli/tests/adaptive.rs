@@ -117,6 +117,7 @@ fn interrupted_and_resumed_gives_the_same_bits() {
             Continuation {
                 pending: out.pending.as_deref(),
                 check: None,
+                splats: None,
             },
         )
         .unwrap();

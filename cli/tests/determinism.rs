@@ -49,6 +49,21 @@ fn assert_same_bits(a: &Framebuffer, b: &Framebuffer, what: &str) {
             i as u32 / a.width
         );
     }
+    // The splatted sums, which the image is made from when the filter splats.
+    let splats = |f: &Framebuffer| {
+        f.splats
+            .as_ref()
+            .map(|s| s.sums.iter().map(|v| v.to_bits()).collect::<Vec<_>>())
+    };
+    assert!(splats(a) == splats(b), "{what}: splatted sums differ");
+    let image = |f: &Framebuffer| {
+        f.rgb()
+            .concat()
+            .iter()
+            .map(|v| v.to_bits())
+            .collect::<Vec<_>>()
+    };
+    assert!(image(a) == image(b), "{what}: image differs");
 }
 
 /// The image is not trivially black / empty (so equality means something).
@@ -72,6 +87,7 @@ fn cbox_same_bits_for_any_threads_and_tile_size() {
         matches!(l.scene.filter, Filter::Gaussian(_)),
         "want the default gaussian filter"
     );
+    assert!(l.scene.splat.is_some(), "the gaussian filter splats");
     assert_eq!((l.scene.camera.width, l.scene.camera.height), (24, 24));
     let reference = render_with(&l, 0..l.spp, 1, 1, l.seed);
     assert_nontrivial(&reference, l.spp);

@@ -285,14 +285,18 @@ fn mixed_counts_continue_to_one_render() {
         seconds: 0.0,
         integrator: format!("{:?}", l.integrator),
     };
-    write_checkpoint(&dir.path("c"), &meta, &fb.pixels, Continuation::default()).unwrap();
+    let more = Continuation {
+        splats: fb.splats.as_ref(),
+        ..Continuation::default()
+    };
+    write_checkpoint(&dir.path("c"), &meta, &fb.pixels, more).unwrap();
     let back = read_checkpoint(&std::fs::read(dir.path("c")).unwrap()).unwrap();
     assert_eq!(back.meta, meta);
-    let mut fb2 = Framebuffer {
-        width: w,
-        height: h,
-        pixels: back.pixels,
-    };
+    let mut fb2 = Framebuffer::for_job(&job);
+    fb2.pixels = back.pixels;
+    if let Some(s) = &mut fb2.splats {
+        s.sums = back.splats.expect("the checkpoint keeps the splatted sums");
+    }
     stop.store(false, Ordering::SeqCst);
     let span = Span::UpTo(24);
     let complete =

@@ -194,6 +194,7 @@ fn interrupted_and_resumed_stops_at_the_same_check_point() {
             let more = Continuation {
                 pending: out.pending.as_deref(),
                 check: out.check.as_ref(),
+                splats: None,
             };
             write_checkpoint(&path, &meta, &fb.pixels, more).unwrap();
             let ck = read_checkpoint(&std::fs::read(&path).unwrap()).unwrap();

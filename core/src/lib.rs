@@ -83,6 +83,7 @@ pub mod math;
 pub mod render;
 pub mod sampling;
 pub mod scene;
+pub mod splat;
 pub mod texture;
 
 pub use glam;

@@ -61,20 +61,24 @@ impl<'a> RenderJob<'a> {
     pub fn sample_probed<P: Probe>(&self, x: u32, y: u32, index: u64, probe: &mut P) -> Color {
         let mut c = Color::ZERO;
         let mut cache = PixelCache::default();
-        self.pixel(x, y, index..index + 1, &mut cache, probe, |v| c = v);
+        self.pixel(x, y, index..index + 1, &mut cache, probe, |v, _| c = v);
         c
     }
 
-    /// Adds samples `samples` of pixel `(x, y)` to `acc`, in index order.
+    /// Adds samples `samples` of pixel `(x, y)` to `acc`, in index order (the pixel's own
+    /// samples, whatever the reconstruction: see [`RenderJob::pixel`]).
     pub fn accumulate(&self, x: u32, y: u32, samples: Range<u64>, acc: &mut PixelAccum) {
         let mut cache = PixelCache::default();
-        self.pixel(x, y, samples, &mut cache, &mut NoProbe, |c| acc.add(c));
+        self.pixel(x, y, samples, &mut cache, &mut NoProbe, |c, _| acc.add(c));
     }
 
-    /// Samples `samples` of pixel `(x, y)` in index order, each value passed to `add`: the
-    /// values of [`RenderJob::sample_probed`] for those indices, bit for bit, for any `cache`
-    /// (fresh or used by other pixels, seeds or sample counts). The cache, kept from pixel to
-    /// pixel by the caller, spares the zsobol sampler's per-pixel work ([`ZSobolPixel`]).
+    /// Samples `samples` of pixel `(x, y)` in index order, each value passed to `add` with where
+    /// the sample lies: the values of [`RenderJob::sample_probed`] for those indices, bit for
+    /// bit, for any `cache` (fresh or used by other pixels, seeds or sample counts). The offset
+    /// from the pixel's centre is what splatting weighs the sample by (with the scene's
+    /// [`Footprint`](crate::splat::Footprint)); with filter importance sampling it is the
+    /// sampled offset, already accounted for. The cache, kept from pixel to pixel by the caller,
+    /// spares the zsobol sampler's per-pixel work ([`ZSobolPixel`]).
     #[inline]
     pub fn pixel<P: Probe>(
         &self,
@@ -83,7 +87,7 @@ impl<'a> RenderJob<'a> {
         samples: Range<u64>,
         cache: &mut PixelCache,
         probe: &mut P,
-        mut add: impl FnMut(Color),
+        mut add: impl FnMut(Color, Vec2),
     ) {
         if self.reuses() {
             // The pixel's values depend on its group's paths: trace the group, keep this pixel's.
@@ -91,9 +95,9 @@ impl<'a> RenderJob<'a> {
             let me = pixels[..n].iter().position(|&p| p == (x, y)).unwrap_or(0);
             let mut caches = GroupCache::default();
             let all: [Range<u64>; GROUP] = core::array::from_fn(|_| samples.clone());
-            self.group(&pixels[..n], &all[..n], &mut caches, probe, |k, _, c| {
+            self.group(&pixels[..n], &all[..n], &mut caches, probe, |k, _, c, o| {
                 if k == me {
-                    add(c)
+                    add(c, o)
                 }
             });
             return;
@@ -110,13 +114,14 @@ impl<'a> RenderJob<'a> {
         samples: Range<u64>,
         cache: &mut PixelCache,
         probe: &mut P,
-        mut add: impl FnMut(Color),
+        mut add: impl FnMut(Color, Vec2),
     ) {
         match self.scene.sampler {
             SamplerKind::Independent => {
                 for index in samples {
                     let s = IndependentSampler::new(self.seed, x, y, index);
-                    add(self.trace(x, y, s, probe));
+                    let (c, o) = self.trace(x, y, s, probe);
+                    add(c, o);
                 }
             }
             SamplerKind::ZSobol { log2_spp } => {
@@ -125,7 +130,8 @@ impl<'a> RenderJob<'a> {
                 }
                 let pixel = cache.zsobol_for(self.seed, x, y, log2_spp, samples.clone());
                 for index in samples {
-                    add(self.trace(x, y, pixel.sampler(index), probe));
+                    let (c, o) = self.trace(x, y, pixel.sampler(index), probe);
+                    add(c, o);
                 }
             }
         }
@@ -150,7 +156,8 @@ impl<'a> RenderJob<'a> {
 
     /// Every pixel of a group (`pixels`, as [`RenderJob::group_of`] gives them) takes its
     /// samples `samples[k]`, sample index by sample index over their union: `add(k, index,
-    /// value)` gets pixel `k`'s value of each of its samples in index order. At each index the
+    /// value, offset)` gets pixel `k`'s value of each of its samples in index order, and where
+    /// it lies (as [`RenderJob::pixel`] gives it). At each index the
     /// pixels that take it share their light (with an integrator that [`reuses`]); so each value
     /// is a pure function of the job, the group, the pixel, the sample index and which of the
     /// group's pixels take that index (all of them when the ranges are equal, as in every render
@@ -162,15 +169,15 @@ impl<'a> RenderJob<'a> {
         samples: &[Range<u64>],
         caches: &mut GroupCache,
         probe: &mut P,
-        mut add: impl FnMut(usize, u64, Color),
+        mut add: impl FnMut(usize, u64, Color, Vec2),
     ) {
         let n = pixels.len().min(GROUP).min(samples.len());
         let Integrator::Path(path) = self.integrator else {
             for (k, &(x, y)) in pixels[..n].iter().enumerate() {
                 let cache = &mut caches.pixels[k];
                 let mut index = samples[k].start;
-                self.pixel_alone(x, y, samples[k].clone(), cache, probe, |c| {
-                    add(k, index, c);
+                self.pixel_alone(x, y, samples[k].clone(), cache, probe, |c, o| {
+                    add(k, index, c, o);
                     index += 1;
                 });
             }
@@ -212,7 +219,7 @@ impl<'a> RenderJob<'a> {
     /// Sample `index` of each pixel of a group (`pixels`) whose range in `samples` holds it:
     /// camera rays drawn from those pixels' samplers (`samplers[k]` is pixel `k`'s; the others,
     /// and any past the group's size, are not touched), then the group estimator; each value
-    /// goes to `add(k, index, value)`.
+    /// goes to `add(k, index, value, offset)`.
     #[inline]
     #[allow(clippy::too_many_arguments)]
     fn group_sample<S: Sampler, P: Probe>(
@@ -223,18 +230,20 @@ impl<'a> RenderJob<'a> {
         index: u64,
         samplers: &mut [S; GROUP],
         probe: &mut P,
-        add: &mut impl FnMut(usize, u64, Color),
+        add: &mut impl FnMut(usize, u64, Color, Vec2),
     ) {
         let n = pixels.len();
         let mut rays = [None; GROUP];
         let mut weights = [None; GROUP];
+        let mut offsets = [Vec2::ZERO; GROUP];
         for (k, s) in samplers[..n].iter_mut().enumerate() {
             if !samples[k].contains(&index) {
                 continue;
             }
             let (x, y) = pixels[k];
-            let (offset, weight) = self.scene.filter.sample_weighted(s.next_2d());
+            let (offset, weight) = self.camera_offset(s.next_2d());
             weights[k] = weight;
+            offsets[k] = offset;
             let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
             let ray = self.scene.camera.sample_ray(pos, s);
             probe.camera(pos, &ray);
@@ -249,14 +258,39 @@ impl<'a> RenderJob<'a> {
             &mut out[..n],
         );
         for k in (0..n).filter(|&k| rays[k].is_some()) {
-            add(k, index, weights[k].map_or(out[k], |w| out[k] * w));
+            add(
+                k,
+                index,
+                weights[k].map_or(out[k], |w| out[k] * w),
+                offsets[k],
+            );
         }
     }
 
-    /// One camera sample of pixel `(x, y)` drawn from `sampler`.
+    /// A camera sample's offset from its pixel's centre, from the sampler's first two
+    /// dimensions `u`, and the weight its radiance takes: uniform in the pixel when the scene
+    /// splats (the film weighs the sample), else drawn from the filter
+    /// ([`Filter::sample_weighted`](crate::camera::Filter::sample_weighted)).
     #[inline]
-    fn trace<S: Sampler, P: Probe>(&self, x: u32, y: u32, mut sampler: S, probe: &mut P) -> Color {
-        let (offset, weight) = self.scene.filter.sample_weighted(sampler.next_2d());
+    fn camera_offset(&self, u: Vec2) -> (Vec2, Option<f32>) {
+        if self.scene.splat.is_some() {
+            (u - Vec2::splat(0.5), None)
+        } else {
+            self.scene.filter.sample_weighted(u)
+        }
+    }
+
+    /// One camera sample of pixel `(x, y)` drawn from `sampler`, and its offset from the pixel's
+    /// centre.
+    #[inline]
+    fn trace<S: Sampler, P: Probe>(
+        &self,
+        x: u32,
+        y: u32,
+        mut sampler: S,
+        probe: &mut P,
+    ) -> (Color, Vec2) {
+        let (offset, weight) = self.camera_offset(sampler.next_2d());
         let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
         let ray = self.scene.camera.sample_ray(pos, &mut sampler);
         probe.camera(pos, &ray);
@@ -264,7 +298,7 @@ impl<'a> RenderJob<'a> {
             .integrator
             .li_probed(self.scene, ray, &mut sampler, probe);
         // Filters with negative lobes weight their samples; the others give no weight.
-        weight.map_or(l, |w| l * w)
+        (weight.map_or(l, |w| l * w), offset)
     }
 }
 

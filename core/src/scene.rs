@@ -8,6 +8,7 @@ use crate::emitter::{Emitter, EmitterCtx};
 use crate::geometry::{Disk, Hit, Instance, Interaction, Prim, Shape, ShapeKind, TriRay};
 use crate::light::{Behind, LightBound, LightSampler, LightSelection};
 use crate::math::{Aabb, Norm, Ray};
+use crate::splat::Footprint;
 use alloc::vec::Vec;
 use core::cell::Cell;
 use glam::Vec3;
@@ -93,6 +94,10 @@ pub struct Scene {
     pub camera: Camera,
     /// The pixel filter.
     pub filter: Filter,
+    /// How samples reach pixels: splatted over this footprint (the default for every filter
+    /// but `box`, see `splat.rs`), or, when `None`, each counting in its own pixel only (`box`,
+    /// and filter importance sampling, which the driver selects by setting it to `None`).
+    pub splat: Option<Footprint>,
     /// The sampler pixels are rendered with (default independent; the driver sets it).
     pub sampler: crate::sampling::SamplerKind,
     /// What the scene contains.
@@ -243,6 +248,7 @@ impl Scene {
             scene_center: center,
             scene_radius: radius,
             camera: p.camera,
+            splat: Footprint::of(&p.filter),
             filter: p.filter,
             sampler: crate::sampling::SamplerKind::Independent,
             features,

@@ -34,6 +34,7 @@ pub mod progressive;
 pub mod render;
 mod render_groups;
 pub mod render_stats;
+pub mod splats;
 pub mod split;
 pub mod text;
 pub mod tile;

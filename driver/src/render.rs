@@ -9,6 +9,8 @@
 //! [`PixelSelection`]); the selected pixels get exactly the bits the whole render gives them and
 //! the others stay empty.
 use crate::render_groups::{render_tile_groups, Sharing};
+pub use crate::splats::Splats;
+use crate::splats::TileSums;
 pub use crate::split::selection::PixelSelection;
 pub use crate::tile::{tiles, Tile, TileProbe};
 use crossbeam_channel::unbounded;
@@ -17,6 +19,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use tessera_core::film::PixelAccum;
 use tessera_core::integrator::NoProbe;
 use tessera_core::render::{GroupCache, PixelCache, RenderJob};
+use tessera_core::splat::Footprint;
 
 /// How to split a render over threads and which pixels to render: nothing here changes a bit
 /// of the selected pixels.
@@ -85,27 +88,47 @@ pub struct Framebuffer {
     pub width: u32,
     /// Height in pixels.
     pub height: u32,
-    /// Sums per pixel.
+    /// Each pixel's own samples: their sums and counts (what error estimates, adaptive
+    /// sampling and statistical tests read).
     pub pixels: Vec<PixelAccum>,
+    /// When the scene splats its samples, each pixel's sums for the pixels its samples reach
+    /// (see `core/src/splat.rs`): the image is made from these.
+    pub splats: Option<Splats>,
 }
 
 impl Framebuffer {
-    /// An empty buffer.
+    /// An empty buffer whose image is its pixels' means (samples that do not splat).
     pub fn new(width: u32, height: u32) -> Self {
+        Framebuffer::with_footprint(width, height, None)
+    }
+    /// An empty buffer whose samples splat over `footprint` (or, without one, count in their
+    /// own pixel only).
+    pub fn with_footprint(width: u32, height: u32, footprint: Option<&Footprint>) -> Self {
+        Framebuffer::with_reach(width, height, footprint.map(Footprint::reach))
+    }
+    /// An empty buffer whose samples splat with reach `reach` (or, without one, count in their
+    /// own pixel only).
+    pub fn with_reach(width: u32, height: u32, reach: Option<u32>) -> Self {
+        let n = width as usize * height as usize;
         Framebuffer {
             width,
             height,
-            pixels: vec![PixelAccum::default(); width as usize * height as usize],
+            pixels: vec![PixelAccum::default(); n],
+            splats: reach.map(|r| Splats::new(r, n)),
         }
     }
-    /// An empty buffer of `job`'s image size.
+    /// An empty buffer for `job`: its image size, splatting as its scene does.
     pub fn for_job(job: &RenderJob) -> Self {
         let (w, h) = job.size();
-        Framebuffer::new(w, h)
+        Framebuffer::with_footprint(w, h, job.scene.splat.as_ref())
     }
-    /// Mean of each pixel.
+    /// The image: each pixel's splatted sums over their weights when the scene splats, else each
+    /// pixel's mean.
     pub fn rgb(&self) -> Vec<[f32; 3]> {
-        self.pixels.iter().map(|p| p.mean()).collect()
+        match &self.splats {
+            Some(s) => s.resolve(self.width, self.height),
+            None => self.pixels.iter().map(|p| p.mean()).collect(),
+        }
     }
     /// Samples dropped because they were not finite.
     pub fn dropped(&self) -> u64 {
@@ -159,6 +182,14 @@ pub fn render_span<P: TileProbe>(
         fb.width,
         fb.height
     );
+    assert!(
+        fb.splats.as_ref().map(|s| s.reach) == job.scene.splat.as_ref().map(Footprint::reach)
+            && fb
+                .splats
+                .as_ref()
+                .is_none_or(|s| s.sums.len() == fb.pixels.len() * s.stride()),
+        "render_span: the framebuffer does not splat as the scene does"
+    );
     let targets = match span {
         Span::Targets(t) => {
             assert_eq!(
@@ -180,9 +211,9 @@ pub fn render_span<P: TileProbe>(
     // The finished tiles, written into `fb` once the workers (which read its sums) are done:
     // `fb` is updated in place, with no copy of the whole buffer per call.
     let mut finished = Vec::with_capacity(list.len());
-    let start = &fb.pixels;
+    let (start, start_splats) = (&fb.pixels, fb.splats.as_ref());
     let cursor = AtomicUsize::new(0);
-    let (tx, rx) = unbounded::<(usize, Vec<PixelAccum>)>();
+    let (tx, rx) = unbounded::<(usize, TileSums)>();
     let threads = opts.threads.max(1).min(list.len().max(1));
     std::thread::scope(|s| {
         let mut workers = Vec::with_capacity(threads);
@@ -199,11 +230,8 @@ pub fn render_span<P: TileProbe>(
                     }
                     let i = cursor.fetch_add(1, Ordering::Relaxed);
                     let Some(t) = list.get(i) else { break };
-                    let mut acc = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
-                    for y in t.y0..t.y1 {
-                        let row = y as usize * w as usize;
-                        acc.extend_from_slice(&start[row + t.x0 as usize..row + t.x1 as usize]);
-                    }
+                    let footprint = job.scene.splat.as_ref();
+                    let mut acc = TileSums::copy(t, w, start, start_splats, footprint);
                     let range = |a: &PixelAccum, x: u32, y: u32| span.of(a, x, y, w);
                     if reuse {
                         render_tile_groups(
@@ -219,9 +247,9 @@ pub fn render_span<P: TileProbe>(
                         let mut k = 0;
                         for y in t.y0..t.y1 {
                             for x in t.x0..t.x1 {
-                                let a = &mut acc[k];
-                                let samples = range(a, x, y);
-                                job.pixel(x, y, samples, &mut cache, &mut probe, |c| a.add(c));
+                                let samples = range(&acc.pixels[k], x, y);
+                                let add = |c, o| acc.add(k, c, o);
+                                job.pixel(x, y, samples, &mut cache, &mut probe, add);
                                 k += 1;
                             }
                         }
@@ -249,12 +277,7 @@ pub fn render_span<P: TileProbe>(
     });
     let complete = finished.len() == list.len();
     for (i, acc) in finished {
-        let t = list[i];
-        let tw = (t.x1 - t.x0) as usize;
-        for (row, y) in (t.y0..t.y1).enumerate() {
-            let dst = y as usize * w as usize + t.x0 as usize;
-            fb.pixels[dst..dst + tw].copy_from_slice(&acc[row * tw..(row + 1) * tw]);
-        }
+        acc.write(&list[i], w, &mut fb.pixels, fb.splats.as_mut());
     }
     Rendered {
         complete,

@@ -1,5 +1,6 @@
 //! The tile loop's body when the integrator shares light among groups of pixels (4x2,
 //! `core/src/integrator/reuse.rs`).
+use crate::splats::TileSums;
 use crate::tile::{Tile, TileProbe};
 use std::ops::Range;
 use tessera_core::film::PixelAccum;
@@ -51,7 +52,7 @@ fn lcm(a: u32, b: u32) -> u32 {
 pub(crate) fn render_tile_groups<P: TileProbe>(
     job: &RenderJob,
     t: &Tile,
-    acc: &mut [PixelAccum],
+    acc: &mut TileSums,
     range: &dyn Fn(&PixelAccum, u32, u32) -> Range<u64>,
     sharing: Sharing,
     groups: &mut GroupCache,
@@ -69,7 +70,7 @@ pub(crate) fn render_tile_groups<P: TileProbe>(
                     continue;
                 }
                 let i = (y - t.y0) as usize * tw + (x - t.x0) as usize;
-                let r = range(&acc[i], x, y);
+                let r = range(&acc.pixels[i], x, y);
                 if !r.is_empty() {
                     (lo, hi) = (lo.min(r.start), hi.max(r.end));
                 }
@@ -82,13 +83,19 @@ pub(crate) fn render_tile_groups<P: TileProbe>(
                 (Some((_, r)), Sharing::OwnRanges) => r.clone(),
                 _ => lo..hi,
             });
-            job.group(&pixels[..n], &samples[..n], groups, probe, |k, index, c| {
-                if let Some((i, r)) = &mine[k] {
-                    if r.contains(&index) {
-                        acc[*i].add(c);
+            job.group(
+                &pixels[..n],
+                &samples[..n],
+                groups,
+                probe,
+                |k, index, c, o| {
+                    if let Some((i, r)) = &mine[k] {
+                        if r.contains(&index) {
+                            acc.add(*i, c, o);
+                        }
                     }
-                }
-            });
+                },
+            );
         }
     }
 }

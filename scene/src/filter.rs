@@ -41,7 +41,12 @@ const STDDEV: Param = Param::float(
 pub(crate) const GAUSSIAN: FilterPlugin = Plugin {
     name: "gaussian",
     aliases: &[],
-    doc: "A truncated Gaussian, as Mitsuba 3's default; sampled exactly, so every sample weighs 1.",
+    doc: "A truncated Gaussian, Mitsuba 3's default. Like every filter but `box`, it is applied \
+          as Mitsuba 3 applies it: each sample, placed uniformly in its pixel, is added with the \
+          filter's weight (tabulated in 31 steps, as Mitsuba does) to every pixel within the \
+          radius, and a pixel is its weighted sum over its summed weight. `--filter-sampling` \
+          applies it by importance sampling instead (pbrt-v4's way), as it does any filter \
+          reaching further than 4.5 pixels.",
     params: &[STDDEV],
     nested: "",
     build: |obj| Ok(Filter::Gaussian(GaussianFilter::new(STDDEV.read_f32(obj)?))),
@@ -59,7 +64,7 @@ pub(crate) const TENT: FilterPlugin = Plugin {
     name: "tent",
     aliases: &[],
     doc: "A triangle, max(0, 1 - |x| / radius) along each axis: no ringing, less aliasing than \
-          box.",
+          box. Applied as `gaussian` is.",
     params: &[RADIUS],
     nested: "",
     build: |obj| Ok(Filter::Tent(TentFilter::new(RADIUS.read_f32(obj)?))),
@@ -83,9 +88,10 @@ pub(crate) const MITCHELL: FilterPlugin = Plugin {
     name: "mitchell",
     aliases: &[],
     doc: "The Mitchell-Netravali cubic, radius 2 pixels along each axis: a compromise between \
-          sharpness and ringing. Sampled proportionally to the filter's absolute value, each \
+          sharpness and ringing. Applied as `gaussian` is (negative weights included); with \
+          `--filter-sampling`, sampled proportionally to the filter's absolute value, each \
           sample weighted by its sign times the ratio of the absolute to the signed integral, \
-          so the image is the filter-weighted average Mitsuba 3 computes, with no bias.",
+          which is the same image without the splatted quotient's bias at low sample counts.",
     params: &[B, C],
     nested: "",
     build: |obj| {
@@ -103,7 +109,7 @@ pub(crate) const CATMULLROM: FilterPlugin = Plugin {
     name: "catmullrom",
     aliases: &[],
     doc: "The Catmull-Rom spline, the Mitchell-Netravali cubic with B = 0 and C = 1/2: sharper \
-          than `mitchell`, with more ringing. Sampled as `mitchell`.",
+          than `mitchell`, with more ringing. Applied as `mitchell` is.",
     params: &[],
     nested: "",
     build: |_| Ok(Filter::Mitchell(MitchellFilter::catmull_rom())),
@@ -121,7 +127,7 @@ pub(crate) const LANCZOS: FilterPlugin = Plugin {
     name: "lanczos",
     aliases: &[],
     doc: "The Lanczos-windowed sinc, sinc(x) sinc(x / lobes) along each axis: sharp, with strong \
-          ringing at discontinuities. Sampled as `mitchell`.",
+          ringing at discontinuities. Applied as `mitchell` is.",
     params: &[LOBES],
     nested: "",
     build: |obj| {

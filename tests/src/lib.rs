@@ -50,11 +50,16 @@ pub fn load_file_edited(
     load_scene_str(&edited, &path, &defines).unwrap_or_else(|e| panic!("{e}"))
 }
 
-/// Renders a loaded scene with `spp` samples on 2 threads.
+/// Renders a loaded scene with `spp` samples on 2 threads, its filter applied by importance
+/// sampling (see [`render_two_threads`]).
 pub fn render_loaded(l: &LoadedScene, spp: u64, seed: u64) -> Framebuffer {
     render_two_threads(&l.scene, &l.integrator, spp, seed)
 }
 
+/// Renders with `spp` samples on 2 threads. The statistical tests read each pixel's own sums
+/// ([`region_stats`]), which are independent samples of the pixel's value only when the filter
+/// is applied by importance sampling (`--filter-sampling`); a scene that splats is rendered that
+/// way (splatting itself is tested against Mitsuba in `splat_agreement.rs`).
 fn render_two_threads(
     scene: &tessera_core::scene::Scene,
     integrator: &tessera_core::integrator::Integrator,
@@ -66,6 +71,16 @@ fn render_two_threads(
         tile_size: 16,
         pixels: Default::default(),
     };
+    let sampled;
+    let scene = match scene.splat {
+        None => scene,
+        Some(_) => {
+            let mut s = scene.clone();
+            s.splat = None;
+            sampled = s;
+            &sampled
+        }
+    };
     let job = tessera_core::render::RenderJob::new(scene, integrator, seed);
     render(&job, 0..spp, &opts, &mut |_, _| {})
 }
@@ -74,6 +89,10 @@ fn render_two_threads(
 /// variance is the sum of each pixel's sample variance over its sample count, over the pixel
 /// count squared.
 pub fn region_stats(fb: &Framebuffer, x0: u32, y0: u32, w: u32, h: u32) -> [(f64, f64); 3] {
+    assert!(
+        fb.splats.is_none(),
+        "region statistics need pixels with their own samples: render with filter sampling"
+    );
     let mut out = [(0.0, 0.0); 3];
     let n_pix = (w * h) as f64;
     for y in y0..y0 + h {

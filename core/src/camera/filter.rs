@@ -1,13 +1,16 @@
-//! Pixel reconstruction filters, applied by filter importance sampling: each camera sample is
-//! offset from its pixel's centre with density proportional to the filter, so every sample
-//! lands in exactly one pixel (the tile that owns the pixel owns the sample). Samples of the
-//! non-negative filters (`box`, `gaussian`, `tent`) weigh exactly 1; those of the filters with
-//! negative lobes (`mitchell`, `catmullrom`, `lanczos`) are drawn proportionally to `|f|` and
-//! carry a weight ([`Filter::sample_weighted`]).
+//! Pixel reconstruction filters, applied in one of two ways (see `splat.rs`):
+//! - splatting (the default, as Mitsuba 3 does): samples are placed uniformly in their pixel and
+//!   each counts, weighted by the filter ([`Filter::table`]), in every pixel the filter reaches;
+//! - filter importance sampling (as pbrt-v4 does): each camera sample is offset from its pixel's
+//!   centre with density proportional to the filter, so every sample lands in exactly one pixel.
+//!   Samples of the non-negative filters (`box`, `gaussian`, `tent`) weigh exactly 1; those of the
+//!   filters with negative lobes (`mitchell`, `catmullrom`, `lanczos`) are drawn proportionally to
+//!   `|f|` and carry a weight ([`Filter::sample_weighted`]).
 //!
 //! The filters other than `box` are tabulated as step functions as Mitsuba 3 tabulates them
 //! ([`StepProfile`]). Their scene parameters are declared with the loader, in
 //! `scene/src/filter.rs`.
+use super::filter_table::FilterTable;
 use super::negative_lobes::{LanczosFilter, MitchellFilter};
 use super::step_profile::{StepProfile, STEPS};
 use glam::Vec2;
@@ -21,6 +24,7 @@ pub struct GaussianFilter {
     /// Support radius in pixels.
     pub radius: f32,
     profile: StepProfile,
+    table: FilterTable,
 }
 
 impl GaussianFilter {
@@ -29,14 +33,15 @@ impl GaussianFilter {
         let radius = 4.0 * stddev;
         let alpha = -1.0 / (2.0 * stddev * stddev);
         let bias = libm::expf(alpha * radius * radius);
-        let profile = StepProfile::new(radius, |i| {
+        let value = |i: usize| {
             let x = radius * i as f32 / STEPS as f32;
             (libm::expf(alpha * x * x) - bias).max(0.0) as f64
-        });
+        };
         GaussianFilter {
             stddev,
             radius,
-            profile,
+            profile: StepProfile::new(radius, value),
+            table: FilterTable::new(radius, value),
         }
     }
 }
@@ -47,17 +52,22 @@ pub struct TentFilter {
     /// Support radius in pixels.
     pub radius: f32,
     profile: StepProfile,
+    table: FilterTable,
 }
 
 impl TentFilter {
     /// The tent of the given radius (positive).
     pub fn new(radius: f32) -> Self {
         let inv = 1.0 / radius;
-        let profile = StepProfile::new(radius, |i| {
+        let value = |i: usize| {
             let x = radius * i as f32 / STEPS as f32;
             (1.0 - libm::fabsf(x * inv)).max(0.0) as f64
-        });
-        TentFilter { radius, profile }
+        };
+        TentFilter {
+            radius,
+            profile: StepProfile::new(radius, value),
+            table: FilterTable::new(radius, value),
+        }
     }
 }
 
@@ -85,6 +95,18 @@ impl Filter {
             Filter::Tent(_) => "tent",
             Filter::Mitchell(_) => "mitchell",
             Filter::Lanczos(_) => "lanczos",
+        }
+    }
+
+    /// The filter's values as splatting looks them up: `None` for `box`, whose samples count
+    /// in their own pixel only.
+    pub fn table(&self) -> Option<&FilterTable> {
+        match self {
+            Filter::Box => None,
+            Filter::Gaussian(g) => Some(&g.table),
+            Filter::Tent(t) => Some(&t.table),
+            Filter::Mitchell(m) => Some(&m.table),
+            Filter::Lanczos(l) => Some(&l.table),
         }
     }
 

@@ -1,5 +1,6 @@
 //! Sensors and pixel reconstruction filters.
 mod filter;
+mod filter_table;
 mod negative_lobes;
 mod orthographic;
 mod perspective;
@@ -9,6 +10,7 @@ mod step_profile;
 mod thin_lens;
 
 pub use filter::{Filter, GaussianFilter, TentFilter};
+pub use filter_table::FilterTable;
 pub use negative_lobes::{LanczosFilter, MitchellFilter};
 pub use orthographic::Orthographic;
 pub use perspective::{FovAxis, Perspective};

@@ -4,6 +4,7 @@
 //! and tabulated as Mitsuba 3 tabulates every filter; they are sampled through
 //! [`SignedProfile`], so their samples carry weights. Their scene parameters are declared with
 //! the loader, in `scene/src/filter.rs`.
+use super::filter_table::FilterTable;
 use super::signed_profile::SignedProfile;
 use super::step_profile::STEPS;
 
@@ -16,6 +17,7 @@ pub struct MitchellFilter {
     /// The C parameter.
     pub c: f32,
     pub(super) profile: SignedProfile,
+    pub(super) table: FilterTable,
 }
 
 impl MitchellFilter {
@@ -25,8 +27,14 @@ impl MitchellFilter {
     /// The cubic with parameters `b` and `c`; `None` if its tabulated integral is not positive.
     pub fn new(b: f32, c: f32) -> Option<Self> {
         let r = Self::RADIUS;
-        let profile = SignedProfile::new(r, |i| mitchell(b, c, r * i as f32 / STEPS as f32))?;
-        Some(MitchellFilter { b, c, profile })
+        let value = |i: usize| mitchell(b, c, r * i as f32 / STEPS as f32);
+        let profile = SignedProfile::new(r, value)?;
+        Some(MitchellFilter {
+            b,
+            c,
+            profile,
+            table: FilterTable::new(r, value),
+        })
     }
 
     /// Catmull-Rom: B = 0, C = 1/2.
@@ -61,6 +69,7 @@ pub struct LanczosFilter {
     /// Number of lobes, which is also the radius in pixels.
     pub lobes: u32,
     pub(super) profile: SignedProfile,
+    pub(super) table: FilterTable,
 }
 
 impl LanczosFilter {
@@ -70,7 +79,11 @@ impl LanczosFilter {
         let r = lobes.max(1) as f32;
         let value = |i: usize| lanczos(r, r * i as f32 / STEPS as f32);
         let profile = SignedProfile::new(r, value)?;
-        Some(LanczosFilter { lobes, profile })
+        Some(LanczosFilter {
+            lobes,
+            profile,
+            table: FilterTable::new(r, value),
+        })
     }
 }
 

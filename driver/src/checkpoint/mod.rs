@@ -1,12 +1,12 @@
 //! Render checkpoints: the accumulated sums of every pixel plus what identifies the render, so
 //! that `tessera render --resume FILE` continues exactly where a render stopped.
 //!
-//! # File format (version 3, all integers and floats little-endian)
+//! # File format (version 4, all integers and floats little-endian)
 //!
 //! | offset | size | field |
 //! |---|---|---|
 //! | 0 | 8 | magic `TESSCKPT` |
-//! | 8 | 4 | format version, u32 = 3 (1 and 2 are still read) |
+//! | 8 | 4 | format version, u32 = 4 (1 to 3 are still read) |
 //! | 12 | 4 | image width, u32 >= 1 |
 //! | 16 | 4 | image height, u32 >= 1 |
 //! | 20 | 8 | seed, u64 |
@@ -23,6 +23,8 @@
 //! | t+8 | 8 if `c > 0` | the check point's samples per pixel, u64 >= 1 |
 //! | t+16 | 8 if `c > 0` | the estimate made there, f64 (NaN: none) |
 //! | t+24 | 64 per pixel if `c > 0` | every pixel's accumulators at the check point, as above, each at most the pixel's current count |
+//! | u | 8 | `s`, u64: 0, or the floats per pixel of the splatted sums when the render splats (version 4) |
+//! | u+8 | 4 s per pixel | row-major, every pixel's splatted sums, f32 (`driver/src/splats.rs`) |
 //! | end-8 | 8 | FNV-1a 64 of every byte before it |
 //!
 //! A pixel has taken `count + dropped` samples, indices `0..count + dropped`; a resumed render
@@ -31,8 +33,11 @@
 //! is interrupted its targets are saved, and the resumed render first finishes them. A render with
 //! a target error (`--target-error`) estimates its error at each doubling of the samples from the
 //! state at the previous one ([`crate::progressive::check`]), so that state is saved too, and the
-//! resumed render checks (and stops) where the uninterrupted one would. Version 1 files (no
-//! targets section) and version 2 files (no check point section) are still read. The reader checks the total length against the header before allocating anything,
+//! resumed render checks (and stops) where the uninterrupted one would. A render that splats its
+//! samples saves every pixel's splatted sums exactly, since its image is made from them. Version
+//! 1 files (no targets section), version 2 files (no check point section) and version 3 files
+//! (no splatted sums) are still read. The reader checks the total length against the header
+//! before allocating anything,
 //! then the checksum, then every value (finite sums, no count overflow): a truncated, corrupted
 //! or hostile file gives an error, never a panic or a huge allocation.
 //!
@@ -46,12 +51,13 @@ pub use tessera_scene::hash::{scene_hash, Fnv1a};
 pub use write::write_checkpoint;
 
 use crate::progressive::check::CheckState;
+use crate::splats::Splats;
 use tessera_core::film::PixelAccum;
 
 /// The file's first 8 bytes.
 pub const MAGIC: [u8; 8] = *b"TESSCKPT";
-/// The format version this build writes (it also reads versions 1 and 2).
-pub(crate) const VERSION: u32 = 3;
+/// The format version this build writes (it also reads versions 1 to 3).
+pub(crate) const VERSION: u32 = 4;
 /// Longest integrator description accepted.
 pub(crate) const MAX_DESCRIPTION: usize = 4096;
 const HEADER: usize = 64;
@@ -121,6 +127,8 @@ pub struct Checkpoint {
     pub pending: Option<Vec<u64>>,
     /// The last check point of a render with a target error.
     pub check: Option<CheckState>,
+    /// Every pixel's splatted sums, row-major, when the render splats its samples.
+    pub splats: Option<Vec<f32>>,
 }
 
 /// What a checkpoint keeps besides the identification and the pixels: how the render goes on.
@@ -130,6 +138,8 @@ pub struct Continuation<'a> {
     pub pending: Option<&'a [u64]>,
     /// The last check point of a render with a target error.
     pub check: Option<&'a CheckState>,
+    /// Every pixel's splatted sums, when the render splats its samples.
+    pub splats: Option<&'a Splats>,
 }
 
 #[cfg(test)]

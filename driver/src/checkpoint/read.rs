@@ -94,7 +94,18 @@ pub fn read_checkpoint(bytes: &[u8]) -> Result<Checkpoint, String> {
         (_, 0) => add(targets_end, Some(8)),
         (_, k) => add(add(targets_end, Some(24)), records(k, PIXEL as u64)),
     };
-    let expected = add(checks_end, Some(8));
+    let stride = match version {
+        1..=3 => 0,
+        _ => u64_at(bytes, checks_end).unwrap_or(0),
+    };
+    let splats_end = match version {
+        1..=3 => checks_end,
+        _ => add(
+            add(checks_end, Some(8)),
+            records(count, 4).and_then(|b| records(b, stride)),
+        ),
+    };
+    let expected = add(splats_end, Some(8));
     if expected != Some(bytes.len() as u64) {
         return Err(format!(
             "file is {} bytes, a {width}x{height} checkpoint takes {} (truncated or corrupted)",
@@ -163,6 +174,23 @@ pub fn read_checkpoint(bytes: &[u8]) -> Result<Checkpoint, String> {
             pixels: before,
         })
     };
+    if version >= 3 && checks == 0 {
+        c.at += 8;
+    }
+    let splats = if stride == 0 {
+        None
+    } else {
+        c.at += 8;
+        let sums: Vec<f32> = (0..count as u64 * stride)
+            .map(|_| f32::from_le_bytes(c.take()))
+            .collect();
+        if let Some(i) = sums.iter().position(|v| !v.is_finite()) {
+            let i = i / stride as usize;
+            let (x, y) = (i % width as usize, i / width as usize);
+            return Err(format!("pixel ({x}, {y}) holds impossible splatted sums"));
+        }
+        Some(sums)
+    };
     Ok(Checkpoint {
         meta: CheckpointMeta {
             width,
@@ -177,6 +205,7 @@ pub fn read_checkpoint(bytes: &[u8]) -> Result<Checkpoint, String> {
         pixels,
         pending,
         check,
+        splats,
     })
 }
 

@@ -92,10 +92,12 @@ fn round_trip_and_every_damage_is_caught() {
     let with_targets = write(Continuation {
         pending: Some(&targets),
         check: None,
+        splats: None,
     });
     let with_both = write(Continuation {
         pending: Some(&targets),
         check: Some(&check),
+        splats: None,
     });
     let no_estimate = CheckState {
         estimate: None,
@@ -104,6 +106,16 @@ fn round_trip_and_every_damage_is_caught() {
     let with_check = write(Continuation {
         pending: None,
         check: Some(&no_estimate),
+        splats: None,
+    });
+    let mut splats = crate::splats::Splats::new(1, pixels.len());
+    for (i, v) in splats.sums.iter_mut().enumerate() {
+        *v = i as f32 * 0.25 - 3.0;
+    }
+    let with_splats = write(Continuation {
+        pending: Some(&targets),
+        check: Some(&check),
+        splats: Some(&splats),
     });
     let _ = std::fs::remove_file(&path);
     let back = read_checkpoint(&bytes).unwrap();
@@ -120,34 +132,48 @@ fn round_trip_and_every_damage_is_caught() {
     assert_eq!(back.check.as_ref(), Some(&check));
     let back = read_checkpoint(&with_check).unwrap();
     assert_eq!((back.pending, back.check), (None, Some(no_estimate)));
-    // Versions 1 (no targets section) and 2 (no check point section) are still read.
+    assert_eq!(back.splats, None);
+    let back = read_checkpoint(&with_splats).unwrap();
+    assert_eq!(back.check.as_ref(), Some(&check));
+    assert_eq!(back.splats.as_ref(), Some(&splats.sums));
+    // Versions 1 (no targets section), 2 (no check point section) and 3 (no splatted sums) are
+    // still read.
     assert_eq!(
-        read_checkpoint(&older(&bytes, 16, 1)).unwrap().pixels,
+        read_checkpoint(&older(&bytes, 24, 1)).unwrap().pixels,
         pixels
     );
-    let v2 = read_checkpoint(&older(&with_targets, 8, 2)).unwrap();
+    let v2 = read_checkpoint(&older(&with_targets, 16, 2)).unwrap();
     assert_eq!(v2.pending.as_deref(), Some(&targets[..]));
+    let v3 = read_checkpoint(&older(&with_both, 8, 3)).unwrap();
+    assert_eq!(v3.check.as_ref(), Some(&check));
+    // Splatted sums that are not finite are refused.
+    let mut inf = with_splats.clone();
+    let last_sum = inf.len() - 8 - 4;
+    inf[last_sum..last_sum + 4].copy_from_slice(&f32::INFINITY.to_le_bytes());
+    assert!(read_checkpoint(&resum(inf))
+        .unwrap_err()
+        .contains("pixel (2, 1) holds impossible splatted sums"));
     // Values that only a damaged or hostile file holds (with a valid checksum) are refused: a
     // pass target below a pixel's count, a check point pixel with more samples than the pixel
     // now, a negative estimate, a check point at 0 spp.
     let n = with_both.len();
     let mut low = with_targets.clone();
-    let at = low.len() - 16 - 8 * 6;
+    let at = low.len() - 24 - 8 * 6;
     low[at..at + 8].copy_from_slice(&0u64.to_le_bytes());
     let err = |b: Vec<u8>| read_checkpoint(&resum(b)).unwrap_err();
     assert!(err(low).contains("below its sample count"));
     let mut more = with_both.clone();
-    let last_count = n - 8 - 16;
+    let last_count = n - 8 - 8 - 16;
     more[last_count..last_count + 8].copy_from_slice(&99u64.to_le_bytes());
     assert!(err(more).contains("check point pixel (2, 1)"));
-    let estimate_at = n - 8 - 64 * 6 - 8;
+    let estimate_at = n - 8 - 8 - 64 * 6 - 8;
     let mut negative = with_both.clone();
     negative[estimate_at..estimate_at + 8].copy_from_slice(&(-1.0f64).to_le_bytes());
     assert!(err(negative).contains("estimate -1"));
     let mut zero = with_both.clone();
     zero[estimate_at - 8..estimate_at].copy_from_slice(&0u64.to_le_bytes());
     assert!(err(zero).contains("at 0 spp"));
-    for bytes in [&with_both, &with_targets, &with_check, &bytes] {
+    for bytes in [&with_splats, &with_both, &with_targets, &with_check, &bytes] {
         for len in 0..bytes.len() {
             assert!(
                 read_checkpoint(&bytes[..len]).is_err(),

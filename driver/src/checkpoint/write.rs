@@ -54,6 +54,12 @@ fn write_to(
     if more.check.is_some_and(|c| c.pixels.len() != pixels.len()) {
         return Err(bad("check point does not match the size"));
     }
+    if more
+        .splats
+        .is_some_and(|s| s.sums.len() != pixels.len() * s.stride())
+    {
+        return Err(bad("splatted sums do not match the size"));
+    }
     if meta.integrator.len() > MAX_DESCRIPTION {
         return Err(bad("integrator description too long"));
     }
@@ -85,6 +91,18 @@ fn write_to(
             w.write_all(&c.spp.to_le_bytes())?;
             w.write_all(&c.estimate.unwrap_or(f64::NAN).to_le_bytes())?;
             write_pixels(&mut w, &c.pixels)?;
+        }
+    }
+    match more.splats {
+        None => w.write_all(&0u64.to_le_bytes())?,
+        Some(s) => {
+            w.write_all(&(s.stride() as u64).to_le_bytes())?;
+            let mut buf = Vec::with_capacity(4 * s.stride());
+            for pixel in s.sums.chunks(s.stride()) {
+                buf.clear();
+                buf.extend(pixel.iter().flat_map(|v| v.to_le_bytes()));
+                w.write_all(&buf)?;
+            }
         }
     }
     let sum = w.hash.0;

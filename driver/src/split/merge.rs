@@ -7,7 +7,7 @@
 //! - spatial parts (crop windows, tile sets) of one sample range are copied: the image is bit
 //!   for bit the one a single whole render gives;
 //! - sample-range parts `0..a`, `a..b`, ... of the same pixels add up to one `0..b` render within
-//!   float rounding (the f64 sums are associated differently);
+//!   float rounding (the sums, f64 and the splatted f32 ones, are associated differently);
 //! - overlapping samples, gaps in a pixel's samples, and pixels with different final ranges are
 //!   errors; pixels in no part are an error unless allowed (they are then black).
 use super::part::Part;
@@ -63,11 +63,20 @@ pub fn merge_parts(parts: &[(String, Part)], allow_missing: bool) -> Result<Merg
                 b.integrator.clone(),
             ));
         }
+        let reach = |p: &Part| p.splats.as_ref().map(|s| s.reach);
+        if reach(first) != reach(p) {
+            let say = |r: Option<u32>| r.map_or("not splatted".into(), |r| format!("reach {r}"));
+            return Err(differs(
+                "reconstruction (splatted samples' reach)",
+                say(reach(first)),
+                say(reach(p)),
+            ));
+        }
     }
     let (w, h) = (a.width, a.height);
     let mut order: Vec<usize> = (0..parts.len()).collect();
     order.sort_by_key(|&i| parts[i].1.info.samples.start);
-    let mut fb = Framebuffer::new(w, h);
+    let mut fb = Framebuffer::with_reach(w, h, first.splats.as_ref().map(|s| s.reach));
     // Per pixel: the sample range so far (`end == 0` and `owner == NONE`: no part yet) and the
     // part that last added to it.
     const NONE: usize = usize::MAX;
@@ -81,11 +90,18 @@ pub fn merge_parts(parts: &[(String, Part)], allow_missing: bool) -> Result<Merg
                 for x in r.x0..r.x1 {
                     let k = y as usize * w as usize + x as usize;
                     let src = part.at(x, y);
+                    let splats = fb.splats.as_mut().map(|f| f.pixel_mut(k));
                     if owner[k] == NONE {
                         fb.pixels[k] = *src;
+                        if let (Some(to), Some(from)) = (splats, part.splats_at(x, y)) {
+                            to.copy_from_slice(from);
+                        }
                         range[k] = (s.start, s.end);
                     } else if range[k].1 == s.start {
                         fb.pixels[k].merge(src);
+                        if let (Some(to), Some(from)) = (splats, part.splats_at(x, y)) {
+                            to.iter_mut().zip(from).for_each(|(t, f)| *t += f);
+                        }
                         range[k].1 = s.end;
                     } else if s.start < range[k].1 {
                         return Err(format!(

@@ -6,7 +6,9 @@
 //! - `R`, `G`, `B` (f32): each pixel's mean, for viewing;
 //! - `tessera.{sum,sumsq}.{R,G,B}.{hi,lo}` (u32): the high and low 32 bits of each f64 sum of
 //!   sample values and squared values, so the sums are stored exactly;
-//! - `tessera.{count,dropped}.{hi,lo}` (u32): the 64-bit counts of accepted and dropped samples.
+//! - `tessera.{count,dropped}.{hi,lo}` (u32): the 64-bit counts of accepted and dropped samples;
+//! - when the render splats its samples, `tessera.splat.NNN` (f32, `NNN` from `000`): each
+//!   pixel's splatted sums (`driver/src/splats.rs`), one channel per float, stored exactly.
 //!
 //! Text attributes: `tessera.part` (format version, `1`), `tessera.size` (`WxH`),
 //! `tessera.pixels` (`all`, `crop X0,Y0,X1,Y1` or `tiles K/N`), `tessera.tileSize`,
@@ -15,6 +17,7 @@
 use super::selection::PixelSelection;
 use crate::image_io::write_atomic;
 use crate::render::{Framebuffer, Tile};
+use crate::splats::Splats;
 use exr::prelude::{
     AnyChannel, AnyChannels, AttributeValue, Encoding, FlatSamples, Layer, LayerAttributes,
     ReadChannels, ReadLayers, SampleType, SmallVec, Text, Vec2, WritableImage,
@@ -22,6 +25,7 @@ use exr::prelude::{
 use std::ops::Range;
 use std::path::Path;
 use tessera_core::film::PixelAccum;
+use tessera_core::splat::{stride, MAX_REACH};
 
 /// What a part is a part of, and which piece it is.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -53,14 +57,30 @@ pub struct Part {
     pub window: Tile,
     /// Accumulators of the window, row-major.
     pub pixels: Vec<PixelAccum>,
+    /// When the render splats: the reach, and the window's splatted sums, row-major.
+    pub splats: Option<Splats>,
 }
 
 impl Part {
     /// The accumulator of image pixel `(x, y)`, which must lie in the window.
     pub fn at(&self, x: u32, y: u32) -> &PixelAccum {
-        let w = (self.window.x1 - self.window.x0) as usize;
-        &self.pixels[(y - self.window.y0) as usize * w + (x - self.window.x0) as usize]
+        &self.pixels[self.index(x, y)]
     }
+
+    /// The splatted sums of image pixel `(x, y)`, which must lie in the window.
+    pub fn splats_at(&self, x: u32, y: u32) -> Option<&[f32]> {
+        self.splats.as_ref().map(|s| s.pixel(self.index(x, y)))
+    }
+
+    fn index(&self, x: u32, y: u32) -> usize {
+        let w = (self.window.x1 - self.window.x0) as usize;
+        (y - self.window.y0) as usize * w + (x - self.window.x0) as usize
+    }
+}
+
+/// Name of splatted-sum channel `i`.
+fn splat_channel(i: usize) -> String {
+    format!("tessera.splat.{i:03}")
 }
 
 const VERSION: &str = "1";
@@ -101,26 +121,41 @@ pub fn write_part(path: &Path, info: &PartInfo, fb: &Framebuffer) -> Result<(), 
         .bounds(info.width, info.height, info.tile_size)
         .ok_or_else(|| err("the selection holds no pixel".into()))?;
     let n = ((win.x1 - win.x0) * (win.y1 - win.y0)) as usize;
+    let image = fb.rgb();
+    let stride = fb.splats.as_ref().map_or(0, Splats::stride);
     let mut rgb: [Vec<f32>; 3] = Default::default();
     let mut halves: Vec<Vec<u32>> = (0..16).map(|_| Vec::with_capacity(n)).collect();
+    let mut splat: Vec<Vec<f32>> = (0..stride).map(|_| Vec::with_capacity(n)).collect();
     for y in win.y0..win.y1 {
         for x in win.x0..win.x1 {
-            let p = fb.at(x, y);
-            for (c, m) in rgb.iter_mut().zip(p.mean()) {
+            let i = y as usize * info.width as usize + x as usize;
+            let p = &fb.pixels[i];
+            for (c, m) in rgb.iter_mut().zip(image[i]) {
                 c.push(m);
             }
             for (i, w) in p.to_words().into_iter().enumerate() {
                 halves[2 * i].push((w >> 32) as u32);
                 halves[2 * i + 1].push(w as u32);
             }
+            if let Some(s) = &fb.splats {
+                for (c, &v) in splat.iter_mut().zip(s.pixel(i)) {
+                    c.push(v);
+                }
+            }
         }
     }
-    let mut list = Vec::with_capacity(19);
+    let mut list = Vec::with_capacity(19 + stride);
     for (name, data) in ["R", "G", "B"].into_iter().zip(rgb) {
         list.push(AnyChannel::new(name, FlatSamples::F32(data)));
     }
     for (name, data) in word_channels().into_iter().zip(halves) {
         list.push(AnyChannel::new(text(&name)?, FlatSamples::U32(data)));
+    }
+    for (i, data) in splat.into_iter().enumerate() {
+        list.push(AnyChannel::new(
+            text(&splat_channel(i))?,
+            FlatSamples::F32(data),
+        ));
     }
     let mut attrs = LayerAttributes {
         layer_position: Vec2(win.x0 as i32, win.y0 as i32),
@@ -253,14 +288,52 @@ pub fn read_part(path: &Path) -> Result<Part, String> {
     if !pixels.iter().all(finite) {
         return Err(err("a pixel's sums are not finite".into()));
     }
+    let splats = read_splats(layer, n).map_err(err)?;
     Ok(Part {
         info,
         window: win,
         pixels,
+        splats,
     })
 }
 
 type FlatImage = exr::image::Image<exr::image::Layer<AnyChannels<FlatSamples>>>;
+
+/// The splatted sums of a part's `n` pixels, if it has any: `tessera.splat.000` onwards, as many
+/// channels as a footprint of some reach keeps, each `n` finite f32 samples.
+fn read_splats(
+    layer: &exr::image::Layer<AnyChannels<FlatSamples>>,
+    n: usize,
+) -> Result<Option<Splats>, String> {
+    let list = &layer.channel_data.list;
+    let count = list
+        .iter()
+        .filter(|c| c.name.to_string().starts_with("tessera.splat."))
+        .count();
+    if count == 0 {
+        return Ok(None);
+    }
+    let reach = (0..=MAX_REACH)
+        .find(|&r| stride(r) == count)
+        .ok_or_else(|| format!("{count} splatted-sum channels, which no footprint keeps"))?;
+    let mut splats = Splats::new(reach, n);
+    for i in 0..count {
+        let name = splat_channel(i);
+        let data = match list.iter().find(|c| c.name == *name.as_str()) {
+            Some(c) => &c.sample_data,
+            None => return Err(format!("channel {name} is missing")),
+        };
+        match data {
+            FlatSamples::F32(v) if v.len() == n && v.iter().all(|x| x.is_finite()) => {
+                for (k, &x) in v.iter().enumerate() {
+                    splats.pixel_mut(k)[i] = x;
+                }
+            }
+            _ => return Err(format!("channel {name} is not {n} finite f32 samples")),
+        }
+    }
+    Ok(Some(splats))
+}
 
 /// Decodes every channel of the file's one layer. The decoder is not trusted to reject every
 /// malformed file without panicking, so a panic is caught and reported as an error.

@@ -110,7 +110,7 @@ pub fn run_waves(
     on_wave: &mut dyn FnMut(&Row),
 ) -> (Vec<Row>, Framebuffer) {
     let (w, h) = job.size();
-    let mut fb = Framebuffer::new(w, h);
+    let mut fb = Framebuffer::for_job(job);
     let mut rows = Vec::new();
     let (mut done, mut seconds) = (0u64, 0.0f64);
     loop {

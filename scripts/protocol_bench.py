@@ -1,0 +1,196 @@
+#!/usr/bin/env python3
+"""Efficiency against Mitsuba 3 at the sizes people render: the whole `tessera render` process
+against Mitsuba 3 (`llvm_ad_rgb` by default) loading and rendering the same scene file, side by
+side on this machine, with each scene file's own settings.
+
+Usage:
+    scripts/protocol_bench.py [--scenes cbox,veach_mis,materials] [--sizes 256,512]
+        [--threads 2] [--min-seconds 5] [--min-spp 64] [--ref-spp 2048]
+        [--variant llvm_ad_rgb] [--tessera target/release/tessera] [--refs DIR]
+        [--csv OUT.csv] [--tessera-args "--sampler zsobol ..."] [--label NAME]
+
+For each scene (`scenes/NAME.xml`, or a path) and image size (`-D res=SIZE`):
+- a reference: Mitsuba 3 at --ref-spp (passes of 256 spp, `scripts/mitsuba_ref.py`, kept in
+  --refs and reused);
+- Tessera: `tessera render` at 64, 128, 256, ... spp until one run takes at least --min-seconds
+  (and at least --min-spp samples per pixel); the last run counts: wall seconds of the whole
+  process, its relMSE against the reference, its peak memory (max RSS);
+- Mitsuba: likewise, one process per run that loads the scene (timed) and renders it (timed,
+  including the transfer of the image to NumPy); a first, untimed 1 spp run fills Dr.Jit's kernel
+  cache, so the timed runs compile nothing;
+- efficiency = relMSE x seconds (lower is better; independent of the sample count for an
+  unbiased renderer), and the ratio Tessera / Mitsuba.
+
+relMSE = mean((a - b)^2 / (b^2 + 0.01)), as `tessera bench` computes it. The reference's own
+noise adds to both renderers' relMSE; it is estimated from Mitsuba's run (relMSE falls as one
+over the samples) and subtracted from both, and the table says how large it was.
+"""
+import argparse
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from mitsuba_bench import errors, rgb  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def load(path):
+    """An EXR file's RGB as float64."""
+    import mitsuba as mi
+    if mi.variant() is None:
+        mi.set_variant("scalar_rgb")
+    return rgb(np.array(mi.Bitmap(path)))
+
+MITSUBA_RUN = r"""
+import sys, time, json
+t0 = time.perf_counter()
+import mitsuba as mi
+import drjit as dr
+mi.set_variant(sys.argv[1])
+dr.set_thread_count(int(sys.argv[2]))
+scene_path, out, spp, res = sys.argv[3], sys.argv[4], int(sys.argv[5]), sys.argv[6]
+t1 = time.perf_counter()
+scene = mi.load_file(scene_path, res=int(res))
+t2 = time.perf_counter()
+img = mi.render(scene, spp=spp, seed=7)
+import numpy as np
+arr = np.array(img)
+t3 = time.perf_counter()
+mi.Bitmap(arr).write(out)
+print(json.dumps({"import": t1 - t0, "load": t2 - t1, "render": t3 - t2}))
+"""
+
+
+def timed(cmd, env=None):
+    """Runs `cmd` under /usr/bin/time: (wall seconds, max RSS in MB, stdout)."""
+    with tempfile.NamedTemporaryFile("r", suffix=".time") as tf:
+        t0 = time.perf_counter()
+        p = subprocess.run(["/usr/bin/time", "-f", "%M", "-o", tf.name] + cmd,
+                           capture_output=True, text=True, env=env)
+        wall = time.perf_counter() - t0
+        if p.returncode != 0:
+            sys.exit(f"failed: {' '.join(cmd)}\n{p.stderr}")
+        rss_kb = int(open(tf.name).read().strip().splitlines()[-1])
+    return wall, rss_kb / 1024.0, p.stdout
+
+
+def scene_path(name):
+    return name if name.endswith(".xml") else os.path.join(ROOT, "scenes", name + ".xml")
+
+
+def reference(a, name, size):
+    os.makedirs(a.refs, exist_ok=True)
+    base = os.path.basename(scene_path(name))[:-4]
+    out = os.path.join(a.refs, f"{base}_{size}_{a.ref_spp}spp_{a.variant}.exr")
+    if not os.path.exists(out):
+        print(f"reference {out} ...", flush=True)
+        subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "mitsuba_ref.py"),
+                        scene_path(name), "-o", out, "--spp", str(a.ref_spp), "--seed", "1000",
+                        "-D", f"res={size}", "--variant", a.variant], check=True)
+    return load(out)
+
+
+def tessera_run(a, name, size, spp, out):
+    cmd = [a.tessera, "render", scene_path(name), "-D", f"res={size}", "--spp", str(spp),
+           "--threads", str(a.threads), "-q", "-o", out] + a.tessera_args.split()
+    wall, rss, _ = timed(cmd)
+    return {"seconds": wall, "rss": rss, "load": None}
+
+
+def mitsuba_run(a, name, size, spp, out, env):
+    cmd = [sys.executable, "-c", MITSUBA_RUN, a.variant, str(a.threads), scene_path(name), out,
+           str(spp), str(size)]
+    wall, rss, stdout = timed(cmd, env)
+    parts = eval(stdout.strip().splitlines()[-1].replace("null", "None"))
+    # The whole process less Python's and Mitsuba's import: what loading and rendering took.
+    return {"seconds": parts["load"] + parts["render"], "rss": rss, "load": parts["load"],
+            "wall": wall}
+
+
+def measure(a, run, name, size, ref):
+    """Doubles the sample count from --min-spp until a run takes --min-seconds; the last run."""
+    spp = a.min_spp
+    with tempfile.TemporaryDirectory() as d:
+        out = os.path.join(d, "x.exr")
+        while True:
+            r = run(spp, out)
+            if r["seconds"] >= a.min_seconds or spp >= 1 << 16:
+                r["spp"] = spp
+                r["relmse"] = errors(load(out), ref)[1]
+                return r
+            # Jump straight to about the sample count that takes long enough.
+            factor = max(2, 2 ** int(np.ceil(np.log2(a.min_seconds / max(r["seconds"], 1e-3)))))
+            spp *= factor
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--scenes", default="cbox,veach_mis,materials")
+    ap.add_argument("--sizes", default="256,512")
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--min-seconds", type=float, default=5.0)
+    ap.add_argument("--min-spp", type=int, default=64)
+    ap.add_argument("--ref-spp", type=int, default=2048)
+    ap.add_argument("--variant", default="llvm_ad_rgb")
+    ap.add_argument("--tessera", default=os.path.join(ROOT, "target", "release", "tessera"))
+    ap.add_argument("--tessera-args", default="")
+    ap.add_argument("--refs", default=os.path.join(ROOT, "target", "protocol-refs"))
+    ap.add_argument("--csv", default=None)
+    ap.add_argument("--label", default="scene file's own settings")
+    a = ap.parse_args()
+
+    env = dict(os.environ)
+    llvm = "/usr/lib/x86_64-linux-gnu/libLLVM-19.so"
+    if a.variant.startswith("llvm") and "DRJIT_LIBLLVM_PATH" not in env and os.path.exists(llvm):
+        env["DRJIT_LIBLLVM_PATH"] = llvm
+    cpu = next((re.sub(r"\s+", " ", l.split(":", 1)[1]).strip()
+                for l in open("/proc/cpuinfo") if l.startswith("model name")), "unknown CPU")
+    print(f"# {cpu}, {a.threads} threads; Tessera: {a.label} {a.tessera_args}; "
+          f"Mitsuba 3 {a.variant}")
+    rows = []
+    header = ("scene,size,renderer,spp,seconds,load_seconds,max_rss_mb,relmse,"
+              "relmse_less_ref,efficiency")
+    print("| scene | size | Tessera spp, s, relMSE, MB | Mitsuba spp, s (load), relMSE, MB "
+          "| reference noise | efficiency ratio |")
+    print("|---|---|---|---|---|---|")
+    for name in a.scenes.split(","):
+        for size in [int(s) for s in a.sizes.split(",")]:
+            ref = reference(a, name, size)
+            with tempfile.TemporaryDirectory() as d:
+                # Fill Dr.Jit's kernel cache (untimed).
+                mitsuba_run(a, name, size, 1, os.path.join(d, "w.exr"), env)
+            m = measure(a, lambda spp, out: mitsuba_run(a, name, size, spp, out, env),
+                        name, size, ref)
+            t = measure(a, lambda spp, out: tessera_run(a, name, size, spp, out),
+                        name, size, ref)
+            # Reference noise: Mitsuba's relMSE is c (1/spp + 1/ref_spp).
+            c = m["relmse"] / (1.0 / m["spp"] + 1.0 / a.ref_spp)
+            noise = c / a.ref_spp
+            for r in (m, t):
+                r["clean"] = max(r["relmse"] - noise, 1e-30)
+                r["eff"] = r["clean"] * r["seconds"]
+            ratio = t["eff"] / m["eff"]
+            print(f"| {os.path.basename(scene_path(name))} | {size}x{size} "
+                  f"| {t['spp']}, {t['seconds']:.2f}, {t['relmse']:.3e}, {t['rss']:.0f} "
+                  f"| {m['spp']}, {m['seconds']:.2f} ({m['load']:.2f}), {m['relmse']:.3e}, "
+                  f"{m['rss']:.0f} | {noise:.1e} | {ratio:.2f} |", flush=True)
+            for label, r in (("tessera", t), ("mitsuba-" + a.variant, m)):
+                rows.append(f"{name},{size},{label},{r['spp']},{r['seconds']:.3f},"
+                            f"{'' if r['load'] is None else round(r['load'], 3)},"
+                            f"{r['rss']:.0f},{r['relmse']:.6e},{r['clean']:.6e},"
+                            f"{r['eff']:.6e}")
+    if a.csv:
+        with open(a.csv, "w") as f:
+            f.write(header + "\n" + "\n".join(rows) + "\n")
+
+
+if __name__ == "__main__":
+    main()
