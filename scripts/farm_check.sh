@@ -122,7 +122,7 @@ make_scenes() {
         IFS='|' read -r name scene defs <<<"$c"
         want=${name##*-}
         # shellcheck disable=SC2086
-        if ! tessera info "$scene" $defs 2>&1 | grep -Eq "^ *filter +$want\$"; then
+        if ! tessera info "$scene" $defs 2>&1 | grep -Eq "^ *filter +$want(,|\$)"; then
             say "$name: tessera info does not report the $want filter"
             exit 1
         fi
