@@ -1,4 +1,5 @@
 //! Sensors and pixel reconstruction filters.
+mod differentials;
 mod filter;
 mod negative_lobes;
 mod orthographic;
@@ -8,6 +9,7 @@ mod signed_profile;
 mod step_profile;
 mod thin_lens;
 
+pub use differentials::Differentials;
 pub use filter::{Filter, GaussianFilter, TentFilter};
 pub use negative_lobes::{LanczosFilter, MitchellFilter};
 pub use orthographic::Orthographic;
