@@ -178,3 +178,57 @@ fn structure(obj: &Object) -> String {
     s.push(')');
     s
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+    use tessera_core::scene::ShapeNumber;
+
+    fn number(index: u32, prim_offset: u32, rectangle: bool) -> ShapeNumber {
+        ShapeNumber {
+            index,
+            prim_offset,
+            rectangle,
+        }
+    }
+
+    /// Mitsuba 3.9.1's `scene.shapes()` for this file (checked by loading it with Mitsuba):
+    /// the sphere, the instance and the disk first, in file order; then two meshes: `a` and `c`
+    /// share a BSDF (written twice alike, which the parser merges), so they are one mesh of 4
+    /// triangles, `c`'s after `a`'s; `b` has a default BSDF of its own and joins nothing. The
+    /// group's rectangle is not listed. The two meshes' order is Tessera's (file order; Mitsuba
+    /// listed `b` first, by its hash table).
+    #[test]
+    fn shapes_are_numbered_as_mitsuba_lists_them() {
+        let b = "<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.2\"/></bsdf>";
+        let text = format!(
+            "<scene version=\"3.0.0\"><sensor type=\"perspective\"/>\
+             <shape type=\"rectangle\" id=\"a\">{b}</shape>\
+             <shape type=\"sphere\"/>\
+             <shape type=\"shapegroup\" id=\"g\"><shape type=\"rectangle\"/></shape>\
+             <shape type=\"rectangle\" id=\"b\"/>\
+             <shape type=\"instance\"><ref id=\"g\"/></shape>\
+             <shape type=\"rectangle\" id=\"c\">{b}</shape>\
+             <shape type=\"disk\"/></scene>"
+        );
+        let l = crate::load_scene_str(&text, Path::new("/nowhere/n.xml"), &[]).unwrap();
+        let n = &l.scene.shape_numbering;
+        // Tessera's shapes: a, sphere, the group's rectangle, b, c, disk.
+        assert_eq!(
+            n.shapes,
+            [
+                number(4, 0, true),
+                number(1, 0, false),
+                number(0, 0, true),
+                number(5, 0, true),
+                number(4, 2, true),
+                number(3, 0, false),
+            ]
+        );
+        assert_eq!(n.instances, [2]);
+        // Control: with different BSDFs, `a` and `c` are not joined.
+        let text = text.replacen("0.2", "0.3", 1);
+        let l = crate::load_scene_str(&text, Path::new("/nowhere/n.xml"), &[]).unwrap();
+        assert_eq!(l.scene.shape_numbering.shapes[4], number(6, 0, true));
+    }
+}

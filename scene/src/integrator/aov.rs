@@ -250,6 +250,17 @@ mod tests {
         )
         .unwrap();
         assert_eq!(names(&l), ["n.X", "n.Y", "n.Z"]);
+        let l = load(
+            "<integrator type=\"aov\"><string name=\"aovs\" value=\"a:dp_du,b:dp_dv,c:duv_dx,\
+             d:duv_dy,e:prim_index,f:shape_index\"/></integrator>",
+        )
+        .unwrap();
+        assert_eq!(
+            names(&l),
+            [
+                "a.X", "a.Y", "a.Z", "b.X", "b.Y", "b.Z", "c.U", "c.V", "d.U", "d.V", "e.I", "f.I"
+            ]
+        );
         assert!(matches!(
             l.integrator,
             tessera_core::integrator::Integrator::Aov(_)
