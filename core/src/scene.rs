@@ -14,7 +14,10 @@ use glam::Vec3;
 
 mod casts;
 mod detail;
-pub use detail::{ShapeNumber, ShapeNumbering, SurfaceDetail};
+mod numbering;
+mod surface_detail;
+pub use numbering::{ShapeNumber, ShapeNumbering};
+pub use surface_detail::SurfaceDetail;
 
 /// What a scene contains, computed once; integrators consult it to skip work a scene does not
 /// need (no shadow rays without emitters, no environment lookups without an environment...).

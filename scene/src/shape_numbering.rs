@@ -26,7 +26,10 @@ use tessera_core::scene::{ShapeNumber, ShapeNumbering};
 /// One top-level shape of the file as Mitsuba lists it.
 enum Entry {
     /// Not a mesh (or an instance): numbered in file order, first.
-    Plain { shapes: Vec<u32>, instance: Option<u32> },
+    Plain {
+        shapes: Vec<u32>,
+        instance: Option<u32>,
+    },
     /// A mesh: Tessera's shapes it became, whether it is a `rectangle`, and what it joins
     /// other meshes by (`None`: nothing).
     Mesh {
@@ -48,7 +51,13 @@ pub(crate) struct Numbering {
 impl Numbering {
     /// Records the top-level shape `obj`, which became Tessera's shapes `added` (indices
     /// into `shapes`); `bsdf` is its `<bsdf>`, if it names one.
-    pub(crate) fn shape(&mut self, obj: &Object, bsdf: Option<&Child>, added: &[u32], shapes: &[Shape]) {
+    pub(crate) fn shape(
+        &mut self,
+        obj: &Object,
+        bsdf: Option<&Child>,
+        added: &[u32],
+        shapes: &[Shape],
+    ) {
         let Some(&first) = added.first() else {
             return;
         };
@@ -173,7 +182,12 @@ fn structure(obj: &Object) -> String {
         let _ = write!(s, "{}={v};", p.name);
     }
     for c in &obj.children {
-        let _ = write!(s, "{}={};", c.name.as_deref().unwrap_or(""), structure(&c.obj));
+        let _ = write!(
+            s,
+            "{}={};",
+            c.name.as_deref().unwrap_or(""),
+            structure(&c.obj)
+        );
     }
     s.push(')');
     s

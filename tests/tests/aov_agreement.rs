@@ -217,8 +217,8 @@ fn aov_derivatives_and_indices_match_mitsuba() {
     assert_eq!(
         names,
         [
-            "du.X", "du.Y", "du.Z", "dv.X", "dv.Y", "dv.Z", "dx.U", "dx.V", "dy.U", "dy.V",
-            "pi.I", "si.I", "uv.U", "uv.V"
+            "du.X", "du.Y", "du.Z", "dv.X", "dv.Y", "dv.Z", "dx.U", "dx.V", "dy.U", "dy.V", "pi.I",
+            "si.I", "uv.U", "uv.V"
         ]
     );
     let (w, h, channels) =
@@ -251,21 +251,30 @@ fn aov_derivatives_and_indices_match_mitsuba() {
     }
     // Control: dp_du against Mitsuba's dp_dv.
     let du = &fbs.iter().find(|f| f.0[0] == "du.X").unwrap().1;
-    let swapped: Vec<&[f32]> = ["dv.X", "dv.Y", "dv.Z"].iter().map(|n| channel(&r, n)).collect();
+    let swapped: Vec<&[f32]> = ["dv.X", "dv.Y", "dv.Z"]
+        .iter()
+        .map(|n| channel(&r, n))
+        .collect();
     let (p, at) = worst_finite(du, &[0, 1, 2], &swapped, 1.0);
-    assert!(p < alpha, "control (dp_du and dp_dv swapped) passed: p = {p:.2e} at {at}");
+    assert!(
+        p < alpha,
+        "control (dp_du and dp_dv swapped) passed: p = {p:.2e} at {at}"
+    );
 
     // The indices, pixel by pixel.
     let plane = |name: &str| -> Vec<f32> {
         let fb = &fbs.iter().find(|f| f.0[0] == name).unwrap().1;
         (0..32 * 32)
-            .map(|i| fb.at(i % 32, i / 32).mean()[0] as f32)
+            .map(|i| fb.at(i % 32, i / 32).mean()[0])
             .collect()
     };
     for name in ["pi.I", "si.I"] {
         let (compared, differ) = whole_pixels(&plane(name), channel(&r, name));
         eprintln!("{name}: {compared} whole pixels, {differ} differ");
-        assert!(compared > 700, "{name}: only {compared} pixels saw one primitive");
+        assert!(
+            compared > 700,
+            "{name}: only {compared} pixels saw one primitive"
+        );
         assert_eq!(differ, 0, "{name}: {differ} of {compared} pixels differ");
     }
     // Control: the shapes listed in reverse order (5 shapes).

@@ -9,9 +9,9 @@
 //! (`scene/src/integrator/aov.rs`) names the channels.
 use super::probe::{PathEnd, Probe, RayKind};
 use crate::bsdf::Bsdf;
+use crate::camera::Differentials;
 use crate::geometry::Interaction;
 use crate::math::{Norm, Ray};
-use crate::camera::Differentials;
 use crate::scene::{Scene, SurfaceDetail};
 use crate::Color;
 use glam::{Vec2, Vec3};
@@ -139,7 +139,11 @@ fn duv(si: &Interaction, d: &SurfaceDetail, r: Differentials) -> (Vec2, Vec2) {
         let t = (n.dot(p) - n.dot(o)) / n.dot(dir);
         o + dir * t - p
     };
-    let (a00, a01, a11) = (d.dp_du.dot(d.dp_du), d.dp_du.dot(d.dp_dv), d.dp_dv.dot(d.dp_dv));
+    let (a00, a01, a11) = (
+        d.dp_du.dot(d.dp_du),
+        d.dp_du.dot(d.dp_dv),
+        d.dp_dv.dot(d.dp_dv),
+    );
     let inv_det = 1.0 / (a00 * a11 - a01 * a01);
     let inv_det = if inv_det.is_finite() { inv_det } else { 0.0 };
     let solve = |dp: Vec3| {

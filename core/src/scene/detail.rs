@@ -1,9 +1,9 @@
 //! The parts of a camera ray's hit that only the `aov` integrator's `dp_du`, `dp_dv`,
 //! `prim_index` and `shape_index` outputs read: the position's partial derivatives along the
 //! surface's (u, v) and which primitive and shape were hit, numbered as Mitsuba 3.9.1 numbers
-//! them ([`ShapeNumbering`]).
+//! them (`ShapeNumbering`).
 //!
-//! They are computed by a cast of their own rather than kept in every [`Interaction`]
+//! They are computed by a cast of their own rather than kept in every `Interaction`
 //! (`crate::geometry::Interaction`): no other integrator needs them, and the ordinary hit stays
 //! as small and as fast as it was.
 //!
@@ -14,51 +14,14 @@
 //! direction and `2 pi r` along the angle, carried by its transform; a cylinder's are `2 pi r`
 //! around the axis and the axis times the length; an instance carries its shape's by its
 //! transform.
-use super::Scene;
+use super::{Scene, SurfaceDetail};
 use crate::geometry::{Hit, Mesh, Prim, ShapeKind};
 use crate::math::{sqrt, Norm, Ray, PI};
-use alloc::vec::Vec;
 use core::cell::Cell;
 use glam::Vec3;
 
-/// How one shape is numbered in Mitsuba 3.9.1's `scene.shapes()` (see [`ShapeNumbering`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ShapeNumber {
-    /// Its 1-based position in Mitsuba's shape list (the `shape_index` output).
-    pub index: u32,
-    /// What Mitsuba adds to its triangle indices: the triangles of the meshes merged before it
-    /// into the same Mitsuba mesh.
-    pub prim_offset: u32,
-    /// Mitsuba's `rectangle`: its two triangles are split along the other diagonal than
-    /// Tessera's, so its triangle index is found from the texture coordinates.
-    pub rectangle: bool,
-}
-
-/// Mitsuba 3.9.1's numbering of the scene's shapes, set by the loader. Empty (the default):
-/// shape `i` is number `i + 1`, instance `j` follows all shapes, no offsets.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct ShapeNumbering {
-    /// One per shape of the scene, by shape index.
-    pub shapes: Vec<ShapeNumber>,
-    /// One per instance (its 1-based position in Mitsuba's shape list).
-    pub instances: Vec<u32>,
-}
-
-/// The `aov` outputs of a hit that [`crate::geometry::Interaction`] does not hold.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SurfaceDetail {
-    /// Position's derivative along u (world space).
-    pub dp_du: Vec3,
-    /// Position's derivative along v (world space).
-    pub dp_dv: Vec3,
-    /// The primitive's index in its shape, as Mitsuba numbers it.
-    pub prim_index: u32,
-    /// The shape's (or, for an instanced shape, the instance's) number in Mitsuba's list.
-    pub shape_index: u32,
-}
-
 impl Scene {
-    /// [`SurfaceDetail`] of the closest hit along `ray` (the hit [`Scene::intersect`] finds).
+    /// [`SurfaceDetail`] of the closest hit along `ray` (the hit `Scene::intersect` finds).
     pub fn surface_detail(&self, ray: &Ray) -> Option<SurfaceDetail> {
         let inner = Cell::default();
         let hit = self.closest(ray, &inner)?;
@@ -74,7 +37,8 @@ impl Scene {
                     prim: ih.prim,
                     uv: ih.uv,
                 };
-                let (dp_du, dp_dv, prim_index) = self.local_detail(prim, &ohit, &inst.to_object(ray));
+                let (dp_du, dp_dv, prim_index) =
+                    self.local_detail(prim, &ohit, &inst.to_object(ray));
                 let shape_index = match numbering.instances.get(instance as usize) {
                     Some(&n) => n,
                     None => self.shapes.len() as u32 + instance + 1,
@@ -155,15 +119,15 @@ impl Scene {
 /// where their map is degenerate), or the edges `p1 - p0`, `p2 - p0` without them.
 fn mesh_partials(m: &Mesh, i: usize) -> (Vec3, Vec3) {
     let [a, b, c] = m.indices[i].map(|k| k as usize);
-    let (e1, e2) = (m.positions[b] - m.positions[a], m.positions[c] - m.positions[a]);
+    let (e1, e2) = (
+        m.positions[b] - m.positions[a],
+        m.positions[c] - m.positions[a],
+    );
     if m.uvs.is_empty() {
         return (e1, e2);
     }
     let (d0, d1) = (m.uvs[b] - m.uvs[a], m.uvs[c] - m.uvs[a]);
     let det = d0.x * d1.y - d0.y * d1.x;
     let inv = if det != 0.0 { 1.0 / det } else { 0.0 };
-    (
-        (e1 * d1.y - e2 * d0.y) * inv,
-        (e2 * d0.x - e1 * d1.x) * inv,
-    )
+    ((e1 * d1.y - e2 * d0.y) * inv, (e2 * d0.x - e1 * d1.x) * inv)
 }

@@ -257,9 +257,7 @@ mod tests {
         .unwrap();
         assert_eq!(
             names(&l),
-            [
-                "a.X", "a.Y", "a.Z", "b.X", "b.Y", "b.Z", "c.U", "c.V", "d.U", "d.V", "e.I", "f.I"
-            ]
+            ["a.X", "a.Y", "a.Z", "b.X", "b.Y", "b.Z", "c.U", "c.V", "d.U", "d.V", "e.I", "f.I"]
         );
         assert!(matches!(
             l.integrator,
