@@ -167,7 +167,7 @@ fn add_shape(obj: &Object, acc: &mut Acc, in_group: bool) -> Result<Vec<u32>> {
         )));
     }
     let parts = build_shape(obj)?;
-    let bsdf_child = parts.bsdf;
+    let (bsdf_child, attributed) = (parts.bsdf, parts.mesh_attributes);
     let mut added = Vec::new();
     if in_group {
         if let Some(e) = parts.emitter {
@@ -238,7 +238,9 @@ fn add_shape(obj: &Object, acc: &mut Acc, in_group: bool) -> Result<Vec<u32>> {
     }
     match in_group {
         true => acc.numbering.member(obj, &added),
-        false => acc.numbering.shape(obj, bsdf_child, &added, &acc.shapes),
+        false => acc
+            .numbering
+            .shape(obj, bsdf_child, attributed, &added, &acc.shapes),
     }
     parts.plugin.check_unused(obj)?;
     Ok(added)

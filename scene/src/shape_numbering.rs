@@ -6,9 +6,10 @@
 //! shapes into a `merge` shape, which joins the meshes that share a BSDF, emitter and the
 //! presence of vertex normals and texture coordinates into one mesh (their triangles follow
 //! one another in file order). `scene.shapes()` then lists the shapes that are not meshes
-//! (spheres, disks, cylinders, instances) in file order, then the meshes, joined ones as one;
-//! shapes inside a `shapegroup` are not listed. `shape_index` is the 1-based position in
-//! that list.
+//! (spheres, disks, cylinders, instances, and meshes with mesh attributes, which a PLY file's
+//! extra properties give and which are joined to nothing) in file order, then the meshes,
+//! joined ones as one; shapes inside a `shapegroup` are not listed. `shape_index` is the
+//! 1-based position in that list.
 //!
 //! The meshes' order in the list is the iteration order of a hash table keyed by pointers, so
 //! it changes from run to run in Mitsuba itself; Tessera lists them by first appearance in the
@@ -50,11 +51,14 @@ pub(crate) struct Numbering {
 
 impl Numbering {
     /// Records the top-level shape `obj`, which became Tessera's shapes `added` (indices
-    /// into `shapes`); `bsdf` is its `<bsdf>`, if it names one.
+    /// into `shapes`); `bsdf` is its `<bsdf>`, if it names one; `attributed`: its mesh file
+    /// gave Mitsuba mesh attributes, so Mitsuba joins it to nothing and lists it with the
+    /// shapes that are not meshes.
     pub(crate) fn shape(
         &mut self,
         obj: &Object,
         bsdf: Option<&Child>,
+        attributed: bool,
         added: &[u32],
         shapes: &[Shape],
     ) {
@@ -62,7 +66,7 @@ impl Numbering {
             return;
         };
         let shape = &shapes[first as usize];
-        let ShapeKind::Mesh(m) = &shape.kind else {
+        let (ShapeKind::Mesh(m), false) = (&shape.kind, attributed) else {
             self.entries.push(Entry::Plain {
                 shapes: added.to_vec(),
                 instance: None,
@@ -244,5 +248,43 @@ mod tests {
         let text = text.replacen("0.2", "0.3", 1);
         let l = crate::load_scene_str(&text, Path::new("/nowhere/n.xml"), &[]).unwrap();
         assert_eq!(l.scene.shape_numbering.shapes[4], number(6, 0, true));
+    }
+
+    /// Mitsuba 3.9.1 (checked by loading the same file) lists a PLY with colours among the
+    /// shapes that are not meshes, in file order: `p`, then the sphere, then the rectangles.
+    #[test]
+    fn a_mesh_with_attributes_is_listed_with_the_shapes_that_are_not_meshes() {
+        let dir = std::env::temp_dir().join(format!("tessera-numbering-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let write = |name: &str, extra: &[&str]| {
+            let mut text = String::from("ply\nformat ascii 1.0\nelement vertex 3\n");
+            for p in ["x", "y", "z"].iter().chain(extra) {
+                text += &format!("property float {p}\n");
+            }
+            text += "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+            for v in ["0 0 0", "1 0 0", "0 1 0"] {
+                text += &format!("{v}{}\n", " 0.5".repeat(extra.len()));
+            }
+            text += "3 0 1 2\n";
+            std::fs::write(dir.join(name), text).unwrap();
+        };
+        write("coloured.ply", &["red", "green", "blue"]);
+        write("plain.ply", &[]);
+        let scene = |ply: &str| {
+            let text = format!(
+                "<scene version=\"3.0.0\"><sensor type=\"perspective\"/>\
+                 <shape type=\"rectangle\"/>\
+                 <shape type=\"ply\"><string name=\"filename\" value=\"{ply}\"/></shape>\
+                 <shape type=\"sphere\"/><shape type=\"rectangle\"/></scene>"
+            );
+            let l = crate::load_scene_str(&text, &dir.join("s.xml"), &[]).unwrap();
+            let n = l.scene.shape_numbering.shapes;
+            n.iter().map(|s| s.index).collect::<Vec<_>>()
+        };
+        // Tessera's shapes: rectangle, ply, sphere, rectangle.
+        assert_eq!(scene("coloured.ply"), [3, 1, 2, 4]);
+        // Control: without colours the PLY is a mesh like the rectangles.
+        assert_eq!(scene("plain.ply"), [2, 3, 1, 4]);
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }
