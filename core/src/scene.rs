@@ -14,6 +14,11 @@ use core::cell::Cell;
 use glam::Vec3;
 
 mod casts;
+mod detail;
+mod numbering;
+mod surface_detail;
+pub use numbering::{ShapeNumber, ShapeNumbering};
+pub use surface_detail::SurfaceDetail;
 
 /// What a scene contains, computed once; integrators consult it to skip work a scene does not
 /// need (no shadow rays without emitters, no environment lookups without an environment...).
@@ -102,6 +107,8 @@ pub struct Scene {
     pub sampler: crate::sampling::SamplerKind,
     /// What the scene contains.
     pub features: SceneFeatures,
+    /// Mitsuba 3's numbering of the shapes (the `aov` integrator's indices; the loader sets it).
+    pub shape_numbering: ShapeNumbering,
     /// Centre of the scene's bounding sphere.
     pub scene_center: glam::Vec3,
     /// Radius of the scene's bounding sphere (lights at infinity aim at it).
@@ -252,6 +259,7 @@ impl Scene {
             filter: p.filter,
             sampler: crate::sampling::SamplerKind::Independent,
             features,
+            shape_numbering: ShapeNumbering::default(),
         })
     }
 

@@ -15,6 +15,7 @@ use exr::prelude::{AnyChannel, AnyChannels, Encoding, FlatSamples, Layer as ExrL
 use exr::prelude::{LayerAttributes, ReadChannels, ReadLayers, SmallVec, Vec2, WritableImage};
 use std::ops::Range;
 use std::path::Path;
+use tessera_core::integrator::Integrator;
 use tessera_core::render::RenderJob;
 use tessera_core::scene::Scene;
 use tessera_scene::Layer;
@@ -58,9 +59,13 @@ pub fn render_layer(
     samples: Range<u64>,
     opts: &RenderOptions,
 ) -> Result<Framebuffer, String> {
-    let integrator = layer
+    let mut integrator = layer
         .build()
         .ok_or_else(|| format!("cannot build the integrator of channels {:?}", layer.names))?;
+    if let Integrator::Aov(a) = &mut integrator {
+        // Mitsuba shortens the camera ray's differentials by the render's sample count.
+        a.spp = samples.end;
+    }
     let job = RenderJob::new(scene, &integrator, seed);
     Ok(render(&job, samples, opts, &mut |_, _| {}))
 }

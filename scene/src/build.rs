@@ -6,6 +6,7 @@ use super::integrator::read_integrator;
 use super::loaded::{LoadedScene, PluginNames};
 use super::sampler::build_sampler;
 use super::sensor::build_sensor;
+use super::shape_numbering::Numbering;
 use super::shapes::build_shape;
 use super::shapes::instancing::{Groups, INSTANCE, SHAPEGROUP};
 use super::util::Result;
@@ -61,6 +62,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
             }
             Kind::Shape if obj.plugin == INSTANCE.name => {
                 let instance = groups.instance(obj, &mut |o| add_shape(o, &mut acc, true))?;
+                acc.numbering.instance(acc.instances.len() as u32);
                 acc.instances.push(instance);
             }
             Kind::Shape => {
@@ -102,8 +104,9 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         emitters,
         mut names,
         instances,
-        ..
+        numbering,
     } = acc;
+    let shape_numbering = numbering.finish(&shapes, instances.len());
     let parts = SceneParts {
         shapes,
         disks,
@@ -123,6 +126,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         Scene::new(parts).map_err(|e| root.error(format!("cannot build the scene: {e:?}")))?;
     let accel_seconds = accel_start.elapsed().as_secs_f64();
     scene.sampler = sampler;
+    scene.shape_numbering = shape_numbering;
     names.bsdfs = bsdfs.names;
     Ok(LoadedScene {
         scene,
@@ -148,6 +152,8 @@ struct Acc {
     emitters: Vec<Emitter>,
     names: PluginNames,
     instances: Vec<Instance>,
+    /// Mitsuba's numbering of the top-level shapes.
+    numbering: Numbering,
 }
 
 /// Builds the shape `obj` (and its OBJ material parts) into `acc`; returns the indices of the
@@ -161,6 +167,7 @@ fn add_shape(obj: &Object, acc: &mut Acc, in_group: bool) -> Result<Vec<u32>> {
         )));
     }
     let parts = build_shape(obj)?;
+    let (bsdf_child, attributed) = (parts.bsdf, parts.mesh_attributes);
     let mut added = Vec::new();
     if in_group {
         if let Some(e) = parts.emitter {
@@ -228,6 +235,12 @@ fn add_shape(obj: &Object, acc: &mut Acc, in_group: bool) -> Result<Vec<u32>> {
             flip_normals: parts.flip_normals,
         });
         acc.names.shapes.push(format!("{} (MTL part)", obj.plugin));
+    }
+    match in_group {
+        true => acc.numbering.member(obj, &added),
+        false => acc
+            .numbering
+            .shape(obj, bsdf_child, attributed, &added, &acc.shapes),
     }
     parts.plugin.check_unused(obj)?;
     Ok(added)

@@ -47,6 +47,7 @@ pub(crate) mod materials;
 mod mitsuba_names;
 mod sampler;
 mod sensor;
+mod shape_numbering;
 mod shapes;
 mod util;
 

@@ -12,6 +12,15 @@
 //! compared region and channel. Controls that must fail: the normal's X and Z swapped, the
 //! albedo 3% darker, the colour 5% darker.
 //!
+//! `aov` derivatives and indices: tests/aov/aov_index.xml (a sphere, an instance of a rotated
+//! rectangle, a disk, a cylinder and two rectangles Mitsuba joins into one mesh, before a wall;
+//! `dp_du`, `dp_dv`, `duv_dx`, `duv_dy`, `prim_index`, `shape_index`, `uv`) against Mitsuba
+//! 3.9.1's render (tests/aov/aov_index_ref.exr, 1024 spp, scalar_rgb) by the same region test;
+//! Mitsuba shortens the camera ray's differentials by `1 / sqrt(spp)`, so our `duv` at 256 spp
+//! is compared with twice the reference's. The indices also agree exactly at every pixel where
+//! both renders are whole numbers (the pixel saw one primitive of one shape). Controls that must
+//! fail: `dp_du` and `dp_dv` swapped, the `duv` scale not applied, the shape order reversed.
+//!
 //! `moment`: each sample's XYZ square is what the second-moment channel averages: computed here
 //! from the nested integrator's per-sample values, it matches the channel to float rounding,
 //! and the square of the mean (the control) does not.
@@ -166,6 +175,118 @@ fn aov_channels_match_mitsuba() {
             );
         }
     }
+}
+
+/// Like [`worst`], skipping regions where the reference is not finite (Mitsuba's `duv` of a
+/// ray that meets nothing is NaN) and scaling the reference by `scale`.
+fn worst_finite(fb: &Framebuffer, ks: &[usize], refs: &[&[f32]], scale: f32) -> (f64, String) {
+    let scaled: Vec<Vec<f32>> = refs
+        .iter()
+        .map(|c| {
+            c.iter()
+                .map(|v| if v.is_finite() { v * scale } else { f32::NAN })
+                .collect()
+        })
+        .collect();
+    let refs: Vec<&[f32]> = scaled.iter().map(Vec::as_slice).collect();
+    let (p, at) = worst(fb, ks, &refs);
+    if p.is_nan() {
+        return (1.0, at);
+    }
+    (p, at)
+}
+
+/// Pixels where `ours` and `theirs` are both whole numbers, and how many of those differ.
+fn whole_pixels(ours: &[f32], theirs: &[f32]) -> (usize, usize) {
+    let whole = |v: f32| v.is_finite() && (v - v.round()).abs() < 1e-4;
+    let both: Vec<(f32, f32)> = ours
+        .iter()
+        .zip(theirs)
+        .map(|(&a, &b)| (a, b))
+        .filter(|&(a, b)| whole(a) && whole(b))
+        .collect();
+    let differ = both.iter().filter(|(a, b)| a.round() != b.round()).count();
+    (both.len(), differ)
+}
+
+#[test]
+fn aov_derivatives_and_indices_match_mitsuba() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("aov");
+    let l = load_scene(&dir.join("aov_index.xml"), &[]).unwrap_or_else(|e| panic!("{e}"));
+    let names = layer_names(&l);
+    assert_eq!(
+        names,
+        [
+            "du.X", "du.Y", "du.Z", "dv.X", "dv.Y", "dv.Z", "dx.U", "dx.V", "dy.U", "dy.V", "pi.I",
+            "si.I", "uv.U", "uv.V"
+        ]
+    );
+    let (w, h, channels) =
+        read_channels_exr(&dir.join("aov_index_ref.exr")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!((w, h), (32, 32));
+    let r: Vec<(String, Vec<f32>)> = channels.into_iter().map(|c| (c.name, c.values)).collect();
+    let tests = (32 / BLOCK).pow(2) as usize * names.len();
+    let alpha = sidak_alpha(0.01, tests);
+    // Mitsuba's differentials are 1/sqrt(spp) long: ours at SPP against its at REF_SPP.
+    let duv_scale = (REF_SPP / SPP as f64).sqrt() as f32;
+    let mut fbs = Vec::new();
+    for layer in &l.integrator_spec.layers {
+        let fb = render_layer(&l.scene, layer, SEED, 0..SPP, &opts(2, 16)).unwrap();
+        let ks: Vec<usize> = (0..layer.names.len()).collect();
+        let refs: Vec<&[f32]> = layer.names.iter().map(|n| channel(&r, n)).collect();
+        let duv = layer.names[0].starts_with('d') && layer.names[0].ends_with(".U");
+        let scale = if duv { duv_scale } else { 1.0 };
+        let (p, at) = worst_finite(&fb, &ks, &refs, scale);
+        eprintln!("{:?}: worst p = {p:.3} at {at}", layer.names);
+        assert!(p > alpha, "{:?}: p = {p:.2e} at {at}", layer.names);
+        if duv {
+            let (p, at) = worst_finite(&fb, &ks, &refs, 1.0);
+            assert!(
+                p < alpha,
+                "control ({:?} without the 1/sqrt(spp) scale) passed: p = {p:.2e} at {at}",
+                layer.names
+            );
+        }
+        fbs.push((layer.names.clone(), fb));
+    }
+    // Control: dp_du against Mitsuba's dp_dv.
+    let du = &fbs.iter().find(|f| f.0[0] == "du.X").unwrap().1;
+    let swapped: Vec<&[f32]> = ["dv.X", "dv.Y", "dv.Z"]
+        .iter()
+        .map(|n| channel(&r, n))
+        .collect();
+    let (p, at) = worst_finite(du, &[0, 1, 2], &swapped, 1.0);
+    assert!(
+        p < alpha,
+        "control (dp_du and dp_dv swapped) passed: p = {p:.2e} at {at}"
+    );
+
+    // The indices, pixel by pixel.
+    let plane = |name: &str| -> Vec<f32> {
+        let fb = &fbs.iter().find(|f| f.0[0] == name).unwrap().1;
+        (0..32 * 32)
+            .map(|i| fb.at(i % 32, i / 32).mean()[0])
+            .collect()
+    };
+    for name in ["pi.I", "si.I"] {
+        let (compared, differ) = whole_pixels(&plane(name), channel(&r, name));
+        eprintln!("{name}: {compared} whole pixels, {differ} differ");
+        assert!(
+            compared > 700,
+            "{name}: only {compared} pixels saw one primitive"
+        );
+        assert_eq!(differ, 0, "{name}: {differ} of {compared} pixels differ");
+    }
+    // Control: the shapes listed in reverse order (5 shapes).
+    let reversed: Vec<f32> = plane("si.I")
+        .iter()
+        .map(|&v| if v > 0.0 { 6.0 - v } else { v })
+        .collect();
+    let (compared, differ) = whole_pixels(&reversed, channel(&r, "si.I"));
+    assert!(
+        differ > compared / 10,
+        "control (shape order reversed) passed: {differ} of {compared} differ"
+    );
 }
 
 /// The scene of tests/aov/aov.xml with `moment` over a path tracer and a direct integrator.

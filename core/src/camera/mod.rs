@@ -1,4 +1,5 @@
 //! Sensors and pixel reconstruction filters.
+mod differentials;
 mod filter;
 mod filter_table;
 mod negative_lobes;
@@ -9,6 +10,7 @@ mod signed_profile;
 mod step_profile;
 mod thin_lens;
 
+pub use differentials::Differentials;
 pub use filter::{Filter, GaussianFilter, TentFilter};
 pub use filter_table::FilterTable;
 pub use negative_lobes::{LanczosFilter, MitchellFilter};

@@ -4,14 +4,17 @@
 //! weights; see `docs/guide/aov.md`).
 //!
 //! Each [`Aov`] fills up to three channels (unused ones are 0); a miss gives 0 in every
-//! channel, as in Mitsuba 3. The loader (`scene/src/integrator/aov.rs`) names the channels.
+//! channel, as in Mitsuba 3 (except `duv_dx` and `duv_dy`, which Mitsuba 3.9.1 leaves NaN
+//! there: Tessera gives 0, so a pixel its edge crosses keeps a number). The loader
+//! (`scene/src/integrator/aov.rs`) names the channels.
 use super::probe::{PathEnd, Probe, RayKind};
 use crate::bsdf::Bsdf;
+use crate::camera::Differentials;
 use crate::geometry::Interaction;
 use crate::math::{Norm, Ray};
-use crate::scene::Scene;
+use crate::scene::{Scene, SurfaceDetail};
 use crate::Color;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// One output variable of the first surface along a camera ray.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -28,6 +31,19 @@ pub enum Aov {
     GeoNormal,
     /// Shading normal (XYZ).
     ShNormal,
+    /// Position's derivative along u (XYZ; see [`crate::scene::SurfaceDetail`]).
+    DpDu,
+    /// Position's derivative along v (XYZ).
+    DpDv,
+    /// Texture coordinates' change toward the next pixel to the right (UV; Mitsuba 3's `compute_uv_partials`).
+    DuvDx,
+    /// Texture coordinates' change toward the next pixel down (UV).
+    DuvDy,
+    /// The hit primitive's index in its shape, as Mitsuba 3 numbers it (one channel).
+    PrimIndex,
+    /// The hit shape's 1-based position in Mitsuba 3's shape list (one channel; an instanced
+    /// shape gives its instance's).
+    ShapeIndex,
     /// The coverage a nested integrator reports as its alpha (one channel): 1 where the ray
     /// meets a surface; where it escapes, 1 if `escaped_count` (a path tracer in a scene with an
     /// environment it does not hide), else 0.
@@ -44,6 +60,16 @@ pub enum Aov {
 pub struct AovIntegrator {
     /// The variable.
     pub aov: Aov,
+    /// The render's samples per pixel: Mitsuba 3 shortens a camera ray's differentials by
+    /// `1 / sqrt(spp)`, which [`Aov::DuvDx`] and [`Aov::DuvDy`] measure along.
+    pub spp: u64,
+}
+
+impl AovIntegrator {
+    /// The variable `aov` of a render of `spp` samples per pixel.
+    pub fn new(aov: Aov, spp: u64) -> Self {
+        AovIntegrator { aov, spp }
+    }
 }
 
 impl AovIntegrator {
@@ -79,8 +105,52 @@ impl AovIntegrator {
             Aov::ShNormal => si.frame.n,
             Aov::Alpha { .. } => Color::X,
             Aov::Black => Color::ZERO,
+            Aov::DpDu | Aov::DpDv | Aov::DuvDx | Aov::DuvDy | Aov::PrimIndex | Aov::ShapeIndex => {
+                let Some(d) = scene.surface_detail(&ray) else {
+                    return Color::ZERO;
+                };
+                match self.aov {
+                    Aov::DpDu => d.dp_du,
+                    Aov::DpDv => d.dp_dv,
+                    Aov::PrimIndex => Color::new(d.prim_index as f32, 0.0, 0.0),
+                    Aov::ShapeIndex => Color::new(d.shape_index as f32, 0.0, 0.0),
+                    _ => {
+                        let scale = 1.0 / crate::math::sqrt(self.spp.max(1) as f32);
+                        let (dx, dy) = match scene.camera.differentials(&ray, scale) {
+                            Some(r) => duv(&si, &d, r),
+                            None => (Vec2::ZERO, Vec2::ZERO),
+                        };
+                        let v = if self.aov == Aov::DuvDx { dx } else { dy };
+                        Color::new(v.x, v.y, 0.0)
+                    }
+                }
+            }
         }
     }
+}
+
+/// Mitsuba 3's texture-coordinate partials along the camera ray's differentials: each offset
+/// ray meets the hit's tangent plane (geometric normal), and the offset of that point from the
+/// hit is written in the (`dp_du`, `dp_dv`) basis by least squares; zero where that basis is
+/// degenerate.
+fn duv(si: &Interaction, d: &SurfaceDetail, r: Differentials) -> (Vec2, Vec2) {
+    let (n, p) = (si.ng, si.p);
+    let along = |(o, dir): (Vec3, Vec3)| {
+        let t = (n.dot(p) - n.dot(o)) / n.dot(dir);
+        o + dir * t - p
+    };
+    let (a00, a01, a11) = (
+        d.dp_du.dot(d.dp_du),
+        d.dp_du.dot(d.dp_dv),
+        d.dp_dv.dot(d.dp_dv),
+    );
+    let inv_det = 1.0 / (a00 * a11 - a01 * a01);
+    let inv_det = if inv_det.is_finite() { inv_det } else { 0.0 };
+    let solve = |dp: Vec3| {
+        let (b0, b1) = (d.dp_du.dot(dp), d.dp_dv.dot(dp));
+        Vec2::new(a11 * b0 - a01 * b1, a00 * b1 - a01 * b0) * inv_det
+    };
+    (solve(along(r.x)), solve(along(r.y)))
 }
 
 /// The diffuse reflectance Mitsuba 3's `albedo` output gives: a Lambertian model's reflectance

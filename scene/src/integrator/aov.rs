@@ -8,7 +8,8 @@
 //!
 //! Channel names are Mitsuba 3.9.1's: a nested integrator is named by its `name` attribute or
 //! `_arg_N` (N counting the wrapper's unnamed nested objects from 0); `aov` gives it
-//! `NAME.R/G/B/A` and then the variables `NAME.T` (depth), `NAME.X/Y/Z` (position, normals), `NAME.U/V` (uv),
+//! `NAME.R/G/B/A` and then the variables `NAME.T` (depth), `NAME.X/Y/Z` (position, normals,
+//! dp_du, dp_dv), `NAME.U/V` (uv, duv_dx, duv_dy), `NAME.I` (prim_index, shape_index),
 //! `NAME.R/G/B` (albedo); `moment` gives `NAME.X/Y/Z` per nested integrator, then the same
 //! names prefixed by `m2_` for the squares.
 use super::spec::{IntegratorBuild, IntegratorPlugin, IntegratorSpec, Layer, LayerSource, Nest};
@@ -20,20 +21,20 @@ use tessera_core::integrator::{Aov, AovIntegrator, Integrator};
 /// A variable and the suffixes of its channel names.
 type AovChannels = (Aov, &'static [&'static str]);
 
-/// The AOV types Mitsuba 3 has, with what Tessera renders for each (`None`: not supported).
-const AOV_TYPES: &[(&str, Option<AovChannels>)] = &[
-    ("albedo", Some((Aov::Albedo, &["R", "G", "B"]))),
-    ("depth", Some((Aov::Depth, &["T"]))),
-    ("position", Some((Aov::Position, &["X", "Y", "Z"]))),
-    ("uv", Some((Aov::Uv, &["U", "V"]))),
-    ("geo_normal", Some((Aov::GeoNormal, &["X", "Y", "Z"]))),
-    ("sh_normal", Some((Aov::ShNormal, &["X", "Y", "Z"]))),
-    ("dp_du", None),
-    ("dp_dv", None),
-    ("duv_dx", None),
-    ("duv_dy", None),
-    ("prim_index", None),
-    ("shape_index", None),
+/// The AOV types of Mitsuba 3.9.1, with the variable each renders.
+const AOV_TYPES: &[(&str, AovChannels)] = &[
+    ("albedo", (Aov::Albedo, &["R", "G", "B"])),
+    ("depth", (Aov::Depth, &["T"])),
+    ("position", (Aov::Position, &["X", "Y", "Z"])),
+    ("uv", (Aov::Uv, &["U", "V"])),
+    ("geo_normal", (Aov::GeoNormal, &["X", "Y", "Z"])),
+    ("sh_normal", (Aov::ShNormal, &["X", "Y", "Z"])),
+    ("dp_du", (Aov::DpDu, &["X", "Y", "Z"])),
+    ("dp_dv", (Aov::DpDv, &["X", "Y", "Z"])),
+    ("duv_dx", (Aov::DuvDx, &["U", "V"])),
+    ("duv_dy", (Aov::DuvDy, &["U", "V"])),
+    ("prim_index", (Aov::PrimIndex, &["I"])),
+    ("shape_index", (Aov::ShapeIndex, &["I"])),
 ];
 
 const AOVS: Param = Param::new(
@@ -42,8 +43,7 @@ const AOVS: Param = Param::new(
     crate::plugin::Default::Required,
     Range::Note(
         "comma-separated NAME:TYPE pairs; TYPE one of albedo, depth, position, uv, geo_normal, \
-         sh_normal (Mitsuba 3's dp_du, dp_dv, duv_dx, duv_dy, prim_index and shape_index are \
-         refused)",
+         sh_normal, dp_du, dp_dv, duv_dx, duv_dy, prim_index, shape_index",
     ),
     "the surface variables written as extra channels",
 );
@@ -62,7 +62,7 @@ pub const AOV: IntegratorPlugin = Plugin {
              NAME.R/G/B/A",
     build: IntegratorBuild {
         read: read_aov,
-        make: Some(|_| Integrator::Aov(AovIntegrator { aov: Aov::Black })),
+        make: Some(|_| Integrator::Aov(AovIntegrator::new(Aov::Black, 1))),
     },
 };
 
@@ -156,33 +156,14 @@ fn read_aov(obj: &Object, spec: &mut IntegratorSpec, nest: Nest) -> Result<()> {
                 ))
             }
         };
-        let valid = || {
-            AOV_TYPES
-                .iter()
-                .filter(|t| t.1.is_some())
-                .map(|t| t.0)
-                .collect::<Vec<_>>()
-                .join(", ")
+        let Some((_, (aov, suffixes))) = AOV_TYPES.iter().find(|t| t.0 == kind) else {
+            let valid: Vec<&str> = AOV_TYPES.iter().map(|t| t.0).collect();
+            return Err(crate::error::InputError::at(
+                &loc,
+                format!("unknown aov type \"{kind}\" (valid: {})", valid.join(", ")),
+            ));
         };
-        let (aov, suffixes) = match AOV_TYPES.iter().find(|t| t.0 == kind) {
-            Some((_, Some(t))) => *t,
-            Some((_, None)) => {
-                return Err(crate::error::InputError::at(
-                    &loc,
-                    format!(
-                        "aov type \"{kind}\" (Mitsuba 3's) is not supported by Tessera \
-                         (supported: {})",
-                        valid()
-                    ),
-                ))
-            }
-            None => {
-                return Err(crate::error::InputError::at(
-                    &loc,
-                    format!("unknown aov type \"{kind}\" (valid: {})", valid()),
-                ))
-            }
-        };
+        let (aov, suffixes) = (*aov, *suffixes);
         layers.push(Layer {
             names: names(name, suffixes),
             source: LayerSource::Aov(aov),
@@ -269,6 +250,15 @@ mod tests {
         )
         .unwrap();
         assert_eq!(names(&l), ["n.X", "n.Y", "n.Z"]);
+        let l = load(
+            "<integrator type=\"aov\"><string name=\"aovs\" value=\"a:dp_du,b:dp_dv,c:duv_dx,\
+             d:duv_dy,e:prim_index,f:shape_index\"/></integrator>",
+        )
+        .unwrap();
+        assert_eq!(
+            names(&l),
+            ["a.X", "a.Y", "a.Z", "b.X", "b.Y", "b.Z", "c.U", "c.V", "d.U", "d.V", "e.I", "f.I"]
+        );
         assert!(matches!(
             l.integrator,
             tessera_core::integrator::Integrator::Aov(_)
@@ -283,7 +273,6 @@ mod tests {
                 "dd:dpeth",
                 "unknown aov type \"dpeth\" (valid: albedo, depth,",
             ),
-            ("dd:prim_index", "not supported by Tessera"),
             ("depth", "not a NAME:TYPE pair"),
         ] {
             let e = load(&format!(

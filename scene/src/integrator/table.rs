@@ -68,7 +68,7 @@ impl Layer {
     pub fn build(&self) -> Option<Integrator> {
         Some(match &self.source {
             LayerSource::Nested(spec) => spec.build()?,
-            LayerSource::Aov(aov) => Integrator::Aov(AovIntegrator { aov: *aov }),
+            LayerSource::Aov(aov) => Integrator::Aov(AovIntegrator::new(*aov, 1)),
             LayerSource::Moment { nested, square } => Integrator::Moment(MomentIntegrator {
                 inner: Box::new(nested.build()?),
                 square: *square,

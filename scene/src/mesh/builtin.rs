@@ -17,6 +17,7 @@ pub fn rectangle() -> MeshData {
         normals: vec![[0.0, 0.0, 1.0]; 4],
         uvs: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
         indices: vec![[0, 1, 2], [2, 3, 0]],
+        attributes: Vec::new(),
     }
 }
 

@@ -49,6 +49,9 @@ pub struct MeshData {
     pub uvs: Vec<[f32; 2]>,
     /// Triangles.
     pub indices: Vec<[u32; 3]>,
+    /// The mesh attributes Mitsuba 3 makes of the file's other properties (names only, see
+    /// `ply_attributes.rs`): a mesh with any is one Mitsuba joins to no other.
+    pub attributes: Vec<String>,
 }
 
 impl MeshData {

@@ -7,6 +7,7 @@ mod mtl_material;
 mod obj;
 mod obj_locate;
 mod ply;
+mod ply_attributes;
 mod ply_locate;
 mod serialized;
 

@@ -68,6 +68,23 @@ pub fn load_ply(path: &Path) -> Result<MeshData, InputError> {
         .get("face")
         .ok_or_else(|| err("PLY file has no face element".into()))?;
     let mut data = MeshData::default();
+    for kind in ["vertex", "face"] {
+        if let Some(def) = ply.header.elements.get(kind) {
+            let mut fields = Vec::new();
+            for (name, p) in &def.properties {
+                match p.data_type {
+                    // Mitsuba's reader writes a list as its count and three entries.
+                    PropertyType::List(..) => {
+                        fields.push(format!("{name}.count"));
+                        fields.extend(["i0", "i1", "i2"].map(String::from));
+                    }
+                    _ => fields.push(name.clone()),
+                }
+            }
+            let attrs = super::ply_attributes::mitsuba_attributes(kind, &fields);
+            data.attributes.extend(attrs.into_iter().map(|a| a.0));
+        }
+    }
     let has_n = verts.first().is_some_and(|v| v.get("nx").is_some());
     let uv_keys = verts.first().and_then(|v| {
         if v.get("u").is_some() {

@@ -224,5 +224,6 @@ fn parse_shape(data: &[u8], version: u16) -> Result<MeshData, String> {
         normals,
         uvs,
         indices,
+        attributes: Vec::new(),
     })
 }

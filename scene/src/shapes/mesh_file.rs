@@ -81,12 +81,15 @@ fn build_mesh_file(obj: &Object) -> Result<Geometry> {
             mesh::load_ply(&path)
         }
         .map_err(|e| at_filename(obj, e))?;
-        return Geometry::of(ShapeKind::Mesh(to_world_mesh(
+        let mesh_attributes = !data.attributes.is_empty();
+        let mut g = Geometry::of(ShapeKind::Mesh(to_world_mesh(
             obj,
             data,
             &tf,
             face_normals,
-        )?));
+        )?))?;
+        g.mesh_attributes = mesh_attributes;
+        return Ok(g);
     }
     let parts = mesh::load_obj_with_materials(&path).map_err(|e| at_filename(obj, e))?;
     let mut mtl_parts = Vec::new();
@@ -109,6 +112,7 @@ fn build_mesh_file(obj: &Object) -> Result<Geometry> {
         kind,
         disk: None,
         mtl_parts,
+        mesh_attributes: false,
     })
 }
 

@@ -27,6 +27,9 @@ pub struct Geometry {
     pub disk: Option<Disk>,
     /// The OBJ's faces with MTL materials (`use_mtl`).
     pub mtl_parts: Vec<MtlPart>,
+    /// The mesh file gave mesh attributes in Mitsuba 3's sense (a PLY's extra properties),
+    /// which decides how Mitsuba lists the shape (`crate::shape_numbering`).
+    pub mesh_attributes: bool,
 }
 
 impl Geometry {
@@ -36,6 +39,7 @@ impl Geometry {
             kind: None,
             disk: None,
             mtl_parts: Vec::new(),
+            mesh_attributes: false,
         }
     }
 
@@ -44,6 +48,7 @@ impl Geometry {
             kind: Some(kind),
             disk: None,
             mtl_parts: Vec::new(),
+            mesh_attributes: false,
         })
     }
 }

@@ -92,6 +92,7 @@ pub(crate) const DISK: ShapePlugin = Plugin {
             kind: Some(ShapeKind::Disk(0)),
             disk: Some(disk),
             mtl_parts: Vec::new(),
+            mesh_attributes: false,
         })
     },
 };

@@ -36,6 +36,8 @@ pub struct ShapeParts<'a> {
     pub flip_normals: bool,
     pub bsdf: Option<&'a crate::xml::Child>,
     pub emitter: Option<&'a crate::xml::Child>,
+    /// The mesh file gave Mitsuba mesh attributes (see `Geometry::mesh_attributes`).
+    pub mesh_attributes: bool,
 }
 
 /// Builds the geometry of a shape object and finds its bsdf / emitter children. The caller
@@ -47,6 +49,7 @@ pub(crate) fn build_shape(obj: &Object) -> Result<ShapeParts<'_>> {
         kind,
         disk,
         mtl_parts,
+        mesh_attributes,
     } = (plugin.build)(obj)?;
     let mut bsdf = None;
     let mut emitter = None;
@@ -84,6 +87,7 @@ pub(crate) fn build_shape(obj: &Object) -> Result<ShapeParts<'_>> {
         flip_normals,
         bsdf,
         emitter,
+        mesh_attributes,
     })
 }
 
