@@ -28,6 +28,7 @@ noise adds to both renderers' relMSE; it is estimated from Mitsuba's run (relMSE
 over the samples) and subtracted from both, and the table says how large it was.
 """
 import argparse
+import json
 import os
 import re
 import subprocess
@@ -110,7 +111,7 @@ def mitsuba_run(a, name, size, spp, out, env):
     cmd = [sys.executable, "-c", MITSUBA_RUN, a.variant, str(a.threads), scene_path(name), out,
            str(spp), str(size)]
     wall, rss, stdout = timed(cmd, env)
-    parts = eval(stdout.strip().splitlines()[-1].replace("null", "None"))
+    parts = json.loads(stdout.strip().splitlines()[-1])
     # The whole process less Python's and Mitsuba's import: what loading and rendering took.
     return {"seconds": parts["load"] + parts["render"], "rss": rss, "load": parts["load"],
             "wall": wall}

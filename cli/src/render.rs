@@ -252,7 +252,7 @@ pub fn run(args: &RenderArgs) -> i32 {
                 Continuation {
                     pending: None,
                     check,
-                    splats: None,
+                    splats: fb.splats.as_ref(),
                 },
             )
         },
@@ -274,7 +274,7 @@ pub fn run(args: &RenderArgs) -> i32 {
     let more = Continuation {
         pending: pending.as_deref(),
         check: check.as_ref(),
-        splats: None,
+        splats: fb.splats.as_ref(),
     };
     let written = match loaded.integrator_spec.layers.is_empty() {
         true => save(&fb, passes, more),
@@ -330,11 +330,6 @@ fn write_all(
         decor.write(o, fb, meta.seconds)?;
     }
     if let Some(c) = checkpoint {
-        // The splatted sums are the framebuffer's, whatever the caller passed.
-        let more = Continuation {
-            splats: fb.splats.as_ref(),
-            ..more
-        };
         write_checkpoint(c, meta, &fb.pixels, more)?;
     }
     Ok(())

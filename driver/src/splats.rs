@@ -50,15 +50,15 @@ impl Splats {
 /// What a worker adds a tile's samples to: a copy of the tile's accumulators and, when the scene
 /// splats, of their splatted sums, written back into the framebuffer when the tile is done.
 #[derive(Debug)]
-pub(crate) struct TileSums {
+pub(crate) struct TileSums<'a> {
     /// The tile's pixels' accumulators, row-major within the tile.
     pub(crate) pixels: Vec<PixelAccum>,
     /// Their splatted sums (empty when the scene does not splat).
     sums: Vec<f32>,
-    footprint: Option<Footprint>,
+    footprint: Option<&'a Footprint>,
 }
 
-impl TileSums {
+impl<'a> TileSums<'a> {
     /// A copy of the sums of tile `t` of a `width`-wide image, from `pixels` and `splats`, to
     /// which samples splat over `footprint` (which must be that of `splats`).
     pub(crate) fn copy(
@@ -66,7 +66,7 @@ impl TileSums {
         width: u32,
         pixels: &[PixelAccum],
         splats: Option<&Splats>,
-        footprint: Option<&Footprint>,
+        footprint: Option<&'a Footprint>,
     ) -> Self {
         let n = ((t.x1 - t.x0) * (t.y1 - t.y0)) as usize;
         let mut acc = Vec::with_capacity(n);
@@ -82,7 +82,7 @@ impl TileSums {
         TileSums {
             pixels: acc,
             sums,
-            footprint: footprint.cloned(),
+            footprint,
         }
     }
 
@@ -91,7 +91,7 @@ impl TileSums {
     #[inline]
     pub(crate) fn add(&mut self, k: usize, c: Color, offset: Vec2) {
         self.pixels[k].add(c);
-        if let Some(f) = &self.footprint {
+        if let Some(f) = self.footprint {
             if c.is_finite() {
                 let s = f.stride();
                 f.add(&mut self.sums[k * s..(k + 1) * s], offset, c);
@@ -108,7 +108,7 @@ impl TileSums {
         splats: Option<&mut Splats>,
     ) {
         let tw = (t.x1 - t.x0) as usize;
-        let stride = self.footprint.as_ref().map_or(0, Footprint::stride);
+        let stride = self.footprint.map_or(0, Footprint::stride);
         let mut splats = splats;
         for (row, y) in (t.y0..t.y1).enumerate() {
             let dst = y as usize * width as usize + t.x0 as usize;

@@ -38,13 +38,12 @@ impl Conductor {
             return None;
         }
         let f = conductor_fresnel(wi.z, &self.eta, &self.k, uv);
-        Some(BsdfSample {
-            wo: Vec3::new(-wi.x, -wi.y, wi.z),
-            weight: f * self.specular_reflectance.eval(uv),
-            pdf: 1.0,
-            delta: true,
-            eta: 1.0,
-        })
+        let weight = f * self.specular_reflectance.eval(uv);
+        Some(BsdfSample::delta(
+            Vec3::new(-wi.x, -wi.y, wi.z),
+            weight,
+            1.0,
+        ))
     }
     /// No smooth component.
     pub fn has_smooth(&self) -> bool {

@@ -43,13 +43,12 @@ impl Dielectric {
         let fr = fresnel_dielectric(wi.z, self.eta);
         // `<` rather than `<=`: a component of probability zero is never chosen.
         if u1 < fr.f {
-            Some(BsdfSample {
-                wo: Vec3::new(-wi.x, -wi.y, wi.z),
-                weight: self.specular_reflectance.eval(uv),
-                pdf: fr.f,
-                delta: true,
-                eta: 1.0,
-            })
+            let weight = self.specular_reflectance.eval(uv);
+            Some(BsdfSample::delta(
+                Vec3::new(-wi.x, -wi.y, wi.z),
+                weight,
+                fr.f,
+            ))
         } else {
             let wo = refract(wi, Vec3::Z, fr.cos_t, fr.eta_ti);
             Some(BsdfSample {

@@ -55,13 +55,7 @@ impl<B: Model> Mask<B> {
     pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
         let a = self.a(uv);
         if u1 >= a {
-            return Some(BsdfSample {
-                wo: -wi,
-                weight: Color::ONE,
-                pdf: 1.0 - a,
-                delta: true,
-                eta: 1.0,
-            });
+            return Some(BsdfSample::delta(-wi, Color::ONE, 1.0 - a));
         }
         let s = self
             .nested

@@ -25,13 +25,11 @@ impl Mirror {
         if !(wi.z > 0.0) {
             return None;
         }
-        Some(BsdfSample {
-            wo: Vec3::new(-wi.x, -wi.y, wi.z),
-            weight: Color::ONE,
-            pdf: 1.0,
-            delta: true,
-            eta: 1.0,
-        })
+        Some(BsdfSample::delta(
+            Vec3::new(-wi.x, -wi.y, wi.z),
+            Color::ONE,
+            1.0,
+        ))
     }
     /// No smooth component.
     pub fn has_smooth(&self) -> bool {

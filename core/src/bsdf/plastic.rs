@@ -89,13 +89,8 @@ impl Plastic {
         let fi = fresnel_dielectric(wi.z, self.eta).f;
         let ps = coating_probability(fi, self.spec_weight)?;
         if u1 < ps {
-            return Some(BsdfSample {
-                wo: Vec3::new(-wi.x, -wi.y, wi.z),
-                weight: self.specular.eval(uv) * (fi / ps),
-                pdf: ps,
-                delta: true,
-                eta: 1.0,
-            });
+            let weight = self.specular.eval(uv) * (fi / ps);
+            return Some(BsdfSample::delta(Vec3::new(-wi.x, -wi.y, wi.z), weight, ps));
         }
         let wo = square_to_cosine_hemisphere(u2);
         let pdf = (1.0 - ps) * cosine_hemisphere_pdf(wo);

@@ -37,13 +37,7 @@ impl Polarizer {
         if !weight.is_finite() {
             return None;
         }
-        Some(BsdfSample {
-            wo: -wi,
-            weight,
-            pdf: 1.0,
-            delta: true,
-            eta: 1.0,
-        })
+        Some(BsdfSample::delta(-wi, weight, 1.0))
     }
     /// No smooth component.
     pub fn has_smooth(&self) -> bool {

@@ -20,6 +20,19 @@ pub struct BsdfSample {
 }
 
 impl BsdfSample {
+    /// A sample of a delta component toward `wo` that keeps the medium (`eta` 1): its
+    /// throughput `weight` and discrete probability `pdf`.
+    #[inline]
+    pub(crate) fn delta(wo: Vec3, weight: Color, pdf: f32) -> BsdfSample {
+        BsdfSample {
+            wo,
+            weight,
+            pdf,
+            delta: true,
+            eta: 1.0,
+        }
+    }
+
     /// A sample of a smooth (non-delta) reflection toward `wo`, weighted `f / pdf`; `None`
     /// unless `wo` is in the upper hemisphere and `pdf` is positive.
     #[inline]

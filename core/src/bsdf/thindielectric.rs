@@ -53,13 +53,7 @@ impl ThinDielectric {
         } else {
             (-wi, self.specular_transmittance.eval(uv), 1.0 - r)
         };
-        Some(BsdfSample {
-            wo,
-            weight,
-            pdf,
-            delta: true,
-            eta: 1.0,
-        })
+        Some(BsdfSample::delta(wo, weight, pdf))
     }
     /// No smooth component.
     pub fn has_smooth(&self) -> bool {
