@@ -16,6 +16,7 @@ pub use crate::tile::{tiles, Tile, TileProbe};
 use crossbeam_channel::unbounded;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Mutex, MutexGuard};
 use tessera_core::film::PixelAccum;
 use tessera_core::integrator::NoProbe;
 use tessera_core::render::{GroupCache, PixelCache, RenderJob};
@@ -208,30 +209,35 @@ pub fn render_span<P: TileProbe>(
         largest_first(&mut list, targets, &fb.pixels, w);
     }
     let mut total = P::default();
-    // The finished tiles, written into `fb` once the workers (which read its sums) are done:
-    // `fb` is updated in place, with no copy of the whole buffer per call.
-    let mut finished = Vec::with_capacity(list.len());
-    let (start, start_splats) = (&fb.pixels, fb.splats.as_ref());
+    // Each worker copies a tile's sums out of `fb` when it starts the tile and writes them back
+    // when it ends it, under this lock (held only for the copies). Tiles are disjoint, so a tile
+    // reads exactly the sums it would have read had the tiles been rendered one after another;
+    // only a worker's own tile copy exists beside `fb`.
+    let shared = Mutex::new((&mut fb.pixels, fb.splats.as_mut()));
     let cursor = AtomicUsize::new(0);
-    let (tx, rx) = unbounded::<(usize, TileSums)>();
+    let (tx, rx) = unbounded::<usize>();
     let threads = opts.threads.max(1).min(list.len().max(1));
+    let mut done = 0;
     std::thread::scope(|s| {
         let mut workers = Vec::with_capacity(threads);
         for _ in 0..threads {
             let tx = tx.clone();
-            let (list, cursor, span) = (&list, &cursor, &span);
+            let (list, cursor, span, shared) = (&list, &cursor, &span, &shared);
             workers.push(s.spawn(move || {
                 let mut probe = P::default();
                 let mut cache = PixelCache::default();
                 let mut groups = GroupCache::default();
+                let mut acc = TileSums::new(job.scene.splat.as_ref());
                 loop {
                     if stop.is_some_and(|f| f.load(Ordering::Relaxed)) {
                         break;
                     }
                     let i = cursor.fetch_add(1, Ordering::Relaxed);
                     let Some(t) = list.get(i) else { break };
-                    let footprint = job.scene.splat.as_ref();
-                    let mut acc = TileSums::copy(t, w, start, start_splats, footprint);
+                    {
+                        let g = lock(shared);
+                        acc.load(t, w, g.0, g.1.as_deref());
+                    }
                     let range = |a: &PixelAccum, x: u32, y: u32| span.of(a, x, y, w);
                     if reuse {
                         render_tile_groups(
@@ -254,7 +260,12 @@ pub fn render_span<P: TileProbe>(
                             }
                         }
                     }
-                    if tx.send((i, acc)).is_err() {
+                    {
+                        let mut g = lock(shared);
+                        let (pixels, splats) = &mut *g;
+                        acc.write(t, w, pixels, splats.as_deref_mut());
+                    }
+                    if tx.send(i).is_err() {
                         break;
                     }
                 }
@@ -262,9 +273,7 @@ pub fn render_span<P: TileProbe>(
             }));
         }
         drop(tx);
-        let mut done = 0;
-        for tile in rx.iter() {
-            finished.push(tile);
+        for _ in rx.iter() {
             done += 1;
             progress(done, list.len());
         }
@@ -275,14 +284,17 @@ pub fn render_span<P: TileProbe>(
             }
         }
     });
-    let complete = finished.len() == list.len();
-    for (i, acc) in finished {
-        acc.write(&list[i], w, &mut fb.pixels, fb.splats.as_mut());
-    }
+    let complete = done == list.len();
     Rendered {
         complete,
         probe: total,
     }
+}
+
+/// The lock on the framebuffer's sums. A worker that panicked while holding it has its panic
+/// re-raised when the workers are joined, so a poisoned lock's contents are never returned.
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|e| e.into_inner())
 }
 
 /// Orders `tiles` by the samples they still take to reach `targets` (row-major, `width` wide),

@@ -48,7 +48,8 @@ impl Splats {
 }
 
 /// What a worker adds a tile's samples to: a copy of the tile's accumulators and, when the scene
-/// splats, of their splatted sums, written back into the framebuffer when the tile is done.
+/// splats, of their splatted sums, written back into the framebuffer when the tile is done. A
+/// worker keeps one and reloads it for each tile, so its buffers are allocated once.
 #[derive(Debug)]
 pub(crate) struct TileSums<'a> {
     /// The tile's pixels' accumulators, row-major within the tile.
@@ -59,30 +60,34 @@ pub(crate) struct TileSums<'a> {
 }
 
 impl<'a> TileSums<'a> {
-    /// A copy of the sums of tile `t` of a `width`-wide image, from `pixels` and `splats`, to
-    /// which samples splat over `footprint` (which must be that of `splats`).
-    pub(crate) fn copy(
+    /// Empty sums, to which samples splat over `footprint`.
+    pub(crate) fn new(footprint: Option<&'a Footprint>) -> Self {
+        TileSums {
+            pixels: Vec::new(),
+            sums: Vec::new(),
+            footprint,
+        }
+    }
+
+    /// Replaces the contents with the sums of tile `t` of a `width`-wide image, from `pixels`
+    /// and `splats` (whose reach must be that of the footprint).
+    pub(crate) fn load(
+        &mut self,
         t: &Tile,
         width: u32,
         pixels: &[PixelAccum],
         splats: Option<&Splats>,
-        footprint: Option<&'a Footprint>,
-    ) -> Self {
-        let n = ((t.x1 - t.x0) * (t.y1 - t.y0)) as usize;
-        let mut acc = Vec::with_capacity(n);
-        let mut sums = Vec::with_capacity(n * splats.map_or(0, Splats::stride));
+    ) {
+        self.pixels.clear();
+        self.sums.clear();
         for y in t.y0..t.y1 {
             let row = y as usize * width as usize;
             let (a, b) = (row + t.x0 as usize, row + t.x1 as usize);
-            acc.extend_from_slice(&pixels[a..b]);
+            self.pixels.extend_from_slice(&pixels[a..b]);
             if let Some(s) = splats {
-                sums.extend_from_slice(&s.sums[a * s.stride()..b * s.stride()]);
+                self.sums
+                    .extend_from_slice(&s.sums[a * s.stride()..b * s.stride()]);
             }
-        }
-        TileSums {
-            pixels: acc,
-            sums,
-            footprint,
         }
     }
 
