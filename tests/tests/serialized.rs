@@ -4,7 +4,9 @@
 //!   world-space positions, normals, uvs and triangles as Mitsuba 3.9.1 gives them: each
 //!   `tests/serialized_cases/NAME.xml` holds one shape, `NAME.txt` is Mitsuba's view of it,
 //!   written by `scripts/mitsuba_mesh_dump.py` (to_world with non-uniform scale, computed
-//!   vertex normals, face normals). Controls: another case's table, and a shifted to_world.
+//!   vertex normals, face normals; and the built-in `cube`, whose vertex order, normals and
+//!   texture coordinates are Mitsuba's). Controls: another case's table, and a shifted
+//!   to_world.
 //! - The same rectangles as OBJ files (from the same source) load to the same mesh through the
 //!   OBJ reader. Control: a different rectangle.
 //! - Several shapes in one file are found through the end-of-file dictionary, in both its

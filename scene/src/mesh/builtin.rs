@@ -21,28 +21,76 @@ pub fn rectangle() -> MeshData {
     }
 }
 
-/// The unit cube as twelve triangles.
+/// The unit cube as twelve triangles, laid out as Mitsuba 3.9.1 lays it out (so that textures,
+/// `prim_index` and the shading frame land where Mitsuba puts them): the faces -y, +y, +x, +z,
+/// -x, -z, each with its own four vertices `4s..4s+3` (texture coordinates (0, 1), (1, 1),
+/// (1, 0), (0, 0)) and the triangles `(4s, 4s+1, 4s+2)` and `(4s+3, 4s, 4s+2)`.
 pub fn cube() -> MeshData {
+    const FACES: [([f32; 3], [[f32; 3]; 4]); 6] = [
+        (
+            [0.0, -1.0, 0.0],
+            [
+                [1.0, -1.0, -1.0],
+                [1.0, -1.0, 1.0],
+                [-1.0, -1.0, 1.0],
+                [-1.0, -1.0, -1.0],
+            ],
+        ),
+        (
+            [0.0, 1.0, 0.0],
+            [
+                [1.0, 1.0, -1.0],
+                [-1.0, 1.0, -1.0],
+                [-1.0, 1.0, 1.0],
+                [1.0, 1.0, 1.0],
+            ],
+        ),
+        (
+            [1.0, 0.0, 0.0],
+            [
+                [1.0, -1.0, -1.0],
+                [1.0, 1.0, -1.0],
+                [1.0, 1.0, 1.0],
+                [1.0, -1.0, 1.0],
+            ],
+        ),
+        (
+            [0.0, 0.0, 1.0],
+            [
+                [1.0, -1.0, 1.0],
+                [1.0, 1.0, 1.0],
+                [-1.0, 1.0, 1.0],
+                [-1.0, -1.0, 1.0],
+            ],
+        ),
+        (
+            [-1.0, 0.0, 0.0],
+            [
+                [-1.0, -1.0, 1.0],
+                [-1.0, 1.0, 1.0],
+                [-1.0, 1.0, -1.0],
+                [-1.0, -1.0, -1.0],
+            ],
+        ),
+        (
+            [0.0, 0.0, -1.0],
+            [
+                [1.0, 1.0, -1.0],
+                [1.0, -1.0, -1.0],
+                [-1.0, -1.0, -1.0],
+                [-1.0, 1.0, -1.0],
+            ],
+        ),
+    ];
+    const UVS: [[f32; 2]; 4] = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
     let mut m = MeshData::default();
-    // For each axis and sign: the face's normal and two tangents with t1 x t2 = n.
-    for axis in 0..3 {
-        for sign in [-1.0f32, 1.0] {
-            let mut n = [0.0f32; 3];
-            n[axis] = sign;
-            let mut t1 = [0.0f32; 3];
-            t1[(axis + 1) % 3] = 1.0;
-            let mut t2 = [0.0f32; 3];
-            t2[(axis + 2) % 3] = sign;
-            let base = m.positions.len() as u32;
-            for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
-                m.positions
-                    .push(std::array::from_fn(|k| n[k] + a * t1[k] + b * t2[k]));
-                m.normals.push(n);
-                m.uvs.push([(a + 1.0) * 0.5, (b + 1.0) * 0.5]);
-            }
-            m.indices.push([base, base + 1, base + 2]);
-            m.indices.push([base + 2, base + 3, base]);
-        }
+    for (n, corners) in FACES {
+        let v = m.positions.len() as u32;
+        m.positions.extend_from_slice(&corners);
+        m.normals.extend_from_slice(&[n; 4]);
+        m.uvs.extend_from_slice(&UVS);
+        m.indices.push([v, v + 1, v + 2]);
+        m.indices.push([v + 3, v, v + 2]);
     }
     m
 }
