@@ -44,12 +44,7 @@ const KNOWN_DEVIATIONS: &[(&str, &str)] = &[(
 
 /// Compared scenes that disagree with Mitsuba for a reason not yet found, with what is known.
 /// Each must still be rejected at the test's level: once it agrees, it leaves this list.
-const UNRESOLVED: &[(&str, &str)] = &[(
-    "bitterli/veach-mis/scene.xml",
-    "at max_depth 3 a few regions of the upper middle (the light row) are 1.5-3% darker than \
-     Mitsuba's (z -5 to -7 at 2048 spp); the same with uniform light selection, so not the \
-     selection; the rest of the image agrees",
-)];
+const UNRESOLVED: &[(&str, &str)] = &[];
 
 /// Manifest scenes not compared, to keep the test's time down: each shares its stage (the
 /// material-preview or shape include) with compared scenes and differs in one material or shape.
