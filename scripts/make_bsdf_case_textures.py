@@ -10,6 +10,8 @@ tangent frame and the flip of normals facing away all matter.
 normal_tilt_green_flipped.png: the same with the green channel inverted (the other tangent-space
 handedness), for the tests' controls.
 roughness.png: a 4x4 grey-and-colour ramp read as a scalar roughness (its luminance).
+height.png: a 4x4 one-channel height field for bumpmap, whose four pixels around
+uv = (0.25, 0.75) differ along both axes (so both components of its gradient are non-zero).
 eta.exr: a 4x4 linear ramp of relative indices between 1.2 and 1.8 (grey), for a textured eta.
 """
 import os
@@ -57,6 +59,15 @@ def eta_map():
     return img
 
 
+def height_map():
+    rng = np.random.default_rng(11)
+    img = rng.uniform(0.2, 0.8, size=(4, 4))
+    # The pixels bilinear filtering reads at uv = (0.25, 0.75): rows 2-3, columns 0-1.
+    for (y, x), h in {(2, 0): 0.30, (2, 1): 0.55, (3, 0): 0.45, (3, 1): 0.85}.items():
+        img[y, x] = h
+    return np.round(img * 255.0).astype(np.uint8)[:, :, None]
+
+
 def main():
     os.makedirs(OUT, exist_ok=True)
     flipped = normal_map()
@@ -66,8 +77,10 @@ def main():
         ("normal_tilt_green_flipped.png", flipped),
         ("roughness.png", roughness_map()),
         ("eta.exr", eta_map()),
+        ("height.png", height_map()),
     ):
-        bmp = mi.Bitmap(data, pixel_format=mi.Bitmap.PixelFormat.RGB)
+        fmt = mi.Bitmap.PixelFormat.Y if data.shape[2] == 1 else mi.Bitmap.PixelFormat.RGB
+        bmp = mi.Bitmap(data, pixel_format=fmt)
         bmp.set_srgb_gamma(False)
         path = os.path.join(OUT, name)
         bmp.write(path)

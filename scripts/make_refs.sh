@@ -20,6 +20,9 @@ PYTHON="${PYTHON:-python3}"
 # An area light with a bitmap radiance (tests/tests/textured_light_agreement.rs).
 "$PYTHON" scripts/mitsuba_ref.py scenes/textured_light.xml -o scenes/refs/textured_light_64x64_mitsuba.exr \
     --spp 16384 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
+# Bump mapping on a sphere and a rectangle (tests/tests/bumpmap_agreement.rs).
+"$PYTHON" scripts/mitsuba_ref.py scenes/bumpmap.xml -o scenes/refs/bumpmap_64x64_mitsuba.exr \
+    --spp 16384 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
 # A projector and a textured spot light (tests/tests/projector_agreement.rs).
 "$PYTHON" scripts/mitsuba_ref.py scenes/projector.xml -o scenes/refs/projector_64x64_mitsuba.exr \
     --spp 16384 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb

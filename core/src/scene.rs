@@ -16,6 +16,7 @@ use glam::Vec3;
 mod casts;
 mod detail;
 mod numbering;
+mod shading_point;
 mod surface_detail;
 pub use numbering::{ShapeNumber, ShapeNumbering};
 pub use surface_detail::SurfaceDetail;

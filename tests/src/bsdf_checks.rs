@@ -209,7 +209,8 @@ pub fn reciprocity_error(eval: impl Fn(Vec3, Vec3) -> Vec3, seed: u64, floor: f3
 }
 
 /// Asserts what the path loop is told about a material with smooth lobes only: it samples with
-/// both inputs, is not Lambertian and has no delta component.
+/// both inputs, is not Lambertian, reads no partials (not bump-mapped) and has no delta
+/// component.
 pub fn assert_smooth_two_input_traits(b: &Bsdf) {
     assert_eq!(
         BsdfTraits::of(b),
@@ -218,6 +219,7 @@ pub fn assert_smooth_two_input_traits(b: &Bsdf) {
             uses_u2: true,
             has_smooth: true,
             lambertian: false,
+            reads_geometry: false,
         }
     );
     assert!(!b.has_delta());

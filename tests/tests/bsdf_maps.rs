@@ -1,5 +1,5 @@
-//! `normalmap` and textured roughness: sampling against the claimed pdf (chi-square), with a
-//! control that must fail, and located errors for bad input.
+//! `normalmap`, `bumpmap` and textured roughness: sampling against the claimed pdf
+//! (chi-square), with a control that must fail, and located errors for bad input.
 //!
 //! The values themselves are compared with Mitsuba 3 in `bsdf_mitsuba_eval.rs` (cases
 //! `tests/bsdf_cases/normalmap_*.xml`, `rough*_texture.xml`). The chi-square tests (listed in
@@ -19,8 +19,9 @@ use tessera_tests::bsdf::{
 /// Where the case textures' four pixels around it hold different tilted normals.
 const UV: Vec2 = Vec2::new(0.25, 0.75);
 
-/// Chi-square tests in this file: 9 normal-mapped configurations and 3 textured roughnesses.
-const N_CHI2: usize = 12;
+/// Chi-square tests in this file: 9 normal-mapped configurations, 3 textured roughnesses and
+/// 4 bump-mapped configurations.
+const N_CHI2: usize = 16;
 
 fn check_chi2(name: &str, r: &Chi2Result) {
     assert_chi2_passes(name, r, N_CHI2)
@@ -167,4 +168,91 @@ fn bad_input_is_located() {
         "alpha",
         "alpha",
     );
+}
+
+fn bumpmap(extra: &str, nested: &str) -> String {
+    format!(
+        r#"<bsdf type="bumpmap">{extra}
+            <texture name="height" type="bitmap"><boolean name="raw" value="true"/>
+            <string name="filename" value="{}"/></texture>{nested}</bsdf>"#,
+        texture("height.png")
+    )
+}
+
+#[test]
+fn bumpmap_chi2() {
+    // The flat unit parametrisation (what a bare uv converts to): the tilt is the height's
+    // gradient itself, about 0.5 to 1.6 per unit uv at UV for scale 1 (so up to about 60
+    // degrees at scale 1.5).
+    let cases = [
+        (NESTED[0].0, NESTED[0].1, "1.5", (20.0, 0.7)),
+        (NESTED[0].0, NESTED[0].1, "1.5", (85.0, 0.7)),
+        (NESTED[1].0, NESTED[1].1, "-1", (130.0, 2.0)),
+        (NESTED[2].0, NESTED[2].1, "0.7", (60.0, 3.8)),
+    ];
+    for (k, (name, nested, scale, (deg, phi))) in cases.into_iter().enumerate() {
+        let b = load(&bumpmap(
+            &format!(r#"<float name="scale" value="{scale}"/>"#),
+            nested,
+        ));
+        let r = BsdfChi2::default().run(&b, dir(deg, phi), UV, 200 + k as u64);
+        check_chi2(
+            &format!("bumpmap (scale {scale}) over {name}, theta_i {deg}"),
+            &r,
+        );
+    }
+}
+
+#[test]
+fn degenerate_partials_give_no_nan() {
+    // Zero partials (a degenerate uv map) have a zero cross product: the frame stays as it was.
+    let b = load(&bumpmap("", r#"<bsdf type="diffuse"/>"#));
+    let plain = load(r#"<bsdf type="diffuse"/>"#);
+    let zero = tessera_core::geometry::Partials {
+        dp_du: glam::Vec3::ZERO,
+        dp_dv: glam::Vec3::ZERO,
+        ng: glam::Vec3::Z,
+    };
+    let at = tessera_core::geometry::ShadingPoint {
+        uv: UV,
+        partials: Some(&zero),
+    };
+    let (wi, wo) = (dir(30.0, 0.2), dir(50.0, 2.0));
+    let (v, p) = (b.eval(wi, wo, at), b.pdf(wi, wo, at));
+    assert!(v.is_finite() && p.is_finite());
+    assert!(
+        (v - plain.eval(wi, wo, UV)).abs().max_element() < 1e-6,
+        "{v}"
+    );
+    assert_eq!(p, plain.pdf(wi, wo, UV));
+    assert!(b.sample(wi, 0.5, Vec2::new(0.3, 0.6), at).is_some());
+}
+
+#[test]
+fn bad_bumpmap_input_is_located() {
+    let cases = [
+        (
+            "<bsdf type=\"bumpmap\">\n<bsdf type=\"diffuse\"/>\n</bsdf>",
+            "case.xml:2:1:",
+            "needs exactly one nested texture",
+        ),
+        (
+            "<bsdf type=\"bumpmap\">\n<bsdf type=\"diffuse\"/>\n<texture type=\"checkerboard\"/>\n</bsdf>",
+            "case.xml:4:1:",
+            "must be a bitmap texture",
+        ),
+    ];
+    for (xml, at, words) in cases {
+        let err = tessera_tests::bsdf::build_bsdf_xml(xml, false)
+            .expect_err("refused")
+            .to_string();
+        assert!(err.contains(at) && err.contains(words), "{err}");
+    }
+    let err = tessera_tests::bsdf::build_bsdf_xml(
+        &bumpmap("", "").replace("<bsdf type=\"bumpmap\">", "<bsdf type=\"bumpmap\">\n"),
+        false,
+    )
+    .expect_err("a bump map without a nested bsdf is refused")
+    .to_string();
+    assert!(err.contains("needs 1 nested bsdf(s), found 0"), "{err}");
 }

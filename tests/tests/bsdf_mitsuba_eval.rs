@@ -7,11 +7,14 @@
 //! eval within 1e-3 relative plus 1e-5 absolute per channel, pdf within 1e-3 relative plus
 //! 1e-5 absolute. Both are single-precision evaluations of the same closed forms, so the
 //! tolerance only covers rounding; a wrong factor, sign convention or Fresnel term fails. A
-//! case file without its table fails too.
+//! case file without its table fails too. A table whose comment states a geometry (`#
+//! geometry dp_du=.. dp_dv=.. n=..`, the `bumpmap` cases) is evaluated at a shading point with
+//! those partials and that geometric normal; the others at the flat unit parametrisation.
 
 use std::path::Path;
 
 use glam::{Vec2, Vec3};
+use tessera_core::geometry::{Partials, ShadingPoint};
 use tessera_scene::load_bsdf_file;
 use tessera_tests::bsdf::{bsdf_case_files, csv_rows};
 
@@ -19,6 +22,25 @@ const UV: Vec2 = Vec2::new(0.25, 0.75);
 
 fn close(a: f32, b: f32) -> bool {
     (a - b).abs() <= 1e-3 * a.abs().max(b.abs()) + 1e-5
+}
+
+/// The partials a table was made at: those its comment states, else none (the flat unit
+/// parametrisation).
+fn partials(text: &str) -> Option<Partials> {
+    let line = text.lines().find_map(|l| l.strip_prefix("# geometry "))?;
+    let mut g = Partials::FLAT;
+    for field in line.split_whitespace() {
+        let (key, value) = field.split_once('=').expect("key=x,y,z");
+        let c: Vec<f32> = value.split(',').map(|x| x.parse().unwrap()).collect();
+        let v = Vec3::new(c[0], c[1], c[2]);
+        match key {
+            "dp_du" => g.dp_du = v,
+            "dp_dv" => g.dp_dv = v,
+            "n" => g.ng = v,
+            _ => panic!("unknown geometry field {key}"),
+        }
+    }
+    Some(g)
 }
 
 fn check(case: &Path) -> Vec<String> {
@@ -36,14 +58,19 @@ fn check(case: &Path) -> Vec<String> {
             )]
         }
     };
+    let g = partials(&text);
+    let at = ShadingPoint {
+        uv: UV,
+        partials: g.as_ref(),
+    };
     let mut bad = Vec::new();
     let mut rows = 0;
     for v in csv_rows(&text, "wi_x") {
         let wi = Vec3::new(v[0], v[1], v[2]);
         let wo = Vec3::new(v[3], v[4], v[5]);
         let want = Vec3::new(v[6], v[7], v[8]);
-        let f = bsdf.eval(wi, wo, UV);
-        let p = bsdf.pdf(wi, wo, UV);
+        let f = bsdf.eval(wi, wo, at);
+        let p = bsdf.pdf(wi, wo, at);
         rows += 1;
         if !(0..3).all(|c| close(f[c], want[c])) || !close(p, v[9]) {
             bad.push(format!(
@@ -268,4 +295,63 @@ fn a_slightly_wrong_pplastic_is_caught() {
     }
     // The unchanged material passes the same route (the controls fail for their change).
     assert!(check_table_against("pplastic_aniso_eta", &aniso("1.33", "0.08", "0.45")).is_empty());
+}
+
+#[test]
+fn a_wrong_bump_map_is_caught() {
+    // Controls for the bumpmap cases: the diffuse and rough-conductor tables against their
+    // materials with the height's scale negated or doubled, and against the right material
+    // evaluated without the table's geometry (the flat unit parametrisation instead of its
+    // partials), so the gradient's sign, its size and the use of dp/du, dp/dv all matter.
+    let tex = Path::new(env!("CARGO_MANIFEST_DIR")).join("bsdf_cases/textures");
+    let height = tex.join("height.png").display().to_string();
+    let bump = |scale: f32, nested: &str| {
+        format!(
+            r#"<scene version="3.0.0"><bsdf type="bumpmap"><float name="scale" value="{scale}"/>
+            <texture name="height" type="bitmap"><boolean name="raw" value="true"/>
+            <string name="filename" value="{height}"/></texture>{nested}</bsdf></scene>"#
+        )
+    };
+    let diffuse = r#"<bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.5, 0.3"/></bsdf>"#;
+    let conductor = r#"<bsdf type="roughconductor"><string name="material" value="Cu"/>
+        <string name="distribution" value="ggx"/><float name="alpha_u" value="0.1"/>
+        <float name="alpha_v" value="0.35"/></bsdf>"#;
+    // The right materials first: they must pass, or the controls prove nothing.
+    for (table, xml) in [
+        ("bumpmap_diffuse", bump(1.0, diffuse)),
+        ("bumpmap_roughconductor", bump(0.6, conductor)),
+    ] {
+        let bad = check_table_against(table, &xml);
+        assert!(bad.is_empty(), "{table}: {}", bad.join("\n"));
+    }
+    for (table, xml) in [
+        ("bumpmap_diffuse", bump(-1.0, diffuse)),
+        ("bumpmap_diffuse", bump(2.0, diffuse)),
+        ("bumpmap_roughconductor", bump(-0.6, conductor)),
+        ("bumpmap_roughconductor", bump(1.2, conductor)),
+    ] {
+        let bad = check_table_against(table, &xml);
+        println!("{table}, wrong scale: {} mismatches", bad.len());
+        assert!(!bad.is_empty(), "{table}: a wrong scale is not caught");
+    }
+    // The right material at the wrong geometry: the table without its geometry line.
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("bsdf_cases");
+    let tmp = std::env::temp_dir().join(format!("tessera_bump_flat_{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    let text = std::fs::read_to_string(dir.join("bumpmap_diffuse.csv")).unwrap();
+    assert!(text.contains("# geometry "));
+    let flat: String = text
+        .lines()
+        .filter(|l| !l.starts_with("# geometry "))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    std::fs::write(tmp.join("bumpmap_diffuse.csv"), flat).unwrap();
+    std::fs::write(tmp.join("bumpmap_diffuse.xml"), bump(1.0, diffuse)).unwrap();
+    let bad = check(&tmp.join("bumpmap_diffuse.xml"));
+    std::fs::remove_dir_all(&tmp).ok();
+    println!(
+        "bumpmap_diffuse without its geometry: {} mismatches",
+        bad.len()
+    );
+    assert!(!bad.is_empty(), "the partials are not used");
 }

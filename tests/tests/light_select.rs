@@ -33,7 +33,7 @@ fn vertices(
                 continue;
             }
             let wi = si.frame.to_local(si.wi);
-            let sel = VertexSelection::new(scene.light_bounds(), &si, bsdf, wi)
+            let sel = VertexSelection::new(scene.light_bounds(), &si, bsdf, si.uv.into(), wi)
                 .expect("2 to 8 lights give a vertex selection");
             out.push((si, sel));
         }
@@ -119,8 +119,18 @@ fn emitter_sample_variance(
         for j in 0..m {
             let mut sampler = IndependentSampler::new(3, i as u32, 0, j);
             let sel = own.then_some(sel);
-            let v = sample_light(s, si, bsdf, wi, &mut sampler, false, sel, &mut NoProbe)
-                .map_or(0.0, |ls| tessera_core::emitter::luminance(ls.value) as f64);
+            let v = sample_light(
+                s,
+                si,
+                bsdf,
+                si.uv.into(),
+                wi,
+                &mut sampler,
+                false,
+                sel,
+                &mut NoProbe,
+            )
+            .map_or(0.0, |ls| tessera_core::emitter::luminance(ls.value) as f64);
             sum += v;
             sum2 += v * v;
         }

@@ -12,6 +12,7 @@
 //! discrete probability times the probability of choosing its model.
 use super::model::Model;
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::texture::Texture;
 use crate::Color;
 use alloc::boxed::Box;
@@ -38,49 +39,49 @@ impl<B: Model> Blend<B> {
         }
     }
     /// `f(wi, wo) |cos theta_o|`.
-    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
-        let w = self.w(uv);
+    pub fn eval(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
+        let w = self.w(at.uv);
         let mut v = Color::ZERO;
         if w < 1.0 {
-            v += self.first.eval(wi, wo, uv) * (1.0 - w);
+            v += self.first.eval(wi, wo, at) * (1.0 - w);
         }
         if w > 0.0 {
-            v += self.second.eval(wi, wo, uv) * w;
+            v += self.second.eval(wi, wo, at) * w;
         }
         v
     }
     /// Density of the smooth components.
-    pub fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
-        let w = self.w(uv);
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> f32 {
+        let w = self.w(at.uv);
         let mut p = 0.0;
         if w < 1.0 {
-            p += self.first.pdf(wi, wo, uv) * (1.0 - w);
+            p += self.first.pdf(wi, wo, at) * (1.0 - w);
         }
         if w > 0.0 {
-            p += self.second.pdf(wi, wo, uv) * w;
+            p += self.second.pdf(wi, wo, at) * w;
         }
         p
     }
     /// Samples one of the two models by weight.
-    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
-        let w = self.w(uv);
+    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
+        let w = self.w(at.uv);
         let (chosen, prob, u) = if u1 < w {
             (&self.second, w, u1 / w)
         } else {
             (&self.first, 1.0 - w, (u1 - w) / (1.0 - w))
         };
-        let s = chosen.sample(wi, u.clamp(0.0, 1.0 - f32::EPSILON), u2, uv)?;
+        let s = chosen.sample(wi, u.clamp(0.0, 1.0 - f32::EPSILON), u2, at)?;
         if s.delta {
             return Some(BsdfSample {
                 pdf: s.pdf * prob,
                 ..s
             });
         }
-        let pdf = self.pdf(wi, s.wo, uv);
+        let pdf = self.pdf(wi, s.wo, at);
         if !(pdf > 0.0 && pdf.is_finite()) {
             return None;
         }
-        let weight = self.eval(wi, s.wo, uv) / pdf;
+        let weight = self.eval(wi, s.wo, at) / pdf;
         weight
             .is_finite()
             .then_some(BsdfSample { weight, pdf, ..s })

@@ -26,6 +26,7 @@
 use super::fresnel::schlick;
 use super::model::Model;
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::math::{safe_sqrt, sincos_turns, Norm, INV_TWO_PI};
 use crate::Color;
 use alloc::boxed::Box;
@@ -139,39 +140,39 @@ impl<B: Model> BlinnPhong<B> {
     }
 
     /// `f(wi, wo) |cos theta_o|`.
-    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+    pub fn eval(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
         if !(wi.z > 0.0) {
             return Color::ZERO;
         }
         let mut v = Color::splat(self.lobe.eval(wi, wo));
         if let Some(base) = &self.base {
-            v += base.eval(wi, wo, uv) * self.lobe.base_share(wi, wo);
+            v += base.eval(wi, wo, at) * self.lobe.base_share(wi, wo);
         }
         v
     }
 
     /// Density of the smooth components: the mixture of the lobe's and the base's.
-    pub fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> f32 {
         if !(wi.z > 0.0) {
             return 0.0;
         }
         let p = self.p_lobe();
         let mut d = p * self.lobe.pdf(wi, wo);
         if let Some(base) = &self.base {
-            d += (1.0 - p) * base.pdf(wi, wo, uv);
+            d += (1.0 - p) * base.pdf(wi, wo, at);
         }
         d
     }
 
     /// Samples the lobe or the base (probability 1/2 each), weight against the mixture.
-    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
         if !(wi.z > 0.0) {
             return None;
         }
         let p = self.p_lobe();
         let (wo, eta) = match &self.base {
             Some(base) if u1 >= p => {
-                let s = base.sample(wi, ((u1 - p) / (1.0 - p)).min(1.0 - f32::EPSILON), u2, uv)?;
+                let s = base.sample(wi, ((u1 - p) / (1.0 - p)).min(1.0 - f32::EPSILON), u2, at)?;
                 if s.delta {
                     let t = self.lobe.base_share(wi, s.wo);
                     return Some(BsdfSample {
@@ -184,11 +185,11 @@ impl<B: Model> BlinnPhong<B> {
             }
             _ => (self.lobe.sample(wi, u2)?, 1.0),
         };
-        let pdf = self.pdf(wi, wo, uv);
+        let pdf = self.pdf(wi, wo, at);
         if !(pdf > 0.0 && pdf.is_finite()) {
             return None;
         }
-        let weight = self.eval(wi, wo, uv) / pdf;
+        let weight = self.eval(wi, wo, at) / pdf;
         weight.is_finite().then_some(BsdfSample {
             wo,
             weight,

@@ -10,6 +10,7 @@
 //! absorbing "refraction" would only waste samples; the pdf is the lobe's exactly).
 use super::blinnphong::Lobe;
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::texture::Texture;
 use crate::Color;
 use glam::{Vec2, Vec3};
@@ -31,20 +32,20 @@ impl BlinnPhongMetal {
     }
 
     /// `f(wi, wo) |cos theta_o|`.
-    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+    pub fn eval(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
         let v = self.lobe.eval(wi, wo);
         if v > 0.0 {
-            self.color.eval(uv) * v
+            self.color.eval(at.uv) * v
         } else {
             Color::ZERO
         }
     }
     /// Density of the lobe.
-    pub fn pdf(&self, wi: Vec3, wo: Vec3, _uv: Vec2) -> f32 {
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, _at: ShadingPoint) -> f32 {
         self.lobe.pdf(wi, wo)
     }
     /// Samples the lobe.
-    pub fn sample(&self, wi: Vec3, _u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, wi: Vec3, _u1: f32, u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
         let wo = self.lobe.sample(wi, u2)?;
         let pdf = self.lobe.pdf(wi, wo);
         if !(pdf > 0.0 && pdf.is_finite()) {
@@ -52,7 +53,7 @@ impl BlinnPhongMetal {
         }
         Some(BsdfSample {
             wo,
-            weight: self.color.eval(uv) * (self.lobe.eval(wi, wo) / pdf),
+            weight: self.color.eval(at.uv) * (self.lobe.eval(wi, wo) / pdf),
             pdf,
             delta: false,
             eta: 1.0,

@@ -8,6 +8,7 @@
 //! the mirror direction with probability 1.
 use super::fresnel::fresnel_conductor;
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::texture::Texture;
 use crate::Color;
 use glam::{Vec2, Vec3};
@@ -25,20 +26,20 @@ pub struct Conductor {
 
 impl Conductor {
     /// A delta model: always zero.
-    pub fn eval(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> Color {
+    pub fn eval(&self, _wi: Vec3, _wo: Vec3, _at: ShadingPoint) -> Color {
         Color::ZERO
     }
     /// A delta model: always zero.
-    pub fn pdf(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> f32 {
+    pub fn pdf(&self, _wi: Vec3, _wo: Vec3, _at: ShadingPoint) -> f32 {
         0.0
     }
     /// The mirror direction, with weight `F(cos theta_i) * specular_reflectance`.
-    pub fn sample(&self, wi: Vec3, _u1: f32, _u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, wi: Vec3, _u1: f32, _u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
         if !(wi.z > 0.0) {
             return None;
         }
-        let f = conductor_fresnel(wi.z, &self.eta, &self.k, uv);
-        let weight = f * self.specular_reflectance.eval(uv);
+        let f = conductor_fresnel(wi.z, &self.eta, &self.k, at);
+        let weight = f * self.specular_reflectance.eval(at.uv);
         Some(BsdfSample::delta(
             Vec3::new(-wi.x, -wi.y, wi.z),
             weight,
@@ -59,11 +60,11 @@ impl Conductor {
 /// constant `eta` 0 and `k` 1) skips the complex formula, which gives exactly 1 there for every
 /// cosine (checked for all floats in `[0, 1]`; the test below samples them), so no bit changes.
 #[inline]
-pub(super) fn conductor_fresnel(cos: f32, eta: &Texture, k: &Texture, uv: Vec2) -> Color {
+pub(super) fn conductor_fresnel(cos: f32, eta: &Texture, k: &Texture, at: ShadingPoint) -> Color {
     match (eta, k) {
         (Texture::Constant(e), Texture::Constant(k)) if *e == Color::ZERO && *k == Color::ONE => {
             Color::ONE
         }
-        _ => fresnel_conductor(cos, eta.eval(uv), k.eval(uv)),
+        _ => fresnel_conductor(cos, eta.eval(at.uv), k.eval(at.uv)),
     }
 }

@@ -11,6 +11,7 @@
 //! refraction's also carries the radiance scaling `1 / eta^2` (`eta` = `eta_t / eta_i`).
 use super::fresnel::{fresnel_dielectric, refract};
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::texture::Texture;
 use crate::Color;
 use glam::{Vec2, Vec3};
@@ -28,22 +29,22 @@ pub struct Dielectric {
 
 impl Dielectric {
     /// A delta model: always zero.
-    pub fn eval(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> Color {
+    pub fn eval(&self, _wi: Vec3, _wo: Vec3, _at: ShadingPoint) -> Color {
         Color::ZERO
     }
     /// A delta model: always zero.
-    pub fn pdf(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> f32 {
+    pub fn pdf(&self, _wi: Vec3, _wo: Vec3, _at: ShadingPoint) -> f32 {
         0.0
     }
     /// Reflection with probability `F`, else refraction (`u1` chooses).
-    pub fn sample(&self, wi: Vec3, u1: f32, _u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, wi: Vec3, u1: f32, _u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
         if wi.z == 0.0 || !wi.is_finite() {
             return None;
         }
         let fr = fresnel_dielectric(wi.z, self.eta);
         // `<` rather than `<=`: a component of probability zero is never chosen.
         if u1 < fr.f {
-            let weight = self.specular_reflectance.eval(uv);
+            let weight = self.specular_reflectance.eval(at.uv);
             Some(BsdfSample::delta(
                 Vec3::new(-wi.x, -wi.y, wi.z),
                 weight,
@@ -53,7 +54,7 @@ impl Dielectric {
             let wo = refract(wi, Vec3::Z, fr.cos_t, fr.eta_ti);
             Some(BsdfSample {
                 wo,
-                weight: self.specular_transmittance.eval(uv) * (fr.eta_ti * fr.eta_ti),
+                weight: self.specular_transmittance.eval(at.uv) * (fr.eta_ti * fr.eta_ti),
                 pdf: 1.0 - fr.f,
                 delta: true,
                 eta: fr.eta_it,

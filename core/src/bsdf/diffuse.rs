@@ -4,6 +4,7 @@
 //! Its scene parameters are declared with its loader, in
 //! `scene/src/materials/basic.rs`.
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::math::INV_PI;
 use crate::sampling::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 use crate::texture::Texture;
@@ -20,15 +21,15 @@ pub struct Diffuse {
 impl Diffuse {
     /// `reflectance / pi * cos theta_o` on the front side, else 0.
     #[inline]
-    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+    pub fn eval(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
         if wi.z <= 0.0 || wo.z <= 0.0 {
             return Color::ZERO;
         }
-        self.reflectance.eval(uv) * (INV_PI * wo.z)
+        self.reflectance.eval(at.uv) * (INV_PI * wo.z)
     }
     /// Cosine-hemisphere density.
     #[inline]
-    pub fn pdf(&self, wi: Vec3, wo: Vec3, _uv: Vec2) -> f32 {
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, _at: ShadingPoint) -> f32 {
         if wi.z <= 0.0 {
             return 0.0;
         }
@@ -36,7 +37,7 @@ impl Diffuse {
     }
     /// Cosine-weighted sample; the weight is the reflectance.
     #[inline]
-    pub fn sample(&self, wi: Vec3, _u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, wi: Vec3, _u1: f32, u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
         if wi.z <= 0.0 {
             return None;
         }
@@ -47,7 +48,7 @@ impl Diffuse {
         }
         Some(BsdfSample {
             wo,
-            weight: self.reflectance.eval(uv),
+            weight: self.reflectance.eval(at.uv),
             pdf,
             delta: false,
             eta: 1.0,

@@ -10,6 +10,7 @@
 //! probability times `a`.
 use super::model::Model;
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::texture::Texture;
 use crate::Color;
 use alloc::boxed::Box;
@@ -34,32 +35,32 @@ impl<B: Model> Mask<B> {
         }
     }
     /// `opacity f(wi, wo) |cos theta_o|`.
-    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
-        let a = self.a(uv);
+    pub fn eval(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
+        let a = self.a(at.uv);
         if a > 0.0 {
-            self.nested.eval(wi, wo, uv) * a
+            self.nested.eval(wi, wo, at) * a
         } else {
             Color::ZERO
         }
     }
     /// `opacity` times the nested density.
-    pub fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
-        let a = self.a(uv);
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> f32 {
+        let a = self.a(at.uv);
         if a > 0.0 {
-            self.nested.pdf(wi, wo, uv) * a
+            self.nested.pdf(wi, wo, at) * a
         } else {
             0.0
         }
     }
     /// Passes through with probability `1 - opacity`, else samples the nested model.
-    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
-        let a = self.a(uv);
+    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
+        let a = self.a(at.uv);
         if u1 >= a {
             return Some(BsdfSample::delta(-wi, Color::ONE, 1.0 - a));
         }
         let s = self
             .nested
-            .sample(wi, (u1 / a).min(1.0 - f32::EPSILON), u2, uv)?;
+            .sample(wi, (u1 / a).min(1.0 - f32::EPSILON), u2, at)?;
         Some(BsdfSample {
             pdf: s.pdf * a,
             ..s

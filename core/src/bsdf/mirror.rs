@@ -4,6 +4,7 @@
 //! Its scene parameters are declared with its loader, in
 //! `scene/src/materials/wakame.rs`.
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::Color;
 use glam::{Vec2, Vec3};
 
@@ -13,15 +14,15 @@ pub struct Mirror {}
 
 impl Mirror {
     /// A delta lobe has no smooth part: 0.
-    pub fn eval(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> Color {
+    pub fn eval(&self, _wi: Vec3, _wo: Vec3, _at: ShadingPoint) -> Color {
         Color::ZERO
     }
     /// A delta lobe has no smooth density: 0.
-    pub fn pdf(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> f32 {
+    pub fn pdf(&self, _wi: Vec3, _wo: Vec3, _at: ShadingPoint) -> f32 {
         0.0
     }
     /// The mirror direction `(-x, -y, z)` with weight 1 and probability 1 (front side only).
-    pub fn sample(&self, wi: Vec3, _u1: f32, _u2: Vec2, _uv: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, wi: Vec3, _u1: f32, _u2: Vec2, _at: ShadingPoint) -> Option<BsdfSample> {
         if !(wi.z > 0.0) {
             return None;
         }

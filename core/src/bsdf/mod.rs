@@ -9,6 +9,7 @@
 mod blend;
 mod blinnphong;
 mod blinnphong_metal;
+mod bumpmap;
 mod conductor;
 mod dielectric;
 mod diffuse;
@@ -41,6 +42,7 @@ mod wakame_microfacet;
 pub use blend::Blend;
 pub use blinnphong::BlinnPhong;
 pub use blinnphong_metal::BlinnPhongMetal;
+pub use bumpmap::BumpMap;
 pub use conductor::Conductor;
 pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
@@ -62,6 +64,7 @@ pub use traits::BsdfTraits;
 pub use twosided::TwoSided;
 pub use wakame_microfacet::WakameMicrofacet;
 
+use crate::geometry::ShadingPoint;
 use crate::sampling::Sampler;
 use crate::Color;
 use glam::{Vec2, Vec3};
@@ -75,6 +78,7 @@ impl BsdfTraits {
             uses_u2,
             has_smooth: bsdf.has_smooth(),
             lambertian: bsdf.is_lambertian(),
+            reads_geometry: bsdf.reads_geometry(),
         }
     }
 }
@@ -122,6 +126,8 @@ pub enum Bsdf {
     PolarizedPlastic(PolarizedPlastic),
     /// Mitsuba 3's linear polarizer as unpolarized light sees it: a pass-through (`polarizer`).
     Polarizer(Polarizer),
+    /// A model seen through a height field (`bumpmap`).
+    BumpMap(BumpMap<Bsdf>),
 }
 
 macro_rules! dispatch {
@@ -147,6 +153,7 @@ macro_rules! dispatch {
             Bsdf::PrincipledThin($b) => $e,
             Bsdf::PolarizedPlastic($b) => $e,
             Bsdf::Polarizer($b) => $e,
+            Bsdf::BumpMap($b) => $e,
         }
     };
 }
@@ -154,18 +161,27 @@ macro_rules! dispatch {
 impl Bsdf {
     /// `f(wi, wo) |cos theta_o|` of the smooth components.
     #[inline]
-    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
-        dispatch!(self, b => b.eval(wi, wo, uv))
+    pub fn eval<'a>(&self, wi: Vec3, wo: Vec3, at: impl Into<ShadingPoint<'a>>) -> Color {
+        let at = at.into();
+        dispatch!(self, b => b.eval(wi, wo, at))
     }
     /// Solid-angle density with which `sample` produces `wo` (smooth components only).
     #[inline]
-    pub fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
-        dispatch!(self, b => b.pdf(wi, wo, uv))
+    pub fn pdf<'a>(&self, wi: Vec3, wo: Vec3, at: impl Into<ShadingPoint<'a>>) -> f32 {
+        let at = at.into();
+        dispatch!(self, b => b.pdf(wi, wo, at))
     }
     /// Samples `wo` for `wi` from three uniform numbers (`u1` chooses a component).
     #[inline]
-    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
-        dispatch!(self, b => b.sample(wi, u1, u2, uv))
+    pub fn sample<'a>(
+        &self,
+        wi: Vec3,
+        u1: f32,
+        u2: Vec2,
+        at: impl Into<ShadingPoint<'a>>,
+    ) -> Option<BsdfSample> {
+        let at = at.into();
+        dispatch!(self, b => b.sample(wi, u1, u2, at))
     }
     /// Which random inputs [`Bsdf::sample`] reads: `(u1, u2)`. The integrators skip the draws
     /// of inputs a BSDF ignores (with [`crate::sampling::Sampler::skip_1d`], which leaves the
@@ -204,6 +220,18 @@ impl Bsdf {
         let (uses_u1, uses_u2) = self.sample_inputs();
         traits::draw_inputs(uses_u1, uses_u2, sampler)
     }
+    /// Whether some part of the model reads the shading point's partials (`bumpmap`).
+    pub fn reads_geometry(&self) -> bool {
+        match self {
+            Bsdf::BumpMap(_) => true,
+            Bsdf::TwoSided(b) => b.front.reads_geometry() || b.back.reads_geometry(),
+            Bsdf::Blend(b) => b.first.reads_geometry() || b.second.reads_geometry(),
+            Bsdf::Mask(b) => b.nested.reads_geometry(),
+            Bsdf::NormalMap(b) => b.nested.reads_geometry(),
+            Bsdf::BlinnPhong(b) => b.base.as_ref().is_some_and(|b| b.reads_geometry()),
+            _ => false,
+        }
+    }
     /// Whether any component is smooth (non-delta): emitter sampling is useful.
     #[inline]
     pub fn has_smooth(&self) -> bool {
@@ -226,16 +254,16 @@ impl Bsdf {
 
 impl Model for Bsdf {
     #[inline]
-    fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
-        Bsdf::eval(self, wi, wo, uv)
+    fn eval(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
+        Bsdf::eval(self, wi, wo, at)
     }
     #[inline]
-    fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
-        Bsdf::pdf(self, wi, wo, uv)
+    fn pdf(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> f32 {
+        Bsdf::pdf(self, wi, wo, at)
     }
     #[inline]
-    fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
-        Bsdf::sample(self, wi, u1, u2, uv)
+    fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
+        Bsdf::sample(self, wi, u1, u2, at)
     }
     #[inline]
     fn has_smooth(&self) -> bool {

@@ -4,17 +4,18 @@
 //! trait by dispatching on its variants, and the wrappers are instantiated with it).
 use super::diffuse::Diffuse;
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::Color;
 use glam::{Vec2, Vec3};
 
 /// A scattering model in the local shading frame (the conventions of the `bsdf` module).
 pub trait Model {
     /// `f(wi, wo) |cos theta_o|` of the smooth components.
-    fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color;
+    fn eval(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color;
     /// Solid-angle density with which `sample` produces `wo` (smooth components only).
-    fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32;
+    fn pdf(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> f32;
     /// Samples `wo` for `wi` from three uniform numbers.
-    fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample>;
+    fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, at: ShadingPoint) -> Option<BsdfSample>;
     /// Whether any component is smooth.
     fn has_smooth(&self) -> bool;
     /// Whether any component is a delta distribution.

@@ -10,6 +10,7 @@
 use super::model::Model;
 use super::perturbed::{PerturbOptions, Tilted};
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::texture::Texture;
 use crate::Color;
 use alloc::boxed::Box;
@@ -28,21 +29,21 @@ pub struct NormalMap<B> {
 
 impl<B: Model> NormalMap<B> {
     #[inline]
-    fn tilted(&self, wi: Vec3, uv: Vec2) -> Tilted {
-        let n = self.normalmap.eval(uv) * 2.0 - Color::ONE;
+    fn tilted(&self, wi: Vec3, at: ShadingPoint) -> Tilted {
+        let n = self.normalmap.eval(at.uv) * 2.0 - Color::ONE;
         Tilted::new(n, wi, self.options)
     }
     /// The nested value in the perturbed frame.
-    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
-        self.tilted(wi, uv).eval(&*self.nested, wi, wo, uv)
+    pub fn eval(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
+        self.tilted(wi, at).eval(&*self.nested, wi, wo, at)
     }
     /// The nested density in the perturbed frame.
-    pub fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
-        self.tilted(wi, uv).pdf(&*self.nested, wi, wo, uv)
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> f32 {
+        self.tilted(wi, at).pdf(&*self.nested, wi, wo, at)
     }
     /// Samples the nested model in the perturbed frame.
-    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
-        self.tilted(wi, uv).sample(&*self.nested, wi, u1, u2, uv)
+    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
+        self.tilted(wi, at).sample(&*self.nested, wi, u1, u2, at)
     }
     /// Whether the nested model has a smooth component.
     pub fn has_smooth(&self) -> bool {

@@ -1,11 +1,12 @@
 //! A nested model evaluated in a shading frame tilted away from the surface's own, the common
-//! part of `normalmap` (and of any other model that perturbs the shading normal), as Mitsuba
-//! 3.9.1 does it.
+//! part of `normalmap` and `bumpmap`, as Mitsuba 3.9.1 does it. The nested model gets the
+//! shading point's partials and geometric normal in the tilted frame.
 //!
 //! The tilted normal `n` is given in the local (unperturbed) frame. With
 //! `flip_invalid_normals`, a normal that faces away from `wi` (`wi.z (wi . n) <= 0`) has its
 //! tangential part negated first. The tilted frame is `(s, t, n)` with
-//! `s = normalize(x - n n.x)` (the surface's own tangent, which follows `dp/du`, projected),
+//! `s = normalize(x - n n.x)` (the surface's own tangent, which follows `dp/du`, projected;
+//! `bumpmap` projects its local `dp/du` itself),
 //! `t = n x s`. Directions are rotated into it, the nested model is asked there, and a pair
 //! whose `wo` lies on different sides of the two frames (`wo.z * wo'.z <= 0`) scatters nothing.
 //! With `use_shadowing_function`, values are multiplied by the shadowing term of Estevez et al.
@@ -17,6 +18,7 @@
 //! NaN is produced.
 use super::model::Model;
 use super::sample::BsdfSample;
+use crate::geometry::{Partials, ShadingPoint};
 use crate::math::{Frame, Norm};
 use crate::Color;
 use glam::{Vec2, Vec3};
@@ -57,14 +59,23 @@ pub(crate) struct Tilted {
 }
 
 impl Tilted {
-    /// The frame around the (not necessarily unit) normal `n` for incident `wi`.
+    /// The frame around the (not necessarily unit) normal `n` for incident `wi`, its first
+    /// tangent the local `x` projected (`normalmap`).
+    #[inline]
     pub fn new(n: Vec3, wi: Vec3, options: PerturbOptions) -> Self {
+        Self::with_tangent(n, Vec3::X, wi, options)
+    }
+
+    /// The frame around `n` for incident `wi` whose first tangent is `tangent` (local)
+    /// projected onto the plane normal to `n` (`bumpmap` gives `dp/du`); where that
+    /// projection vanishes, any frame around `n`.
+    pub fn with_tangent(n: Vec3, tangent: Vec3, wi: Vec3, options: PerturbOptions) -> Self {
         let mut n = n;
         if options.flip_invalid_normals && wi.z * wi.dot(n) <= 0.0 {
             n = Vec3::new(-n.x, -n.y, n.z);
         }
         let frame = match n.try_unit() {
-            Some(n) => match (Vec3::X - n * n.x).try_unit() {
+            Some(n) => match (tangent - n * n.dot(tangent)).try_unit() {
                 Some(s) => Frame {
                     s,
                     t: n.cross(s),
@@ -81,6 +92,17 @@ impl Tilted {
         Tilted { frame, options }
     }
 
+    /// The partials of `at` in the tilted frame (what a nested perturbation reads), if it has
+    /// them.
+    #[inline]
+    fn partials(&self, at: &ShadingPoint) -> Option<Partials> {
+        at.partials.map(|g| Partials {
+            dp_du: self.frame.to_local(g.dp_du),
+            dp_dv: self.frame.to_local(g.dp_dv),
+            ng: self.frame.to_local(g.ng),
+        })
+    }
+
     #[inline]
     fn shadow(&self, wo: Vec3) -> f32 {
         if self.options.use_shadowing_function {
@@ -91,21 +113,31 @@ impl Tilted {
     }
 
     /// `nested`'s value in the tilted frame (times the shadowing term).
-    pub fn eval<B: Model>(&self, nested: &B, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+    pub fn eval<B: Model>(&self, nested: &B, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
         let two = self.frame.to_local(wo);
         if !(wo.z * two.z > 0.0) {
             return Color::ZERO;
         }
-        nested.eval(self.frame.to_local(wi), two, uv) * self.shadow(wo)
+        let g = self.partials(&at);
+        let at = ShadingPoint {
+            uv: at.uv,
+            partials: g.as_ref(),
+        };
+        nested.eval(self.frame.to_local(wi), two, at) * self.shadow(wo)
     }
 
     /// `nested`'s density in the tilted frame.
-    pub fn pdf<B: Model>(&self, nested: &B, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
+    pub fn pdf<B: Model>(&self, nested: &B, wi: Vec3, wo: Vec3, at: ShadingPoint) -> f32 {
         let two = self.frame.to_local(wo);
         if !(wo.z * two.z > 0.0) {
             return 0.0;
         }
-        nested.pdf(self.frame.to_local(wi), two, uv)
+        let g = self.partials(&at);
+        let at = ShadingPoint {
+            uv: at.uv,
+            partials: g.as_ref(),
+        };
+        nested.pdf(self.frame.to_local(wi), two, at)
     }
 
     /// Samples `nested` in the tilted frame; the direction is returned in the unperturbed one.
@@ -115,9 +147,14 @@ impl Tilted {
         wi: Vec3,
         u1: f32,
         u2: Vec2,
-        uv: Vec2,
+        at: ShadingPoint,
     ) -> Option<BsdfSample> {
-        let s = nested.sample(self.frame.to_local(wi), u1, u2, uv)?;
+        let g = self.partials(&at);
+        let at = ShadingPoint {
+            uv: at.uv,
+            partials: g.as_ref(),
+        };
+        let s = nested.sample(self.frame.to_local(wi), u1, u2, at)?;
         let wo = self.frame.to_world(s.wo);
         if !(s.wo.z * wo.z > 0.0) {
             return None;

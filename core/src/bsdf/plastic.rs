@@ -17,6 +17,7 @@ use super::plastic_common::{
     coating_probability, fresnel_diffuse_reflectance, internal_scattering, specular_sampling_weight,
 };
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::math::INV_PI;
 use crate::sampling::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 use crate::texture::Texture;
@@ -53,23 +54,23 @@ impl Plastic {
 
     /// The base's reflected radiance factor `f cos theta_o` for front-side `wi`, `wo`, given
     /// the coating's reflectance `fi` toward `wi`.
-    fn diffuse_part(&self, fi: f32, wo: Vec3, uv: Vec2) -> Color {
+    fn diffuse_part(&self, fi: f32, wo: Vec3, at: ShadingPoint) -> Color {
         let fo = fresnel_dielectric(wo.z, self.eta).f;
-        let d = internal_scattering(self.diffuse.eval(uv), self.fdr_int, self.nonlinear);
+        let d = internal_scattering(self.diffuse.eval(at.uv), self.fdr_int, self.nonlinear);
         d * (INV_PI * wo.z * self.inv_eta_2 * (1.0 - fi) * (1.0 - fo))
     }
 
     /// `f(wi, wo) cos theta_o` of the diffuse base (the coating is a delta lobe).
-    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+    pub fn eval(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return Color::ZERO;
         }
         let fi = fresnel_dielectric(wi.z, self.eta).f;
-        self.diffuse_part(fi, wo, uv)
+        self.diffuse_part(fi, wo, at)
     }
 
     /// Cosine density times the probability of choosing the base.
-    pub fn pdf(&self, wi: Vec3, wo: Vec3, _uv: Vec2) -> f32 {
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, _at: ShadingPoint) -> f32 {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return 0.0;
         }
@@ -82,14 +83,14 @@ impl Plastic {
 
     /// `u1` chooses the coating's mirror reflection or the base; the base is sampled by the
     /// cosine.
-    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
         if !(wi.z > 0.0) {
             return None;
         }
         let fi = fresnel_dielectric(wi.z, self.eta).f;
         let ps = coating_probability(fi, self.spec_weight)?;
         if u1 < ps {
-            let weight = self.specular.eval(uv) * (fi / ps);
+            let weight = self.specular.eval(at.uv) * (fi / ps);
             return Some(BsdfSample::delta(Vec3::new(-wi.x, -wi.y, wi.z), weight, ps));
         }
         let wo = square_to_cosine_hemisphere(u2);
@@ -99,7 +100,7 @@ impl Plastic {
         }
         Some(BsdfSample {
             wo,
-            weight: self.diffuse_part(fi, wo, uv) / pdf,
+            weight: self.diffuse_part(fi, wo, at) / pdf,
             pdf,
             delta: false,
             eta: 1.0,

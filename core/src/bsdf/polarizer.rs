@@ -11,6 +11,7 @@
 //! sampling therefore does not look through it (its shadow rays stop at the sheet, as
 //! Mitsuba 3's do); light behind it is found by the continued path.
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::texture::Texture;
 use crate::Color;
 use glam::{Vec2, Vec3};
@@ -24,16 +25,16 @@ pub struct Polarizer {
 
 impl Polarizer {
     /// No smooth component.
-    pub fn eval(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> Color {
+    pub fn eval(&self, _wi: Vec3, _wo: Vec3, _at: ShadingPoint) -> Color {
         Color::ZERO
     }
     /// No smooth component.
-    pub fn pdf(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> f32 {
+    pub fn pdf(&self, _wi: Vec3, _wo: Vec3, _at: ShadingPoint) -> f32 {
         0.0
     }
     /// The straight pass-through, weighted `transmittance / 2`.
-    pub fn sample(&self, wi: Vec3, _u1: f32, _u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
-        let weight = self.transmittance.eval(uv) * 0.5;
+    pub fn sample(&self, wi: Vec3, _u1: f32, _u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
+        let weight = self.transmittance.eval(at.uv) * 0.5;
         if !weight.is_finite() {
             return None;
         }

@@ -17,6 +17,7 @@ use super::microfacet::Microfacet;
 use super::plastic_common::specular_sampling_weight;
 use super::roughness_texture::{distribution_at, RoughnessTexture};
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::math::{Norm, INV_PI};
 use crate::sampling::warp::cosine_hemisphere_pdf;
 use crate::texture::Texture;
@@ -75,20 +76,21 @@ impl PolarizedPlastic {
     }
 
     /// `f(wi, wo) cos theta_o`: specular plus diffuse, front side only.
-    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+    pub fn eval(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return Color::ZERO;
         }
-        let Some(eta) = self.eta_at(uv) else {
+        let Some(eta) = self.eta_at(at.uv) else {
             return Color::ZERO;
         };
-        let md = distribution_at(&self.distr, &self.roughness, uv);
+        let md = distribution_at(&self.distr, &self.roughness, at.uv);
         let h = (wi + wo).unit();
         let f = fresnel_dielectric(wi.dot(h), eta).f;
         let spec = md.d(h) * md.g(wi, wo, h) * f / (4.0 * wi.z);
         let ti = 1.0 - fresnel_dielectric(wi.z, eta).f;
         let to = 1.0 - fresnel_dielectric(wo.z, eta).f;
-        let r = self.specular.eval(uv) * spec + self.diffuse.eval(uv) * (ti * to * wo.z * INV_PI);
+        let r =
+            self.specular.eval(at.uv) * spec + self.diffuse.eval(at.uv) * (ti * to * wo.z * INV_PI);
         if r.is_finite() {
             r
         } else {
@@ -98,11 +100,11 @@ impl PolarizedPlastic {
 
     /// `w p_spec + (1 - w) cos theta_o / pi`, `p_spec` the density of mirroring `wi` about a
     /// sampled microfacet normal.
-    pub fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> f32 {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return 0.0;
         }
-        let md = distribution_at(&self.distr, &self.roughness, uv);
+        let md = distribution_at(&self.distr, &self.roughness, at.uv);
         let h = (wi + wo).unit();
         let spec = if wi.dot(h) <= 0.0 || wo.dot(h) <= 0.0 {
             0.0
@@ -120,13 +122,13 @@ impl PolarizedPlastic {
 
     /// `u1 < w` mirrors `wi` about a sampled microfacet normal, else a cosine-weighted
     /// direction; the weight is `eval / pdf` of the whole mixture.
-    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
         if !(wi.z > 0.0) {
             return None;
         }
-        let md = distribution_at(&self.distr, &self.roughness, uv);
+        let md = distribution_at(&self.distr, &self.roughness, at.uv);
         let wo = md.sample_glossy_or_diffuse(wi, u1, u2, self.spec_weight)?;
-        BsdfSample::smooth_reflection(wo, self.eval(wi, wo, uv), self.pdf(wi, wo, uv))
+        BsdfSample::smooth_reflection(wo, self.eval(wi, wo, at), self.pdf(wi, wo, at))
     }
 
     /// Both terms are smooth.

@@ -26,6 +26,7 @@ use super::principled_lobes::{
     burley_diffuse, clearcoat_alpha, main_alphas, micro_compatible, mulsign, schlick_fresnel,
     sheen_color, smith_ggx1, FresnelBlend, Gtr1,
 };
+use crate::geometry::ShadingPoint;
 use crate::math::{Norm, INV_PI};
 use crate::texture::Texture;
 use crate::Color;
@@ -192,8 +193,8 @@ impl Principled {
 
     /// `f(wi, wo) |cos theta_o|`: reflection when `wi` and `wo` are on one side, transmission
     /// when on opposite sides; 0 at grazing `wi`.
-    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
-        let r = self.eval_lobes(wi, wo, uv);
+    pub fn eval(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
+        let r = self.eval_lobes(wi, wo, at);
         if r.is_finite() {
             r
         } else {
@@ -201,13 +202,13 @@ impl Principled {
         }
     }
 
-    fn eval_lobes(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+    fn eval_lobes(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
         let (ci, co) = (wi.z, wo.z);
         if ci == 0.0 || !(ci * co != 0.0) {
             return Color::ZERO;
         }
-        let w = self.weights(uv);
-        let base = self.p.base_color.eval(uv);
+        let w = self.weights(at.uv);
+        let base = self.p.base_color.eval(at.uv);
         let (brdf, bsdf) = (w.brdf(), w.bsdf());
         let reflect = ci * co > 0.0;
         let front = ci > 0.0;
@@ -224,7 +225,7 @@ impl Principled {
             if f > 0.0 {
                 let blend = FresnelBlend {
                     metallic: w.metallic,
-                    spec_tint: self.p.spec_tint.as_ref().map(|t| t.eval_1(uv)),
+                    spec_tint: self.p.spec_tint.as_ref().map(|t| t.eval_1(at.uv)),
                     base_color: base,
                     bsdf,
                     eta: self.eta,
@@ -233,7 +234,7 @@ impl Principled {
             }
             if front && self.has_clearcoat() && w.clearcoat > 0.0 {
                 let fcc = schlick_fresnel(0.04, cos_ih, self.eta);
-                let dcc = self.clearcoat_distribution(uv).d(wh);
+                let dcc = self.clearcoat_distribution(at.uv).d(wh);
                 let gcc = smith_ggx1(wi, wh, 0.25) * smith_ggx1(wo, wh, 0.25);
                 value += Color::splat(w.clearcoat * 0.25 * fcc * dcc * gcc * co.abs());
             }
@@ -250,7 +251,7 @@ impl Principled {
             value += base.map(crate::math::sqrt) * (bsdf * t);
         }
         if reflect && front && brdf > 0.0 {
-            value += self.diffuse_and_sheen(&w, base, brdf, ci, co, wh.dot(wo), uv);
+            value += self.diffuse_and_sheen(&w, base, brdf, ci, co, wh.dot(wo), at);
         }
         value
     }
@@ -266,17 +267,17 @@ impl Principled {
         ci: f32,
         co: f32,
         cos_d: f32,
-        uv: Vec2,
+        at: ShadingPoint,
     ) -> Color {
         let (ci, co) = (ci.abs(), co.abs());
-        let flatness = self.p.flatness.as_ref().map(|t| t.eval_1(uv));
+        let flatness = self.p.flatness.as_ref().map(|t| t.eval_1(at.uv));
         let shape = burley_diffuse(w.roughness, flatness, ci, co, cos_d);
         let mut value = base * (brdf * co * INV_PI * shape);
         let metallic = w.metallic.unwrap_or(0.0);
         if let Some(sheen) = &self.p.sheen {
-            let sheen = sheen.eval_1(uv);
+            let sheen = sheen.eval_1(at.uv);
             if sheen > 0.0 && 1.0 - metallic > 0.0 {
-                let tint = self.p.sheen_tint.as_ref().map(|t| t.eval_1(uv));
+                let tint = self.p.sheen_tint.as_ref().map(|t| t.eval_1(at.uv));
                 value += sheen_color(tint, base, cos_d) * (sheen * (1.0 - metallic) * co);
             }
         }

@@ -12,6 +12,7 @@ use super::fresnel::{fresnel_dielectric, reflect, refract};
 use super::principled::{half_vector, Principled, Weights};
 use super::principled_lobes::{micro_compatible, mulsign};
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::sampling::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 use glam::{Vec2, Vec3};
 
@@ -64,8 +65,8 @@ impl Principled {
     }
 
     /// Solid-angle density with which [`Principled::sample`] produces `wo`.
-    pub fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
-        let p = self.pdf_lobes(wi, wo, uv);
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> f32 {
+        let p = self.pdf_lobes(wi, wo, at);
         if p.is_finite() && p > 0.0 {
             p
         } else {
@@ -73,12 +74,12 @@ impl Principled {
         }
     }
 
-    fn pdf_lobes(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
+    fn pdf_lobes(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> f32 {
         let (ci, co) = (wi.z, wo.z);
         if ci == 0.0 || !(ci * co != 0.0) {
             return 0.0;
         }
-        let w = self.weights(uv);
+        let w = self.weights(at.uv);
         let front = ci > 0.0;
         let eta_path = if front { self.eta } else { 1.0 / self.eta };
         let is_reflect = ci * co > 0.0;
@@ -101,7 +102,7 @@ impl Principled {
             if micro_compatible(wh, wi, wo, ci, true) {
                 pdf += prob.spec_reflect * distr.pdf(wi_up, wh) * jacobian;
                 if self.has_clearcoat() {
-                    pdf += prob.clearcoat * self.clearcoat_distribution(uv).pdf(wh) * jacobian;
+                    pdf += prob.clearcoat * self.clearcoat_distribution(at.uv).pdf(wh) * jacobian;
                 }
             }
             pdf += prob.diffuse * cosine_hemisphere_pdf(wo);
@@ -114,12 +115,12 @@ impl Principled {
     /// Chooses a lobe with `u1` and draws its direction with `u2`; the weight is `eval / pdf`
     /// of the whole mixture. `None` at grazing `wi`, from the back without a transmission
     /// lobe, and when the drawn direction leaves the lobe's side.
-    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
         let ci = wi.z;
         if ci == 0.0 || !ci.is_finite() {
             return None;
         }
-        let w = self.weights(uv);
+        let w = self.weights(at.uv);
         let front = ci > 0.0;
         let bsdf = if self.has_spec_trans() { w.bsdf() } else { 0.0 };
         if !(front || bsdf > 0.0) {
@@ -131,7 +132,7 @@ impl Principled {
         let (wo, eta, is_reflect, m) = if u1 < prob.diffuse {
             (square_to_cosine_hemisphere(u2), 1.0, true, None)
         } else if u1 < prob.diffuse + prob.clearcoat {
-            let m = self.clearcoat_distribution(uv).sample(u2);
+            let m = self.clearcoat_distribution(at.uv).sample(u2);
             (reflect(wi, m), 1.0, true, Some(m))
         } else if u1 < prob.diffuse + prob.clearcoat + prob.spec_trans {
             let m = m_spec?;
@@ -158,11 +159,11 @@ impl Principled {
                 return None;
             }
         }
-        let pdf = self.pdf(wi, wo, uv);
+        let pdf = self.pdf(wi, wo, at);
         if !(pdf > 0.0) {
             return None;
         }
-        let weight = self.eval(wi, wo, uv) / pdf;
+        let weight = self.eval(wi, wo, at) / pdf;
         if !weight.is_finite() {
             return None;
         }

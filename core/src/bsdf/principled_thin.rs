@@ -23,6 +23,7 @@ use super::principled_lobes::{
     sheen_color,
 };
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::math::{Norm, INV_PI};
 use crate::sampling::warp::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 use crate::texture::Texture;
@@ -157,8 +158,8 @@ impl PrincipledThin {
     }
 
     /// `f(wi, wo) |cos theta_o|`: reflection on `wi`'s side, transmission through the sheet.
-    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
-        let r = self.eval_lobes(wi, wo, uv);
+    pub fn eval(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
+        let r = self.eval_lobes(wi, wo, at);
         if r.is_finite() {
             r
         } else {
@@ -166,12 +167,12 @@ impl PrincipledThin {
         }
     }
 
-    fn eval_lobes(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+    fn eval_lobes(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
         if wi.z == 0.0 || !(wi.z * wo.z != 0.0) {
             return Color::ZERO;
         }
-        let w = self.weights(uv);
-        let base = self.p.base_color.eval(uv);
+        let w = self.weights(at.uv);
+        let base = self.p.base_color.eval(at.uv);
         let (wi, wo) = (mulsign(wi, wi.z), mulsign(wo, wi.z));
         let (ci, co) = (wi.z, wo.z);
         let reflect = co > 0.0;
@@ -182,7 +183,7 @@ impl PrincipledThin {
             let f = fresnel_dielectric(wi.dot(wh), w.eta).f;
             if reflect && micro_compatible(wh, wi, wo, ci, true) {
                 let distr = w.reflection();
-                let tint = self.p.spec_tint.as_ref().map(|s| s.eval_1(uv));
+                let tint = self.p.spec_tint.as_ref().map(|s| s.eval_1(at.uv));
                 let f_thin = thin_fresnel(f, tint, base, wi.dot(wh), w.eta);
                 value += f_thin * (t * distr.d(wh) * distr.g(wi, wo, wh) / (4.0 * ci));
             }
@@ -194,12 +195,12 @@ impl PrincipledThin {
         }
         if reflect && t < 1.0 && d < 1.0 {
             let cos_d = wh.dot(wo);
-            let flatness = self.p.flatness.as_ref().map(|f| f.eval_1(uv));
+            let flatness = self.p.flatness.as_ref().map(|f| f.eval_1(at.uv));
             let shape = burley_diffuse(w.roughness, flatness, ci, co, cos_d);
             value += base * ((1.0 - t) * co * INV_PI * (1.0 - d) * shape);
             if let Some(sheen) = &self.p.sheen {
-                let tint = self.p.sheen_tint.as_ref().map(|s| s.eval_1(uv));
-                let s = sheen.eval_1(uv) * (1.0 - t) * (1.0 - d) * co;
+                let tint = self.p.sheen_tint.as_ref().map(|s| s.eval_1(at.uv));
+                let s = sheen.eval_1(at.uv) * (1.0 - t) * (1.0 - d) * co;
                 value += sheen_color(tint, base, cos_d) * s;
             }
         }
@@ -210,8 +211,8 @@ impl PrincipledThin {
     }
 
     /// Solid-angle density with which [`PrincipledThin::sample`] produces `wo`.
-    pub fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
-        let p = self.pdf_lobes(wi, wo, uv);
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> f32 {
+        let p = self.pdf_lobes(wi, wo, at);
         if p.is_finite() && p > 0.0 {
             p
         } else {
@@ -219,11 +220,11 @@ impl PrincipledThin {
         }
     }
 
-    fn pdf_lobes(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
+    fn pdf_lobes(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> f32 {
         if wi.z == 0.0 || !(wi.z * wo.z != 0.0) {
             return 0.0;
         }
-        let w = self.weights(uv);
+        let w = self.weights(at.uv);
         let Some([psr, pst, pdr, pdt]) = self.probabilities(&w) else {
             return 0.0;
         };
@@ -251,12 +252,12 @@ impl PrincipledThin {
 
     /// Chooses a lobe with `u1` and draws its direction with `u2` (seen from `wi`'s side);
     /// the weight is `eval / pdf` of the whole mixture.
-    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
         let ci = wi.z;
         if ci == 0.0 || !ci.is_finite() {
             return None;
         }
-        let w = self.weights(uv);
+        let w = self.weights(at.uv);
         let [psr, pst, pdr, _] = self.probabilities(&w)?;
         let wi_t = mulsign(wi, ci);
         let has_st = self.p.spec_trans.is_some();
@@ -277,11 +278,11 @@ impl PrincipledThin {
             return None;
         };
         let wo = mulsign(wo, ci);
-        let pdf = self.pdf(wi, wo, uv);
+        let pdf = self.pdf(wi, wo, at);
         if !(pdf > 0.0) {
             return None;
         }
-        let weight = self.eval(wi, wo, uv) / pdf;
+        let weight = self.eval(wi, wo, at) / pdf;
         weight.is_finite().then_some(BsdfSample {
             wo,
             weight,

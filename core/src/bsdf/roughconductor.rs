@@ -12,6 +12,7 @@ use super::fresnel::reflect;
 use super::microfacet::Microfacet;
 use super::roughness_texture::{distribution_at, RoughnessTexture};
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::math::Norm;
 use crate::texture::Texture;
 use crate::Color;
@@ -45,8 +46,8 @@ impl RoughConductor {
     }
 
     #[inline]
-    fn fresnel(&self, cos: f32, uv: Vec2) -> Color {
-        conductor_fresnel(cos, &self.eta, &self.k, uv) * self.specular_reflectance.eval(uv)
+    fn fresnel(&self, cos: f32, at: ShadingPoint) -> Color {
+        conductor_fresnel(cos, &self.eta, &self.k, at) * self.specular_reflectance.eval(at.uv)
     }
 
     /// The shape of the lobe toward `wo`, `D(h) / (4 cos theta_i)`: [`RoughConductor::eval`]
@@ -61,33 +62,33 @@ impl RoughConductor {
     }
 
     /// `f(wi, wo) cos theta_o`.
-    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+    pub fn eval(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
         let Some(h) = Self::half_vector(wi, wo) else {
             return Color::ZERO;
         };
-        let md = &distribution_at(&self.distribution, &self.roughness, uv);
+        let md = &distribution_at(&self.distribution, &self.roughness, at.uv);
         let d = md.d(h);
         if d == 0.0 {
             return Color::ZERO;
         }
         let g = md.g(wi, wo, h);
-        self.fresnel(wi.dot(h), uv) * (d * g / (4.0 * wi.z))
+        self.fresnel(wi.dot(h), at) * (d * g / (4.0 * wi.z))
     }
 
     /// Density of `sample`: the normal's density times the reflection Jacobian `1 / (4 wo.h)`.
-    pub fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> f32 {
         let Some(h) = Self::half_vector(wi, wo) else {
             return 0.0;
         };
-        distribution_at(&self.distribution, &self.roughness, uv).pdf(wi, h) / (4.0 * wo.dot(h))
+        distribution_at(&self.distribution, &self.roughness, at.uv).pdf(wi, h) / (4.0 * wo.dot(h))
     }
 
     /// Reflects `wi` about a sampled microfacet normal.
-    pub fn sample(&self, wi: Vec3, _u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, wi: Vec3, _u1: f32, u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
         if !(wi.z > 0.0) {
             return None;
         }
-        let md = &distribution_at(&self.distribution, &self.roughness, uv);
+        let md = &distribution_at(&self.distribution, &self.roughness, at.uv);
         let (m, pdf_m) = md.sample(wi, u2)?;
         let cos_im = wi.dot(m);
         let wo = reflect(wi, m);
@@ -101,7 +102,7 @@ impl RoughConductor {
         } else {
             md.g(wi, wo, m) * cos_im / (wi.z * m.z)
         };
-        let weight = self.fresnel(cos_im, uv) * g;
+        let weight = self.fresnel(cos_im, at) * g;
         (pdf.is_finite() && pdf > 0.0 && g > 0.0).then_some(BsdfSample {
             wo: wo.unit(),
             weight,
@@ -145,7 +146,7 @@ mod tests {
             ] {
                 let h = (wi + wo).unit();
                 let g = c.distribution.g(wi, wo, h);
-                let f = c.eval(wi, wo, Vec2::ZERO);
+                let f = c.eval(wi, wo, Vec2::ZERO.into());
                 let want = c.lobe(wi, wo) * g;
                 assert!(
                     (f.x - want).abs() <= 1e-5 * want,

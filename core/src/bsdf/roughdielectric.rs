@@ -30,6 +30,7 @@ use super::fresnel::{fresnel_dielectric, reflect, refract};
 use super::microfacet::Microfacet;
 use super::roughness_texture::{distribution_at, RoughnessTexture};
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::math::{sqrt, Norm};
 use crate::texture::Texture;
 use crate::Color;
@@ -114,11 +115,11 @@ impl RoughDielectric {
     }
 
     /// `f(wi, wo) |cos theta_o|`, reflection or refraction by the sides of `wi` and `wo`.
-    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+    pub fn eval(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
         let Some(p) = self.pair(wi, wo) else {
             return Color::ZERO;
         };
-        let md = &distribution_at(&self.distribution, &self.roughness, uv);
+        let md = &distribution_at(&self.distribution, &self.roughness, at.uv);
         let d = md.d(p.m);
         if d == 0.0 {
             return Color::ZERO;
@@ -126,20 +127,20 @@ impl RoughDielectric {
         let f = fresnel_dielectric(p.cos_im, self.eta).f;
         let g = md.g(wi, wo, p.m);
         if p.reflect {
-            self.specular_reflectance.eval(uv) * (f * d * g / (4.0 * wi.z.abs()))
+            self.specular_reflectance.eval(at.uv) * (f * d * g / (4.0 * wi.z.abs()))
         } else {
             let den = p.cos_im + p.eta * p.cos_om;
             let v = (1.0 - f) * d * g * (p.cos_im * p.cos_om).abs() / (wi.z.abs() * den * den);
-            self.specular_transmittance.eval(uv) * v
+            self.specular_transmittance.eval(at.uv) * v
         }
     }
 
     /// Density of `sample` at `wo`.
-    pub fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> f32 {
         let Some(p) = self.pair(wi, wo) else {
             return 0.0;
         };
-        let md = distribution_at(&self.distribution, &self.roughness, uv);
+        let md = distribution_at(&self.distribution, &self.roughness, at.uv);
         let sd = Self::sampling_distribution(&md, wi.z);
         let wi_up = if wi.z > 0.0 { wi } else { -wi };
         let f = fresnel_dielectric(p.cos_im, self.eta).f;
@@ -148,12 +149,12 @@ impl RoughDielectric {
     }
 
     /// Draws a normal, then reflects (probability `F`) or refracts through it.
-    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
         let ci = wi.z;
         if ci == 0.0 || !wi.is_finite() {
             return None;
         }
-        let md = &distribution_at(&self.distribution, &self.roughness, uv);
+        let md = &distribution_at(&self.distribution, &self.roughness, at.uv);
         let sd = Self::sampling_distribution(md, ci);
         let wi_up = if ci > 0.0 { wi } else { -wi };
         let (m, pdf_m) = sd.sample(wi_up, u2)?;
@@ -168,7 +169,7 @@ impl RoughDielectric {
                 return None;
             }
             let pdf = pdf_m * fr.f / (4.0 * cos_im.abs());
-            (wo, pdf, self.specular_reflectance.eval(uv), 1.0)
+            (wo, pdf, self.specular_reflectance.eval(at.uv), 1.0)
         } else {
             let wo = refract(wi, m, fr.cos_t, fr.eta_ti);
             if !(wo.z * ci < 0.0) {
@@ -178,7 +179,7 @@ impl RoughDielectric {
             let den = cos_im + e * wo.dot(m);
             let pdf = pdf_m * (1.0 - fr.f) * e * e * wo.dot(m).abs() / (den * den);
             let scale = fr.eta_ti * fr.eta_ti;
-            (wo, pdf, self.specular_transmittance.eval(uv) * scale, e)
+            (wo, pdf, self.specular_transmittance.eval(at.uv) * scale, e)
         };
         // f cos / pdf in closed form: the Fresnel choice and the Jacobian cancel.
         let g = if md.sample_visible {

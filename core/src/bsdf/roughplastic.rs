@@ -17,6 +17,7 @@ use super::plastic_common::{
     TABLE_RES,
 };
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::math::{Norm, INV_PI};
 use crate::sampling::warp::cosine_hemisphere_pdf;
 use crate::texture::Texture;
@@ -84,7 +85,7 @@ impl RoughPlastic {
     }
 
     /// `f(wi, wo) cos theta_o`: coating plus base, front side only.
-    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+    pub fn eval(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return Color::ZERO;
         }
@@ -92,10 +93,10 @@ impl RoughPlastic {
         let d = self.distr.d(h);
         let f = fresnel_dielectric(wi.dot(h), self.eta).f;
         let g = self.distr.g(wi, wo, h);
-        let spec = self.specular.eval(uv) * (f * d * g / (4.0 * wi.z));
+        let spec = self.specular.eval(at.uv) * (f * d * g / (4.0 * wi.z));
         let (ti, to) = (self.transmittance(wi.z), self.transmittance(wo.z));
         let base = internal_scattering(
-            self.diffuse.eval(uv),
+            self.diffuse.eval(at.uv),
             self.internal_reflectance,
             self.nonlinear,
         );
@@ -109,7 +110,7 @@ impl RoughPlastic {
 
     /// Mixture of the microfacet reflection density and the cosine density, weighted by the
     /// component probabilities.
-    pub fn pdf(&self, wi: Vec3, wo: Vec3, _uv: Vec2) -> f32 {
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, _at: ShadingPoint) -> f32 {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return 0.0;
         }
@@ -128,13 +129,13 @@ impl RoughPlastic {
 
     /// `u1` chooses the coating (a microfacet normal, then the mirror direction about it) or
     /// the base (cosine); the weight is `eval / pdf` of the whole mixture.
-    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
         if !(wi.z > 0.0) {
             return None;
         }
         let ps = coating_probability(1.0 - self.transmittance(wi.z), self.spec_weight)?;
         let wo = self.distr.sample_glossy_or_diffuse(wi, u1, u2, ps)?;
-        BsdfSample::smooth_reflection(wo, self.eval(wi, wo, uv), self.pdf(wi, wo, uv))
+        BsdfSample::smooth_reflection(wo, self.eval(wi, wo, at), self.pdf(wi, wo, at))
     }
 
     /// Both components are smooth.

@@ -66,6 +66,10 @@ impl Bsdf {
                 roughness_textures(&b.roughness, f);
             }
             Bsdf::Polarizer(b) => f(&b.transmittance),
+            Bsdf::BumpMap(b) => {
+                f(&b.height);
+                b.nested.for_each_texture(f);
+            }
         }
     }
 }

@@ -9,6 +9,7 @@
 //! Two delta components chosen with probabilities `R` and `1 - R`; the weights are the tints.
 use super::fresnel::fresnel_dielectric;
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::texture::Texture;
 use crate::Color;
 use glam::{Vec2, Vec3};
@@ -31,15 +32,15 @@ impl ThinDielectric {
         2.0 * f / (1.0 + f)
     }
     /// A delta model: always zero.
-    pub fn eval(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> Color {
+    pub fn eval(&self, _wi: Vec3, _wo: Vec3, _at: ShadingPoint) -> Color {
         Color::ZERO
     }
     /// A delta model: always zero.
-    pub fn pdf(&self, _wi: Vec3, _wo: Vec3, _uv: Vec2) -> f32 {
+    pub fn pdf(&self, _wi: Vec3, _wo: Vec3, _at: ShadingPoint) -> f32 {
         0.0
     }
     /// Mirror reflection with probability `R`, else straight through.
-    pub fn sample(&self, wi: Vec3, u1: f32, _u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, wi: Vec3, u1: f32, _u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
         if wi.z == 0.0 || !wi.is_finite() {
             return None;
         }
@@ -47,11 +48,11 @@ impl ThinDielectric {
         let (wo, weight, pdf) = if u1 < r {
             (
                 Vec3::new(-wi.x, -wi.y, wi.z),
-                self.specular_reflectance.eval(uv),
+                self.specular_reflectance.eval(at.uv),
                 r,
             )
         } else {
-            (-wi, self.specular_transmittance.eval(uv), 1.0 - r)
+            (-wi, self.specular_transmittance.eval(at.uv), 1.0 - r)
         };
         Some(BsdfSample::delta(wo, weight, pdf))
     }

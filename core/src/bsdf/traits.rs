@@ -16,6 +16,8 @@ pub struct BsdfTraits {
     pub has_smooth: bool,
     /// `Bsdf::is_lambertian`: path reuse may share the light it reflects.
     pub lambertian: bool,
+    /// Some part of the model reads the shading point's partials (`bumpmap`).
+    pub reads_geometry: bool,
 }
 
 impl BsdfTraits {

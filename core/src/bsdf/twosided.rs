@@ -4,6 +4,7 @@
 //! parameters are declared with its loader, in `scene/src/materials/basic.rs`.
 use super::model::Model;
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::Color;
 use alloc::boxed::Box;
 use glam::{Vec2, Vec3};
@@ -39,29 +40,29 @@ fn flip(v: Vec3) -> Vec3 {
 impl<B: Model> TwoSided<B> {
     /// Evaluates the side `wi` is on.
     #[inline]
-    pub fn eval(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> Color {
+    pub fn eval(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
         if wi.z >= 0.0 {
-            leaf!(&*self.front, b => b.eval(wi, wo, uv))
+            leaf!(&*self.front, b => b.eval(wi, wo, at))
         } else {
-            leaf!(&*self.back, b => b.eval(flip(wi), flip(wo), uv))
+            leaf!(&*self.back, b => b.eval(flip(wi), flip(wo), at))
         }
     }
     /// Density of the side `wi` is on.
     #[inline]
-    pub fn pdf(&self, wi: Vec3, wo: Vec3, uv: Vec2) -> f32 {
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> f32 {
         if wi.z >= 0.0 {
-            leaf!(&*self.front, b => b.pdf(wi, wo, uv))
+            leaf!(&*self.front, b => b.pdf(wi, wo, at))
         } else {
-            leaf!(&*self.back, b => b.pdf(flip(wi), flip(wo), uv))
+            leaf!(&*self.back, b => b.pdf(flip(wi), flip(wo), at))
         }
     }
     /// Samples the side `wi` is on.
     #[inline]
-    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
         if wi.z >= 0.0 {
-            leaf!(&*self.front, b => b.sample(wi, u1, u2, uv))
+            leaf!(&*self.front, b => b.sample(wi, u1, u2, at))
         } else {
-            let mut s = leaf!(&*self.back, b => b.sample(flip(wi), u1, u2, uv))?;
+            let mut s = leaf!(&*self.back, b => b.sample(flip(wi), u1, u2, at))?;
             s.wo = flip(s.wo);
             Some(s)
         }

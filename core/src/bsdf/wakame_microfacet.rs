@@ -12,6 +12,7 @@
 use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetKind};
 use super::sample::BsdfSample;
+use crate::geometry::ShadingPoint;
 use crate::math::{Norm, INV_PI};
 use crate::sampling::warp::cosine_hemisphere_pdf;
 use crate::Color;
@@ -49,7 +50,7 @@ impl WakameMicrofacet {
     }
 
     /// `f(wi, wo) cos theta_o` on the front side.
-    pub fn eval(&self, wi: Vec3, wo: Vec3, _uv: Vec2) -> Color {
+    pub fn eval(&self, wi: Vec3, wo: Vec3, _at: ShadingPoint) -> Color {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return Color::ZERO;
         }
@@ -67,7 +68,7 @@ impl WakameMicrofacet {
     }
 
     /// `ks D(h) cos theta_h / (4 h.wo) + (1 - ks) cos theta_o / pi` on the front side.
-    pub fn pdf(&self, wi: Vec3, wo: Vec3, _uv: Vec2) -> f32 {
+    pub fn pdf(&self, wi: Vec3, wo: Vec3, _at: ShadingPoint) -> f32 {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return 0.0;
         }
@@ -82,12 +83,12 @@ impl WakameMicrofacet {
     }
 
     /// `u1 < ks` samples the specular lobe, otherwise the cosine lobe.
-    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, uv: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
         if !(wi.z > 0.0) {
             return None;
         }
         let wo = self.distr.sample_glossy_or_diffuse(wi, u1, u2, self.ks)?;
-        BsdfSample::smooth_reflection(wo, self.eval(wi, wo, uv), self.pdf(wi, wo, uv))
+        BsdfSample::smooth_reflection(wo, self.eval(wi, wo, at), self.pdf(wi, wo, at))
     }
 
     /// Both lobes are smooth.

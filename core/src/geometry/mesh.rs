@@ -175,6 +175,22 @@ impl Mesh {
         let (idx, p) = self.corners(i);
         self.dpdu_of(idx, p)
     }
+    /// Mitsuba 3's position partials `(dp/du, dp/dv)` on triangle `i`: solved from the texture
+    /// coordinates (both zero where their map is degenerate), or the edges `p1 - p0`,
+    /// `p2 - p0` without them.
+    pub fn partials(&self, i: usize) -> (Vec3, Vec3) {
+        let ([i0, i1, i2], [p0, p1, p2]) = self.corners(i);
+        let (e1, e2) = (p1 - p0, p2 - p0);
+        if self.uvs.is_empty() {
+            return (e1, e2);
+        }
+        let (d0, d1) = (self.uvs[i1] - self.uvs[i0], self.uvs[i2] - self.uvs[i0]);
+        let det = d0.x * d1.y - d0.y * d1.x;
+        if det == 0.0 || !det.is_finite() {
+            return (Vec3::ZERO, Vec3::ZERO);
+        }
+        ((e1 * d1.y - e2 * d0.y) / det, (e2 * d0.x - e1 * d1.x) / det)
+    }
     /// Vertex indices and positions of triangle `i`.
     #[inline]
     fn corners(&self, i: usize) -> ([usize; 3], [Vec3; 3]) {

@@ -143,6 +143,47 @@ impl Shape {
         }
     }
 
+    /// Mitsuba 3.9.1's position partials `(dp/du, dp/dv)` at a hit on primitive `prim` of this
+    /// shape whose point is `p` (in the shape's space): a mesh solves them from its texture
+    /// coordinates ([`Mesh::partials`]); a sphere's are `2 pi r` along increasing longitude
+    /// and `pi r` along the polar angle; a disk's are the unit radial direction and `2 pi r`
+    /// along the angle, carried by its transform; a cylinder's are `2 pi r` around the axis and
+    /// the axis times the length. Only what reads them asks (`bumpmap`, the `aov` outputs),
+    /// so [`Shape::interaction`] does not compute them.
+    pub fn partials(&self, hit: &Hit, prim: &Prim, p: Vec3, disks: &[Disk]) -> (Vec3, Vec3) {
+        match (&self.kind, prim) {
+            (ShapeKind::Mesh(m), Prim::Triangle { face, .. }) => m.partials(*face as usize),
+            (ShapeKind::Sphere(s), _) => {
+                let n = ((p - s.center) / s.radius).unit_or(Vec3::Z);
+                let r = s.radius;
+                let dp_du = Vec3::new(-n.y, n.x, 0.0) * (2.0 * core::f32::consts::PI * r);
+                let rd = sqrt(n.x * n.x + n.y * n.y);
+                let dp_dv = if rd == 0.0 {
+                    Vec3::X
+                } else {
+                    Vec3::new(n.z * n.x / rd, n.z * n.y / rd, -rd)
+                };
+                (dp_du, dp_dv * (core::f32::consts::PI * r))
+            }
+            (ShapeKind::Disk(d), _) => {
+                let disk = &disks[*d as usize];
+                let r = hit.uv.norm();
+                let inv_r = if r > 0.0 { 1.0 / r } else { 0.0 };
+                let (c, s) = (hit.uv.x * inv_r, hit.uv.y * inv_r);
+                let dp_du = disk.to_world.vector(Vec3::new(c, s, 0.0));
+                let dp_dv =
+                    disk.to_world.vector(Vec3::new(-s, c, 0.0)) * (2.0 * core::f32::consts::PI * r);
+                (dp_du, dp_dv)
+            }
+            (ShapeKind::Cylinder(c), _) => {
+                let (_, _, l) = c.project(p);
+                let (_, dp_du) = c.uv_dpdu(l);
+                (dp_du, (c.axes[2] * c.length).as_vec3())
+            }
+            _ => (Vec3::ZERO, Vec3::ZERO),
+        }
+    }
+
     /// A point uniformly distributed by area (density `1 / area`).
     #[inline]
     pub(crate) fn sample_position(&self, u: Vec2, disks: &[Disk]) -> Option<PositionSample> {

@@ -11,6 +11,7 @@
 use super::mis::Heuristic;
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
 use super::unweighted_hit::cast_unweighted;
+use crate::geometry::ShadingPoint;
 use crate::light::{emission_along, sample_light, VertexSelection};
 use crate::math::Ray;
 use crate::sampling::{Sampler, Stage};
@@ -66,11 +67,16 @@ impl DirectIntegrator {
         let bsdf_index = scene.shapes[si.shape as usize].bsdf;
         let bsdf = &scene.bsdfs[bsdf_index as usize];
         let traits = scene.bsdf_traits(bsdf_index);
+        let g = scene.partials(bsdf_index, &si, &ray);
+        let at = ShadingPoint {
+            uv: si.uv,
+            partials: g.as_ref(),
+        };
         let wi = si.frame.to_local(si.wi);
         let (ne, nb) = (self.emitter_samples as f32, self.bsdf_samples as f32);
         let nee = scene.features.has_emitters && traits.has_smooth;
         let sel = if nee && self.emitter_samples > 0 {
-            VertexSelection::new(scene.light_bounds(), &si, bsdf, wi)
+            VertexSelection::new(scene.light_bounds(), &si, bsdf, at, wi)
         } else {
             None
         };
@@ -79,9 +85,17 @@ impl DirectIntegrator {
             for i in 0..self.emitter_samples {
                 // Emitter sample i reads the emitter dimensions of bounce i of the layout.
                 sampler.start_stage(i, Stage::Light);
-                if let Some(ls) =
-                    sample_light(scene, &si, bsdf, wi, sampler, want_pdf, sel.as_ref(), probe)
-                {
+                if let Some(ls) = sample_light(
+                    scene,
+                    &si,
+                    bsdf,
+                    at,
+                    wi,
+                    sampler,
+                    want_pdf,
+                    sel.as_ref(),
+                    probe,
+                ) {
                     let w = if ls.delta || self.bsdf_samples == 0 {
                         1.0
                     } else {
@@ -101,7 +115,7 @@ impl DirectIntegrator {
         for j in 0..self.bsdf_samples {
             sampler.start_stage(j, Stage::Bsdf);
             let (u1, u2) = traits.draw_sample_inputs(sampler);
-            let Some(bs) = bsdf.sample(wi, u1, u2, si.uv) else {
+            let Some(bs) = bsdf.sample(wi, u1, u2, at) else {
                 probe.bsdf_sample(None, Vec3::ZERO, Color::ZERO);
                 continue;
             };

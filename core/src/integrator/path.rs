@@ -25,7 +25,7 @@
 use super::mis::Heuristic;
 use super::path_state::{PathState, Prev};
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
-use crate::geometry::Interaction;
+use crate::geometry::{Interaction, ShadingPoint};
 use crate::light::{emission_along, sample_light, VertexSelection};
 use crate::math::{Norm, Ray};
 use crate::sampling::{Sampler, Stage};
@@ -291,18 +291,31 @@ impl PathIntegrator {
         let bsdf = &scene.bsdfs[shape.bsdf as usize];
         let traits = scene.bsdf_traits(shape.bsdf);
         let wi = si.frame.to_local(si.wi);
+        let g = scene.partials(shape.bsdf, si, &path.ray);
+        let at = ShadingPoint {
+            uv: si.uv,
+            partials: g.as_ref(),
+        };
         let nee = strategy != Strategy::Bsdf && features.has_emitters && traits.has_smooth;
         let sel = if nee {
-            VertexSelection::new(scene.light_bounds(), si, bsdf, wi)
+            VertexSelection::new(scene.light_bounds(), si, bsdf, at, wi)
         } else {
             None
         };
         if nee {
             let want_pdf = strategy == Strategy::Mis;
             sampler.start_stage(depth, Stage::Light);
-            if let Some(ls) =
-                sample_light(scene, si, bsdf, wi, sampler, want_pdf, sel.as_ref(), probe)
-            {
+            if let Some(ls) = sample_light(
+                scene,
+                si,
+                bsdf,
+                at,
+                wi,
+                sampler,
+                want_pdf,
+                sel.as_ref(),
+                probe,
+            ) {
                 let w = match (ls.delta, strategy) {
                     (true, _) | (_, Strategy::Emitter) => 1.0,
                     (_, Strategy::Half) => 0.5,
@@ -324,7 +337,7 @@ impl PathIntegrator {
         }
         sampler.start_stage(depth, Stage::Bsdf);
         let (u1, u2) = traits.draw_sample_inputs(sampler);
-        let Some(bs) = bsdf.sample(wi, u1, u2, si.uv) else {
+        let Some(bs) = bsdf.sample(wi, u1, u2, at) else {
             probe.bsdf_sample(None, Vec3::ZERO, path.throughput);
             probe.end(PathEnd::BsdfSampleFailed);
             return false;

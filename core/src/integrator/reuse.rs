@@ -31,7 +31,7 @@ use super::path::{PathIntegrator, Strategy, BSDF, EMITTER, HALF, MIS};
 use super::path_state::PathState;
 use super::probe::{Probe, RayKind};
 use super::reuse_halves::Prefix;
-use crate::geometry::Interaction;
+use crate::geometry::{Interaction, ShadingPoint};
 use crate::math::{offset_ray_origin, Ray};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
@@ -153,7 +153,13 @@ fn gather<P: Probe>(
     let mut terms = [(Color::ZERO, 0.0f32, 0.0f32); GROUP];
     let mut sum = 0.0f32;
     for (m, p) in pre.iter().enumerate() {
-        let Some((xm, bsdf, wi)) = p.x else { continue };
+        let Some((xm, bsdf, wi, g)) = p.x else {
+            continue;
+        };
+        let at = ShadingPoint {
+            uv: xm.uv,
+            partials: g.as_ref(),
+        };
         if side(&xm) != own_side {
             continue;
         }
@@ -166,7 +172,7 @@ fn gather<P: Probe>(
         let g = y.ng.dot(dir).abs() / dist2;
         let wo = xm.frame.to_local(dir);
         let bsdf = &scene.bsdfs[bsdf as usize];
-        let pdf = bsdf.pdf(wi, wo, xm.uv) * g;
+        let pdf = bsdf.pdf(wi, wo, at) * g;
         if !(pdf > 0.0 && pdf.is_finite()) {
             continue;
         }
@@ -179,7 +185,7 @@ fn gather<P: Probe>(
                 continue;
             }
         }
-        terms[m] = (bsdf.eval(wi, wo, xm.uv), g, pdf);
+        terms[m] = (bsdf.eval(wi, wo, at), g, pdf);
         sum += pdf;
     }
     if !(sum > 0.0) {

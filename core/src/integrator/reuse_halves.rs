@@ -6,7 +6,7 @@
 use super::path::{alive, PathIntegrator};
 use super::path_state::PathState;
 use super::probe::{PathEnd, Probe};
-use crate::geometry::Interaction;
+use crate::geometry::{Interaction, Partials};
 use crate::math::Ray;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
@@ -17,9 +17,9 @@ use glam::Vec3;
 /// bounce reached with the state to go on from it.
 #[derive(Clone, Copy, Default)]
 pub(super) struct Prefix {
-    /// First vertex, its BSDF index and `wi` in its shading frame (set when it has a smooth
+    /// First vertex, its BSDF index, `wi` in its shading frame and its partials (for a BSDF that reads them) (set when it has a smooth
     /// component and the path sampled its BSDF there).
-    pub x: Option<(Interaction, u32, Vec3)>,
+    pub x: Option<(Interaction, u32, Vec3, Option<Partials>)>,
     /// Whether the bounce from `x` took a delta component.
     pub delta: bool,
     /// The second vertex (its emission already counted) and the path's state there.
@@ -49,7 +49,8 @@ impl PathIntegrator {
         };
         let bsdf = scene.shapes[x.shape as usize].bsdf;
         if scene.bsdf_traits(bsdf).has_smooth {
-            prefix.x = Some((x, bsdf, x.frame.to_local(x.wi)));
+            let g = scene.partials(bsdf, &x, &path.ray);
+            prefix.x = Some((x, bsdf, x.frame.to_local(x.wi), g));
         }
         if !self.scatter::<ST, S, P>(scene, &x, &mut path, &mut result, sampler, probe)
             || !self.roulette(&mut path, sampler, probe, |t| t)

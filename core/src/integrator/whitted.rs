@@ -9,6 +9,7 @@
 //! the recursion adds `Le` at each hit.
 use super::probe::{PathEnd, Probe, RayKind};
 use super::unweighted_hit::cast_unweighted;
+use crate::geometry::ShadingPoint;
 use crate::light::sample_light;
 use crate::math::Ray;
 use crate::sampling::{Sampler, Stage};
@@ -48,11 +49,16 @@ impl WhittedIntegrator {
             let bsdf_index = scene.shapes[si.shape as usize].bsdf;
             let bsdf = &scene.bsdfs[bsdf_index as usize];
             let traits = scene.bsdf_traits(bsdf_index);
+            let g = scene.partials(bsdf_index, &si, &ray);
+            let at = ShadingPoint {
+                uv: si.uv,
+                partials: g.as_ref(),
+            };
             let wi = si.frame.to_local(si.wi);
             if traits.has_smooth {
                 if scene.features.has_emitters {
                     sampler.start_stage(depth, Stage::Light);
-                    let ls = sample_light(scene, &si, bsdf, wi, sampler, false, None, probe);
+                    let ls = sample_light(scene, &si, bsdf, at, wi, sampler, false, None, probe);
                     if let Some(ls) = ls {
                         result += throughput * ls.value;
                         probe.light(&ls, 1.0, throughput * ls.value);
@@ -70,7 +76,7 @@ impl WhittedIntegrator {
             }
             sampler.start_stage(depth, Stage::Bsdf);
             let (u1, u2) = traits.draw_sample_inputs(sampler);
-            let Some(bs) = bsdf.sample(wi, u1, u2, si.uv) else {
+            let Some(bs) = bsdf.sample(wi, u1, u2, at) else {
                 probe.bsdf_sample(None, glam::Vec3::ZERO, throughput);
                 probe.end(PathEnd::BsdfSampleFailed);
                 return result;

@@ -6,7 +6,7 @@ use super::sample::LightSample;
 use super::vertex::VertexSelection;
 use crate::bsdf::Bsdf;
 use crate::emitter::Emitter;
-use crate::geometry::Interaction;
+use crate::geometry::{Interaction, ShadingPoint};
 use crate::integrator::{Probe, RayKind};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
@@ -14,7 +14,7 @@ use crate::Color;
 use glam::Vec3;
 
 /// Picks a light (by `sel`, the vertex's own selection, else by the scene's), samples it from
-/// `si`, evaluates the BSDF and traces the shadow ray. `None` when
+/// `si`, evaluates the BSDF (at `at`, [`crate::bsdf::BsdfTraits::shading_point`]) and traces the shadow ray. `None` when
 /// nothing arrives (no light, back side, blocked, zero BSDF). The BSDF density is evaluated only
 /// when `want_bsdf_pdf` (callers that do not weigh strategies by density skip its cost; it
 /// feeds no other value, so skipping it changes nothing else).
@@ -24,6 +24,7 @@ pub fn sample_light<S: Sampler, P: Probe>(
     scene: &Scene,
     si: &Interaction,
     bsdf: &Bsdf,
+    at: ShadingPoint,
     wi: Vec3,
     sampler: &mut S,
     want_bsdf_pdf: bool,
@@ -45,7 +46,7 @@ pub fn sample_light<S: Sampler, P: Probe>(
     probe.emitter_sample(idx, sel_pdf, es.as_ref());
     let es = es?;
     let wo = si.frame.to_local(es.wo);
-    let f = bsdf.eval(wi, wo, si.uv);
+    let f = bsdf.eval(wi, wo, at);
     probe.bsdf_eval(f);
     if f == Color::ZERO {
         return None;
@@ -63,7 +64,7 @@ pub fn sample_light<S: Sampler, P: Probe>(
     let bsdf_pdf = if es.delta || !want_bsdf_pdf {
         0.0
     } else {
-        let pdf = bsdf.pdf(wi, wo, si.uv);
+        let pdf = bsdf.pdf(wi, wo, at);
         probe.bsdf_pdf(pdf);
         pdf
     };

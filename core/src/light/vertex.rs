@@ -11,7 +11,7 @@
 use super::bound::LightBound;
 use crate::bsdf::Bsdf;
 use crate::emitter::luminance;
-use crate::geometry::Interaction;
+use crate::geometry::{Interaction, ShadingPoint};
 use glam::Vec3;
 
 /// Most lights a vertex selection weighs one by one.
@@ -31,13 +31,14 @@ pub struct VertexSelection {
 }
 
 impl VertexSelection {
-    /// The selection at `si` (BSDF `bsdf`, local incident direction `wi`) from the lights'
+    /// The selection at `si` (BSDF `bsdf` asked at `at`, local incident direction `wi`) from the lights'
     /// bounds; `None` without bounds (the scene's own choice then applies).
     #[inline(always)]
     pub fn new(
         bounds: &[LightBound],
         si: &Interaction,
         bsdf: &Bsdf,
+        at: ShadingPoint,
         wi: Vec3,
     ) -> Option<VertexSelection> {
         // Checked where the caller is, so that scenes without a choice to make (one light, or
@@ -45,7 +46,7 @@ impl VertexSelection {
         if !(2..=MAX_VERTEX_LIGHTS).contains(&bounds.len()) {
             return None;
         }
-        Some(Self::from_bounds(bounds, si, bsdf, wi))
+        Some(Self::from_bounds(bounds, si, bsdf, at, wi))
     }
 
     /// [`VertexSelection::new`] for 2 to [`MAX_VERTEX_LIGHTS`] bounds.
@@ -54,6 +55,7 @@ impl VertexSelection {
         bounds: &[LightBound],
         si: &Interaction,
         bsdf: &Bsdf,
+        at: ShadingPoint,
         wi: Vec3,
     ) -> VertexSelection {
         let n = bounds.len();
@@ -71,7 +73,7 @@ impl VertexSelection {
                 }
             }
             Bsdf::RoughConductor(c) => c.lobe(wi, wo),
-            _ => luminance(bsdf.eval(wi, wo, si.uv)),
+            _ => luminance(bsdf.eval(wi, wo, at)),
         };
         let mut weight = [0.0f32; MAX_VERTEX_LIGHTS];
         let mut sum = 0.0f32;
@@ -172,7 +174,7 @@ mod tests {
     fn weighs_by_estimate_with_an_even_share() {
         let (si, bsdf) = vertex();
         let bounds = [point(Vec3::Z, 4.0), point(Vec3::Z * 2.0, 4.0)];
-        let sel = VertexSelection::new(&bounds, &si, &bsdf, Vec3::Z).unwrap();
+        let sel = VertexSelection::new(&bounds, &si, &bsdf, Vec2::ZERO.into(), Vec3::Z).unwrap();
         assert!((sel.pdf(0) - 0.74).abs() < 1e-6, "{}", sel.pdf(0));
         assert!((sel.pdf(1) - 0.26).abs() < 1e-6, "{}", sel.pdf(1));
         assert_eq!(sel.pick(0.0).0, 0);
@@ -191,14 +193,16 @@ mod tests {
             [point(Vec3::Z, 1.0), point(-Vec3::Z, 1.0)],
             [point(Vec3::Z, 1.0), point(Vec3::Z, f32::NAN)],
         ] {
-            let sel = VertexSelection::new(&bounds, &si, &bsdf, Vec3::Z).unwrap();
+            let sel =
+                VertexSelection::new(&bounds, &si, &bsdf, Vec2::ZERO.into(), Vec3::Z).unwrap();
             assert!((sel.pdf(1) - 0.1).abs() < 1e-6, "{}", sel.pdf(1));
         }
         for bounds in [
             [point(Vec3::Z, 1.0), point(-Vec3::Z, f32::INFINITY)],
             [point(-Vec3::Z, 1.0), point(-Vec3::Z * 2.0, 1.0)],
         ] {
-            let sel = VertexSelection::new(&bounds, &si, &bsdf, Vec3::Z).unwrap();
+            let sel =
+                VertexSelection::new(&bounds, &si, &bsdf, Vec2::ZERO.into(), Vec3::Z).unwrap();
             assert_eq!((sel.pdf(0), sel.pdf(1)), (0.5, 0.5), "{bounds:?}");
         }
     }
@@ -208,8 +212,22 @@ mod tests {
     fn only_two_to_eight_lights() {
         let (si, bsdf) = vertex();
         let b = point(Vec3::Z, 1.0);
-        assert!(VertexSelection::new(&[b], &si, &bsdf, Vec3::Z).is_none());
-        assert!(VertexSelection::new(&[b; MAX_VERTEX_LIGHTS + 1], &si, &bsdf, Vec3::Z).is_none());
-        assert!(VertexSelection::new(&[b; MAX_VERTEX_LIGHTS], &si, &bsdf, Vec3::Z).is_some());
+        assert!(VertexSelection::new(&[b], &si, &bsdf, Vec2::ZERO.into(), Vec3::Z).is_none());
+        assert!(VertexSelection::new(
+            &[b; MAX_VERTEX_LIGHTS + 1],
+            &si,
+            &bsdf,
+            Vec2::ZERO.into(),
+            Vec3::Z
+        )
+        .is_none());
+        assert!(VertexSelection::new(
+            &[b; MAX_VERTEX_LIGHTS],
+            &si,
+            &bsdf,
+            Vec2::ZERO.into(),
+            Vec3::Z
+        )
+        .is_some());
     }
 }

@@ -162,6 +162,35 @@ impl Bitmap {
         self.eval(uv).dot(LUMINANCE)
     }
 
+    /// The gradient of [`Bitmap::eval_1`] with respect to `(u, v)`, as Mitsuba 3.9.1's
+    /// `eval_1_grad` gives it: the derivative of the bilinear interpolation of the four
+    /// luminances around `uv` along the pixel axes, carried back through `to_uv` by its
+    /// transpose and multiplied by the resolution `(W, H)` (exact for a `to_uv` that does not
+    /// mix `u` and `v`, or for a square image). Zero with `nearest` filtering (the lookup is
+    /// piecewise constant) and where `uv` is not finite.
+    pub fn eval_1_grad(&self, uv: Vec2) -> Vec2 {
+        if self.filter == FilterType::Nearest {
+            return Vec2::ZERO;
+        }
+        let uv = self.to_uv.apply(uv);
+        if !uv.is_finite() {
+            return Vec2::ZERO;
+        }
+        let uv = uv.clamp(Vec2::splat(-1.0e9), Vec2::splat(1.0e9));
+        let (w, h) = (self.width as f32, self.height as f32);
+        let (x, y) = (uv.x * w - 0.5, uv.y * h - 0.5);
+        let (xf, yf) = (libm::floorf(x), libm::floorf(y));
+        let (fx, fy) = (x - xf, y - yf);
+        let (x0, y0) = (index(xf), index(yf));
+        let l = |dx: i64, dy: i64| self.texel(x0 + dx, y0 + dy).dot(LUMINANCE);
+        let (f00, f10, f01, f11) = (l(0, 0), l(1, 0), l(0, 1), l(1, 1));
+        let d_x = (1.0 - fy) * (f10 - f00) + fy * (f11 - f01);
+        let d_y = (1.0 - fx) * (f01 - f00) + fx * (f11 - f10);
+        let [a, b, _] = self.to_uv.row_u;
+        let [d, e, _] = self.to_uv.row_v;
+        Vec2::new(w * (a * d_x + d * d_y), h * (b * d_x + e * d_y))
+    }
+
     /// The mean of the pixels.
     pub(crate) fn mean_value(&self) -> Color {
         let sum = self

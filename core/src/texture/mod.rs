@@ -59,6 +59,17 @@ impl Texture {
             Texture::Checkerboard(c) => c.eval_1(uv),
         }
     }
+    /// The gradient of [`Texture::eval_1`] with respect to `(u, v)` (what `bumpmap` reads):
+    /// zero for a constant, the bilinear lookup's for a bitmap ([`Bitmap::eval_1_grad`]), and
+    /// zero for a checkerboard, which is constant almost everywhere. Mitsuba 3.9.1 implements
+    /// it for bitmaps only; the scene loader refuses a checkerboard where a gradient is read.
+    #[inline]
+    pub fn eval_1_grad(&self, uv: Vec2) -> Vec2 {
+        match self {
+            Texture::Bitmap(b) => b.eval_1_grad(uv),
+            Texture::Constant(_) | Texture::Checkerboard(_) => Vec2::ZERO,
+        }
+    }
     /// The mean colour over one period of the texture (of the image's pixels, of the two
     /// checkerboard colours' means): a power estimate for lights, not a lookup.
     pub(crate) fn mean_value(&self) -> Color {

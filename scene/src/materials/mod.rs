@@ -75,6 +75,14 @@ mod tests {
             Kind::Bsdf,
             build_bsdf,
             |name| {
+                if name == "bumpmap" {
+                    return format!(
+                        "<bsdf type=\"diffuse\"/><texture type=\"bitmap\"><string \
+                         name=\"filename\" value=\"{}/../scenes/textures/tess_grey.png\"/>\
+                         </texture>",
+                        env!("CARGO_MANIFEST_DIR")
+                    );
+                }
                 match name {
                     "twosided" | "mask" => "<bsdf type=\"diffuse\"/>",
                     "normalmap" => {

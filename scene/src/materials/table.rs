@@ -27,6 +27,7 @@ pub static BSDFS: &[BsdfPlugin] = &[
     basic::MASK,
     polarized::POLARIZER,
     maps::NORMALMAP_PLUGIN,
+    maps::BUMPMAP_PLUGIN,
     wakame::MIRROR,
     wakame::MICROFACET,
     chalmers::BLINNPHONG,

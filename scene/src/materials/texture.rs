@@ -64,7 +64,7 @@ pub(crate) type TexturePlugin = Plugin<fn(&Object, bool) -> Result<Texture>>;
 pub static TEXTURES: &[TexturePlugin] = &[BITMAP, CHECKERBOARD];
 
 /// Builds a `<texture>` object and reports its unused parameters.
-fn build_texture(obj: &Object, unit: bool) -> Result<Texture> {
+pub(crate) fn build_texture(obj: &Object, unit: bool) -> Result<Texture> {
     let plugin = plugin::find(TEXTURES, "texture", obj)?;
     let t = (plugin.build)(obj, unit)?;
     plugin.check_unused(obj)?;
