@@ -18,6 +18,7 @@ pub mod microfacet;
 mod mirror;
 mod model;
 mod normalmap;
+mod null;
 pub mod perturbed;
 mod plastic;
 pub mod plastic_common;
@@ -48,6 +49,7 @@ pub use mask::Mask;
 pub use mirror::Mirror;
 pub use model::Model;
 pub use normalmap::NormalMap;
+pub use null::Null;
 pub use plastic::Plastic;
 pub use polarizer::Polarizer;
 pub use pplastic::PolarizedPlastic;
@@ -122,6 +124,8 @@ pub enum Bsdf {
     PolarizedPlastic(PolarizedPlastic),
     /// Mitsuba 3's linear polarizer as unpolarized light sees it: a pass-through (`polarizer`).
     Polarizer(Polarizer),
+    /// A surface light passes through unchanged, bounding a medium (`null`).
+    Null(Null),
 }
 
 macro_rules! dispatch {
@@ -147,6 +151,7 @@ macro_rules! dispatch {
             Bsdf::PrincipledThin($b) => $e,
             Bsdf::PolarizedPlastic($b) => $e,
             Bsdf::Polarizer($b) => $e,
+            Bsdf::Null($b) => $e,
         }
     };
 }
@@ -186,7 +191,9 @@ impl Bsdf {
     fn own_inputs(&self) -> (bool, bool) {
         match self {
             Bsdf::Diffuse(_) | Bsdf::RoughConductor(_) | Bsdf::BlinnPhongMetal(_) => (false, true),
-            Bsdf::Conductor(_) | Bsdf::Mirror(_) | Bsdf::Polarizer(_) => (false, false),
+            Bsdf::Conductor(_) | Bsdf::Mirror(_) | Bsdf::Polarizer(_) | Bsdf::Null(_) => {
+                (false, false)
+            }
             Bsdf::Dielectric(_) | Bsdf::ThinDielectric(_) => (true, false),
             Bsdf::TwoSided(_) => self.nested_inputs(),
             _ => (true, true),
