@@ -8,7 +8,9 @@
 //! the file; each test has a control (the same samples against a wrong density or closed form)
 //! that must be rejected.
 use glam::Vec3;
-use tessera_core::medium::{sample_free_flight, HenyeyGreenstein, Isotropic, PhaseFunction};
+use tessera_core::medium::{
+    sample_free_flight, ChannelRatios, HenyeyGreenstein, Isotropic, PhaseFunction,
+};
 use tessera_core::Color;
 use tessera_lab::stats::{
     chi2_test, sidak_alpha, t_test_mean, Chi2Result, Moments, Pcg32, SphereChi2,
@@ -140,7 +142,8 @@ fn distances_chi2(claimed: Color, seed: u64) -> Chi2Result {
     let mut observed = vec![0.0; BINS + 1];
     for _ in 0..n {
         let (uc, u) = (rng.next_f32(), rng.next_f32());
-        let ff = sample_free_flight(SIGMA_T, SIGMA_T * ALBEDO, T_MAX, uc, u);
+        let channel = ChannelRatios::new(uc).channel;
+        let ff = sample_free_flight(SIGMA_T, SIGMA_T * ALBEDO, T_MAX, channel, u);
         let cell = if ff.scattered {
             assert!(ff.t >= 0.0 && ff.t < T_MAX, "{}", ff.t);
             ((ff.t / T_MAX * BINS as f32) as usize).min(BINS - 1)
@@ -184,11 +187,13 @@ fn weights_t_tests(claimed: Color) -> Vec<(String, f64)> {
     let mut band = [Moments::new(), Moments::new(), Moments::new()];
     for _ in 0..1_000_000 {
         let (uc, u) = (rng.next_f32(), rng.next_f32());
-        let ff = sample_free_flight(SIGMA_T, SIGMA_T * ALBEDO, T_MAX, uc, u);
+        let channel = ChannelRatios::new(uc).channel;
+        let ff = sample_free_flight(SIGMA_T, SIGMA_T * ALBEDO, T_MAX, channel, u);
+        let w = ff.mixture_weight();
         let in_band = ff.scattered && ff.t >= 0.2 && ff.t < 0.7;
         for k in 0..3 {
-            pass[k].push(if ff.scattered { 0.0 } else { f64::from(ff.weight[k]) });
-            band[k].push(if in_band { f64::from(ff.weight[k]) } else { 0.0 });
+            pass[k].push(if ff.scattered { 0.0 } else { f64::from(w[k]) });
+            band[k].push(if in_band { f64::from(w[k]) } else { 0.0 });
         }
     }
     let mut out = Vec::new();
@@ -225,8 +230,61 @@ fn grey_extinction_weights_are_albedo_and_one() {
     let a = Color::new(0.3, 0.6, 0.9);
     for i in 0..100 {
         let u = (i as f32 + 0.5) / 100.0;
-        let ff = sample_free_flight(s, s * a, 1.0, 0.4, u);
+        let ff = sample_free_flight(s, s * a, 1.0, 1, u);
         let want = if ff.scattered { a } else { Color::ONE };
-        assert!((ff.weight - want).abs().max_element() < 1e-5, "{ff:?}");
+        let mut ratios = ChannelRatios::new(0.4);
+        let w = ratios.record(&ff);
+        assert!((w - want).abs().max_element() < 1e-5, "{ff:?}");
+        assert!((ff.mixture_weight() - want).abs().max_element() < 1e-5, "{ff:?}");
+        assert_eq!(ratios.weight(), 1.0);
     }
+}
+
+/// Two segments in a row, the way a path meets them (the channel chosen once, the ratios kept
+/// along the path): the estimate of "pass a segment of length 0.8, then collide within
+/// [0.2, 0.7) of the next" for channel j, `exp(-0.8 sigma_j) albedo_j (exp(-0.2 sigma_j) -
+/// exp(-0.7 sigma_j))`, t-tested per channel, with the control against sigma_t 5% high.
+fn path_t_tests(claimed: Color) -> Vec<(String, f64)> {
+    let mut rng = Pcg32::new(1234);
+    let mut m = [Moments::new(), Moments::new(), Moments::new()];
+    for _ in 0..1_000_000 {
+        let mut ratios = ChannelRatios::new(rng.next_f32());
+        let first = sample_free_flight(SIGMA_T, SIGMA_T * ALBEDO, 0.8, ratios.channel, rng.next_f32());
+        let mut throughput = ratios.record(&first);
+        let mut hit = !first.scattered;
+        if hit {
+            let second =
+                sample_free_flight(SIGMA_T, SIGMA_T * ALBEDO, 10.0, ratios.channel, rng.next_f32());
+            throughput *= ratios.record(&second);
+            hit = second.scattered && second.t >= 0.2 && second.t < 0.7;
+        }
+        let w = throughput * ratios.weight();
+        for k in 0..3 {
+            m[k].push(if hit { f64::from(w[k]) } else { 0.0 });
+            assert!(!hit || w[k] <= 3.0 * ALBEDO[k] + 1e-5, "weight {w} above its bound");
+        }
+    }
+    (0..3)
+        .map(|k| {
+            let s = f64::from(claimed[k]);
+            let want = (-0.8 * s).exp() * f64::from(ALBEDO[k]) * ((-0.2 * s).exp() - (-0.7 * s).exp());
+            let r = t_test_mean(&m[k], want);
+            (format!("two segments, channel {k}: {r}"), r.p_value)
+        })
+        .collect()
+}
+
+#[test]
+fn channel_ratios_along_a_path_match_beer_lambert() {
+    let alpha = sidak_alpha(0.01, 3);
+    for (what, p) in path_t_tests(SIGMA_T) {
+        println!("{what}");
+        assert!(p >= alpha, "{what}");
+    }
+    let control = path_t_tests(SIGMA_T * 1.05);
+    let worst = control.iter().map(|c| c.1).fold(1.0, f64::min);
+    for (what, _) in &control {
+        println!("control {what}");
+    }
+    assert!(worst < 1e-6, "control passed: {control:?}");
 }

@@ -9,7 +9,8 @@
 //! - Russian roulette once the depth exceeds `rr_depth` (survival `min(max throughput * eta^2,
 //!   0.95)`), checked at every step as Mitsuba 3 does;
 //! - the ray is cast; inside a medium a free flight is sampled (`medium::sample_free_flight`)
-//!   up to the surface it meets. A collision is a real scattering event: the depth grows, the
+//!   up to the surface it meets, from the colour channel the path chose when it started, and
+//!   weighted over the three channels along the whole path (`medium::ChannelRatios`). A collision is a real scattering event: the depth grows, the
 //!   emitters are sampled (when the medium's `sample_emitters` is set) with the phase function
 //!   as the scattering factor, and the phase function samples the next direction;
 //! - at a surface (or on escaping), emitted light is added; then a `null` surface is crossed
@@ -29,7 +30,7 @@ use crate::bsdf::Bsdf;
 use crate::geometry::Interaction;
 use crate::light::emission_along;
 use crate::math::{Frame, Norm, Ray};
-use crate::medium::{sample_free_flight, Medium};
+use crate::medium::{sample_free_flight, ChannelRatios, Medium};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
 use crate::Color;
@@ -111,13 +112,21 @@ impl VolPathIntegrator {
         let mut specular_chain = !self.hide_emitters;
         let mut last: Option<LastScatter> = None;
         let mut first_ray = true;
+        // The channel free flights are drawn from, chosen once per path (only with media).
+        let mut channels = if scene.media.is_empty() {
+            ChannelRatios::new(0.0)
+        } else {
+            ChannelRatios::new(sampler.next_1d())
+        };
+        // The throughput's combined weight over the channels (1 until a chromatic medium).
+        let mut mix = 1.0f32;
         loop {
-            if throughput == Color::ZERO || !throughput.is_finite() {
+            if throughput == Color::ZERO || !throughput.is_finite() || mix == 0.0 {
                 probe.end(PathEnd::ZeroThroughput);
                 break;
             }
             if depth > self.rr_depth {
-                let q = (throughput.max_element() * eta * eta).min(0.95);
+                let q = (throughput.max_element() * mix * eta * eta).min(0.95);
                 let survived = sampler.next_1d() < q;
                 if survived {
                     throughput /= q;
@@ -145,9 +154,10 @@ impl VolPathIntegrator {
             if let Some(m) = medium {
                 let Medium::Homogeneous(h) = &scene.media.media[m as usize];
                 let t_max = hit.as_ref().map_or(f32::INFINITY, |si| si.t * len);
-                let (uc, ud) = (sampler.next_1d(), sampler.next_1d());
-                let ff = sample_free_flight(h.sigma_t, h.sigma_s(), t_max, uc, ud);
-                throughput *= ff.weight;
+                let u = sampler.next_1d();
+                let ff = sample_free_flight(h.sigma_t, h.sigma_s(), t_max, channels.channel, u);
+                throughput *= channels.record(&ff);
+                mix = channels.weight();
                 if ff.scattered {
                     probe.medium(MediumEvent::Scatter);
                     depth += 1;
@@ -166,7 +176,7 @@ impl VolPathIntegrator {
                             {
                                 let f = phase.eval(-d, ml.wo);
                                 let w = if ml.delta { 1.0 } else { power(ml.pdf, f) };
-                                let c = throughput * ml.value * (f * w);
+                                let c = throughput * ml.value * (f * w * mix);
                                 result += c;
                             }
                         }
@@ -220,7 +230,7 @@ impl VolPathIntegrator {
                             probe.mis_weight();
                             power(prev_pdf, light_pdf)
                         };
-                        let c = throughput * le * w;
+                        let c = throughput * le * (w * mix);
                         result += c;
                         probe.emission(le, w, c);
                     },
@@ -258,7 +268,7 @@ impl VolPathIntegrator {
                             probe.mis_weight();
                             power(ml.pdf, pdf)
                         };
-                        result += throughput * f * ml.value * w;
+                        result += throughput * f * ml.value * (w * mix);
                     }
                 }
             }

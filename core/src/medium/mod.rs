@@ -16,7 +16,7 @@ mod isotropic;
 mod media;
 mod phase;
 
-pub use free_flight::{sample_free_flight, FreeFlight};
+pub use free_flight::{sample_free_flight, ChannelRatios, FreeFlight};
 pub use hg::HenyeyGreenstein;
 pub use homogeneous::Homogeneous;
 pub use isotropic::Isotropic;
