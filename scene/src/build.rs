@@ -61,7 +61,11 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
                 acc.names.emitters.push(obj.plugin.clone());
             }
             // Declared to be referenced (`<ref>`); built where it is used.
-            Kind::Texture | Kind::Medium => {}
+            Kind::Texture => {}
+            // Built here, so that a medium nobody refers to is still checked.
+            Kind::Medium => {
+                acc.media.index_of(obj)?;
+            }
             Kind::Shape if obj.plugin == SHAPEGROUP.name => {
                 groups.group_of(obj, &mut |o| add_shape(o, &mut acc, true))?;
             }

@@ -45,6 +45,14 @@ const SAMPLE_EMITTERS: Param = Param::boolean(
     "whether scattering events in the medium sample emitters (shadow rays from inside it)",
 );
 
+const HAS_SPECTRAL_EXTINCTION: Param = Param::boolean(
+    "has_spectral_extinction",
+    true,
+    "has no effect: Mitsuba 3's hint that sigma_t differs per channel; free flights are weighed \
+     over the channels either way",
+)
+.ignored();
+
 /// The phase function nested in `obj` (default `isotropic`); one at most.
 fn nested_phase(obj: &Object) -> Result<PhaseFunction> {
     let mut phases = obj.children_of(Kind::Phase);
@@ -73,9 +81,11 @@ pub(crate) const HOMOGENEOUS: MediumPlugin = Plugin {
           function. A shape bounds it by naming it as its interior or exterior (with the `null` \
           BSDF for an invisible boundary); a sensor names the medium it sits in. Rendered by \
           `volpath`.",
-    params: &[SIGMA_T, ALBEDO, SCALE, SAMPLE_EMITTERS],
+    params: &[SIGMA_T, ALBEDO, SCALE, SAMPLE_EMITTERS, HAS_SPECTRAL_EXTINCTION],
     nested: "an optional <phase> (default isotropic)",
     build: |obj| {
+        // Checked and marked read; its declared warning is all it does.
+        HAS_SPECTRAL_EXTINCTION.read_bool(obj)?;
         let sigma_t = SIGMA_T.read_color(obj)? * SCALE.read_f32(obj)?;
         if !sigma_t.is_finite() {
             return Err(SIGMA_T.out_of_range(obj, "finite after scale", sigma_t.max_element()));

@@ -10,3 +10,26 @@ pub(crate) mod phase;
 
 pub use homogeneous::MEDIA;
 pub use phase::PHASES;
+
+#[cfg(test)]
+mod tests {
+    use crate::xml::Kind;
+
+    #[test]
+    fn declarations_match_what_the_builders_read() {
+        crate::plugin::check::check_family(
+            super::MEDIA,
+            Kind::Medium,
+            super::homogeneous::build_medium,
+            |_| String::new(),
+            &[],
+        );
+        crate::plugin::check::check_family(
+            super::PHASES,
+            Kind::Phase,
+            super::phase::build_phase,
+            |_| String::new(),
+            &[],
+        );
+    }
+}
