@@ -39,7 +39,10 @@ fn agrees(name: &str, control: &[(&str, &str)]) {
     assert!(p >= alpha, "{name}: p = {p:.3e} < {alpha:.3e} at {what}");
     let (p, what) = worst_against_mitsuba(name, control);
     eprintln!("{name}, control {control:?}: worst p = {p:.3e} at {what}");
-    assert!(p < alpha, "{name}: the control {control:?} passed (p = {p:.3e})");
+    assert!(
+        p < alpha,
+        "{name}: the control {control:?} passed (p = {p:.3e})"
+    );
 }
 
 #[test]
@@ -59,7 +62,8 @@ fn glass_sphere_with_medium_matches_mitsuba() {
 fn volpath_renders_what_path_renders_without_media() {
     let render = |name: &str, seed: u64| {
         let mut l = load_file("cbox.xml", &[("res", "64"), ("rfilter", "box")]);
-        l.set_integrator(Some(name), None).expect("known integrator");
+        l.set_integrator(Some(name), None)
+            .expect("known integrator");
         render_loaded(&l, 512, seed)
     };
     let (a, b) = (render("volpath", 1), render("path", 2));

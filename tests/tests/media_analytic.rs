@@ -70,7 +70,10 @@ fn p_value(xml: &str, spp: u64, expected: [f64; 3]) -> f64 {
             let mean = p.sum[k] / n;
             let var = ((p.sum_sq[k] - n * mean * mean) / (n - 1.0)).max(0.0);
             let (t, pv) = t_test_f32(n, mean, var, expected[k]);
-            println!("  channel {k}: mean {mean:.6} expected {:.6} t = {t:.3} p = {pv:.3e}", expected[k]);
+            println!(
+                "  channel {k}: mean {mean:.6} expected {:.6} t = {t:.3} p = {pv:.3e}",
+                expected[k]
+            );
             pv
         })
         .fold(1.0, f64::min)
@@ -105,7 +108,12 @@ fn absorbing_slab_against_the_sky() {
     let xml = scene("0, 0, 5", "0, 0, 0", "", &body);
     check("slab, sky", &xml, 40_000, beer(1.0, THICKNESS));
     // Control: the same render against 5% more extinction.
-    control("slab, sky, sigma_t 5% high", &xml, 40_000, beer(1.05, THICKNESS));
+    control(
+        "slab, sky, sigma_t 5% high",
+        &xml,
+        40_000,
+        beer(1.05, THICKNESS),
+    );
 }
 
 /// A diffuse floor (albedo 0.5) at z = 0 lit straight down by a directional light of irradiance

@@ -22,10 +22,13 @@ fn load(body: &str, integrator: &str) -> Result<tessera_scene::LoadedScene, Stri
 const VOLPATH: &str = r#"<integrator type="volpath"/>"#;
 
 fn refused(body: &str, integrator: &str, needle: &str, line: u32) {
-    let e = load(body, integrator).err().expect("the scene must be refused");
+    let e = load(body, integrator).expect_err("the scene must be refused");
     println!("{e}");
     assert!(e.contains(needle), "{e}");
-    assert!(e.contains(&format!("media-inputs.xml:{line}:")), "not located at line {line}: {e}");
+    assert!(
+        e.contains(&format!("media-inputs.xml:{line}:")),
+        "not located at line {line}: {e}"
+    );
     assert_eq!(e.lines().count(), 1, "{e}");
 }
 
@@ -45,12 +48,28 @@ fn media_load_into_the_scene() {
     let m = &l.scene.media;
     assert_eq!(m.media.len(), 2, "a referenced medium is built once");
     let Medium::Homogeneous(fog) = &m.media[0];
-    assert!((fog.sigma_t - tessera_core::Color::new(0.2, 0.4, 0.6)).abs().max_element() < 1e-6);
-    assert_eq!(fog.albedo, tessera_core::Color::splat(0.75), "Mitsuba's default albedo");
-    assert_eq!(fog.phase, PhaseFunction::Hg(tessera_core::medium::HenyeyGreenstein { g: -0.4 }));
+    assert!(
+        (fog.sigma_t - tessera_core::Color::new(0.2, 0.4, 0.6))
+            .abs()
+            .max_element()
+            < 1e-6
+    );
+    assert_eq!(
+        fog.albedo,
+        tessera_core::Color::splat(0.75),
+        "Mitsuba's default albedo"
+    );
+    assert_eq!(
+        fog.phase,
+        PhaseFunction::Hg(tessera_core::medium::HenyeyGreenstein { g: -0.4 })
+    );
     assert!(fog.sample_emitters);
     let Medium::Homogeneous(other) = &m.media[1];
-    assert_eq!(other.sigma_t, tessera_core::Color::ONE, "Mitsuba's default sigma_t");
+    assert_eq!(
+        other.sigma_t,
+        tessera_core::Color::ONE,
+        "Mitsuba's default sigma_t"
+    );
     assert_eq!(other.phase, PhaseFunction::default());
     assert!(!other.sample_emitters);
     assert_eq!(m.interface(0).interior, Some(0));
@@ -73,12 +92,20 @@ fn hg_defaults_to_g_0_8_and_the_sensor_takes_a_medium() {
     let l = load_scene_str(xml, &scenes_dir().join("media-inputs.xml"), &[]).expect("loads");
     assert_eq!(l.scene.media.camera, Some(0));
     let Medium::Homogeneous(h) = &l.scene.media.media[0];
-    assert_eq!(h.phase, PhaseFunction::Hg(tessera_core::medium::HenyeyGreenstein { g: 0.8 }));
+    assert_eq!(
+        h.phase,
+        PhaseFunction::Hg(tessera_core::medium::HenyeyGreenstein { g: 0.8 })
+    );
 }
 
 #[test]
 fn path_on_a_scene_with_media_names_volpath() {
-    refused(SPHERE_WITH_MEDIUM, r#"<integrator type="path"/>"#, "\"volpath\"", 2);
+    refused(
+        SPHERE_WITH_MEDIUM,
+        r#"<integrator type="path"/>"#,
+        "\"volpath\"",
+        2,
+    );
     // Without an integrator element (the default is path): at the medium.
     refused(SPHERE_WITH_MEDIUM, "", "\"volpath\"", 7);
     // The command line's choice is refused as well.
@@ -167,7 +194,11 @@ fn has_spectral_extinction_is_one_located_warning() {
     <medium type="homogeneous" name="interior"><boolean name="has_spectral_extinction" value="false"/></medium>
   </shape>"#;
     let l = load(body, VOLPATH).expect("loads");
-    let w: Vec<&String> = l.warnings.iter().filter(|w| w.contains("has_spectral_extinction")).collect();
+    let w: Vec<&String> = l
+        .warnings
+        .iter()
+        .filter(|w| w.contains("has_spectral_extinction"))
+        .collect();
     assert_eq!(w.len(), 1, "{:?}", l.warnings);
     assert!(w[0].contains("media-inputs.xml:7:"), "{}", w[0]);
     // Control: without it, no warning.

@@ -8,6 +8,7 @@
 //! the file; each test has a control (the same samples against a wrong density or closed form)
 //! that must be rejected.
 use glam::Vec3;
+use tessera_core::math::Norm;
 use tessera_core::medium::{
     sample_free_flight, ChannelRatios, HenyeyGreenstein, Isotropic, PhaseFunction,
 };
@@ -24,7 +25,7 @@ const N_TESTS: usize = 7;
 /// A direction toward the previous vertex that is not along an axis, so that the forward peak of
 /// a strongly anisotropic function falls inside the grid rather than on its pole.
 fn wi() -> Vec3 {
-    Vec3::new(-0.6, 0.3, -0.2).normalize()
+    Vec3::new(-0.6, 0.3, -0.2).unit()
 }
 
 fn phase_chi2(phase: PhaseFunction, claimed: PhaseFunction, seed: u64) -> Chi2Result {
@@ -67,7 +68,7 @@ fn hg_case(g: f32, wrong_g: f32, seed: u64) {
         let s = hg(g).sample(wi(), rng.next_vec2());
         let e = hg(g).eval(wi(), s.wo);
         assert!((s.pdf - e).abs() <= 1e-4 * e.max(1.0), "{} vs {}", s.pdf, e);
-        assert!((s.wo.length() - 1.0).abs() < 1e-5);
+        assert!((s.wo.norm() - 1.0).abs() < 1e-5);
     }
 }
 
@@ -235,7 +236,10 @@ fn grey_extinction_weights_are_albedo_and_one() {
         let mut ratios = ChannelRatios::new(0.4);
         let w = ratios.record(&ff);
         assert!((w - want).abs().max_element() < 1e-5, "{ff:?}");
-        assert!((ff.mixture_weight() - want).abs().max_element() < 1e-5, "{ff:?}");
+        assert!(
+            (ff.mixture_weight() - want).abs().max_element() < 1e-5,
+            "{ff:?}"
+        );
         assert_eq!(ratios.weight(), 1.0);
     }
 }
@@ -249,25 +253,40 @@ fn path_t_tests(claimed: Color) -> Vec<(String, f64)> {
     let mut m = [Moments::new(), Moments::new(), Moments::new()];
     for _ in 0..1_000_000 {
         let mut ratios = ChannelRatios::new(rng.next_f32());
-        let first = sample_free_flight(SIGMA_T, SIGMA_T * ALBEDO, 0.8, ratios.channel, rng.next_f32());
+        let first = sample_free_flight(
+            SIGMA_T,
+            SIGMA_T * ALBEDO,
+            0.8,
+            ratios.channel,
+            rng.next_f32(),
+        );
         let mut throughput = ratios.record(&first);
         let mut hit = !first.scattered;
         if hit {
-            let second =
-                sample_free_flight(SIGMA_T, SIGMA_T * ALBEDO, 10.0, ratios.channel, rng.next_f32());
+            let second = sample_free_flight(
+                SIGMA_T,
+                SIGMA_T * ALBEDO,
+                10.0,
+                ratios.channel,
+                rng.next_f32(),
+            );
             throughput *= ratios.record(&second);
             hit = second.scattered && second.t >= 0.2 && second.t < 0.7;
         }
         let w = throughput * ratios.weight();
         for k in 0..3 {
             m[k].push(if hit { f64::from(w[k]) } else { 0.0 });
-            assert!(!hit || w[k] <= 3.0 * ALBEDO[k] + 1e-5, "weight {w} above its bound");
+            assert!(
+                !hit || w[k] <= 3.0 * ALBEDO[k] + 1e-5,
+                "weight {w} above its bound"
+            );
         }
     }
     (0..3)
         .map(|k| {
             let s = f64::from(claimed[k]);
-            let want = (-0.8 * s).exp() * f64::from(ALBEDO[k]) * ((-0.2 * s).exp() - (-0.7 * s).exp());
+            let want =
+                (-0.8 * s).exp() * f64::from(ALBEDO[k]) * ((-0.2 * s).exp() - (-0.7 * s).exp());
             let r = t_test_mean(&m[k], want);
             (format!("two segments, channel {k}: {r}"), r.p_value)
         })

@@ -6,7 +6,7 @@
 //! cumulative distribution of `c` in closed form; for |g| below 1e-3 the inversion loses its
 //! digits and the uniform sphere (the limit) is used instead, whose density the evaluation then
 //! also returns, so that the sample's density is always the function's value.
-use super::phase::PhaseSample;
+use super::phase_sample::PhaseSample;
 use crate::math::{sincos_turns, sqrt, Frame, PI};
 use glam::{Vec2, Vec3};
 

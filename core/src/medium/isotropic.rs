@@ -1,6 +1,6 @@
 //! The isotropic phase function (`isotropic`): every direction equally likely, 1 / (4 pi) per
 //! steradian. It has no parameters.
-use super::phase::PhaseSample;
+use super::phase_sample::PhaseSample;
 use crate::math::PI;
 use crate::sampling::warp::square_to_uniform_sphere;
 use glam::Vec2;

@@ -1,7 +1,8 @@
 //! Participating media: what fills the space between surfaces, and how light scatters in it.
 //!
 //! - `phase`: the closed enum of phase functions (the directional law of a scattering event),
-//!   with `isotropic` and `hg` (Henyey-Greenstein) each in its own file;
+//!   with `isotropic` and `hg` (Henyey-Greenstein) each in its own file, and the sample they
+//!   return (`phase_sample`);
 //! - `homogeneous`: a medium of constant extinction and albedo (Mitsuba 3's `homogeneous`);
 //! - `free_flight`: sampling the distance to the next collision in a medium whose extinction
 //!   differs per colour channel;
@@ -15,13 +16,15 @@ mod homogeneous;
 mod isotropic;
 mod media;
 mod phase;
+mod phase_sample;
 
 pub use free_flight::{sample_free_flight, ChannelRatios, FreeFlight};
 pub use hg::HenyeyGreenstein;
 pub use homogeneous::Homogeneous;
 pub use isotropic::Isotropic;
 pub use media::{MediumInterface, SceneMedia};
-pub use phase::{PhaseFunction, PhaseSample};
+pub use phase::PhaseFunction;
+pub use phase_sample::PhaseSample;
 
 /// The media a scene can hold: a closed enum (heterogeneous grids are not implemented).
 #[derive(Clone, Debug)]

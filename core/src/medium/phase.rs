@@ -7,16 +7,8 @@
 //! so a sample's weight is 1 and only its density is returned.
 use super::hg::HenyeyGreenstein;
 use super::isotropic::Isotropic;
+use super::phase_sample::PhaseSample;
 use glam::{Vec2, Vec3};
-
-/// A sampled scattering direction.
-#[derive(Clone, Copy, Debug)]
-pub struct PhaseSample {
-    /// Unit direction toward the next vertex (world space).
-    pub wo: Vec3,
-    /// Solid-angle density of `wo`, equal to the phase function's value there (weight 1).
-    pub pdf: f32,
-}
 
 /// Phase functions.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -81,7 +81,13 @@ pub(crate) const HOMOGENEOUS: MediumPlugin = Plugin {
           function. A shape bounds it by naming it as its interior or exterior (with the `null` \
           BSDF for an invisible boundary); a sensor names the medium it sits in. Rendered by \
           `volpath`.",
-    params: &[SIGMA_T, ALBEDO, SCALE, SAMPLE_EMITTERS, HAS_SPECTRAL_EXTINCTION],
+    params: &[
+        SIGMA_T,
+        ALBEDO,
+        SCALE,
+        SAMPLE_EMITTERS,
+        HAS_SPECTRAL_EXTINCTION,
+    ],
     nested: "an optional <phase> (default isotropic)",
     build: |obj| {
         // Checked and marked read; its declared warning is all it does.

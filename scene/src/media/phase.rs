@@ -46,5 +46,9 @@ pub(crate) const HG: PhasePlugin = Plugin {
           the direction of travel and the scattered direction, sampled exactly.",
     params: &[G],
     nested: "",
-    build: |obj| Ok(PhaseFunction::Hg(HenyeyGreenstein { g: G.read_f32(obj)? })),
+    build: |obj| {
+        Ok(PhaseFunction::Hg(HenyeyGreenstein {
+            g: G.read_f32(obj)?,
+        }))
+    },
 };
