@@ -205,3 +205,47 @@ fn has_spectral_extinction_is_one_located_warning() {
     let l = load(SPHERE_WITH_MEDIUM, VOLPATH).expect("loads");
     assert!(l.warnings.is_empty(), "{:?}", l.warnings);
 }
+
+/// `--stats` counts medium events: a sphere of medium (sigma_t 2) bounded by `null` under a
+/// sky, seen by a 4x4 camera, has scatterings, passes and null crossings (of paths and of shadow
+/// rays); the same scene without its medium has none of them.
+#[test]
+fn probe_counts_medium_events() {
+    use tessera::render::RenderOptions;
+    use tessera::render_stats::render_with_stats;
+    use tessera_core::render::RenderJob;
+    let count = |body: &str| {
+        let xml = format!(
+            r#"<scene version="3.0.0"><integrator type="volpath"/>
+  <sensor type="perspective"><transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="4"/><integer name="height" value="4"/></film>
+  </sensor>
+  <emitter type="constant"/>
+  {body}
+</scene>"#
+        );
+        let l = load_scene_str(&xml, &scenes_dir().join("media-inputs.xml"), &[]).expect("loads");
+        let job = RenderJob::new(&l.scene, &l.integrator, 1);
+        let opts = RenderOptions {
+            threads: 1,
+            ..Default::default()
+        };
+        render_with_stats(&job, 0..64, &opts, &mut |_, _| {}).1
+    };
+    let c = count(SPHERE_WITH_MEDIUM);
+    println!("{c:?}");
+    assert!(c.medium_scatters > 0 && c.medium_passes > 0, "{c:?}");
+    assert!(c.null_crossings > 0 && c.shadow_null_crossings > 0, "{c:?}");
+    // Control: a diffuse sphere without media counts none of them.
+    let c = count(r#"<shape type="sphere"/>"#);
+    assert_eq!(
+        (
+            c.medium_scatters,
+            c.medium_passes,
+            c.null_crossings,
+            c.shadow_null_crossings
+        ),
+        (0, 0, 0, 0)
+    );
+    assert!(c.continuation_rays > 0);
+}
