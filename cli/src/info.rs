@@ -144,7 +144,12 @@ pub fn report(file: &str, loaded: &LoadedScene, seconds: f64) -> String {
     row("bsdfs", by_plugin(&loaded.names.bsdfs));
     row("emitters", by_plugin(&loaded.names.emitters));
     if !s.media.is_empty() {
-        let bounding = s.media.interfaces.iter().filter(|i| i.is_transition()).count();
+        let bounding = s
+            .media
+            .interfaces
+            .iter()
+            .filter(|i| i.is_transition())
+            .count();
         let camera = match s.media.camera {
             Some(_) => "the camera in one",
             None => "the camera in none",
@@ -152,7 +157,7 @@ pub fn report(file: &str, loaded: &LoadedScene, seconds: f64) -> String {
         row(
             "media",
             format!(
-                "{}: homogeneous {}; {bounding} shapes bound them; {camera}",
+                "{}: homogeneous {}; shapes bounding them: {bounding}; {camera}",
                 s.media.media.len(),
                 s.media.media.len()
             ),
