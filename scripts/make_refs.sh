@@ -33,6 +33,11 @@ PYTHON="${PYTHON:-python3}"
     --spp 8192 --seed 0 -D res=64 -D rfilter=lanczos --variant scalar_rgb
 "$PYTHON" scripts/mitsuba_ref.py scenes/cbox.xml -o scenes/refs/cbox_64x64_gaussian_mitsuba.exr \
     --spp 8192 --seed 0 -D res=64 -D rfilter=gaussian --variant scalar_rgb
+# Participating media, rendered by volpath (tests/tests/media_agreement.rs).
+"$PYTHON" scripts/mitsuba_ref.py scenes/media/fog_cbox.xml -o scenes/refs/fog_cbox_64x64_mitsuba.exr \
+    --spp 8192 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
+"$PYTHON" scripts/mitsuba_ref.py scenes/media/glass_sphere.xml -o scenes/refs/glass_sphere_64x64_mitsuba.exr \
+    --spp 8192 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
 # Benchmark references (tessera bench, scripts/mitsuba_bench.py): 128x128, box filter.
 "$PYTHON" scripts/mitsuba_ref.py scenes/cbox.xml -o scenes/refs/cbox_128x128_mitsuba.exr \
     --spp 16384 --seed 0 -D res=128 -D rfilter=box --variant scalar_rgb

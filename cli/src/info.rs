@@ -143,6 +143,26 @@ pub fn report(file: &str, loaded: &LoadedScene, seconds: f64) -> String {
     );
     row("bsdfs", by_plugin(&loaded.names.bsdfs));
     row("emitters", by_plugin(&loaded.names.emitters));
+    if !s.media.is_empty() {
+        let bounding = s
+            .media
+            .interfaces
+            .iter()
+            .filter(|i| i.is_transition())
+            .count();
+        let camera = match s.media.camera {
+            Some(_) => "the camera in one",
+            None => "the camera in none",
+        };
+        row(
+            "media",
+            format!(
+                "{}: homogeneous {}; shapes bounding them: {bounding}; {camera}",
+                s.media.media.len(),
+                s.media.media.len()
+            ),
+        );
+    }
     let (mut images, mut seen, mut bytes, mut procedural) = (0, HashSet::new(), 0, 0);
     for b in &s.bsdfs {
         b.for_each_texture(&mut |t| match t.bitmap() {

@@ -80,6 +80,7 @@ pub mod geometry;
 pub mod integrator;
 pub mod light;
 pub mod math;
+pub mod medium;
 pub mod render;
 pub mod sampling;
 pub mod scene;

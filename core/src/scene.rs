@@ -8,6 +8,7 @@ use crate::emitter::{Emitter, EmitterCtx};
 use crate::geometry::{Disk, Hit, Instance, Interaction, Prim, Shape, ShapeKind, TriRay};
 use crate::light::{Behind, LightBound, LightSampler, LightSelection};
 use crate::math::{Aabb, Norm, Ray};
+use crate::medium::SceneMedia;
 use crate::splat::Footprint;
 use alloc::vec::Vec;
 use core::cell::Cell;
@@ -114,6 +115,9 @@ pub struct Scene {
     pub scene_center: glam::Vec3,
     /// Radius of the scene's bounding sphere (lights at infinity aim at it).
     pub scene_radius: f32,
+    /// Participating media and the surfaces that bound them (empty unless set with
+    /// [`Scene::set_media`]; only `volpath` reads them).
+    pub media: SceneMedia,
 }
 
 /// Why a scene could not be built (the driver checks inputs first; this guards embedders).
@@ -261,7 +265,26 @@ impl Scene {
             sampler: crate::sampling::SamplerKind::Independent,
             features,
             shape_numbering: ShapeNumbering::default(),
+            media: SceneMedia::default(),
         })
+    }
+
+    /// Gives the scene its media; `BadIndex` when a shape or the camera names a medium that
+    /// does not exist, or there are interfaces for more shapes than the scene has.
+    pub fn set_media(&mut self, media: SceneMedia) -> Result<(), BuildError> {
+        let n = media.media.len() as u32;
+        let ok = |m: Option<u32>| m.is_none_or(|i| i < n);
+        if media.interfaces.len() > self.shapes.len()
+            || !ok(media.camera)
+            || !media
+                .interfaces
+                .iter()
+                .all(|i| ok(i.interior) && ok(i.exterior))
+        {
+            return Err(BuildError::BadIndex);
+        }
+        self.media = media;
+        Ok(())
     }
 
     /// Bounds of all geometry.

@@ -48,6 +48,8 @@ pub(crate) fn format_stats(scene: &Scene, c: &Counters, dropped: u64) -> String 
     let mut rows: Vec<(String, String)> = c
         .rows()
         .iter()
+        // Medium counts only for scenes that have media.
+        .filter(|(k, _)| !scene.media.is_empty() || !(k.contains("medium") || k.contains("null")))
         .map(|(k, v)| (k.to_string(), v.to_string()))
         .collect();
     rows.push(("non-finite samples dropped".into(), dropped.to_string()));

@@ -4,6 +4,7 @@ use super::emitters::{build_emitter, AREA};
 use super::families::{declared_params, families, Family};
 use super::integrator::read_integrator;
 use super::loaded::{LoadedScene, PluginNames};
+use super::media::interfaces::Media;
 use super::sampler::build_sampler;
 use super::sensor::build_sensor;
 use super::shape_numbering::Numbering;
@@ -16,6 +17,8 @@ use std::collections::HashSet;
 use tessera_core::camera::Camera;
 use tessera_core::emitter::{AreaLight, Emitter};
 use tessera_core::geometry::{Disk, Instance, Shape, ShapeKind};
+use tessera_core::integrator::Integrator;
+use tessera_core::medium::{MediumInterface, SceneMedia};
 use tessera_core::sampling::SamplerKind;
 use tessera_core::scene::{Scene, SceneParts};
 
@@ -30,6 +33,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
     let mut integrator_obj = None;
     let mut sensor = None;
     let mut scene_sampler = None;
+    let mut camera_medium = None;
     for c in &root.children {
         let obj = &c.obj;
         match obj.kind {
@@ -42,6 +46,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
                 if sensor.is_some() {
                     return Err(obj.error("the scene has more than one sensor"));
                 }
+                camera_medium = acc.media.sensor_medium(obj)?;
                 sensor = Some(build_sensor(obj, &mut warnings)?);
             }
             Kind::Sampler => scene_sampler = Some(build_sampler(obj, &mut warnings)?),
@@ -57,6 +62,10 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
             }
             // Declared to be referenced (`<ref>`); built where it is used.
             Kind::Texture => {}
+            // Built here, so that a medium nobody refers to is still checked.
+            Kind::Medium => {
+                acc.media.index_of(obj)?;
+            }
             Kind::Shape if obj.plugin == SHAPEGROUP.name => {
                 groups.group_of(obj, &mut |o| add_shape(o, &mut acc, true))?;
             }
@@ -107,6 +116,8 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         mut names,
         instances,
         numbering,
+        media,
+        interfaces,
     } = acc;
     let shape_numbering = numbering.finish(&shapes, instances.len());
     let parts = SceneParts {
@@ -129,6 +140,16 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
     let accel_seconds = accel_start.elapsed().as_secs_f64();
     scene.sampler = sampler;
     scene.shape_numbering = shape_numbering;
+    if !media.list.is_empty() {
+        check_integrator_for_media(&integrator, integrator_obj.map(|o| &**o), &media)?;
+        scene
+            .set_media(SceneMedia {
+                media: media.list,
+                interfaces,
+                camera: camera_medium,
+            })
+            .map_err(|e| root.error(format!("cannot build the scene's media: {e:?}")))?;
+    }
     names.bsdfs = bsdfs.names;
     Ok(LoadedScene {
         scene,
@@ -156,6 +177,10 @@ struct Acc {
     instances: Vec<Instance>,
     /// Mitsuba's numbering of the top-level shapes.
     numbering: Numbering,
+    /// Participating media.
+    media: Media,
+    /// The media on each shape's sides, by shape index.
+    interfaces: Vec<MediumInterface>,
 }
 
 /// Builds the shape `obj` (and its OBJ material parts) into `acc`; returns the indices of the
@@ -169,6 +194,7 @@ fn add_shape(obj: &Object, acc: &mut Acc, in_group: bool) -> Result<Vec<u32>> {
         )));
     }
     let parts = build_shape(obj)?;
+    let interface = acc.media.interface_of(obj)?;
     let (bsdf_child, attributed) = (parts.bsdf, parts.mesh_attributes);
     let mut added = Vec::new();
     if in_group {
@@ -212,6 +238,7 @@ fn add_shape(obj: &Object, acc: &mut Acc, in_group: bool) -> Result<Vec<u32>> {
             (k, _) => k,
         };
         added.push(shape_index);
+        acc.interfaces.push(interface);
         acc.shapes.push(Shape {
             kind,
             bsdf,
@@ -230,6 +257,7 @@ fn add_shape(obj: &Object, acc: &mut Acc, in_group: bool) -> Result<Vec<u32>> {
             acc.emitters.len() as u32 - 1
         });
         added.push(shape_index);
+        acc.interfaces.push(interface);
         acc.shapes.push(Shape {
             kind: ShapeKind::Mesh(part.mesh),
             bsdf: acc.bsdfs.push(part.material.bsdf, "MTL material".into()),
@@ -246,6 +274,23 @@ fn add_shape(obj: &Object, acc: &mut Acc, in_group: bool) -> Result<Vec<u32>> {
     }
     parts.plugin.check_unused(obj)?;
     Ok(added)
+}
+
+/// Refuses to render a scene with media by an integrator that would ignore them (`path`,
+/// `direct` and the other surface-only light transport), at the integrator element, or at the
+/// first medium when the scene names none (its default is `path`).
+fn check_integrator_for_media(
+    integrator: &Integrator,
+    obj: Option<&Object>,
+    media: &Media,
+) -> Result<()> {
+    match crate::loaded::media_refusal(integrator) {
+        None => Ok(()),
+        Some(msg) => Err(match obj {
+            Some(o) => o.error(msg),
+            None => InputError::at(&media.locs[0], msg),
+        }),
+    }
 }
 
 /// Adds a located warning for each parameter the file gives that is declared without effect

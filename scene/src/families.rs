@@ -46,6 +46,8 @@ pub fn families() -> Vec<Family> {
             crate::materials::texture::TEXTURES,
         ),
         family(Kind::Emitter, "Emitters", crate::emitters::EMITTERS),
+        family(Kind::Medium, "Media", crate::media::MEDIA),
+        family(Kind::Phase, "Phase functions", crate::media::PHASES),
     ]
 }
 

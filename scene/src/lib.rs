@@ -44,6 +44,7 @@ mod filter;
 mod integrator;
 mod loaded;
 pub(crate) mod materials;
+mod media;
 mod mitsuba_names;
 mod sampler;
 mod sensor;

@@ -107,7 +107,33 @@ impl LoadedScene {
                 integrator_names()
             ),
         })?;
+        if !self.scene.media.is_empty() {
+            if let Some(msg) = media_refusal(&self.integrator) {
+                return Err(msg);
+            }
+        }
         self.integrator_spec = spec;
         Ok(())
     }
+}
+
+/// Why `integrator` cannot render a scene with participating media (it would ignore them), or
+/// `None` when it can: `volpath`, and the integrators that show geometry rather than light
+/// (`aov`, normals, ambient occlusion), for which media do not matter.
+pub(crate) fn media_refusal(integrator: &Integrator) -> Option<String> {
+    let name = match integrator {
+        Integrator::Path(_) => "path",
+        Integrator::Direct(_) => "direct",
+        Integrator::Simple(_) => "simple",
+        Integrator::Whitted(_) => "whitted",
+        Integrator::Moment(m) => return media_refusal(&m.inner),
+        Integrator::VolPath(_)
+        | Integrator::Normals(_)
+        | Integrator::Visibility(_)
+        | Integrator::Aov(_) => return None,
+    };
+    Some(format!(
+        "the scene has participating media (<medium>), which integrator \"{name}\" ignores: \
+         render it with \"volpath\" (<integrator type=\"volpath\">, or --integrator volpath)"
+    ))
 }

@@ -107,6 +107,18 @@ pub(crate) const MITSUBA_PLUGINS: &[(Kind, &[&str])] = &[
         Kind::Texture,
         &["bitmap", "checkerboard", "mesh_attribute", "volume"],
     ),
+    (Kind::Medium, &["heterogeneous", "homogeneous"]),
+    (
+        Kind::Phase,
+        &[
+            "blendphase",
+            "hg",
+            "isotropic",
+            "rayleigh",
+            "sggx",
+            "tabphase",
+        ],
+    ),
     (
         Kind::Emitter,
         &[

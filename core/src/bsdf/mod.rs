@@ -19,6 +19,7 @@ pub mod microfacet;
 mod mirror;
 mod model;
 mod normalmap;
+mod null;
 pub mod perturbed;
 mod plastic;
 pub mod plastic_common;
@@ -50,6 +51,7 @@ pub use mask::Mask;
 pub use mirror::Mirror;
 pub use model::Model;
 pub use normalmap::NormalMap;
+pub use null::Null;
 pub use plastic::Plastic;
 pub use polarizer::Polarizer;
 pub use pplastic::PolarizedPlastic;
@@ -128,6 +130,8 @@ pub enum Bsdf {
     Polarizer(Polarizer),
     /// A model seen through a height field (`bumpmap`).
     BumpMap(BumpMap<Bsdf>),
+    /// A surface light passes through unchanged, bounding a medium (`null`).
+    Null(Null),
 }
 
 macro_rules! dispatch {
@@ -154,6 +158,7 @@ macro_rules! dispatch {
             Bsdf::PolarizedPlastic($b) => $e,
             Bsdf::Polarizer($b) => $e,
             Bsdf::BumpMap($b) => $e,
+            Bsdf::Null($b) => $e,
         }
     };
 }
@@ -202,7 +207,9 @@ impl Bsdf {
     fn own_inputs(&self) -> (bool, bool) {
         match self {
             Bsdf::Diffuse(_) | Bsdf::RoughConductor(_) | Bsdf::BlinnPhongMetal(_) => (false, true),
-            Bsdf::Conductor(_) | Bsdf::Mirror(_) | Bsdf::Polarizer(_) => (false, false),
+            Bsdf::Conductor(_) | Bsdf::Mirror(_) | Bsdf::Polarizer(_) | Bsdf::Null(_) => {
+                (false, false)
+            }
             Bsdf::Dielectric(_) | Bsdf::ThinDielectric(_) => (true, false),
             Bsdf::TwoSided(_) => self.nested_inputs(),
             _ => (true, true),

@@ -37,7 +37,7 @@ impl Bsdf {
                 .for_each(f),
             Bsdf::Plastic(b) => [&b.diffuse, &b.specular].into_iter().for_each(f),
             Bsdf::RoughPlastic(b) => [&b.diffuse, &b.specular].into_iter().for_each(f),
-            Bsdf::Mirror(_) | Bsdf::WakameMicrofacet(_) => {}
+            Bsdf::Mirror(_) | Bsdf::WakameMicrofacet(_) | Bsdf::Null(_) => {}
             Bsdf::BlinnPhong(b) => {
                 if let Some(base) = &b.base {
                     base.for_each_texture(f);

@@ -14,6 +14,8 @@ mod reuse_halves;
 mod simple;
 mod unweighted_hit;
 mod visibility;
+mod volpath;
+mod volpath_light;
 mod whitted;
 
 pub use aov::{albedo, Aov, AovIntegrator};
@@ -22,12 +24,13 @@ pub use mis::Heuristic;
 pub use moment::{MomentIntegrator, SRGB_TO_XYZ};
 pub use normals::NormalsIntegrator;
 pub use path::{PathIntegrator, Strategy};
-pub use probe::{Counters, NoProbe, PathEnd, Probe, RayKind};
+pub use probe::{Counters, MediumEvent, NoProbe, PathEnd, Probe, RayKind};
 pub use radiance::Radiance;
 pub use record::{Event, PathRecord};
 pub use reuse::{GROUP, GROUP_H, GROUP_W};
 pub use simple::SimpleIntegrator;
 pub use visibility::Visibility;
+pub use volpath::VolPathIntegrator;
 pub use whitted::WhittedIntegrator;
 
 use crate::math::Ray;
@@ -40,6 +43,8 @@ use crate::Color;
 pub enum Integrator {
     /// Unidirectional path tracing (`path_mats`, `path_ems`, `path_half`, `path_mis` / `path`).
     Path(PathIntegrator),
+    /// Volumetric path tracing through participating media (`volpath`).
+    VolPath(VolPathIntegrator),
     /// Direct illumination (`direct`, `direct_ems`, `direct_mats`, `direct_mis`).
     Direct(DirectIntegrator),
     /// Nori's shading normals view (`normals`).
@@ -83,6 +88,7 @@ impl Radiance for Integrator {
         match self {
             Integrator::Path(p) => p.li_probed(scene, ray, sampler, probe),
             Integrator::Direct(d) => d.li_probed(scene, ray, sampler, probe),
+            Integrator::VolPath(v) => v.li_probed(scene, ray, sampler, probe),
             Integrator::Normals(n) => n.li_probed(scene, ray, probe),
             Integrator::Simple(s) => s.li_probed(scene, ray, probe),
             Integrator::Visibility(v) => v.li_probed(scene, ray, sampler, probe),

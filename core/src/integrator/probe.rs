@@ -48,6 +48,19 @@ pub enum PathEnd {
     ZeroThroughput,
 }
 
+/// What a path met in a participating medium (`volpath`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MediumEvent {
+    /// A free-flight sample collided inside the medium: a real scattering event.
+    Scatter,
+    /// A free-flight sample passed the whole segment to the next surface (or to infinity).
+    Pass,
+    /// The path crossed a `null` surface (a medium's boundary) without scattering.
+    NullCrossing,
+    /// A shadow ray crossed a `null` surface.
+    ShadowNullCrossing,
+}
+
 /// Receives the events of one sample's path. Every method defaults to doing nothing.
 #[allow(unused_variables)]
 pub trait Probe {
@@ -104,6 +117,9 @@ pub trait Probe {
     /// The path stopped.
     #[inline(always)]
     fn end(&mut self, why: PathEnd) {}
+    /// A medium event (`volpath` only).
+    #[inline(always)]
+    fn medium(&mut self, event: MediumEvent) {}
 }
 
 /// Observes nothing: the ordinary render.
@@ -158,6 +174,14 @@ pub struct Counters {
     pub bvh_leaves: u64,
     /// Primitive blocks tested (up to four triangles, spheres or disks at once).
     pub prim_blocks: u64,
+    /// Scattering events inside media (`volpath`).
+    pub medium_scatters: u64,
+    /// Free-flight samples that passed a whole segment of a medium.
+    pub medium_passes: u64,
+    /// `null` surfaces crossed by paths.
+    pub null_crossings: u64,
+    /// `null` surfaces crossed by shadow rays.
+    pub shadow_null_crossings: u64,
 }
 
 impl Counters {
@@ -169,7 +193,7 @@ impl Counters {
     }
 
     /// Every count with its name, in a fixed order (for printing).
-    pub fn rows(&self) -> [(&'static str, u64); 21] {
+    pub fn rows(&self) -> [(&'static str, u64); 25] {
         [
             ("samples", self.samples),
             ("camera rays", self.camera_rays),
@@ -192,10 +216,14 @@ impl Counters {
             ("bvh nodes visited", self.bvh_nodes),
             ("bvh leaves reached", self.bvh_leaves),
             ("primitive blocks tested", self.prim_blocks),
+            ("medium scatters", self.medium_scatters),
+            ("medium passes", self.medium_passes),
+            ("null crossings", self.null_crossings),
+            ("shadow null crossings", self.shadow_null_crossings),
         ]
     }
 
-    fn fields_mut(&mut self) -> [&mut u64; 21] {
+    fn fields_mut(&mut self) -> [&mut u64; 25] {
         [
             &mut self.samples,
             &mut self.camera_rays,
@@ -218,6 +246,10 @@ impl Counters {
             &mut self.bvh_nodes,
             &mut self.bvh_leaves,
             &mut self.prim_blocks,
+            &mut self.medium_scatters,
+            &mut self.medium_passes,
+            &mut self.null_crossings,
+            &mut self.shadow_null_crossings,
         ]
     }
 }
@@ -295,5 +327,13 @@ impl Probe for Counters {
     fn roulette(&mut self, _: f32, survived: bool, _: Color) {
         self.roulette += 1;
         self.roulette_kills += !survived as u64;
+    }
+    fn medium(&mut self, event: MediumEvent) {
+        match event {
+            MediumEvent::Scatter => self.medium_scatters += 1,
+            MediumEvent::Pass => self.medium_passes += 1,
+            MediumEvent::NullCrossing => self.null_crossings += 1,
+            MediumEvent::ShadowNullCrossing => self.shadow_null_crossings += 1,
+        }
     }
 }

@@ -9,7 +9,7 @@ use crate::xml::Object;
 use tessera_core::glam::Vec3;
 use tessera_core::integrator::{
     DirectIntegrator, Heuristic, Integrator, NormalsIntegrator, PathIntegrator, SimpleIntegrator,
-    Strategy, Visibility, WhittedIntegrator,
+    Strategy, Visibility, VolPathIntegrator, WhittedIntegrator,
 };
 use tessera_core::light::LightSelection;
 use tessera_core::Color;
@@ -345,6 +345,37 @@ pub(crate) const PATH: IntegratorPlugin = path_plugin(
      sampling (Mitsuba 3's path).",
     |s| path(s, Strategy::Mis),
 );
+
+/// `volpath`.
+pub(crate) const VOLPATH: IntegratorPlugin = Plugin {
+    name: "volpath",
+    aliases: &[],
+    doc: "Volumetric path tracing (Mitsuba 3's volpath): paths through homogeneous \
+          participating media and surfaces, with phase-function and BSDF sampling combined \
+          with emitter sampling by the power heuristic, shadow rays through null surfaces \
+          attenuated by the media they cross. On a scene without media it renders what path \
+          renders. Emitter sampling picks lights by the scene-wide choice (by power for \
+          contribution).",
+    params: &[MAX_DEPTH, RR_DEPTH, HIDE_EMITTERS, LIGHT_SELECTION],
+    nested: "",
+    build: IntegratorBuild {
+        read: read_volpath,
+        make: Some(|s| {
+            Integrator::VolPath(VolPathIntegrator {
+                max_depth: s.max_depth,
+                rr_depth: s.rr_depth,
+                hide_emitters: s.hide_emitters,
+            })
+        }),
+    },
+};
+
+fn read_volpath(obj: &Object, spec: &mut IntegratorSpec, _: Nest) -> Result<()> {
+    let max_depth = MAX_DEPTH.read_i64_where(obj, |d| (-1..=u32::MAX as i64).contains(&d))?;
+    spec.max_depth = (max_depth >= 0).then_some(max_depth as u32);
+    spec.rr_depth = RR_DEPTH.read_i64_where(obj, |d| (1..=u32::MAX as i64).contains(&d))? as u32;
+    read_common(obj, spec)
+}
 
 /// `path_half`.
 pub(crate) const PATH_HALF: IntegratorPlugin = path_plugin(

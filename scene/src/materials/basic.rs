@@ -104,3 +104,16 @@ fn build_mask(obj: &Object, nest: Nest) -> Result<Bsdf> {
         nested: Box::new(nested),
     }))
 }
+
+/// `null`.
+pub(crate) const NULL: BsdfPlugin = Plugin {
+    name: "null",
+    aliases: &[],
+    doc: "A surface that does not interact with light: light crosses it unchanged. It bounds a \
+          participating medium that its shape names as interior or exterior. `volpath` crosses \
+          it without counting a bounce and its shadow rays pass through it, as in Mitsuba 3; \
+          `path` follows it as a straight delta pass-through.",
+    params: &[],
+    nested: "",
+    build: |_, _| Ok(Bsdf::Null(tessera_core::bsdf::Null)),
+};

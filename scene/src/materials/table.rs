@@ -25,6 +25,7 @@ pub static BSDFS: &[BsdfPlugin] = &[
     basic::TWOSIDED,
     basic::BLENDBSDF,
     basic::MASK,
+    basic::NULL,
     polarized::POLARIZER,
     maps::NORMALMAP_PLUGIN,
     maps::BUMPMAP_PLUGIN,

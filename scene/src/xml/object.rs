@@ -38,11 +38,15 @@ pub enum Kind {
     Texture,
     /// Nori's `<test>` (`chi2test`, `ttest`).
     Test,
+    /// `<medium>` (a participating medium).
+    Medium,
+    /// `<phase>` (a medium's phase function).
+    Phase,
 }
 
 impl Kind {
     /// All kinds.
-    pub(crate) const ALL: [Kind; 11] = [
+    pub(crate) const ALL: [Kind; 13] = [
         Kind::Scene,
         Kind::Integrator,
         Kind::Sensor,
@@ -54,6 +58,8 @@ impl Kind {
         Kind::Emitter,
         Kind::Texture,
         Kind::Test,
+        Kind::Medium,
+        Kind::Phase,
     ];
 
     /// The Mitsuba element name (`"bsdf"`, `"rfilter"`, ...).
@@ -70,6 +76,8 @@ impl Kind {
             Kind::Emitter => "emitter",
             Kind::Texture => "texture",
             Kind::Test => "test",
+            Kind::Medium => "medium",
+            Kind::Phase => "phase",
         }
     }
 

@@ -39,7 +39,7 @@ pub const MAX_DEPTH: usize = 64;
 pub const MAX_INCLUDE_DEPTH: usize = 32;
 
 /// Mitsuba elements this renderer does not implement (a clearer error than "unknown").
-const UNSUPPORTED: &[&str] = &["medium", "phase", "volume", "tensor"];
+const UNSUPPORTED: &[&str] = &["volume", "tensor"];
 
 /// Property element names (after dialect aliasing).
 const PROPERTY_TAGS: &[&str] = &[
@@ -335,9 +335,16 @@ impl Parser {
             t if transform::is_op(t) => {
                 err(format!("<{written}> is only allowed inside <transform>"))
             }
-            t if UNSUPPORTED.contains(&t) => err(format!(
-                "unsupported element <{written}> (not implemented by this renderer)"
-            )),
+            t if UNSUPPORTED.contains(&t) => {
+                // Name the plugin too: `<volume type="gridvolume">` is a voxel grid.
+                let plugin = match node.attribute("type") {
+                    Some(ty) => format!(" type=\"{ty}\""),
+                    None => String::new(),
+                };
+                err(format!(
+                    "unsupported element <{written}{plugin}> (not implemented by this renderer)"
+                ))
+            }
             _ => err(format!("unknown element <{written}>")),
         }
     }

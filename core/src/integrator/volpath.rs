@@ -1,0 +1,303 @@
+//! Volumetric path tracer (`volpath`), Mitsuba 3.9.1's: paths through homogeneous participating
+//! media and surfaces, with emitter sampling at both kinds of vertex.
+//!
+//! Scene parameters (`<integrator type="volpath">`): `max_depth` (integer, default -1 =
+//! unbounded), `rr_depth` (integer, default 5), `hide_emitters` (boolean, default false), with
+//! Mitsuba 3's meaning; they are declared in `scene/src/integrator/tracers.rs`.
+//!
+//! Each step of the loop, in the medium the path is in (the camera's at first):
+//! - Russian roulette once the depth exceeds `rr_depth` (survival `min(max throughput * eta^2,
+//!   0.95)`), checked at every step as Mitsuba 3 does;
+//! - the ray is cast; inside a medium a free flight is sampled (`medium::sample_free_flight`)
+//!   up to the surface it meets, from the colour channel the path chose when it started, and
+//!   weighted over the three channels along the whole path (`medium::ChannelRatios`). A collision is a real scattering event: the depth grows, the
+//!   emitters are sampled (when the medium's `sample_emitters` is set) with the phase function
+//!   as the scattering factor, and the phase function samples the next direction;
+//! - at a surface (or on escaping), emitted light is added; then a `null` surface is crossed
+//!   (the depth and the weights of the last real vertex kept), any other is scattered by its
+//!   BSDF as in `path`. A surface naming media on its sides moves the path into the one on the
+//!   side it leaves toward.
+//!
+//! Light found by hitting an emitter counts fully after the camera or a chain of delta
+//! scatterings (and after a medium vertex that did not sample emitters); otherwise it is
+//! weighed by the power heuristic against emitter sampling at the last real scattering vertex,
+//! both densities taken at that vertex (transmittance and `null` crossings are common to both
+//! strategies and cancel): Mitsuba 3.9.1's rule. With `hide_emitters`, area emitters met by
+//! the camera ray outside media are stepped through, as Mitsuba 3 does.
+use super::probe::{MediumEvent, PathEnd, Probe, RayKind};
+use super::volpath_light::sample_light_through;
+use crate::bsdf::Bsdf;
+use crate::geometry::{Interaction, ShadingPoint};
+use crate::light::emission_along;
+use crate::math::{Frame, Norm, Ray};
+use crate::medium::{sample_free_flight, ChannelRatios, Medium};
+use crate::sampling::Sampler;
+use crate::scene::Scene;
+use crate::Color;
+use glam::{Vec2, Vec3};
+
+/// Surfaces a camera ray steps through while hiding emitters, at most (a guard).
+const MAX_SKIPS: u32 = 64;
+
+/// A volumetric path tracer with Mitsuba 3's `volpath` conventions.
+#[derive(Clone, Copy, Debug)]
+pub struct VolPathIntegrator {
+    /// Longest path in real scattering events (`None` = unbounded).
+    pub max_depth: Option<u32>,
+    /// Depth beyond which Russian roulette applies.
+    pub rr_depth: u32,
+    /// Whether emitters seen directly by the camera are hidden.
+    pub hide_emitters: bool,
+}
+
+impl Default for VolPathIntegrator {
+    fn default() -> Self {
+        VolPathIntegrator {
+            max_depth: None,
+            rr_depth: 5,
+            hide_emitters: false,
+        }
+    }
+}
+
+/// The last real scattering vertex: where emitter sampling would have started, and the density
+/// of the direction the path took from it.
+#[derive(Clone, Copy, Debug)]
+struct LastScatter {
+    p: Vec3,
+    pdf: f32,
+}
+
+/// The power heuristic for two densities, 0 where it is not finite.
+#[inline]
+fn power(a: f32, b: f32) -> f32 {
+    let w = (a * a) / (a * a + b * b);
+    if w.is_finite() {
+        w
+    } else {
+        0.0
+    }
+}
+
+/// A point inside a medium, as emitter sampling takes its reference points.
+fn medium_point(p: Vec3, wi: Vec3) -> Interaction {
+    Interaction {
+        p,
+        p_err: Vec3::ZERO,
+        t: 0.0,
+        ng: Vec3::ZERO,
+        frame: Frame::from_normal(wi),
+        uv: Vec2::ZERO,
+        shape: u32::MAX,
+        wi,
+    }
+}
+
+impl VolPathIntegrator {
+    /// Radiance along `ray`, telling `probe` about the work done.
+    pub fn li_probed<S: Sampler, P: Probe>(
+        &self,
+        scene: &Scene,
+        ray: Ray,
+        sampler: &mut S,
+        probe: &mut P,
+    ) -> Color {
+        let max_depth = self.max_depth.unwrap_or(u32::MAX);
+        let mut ray = ray;
+        let mut medium = scene.media.camera;
+        let mut throughput = Color::ONE;
+        let mut result = Color::ZERO;
+        let mut eta = 1.0f32;
+        let mut depth = 0u32;
+        let mut specular_chain = !self.hide_emitters;
+        let mut last: Option<LastScatter> = None;
+        let mut first_ray = true;
+        // The channel free flights are drawn from, chosen once per path (only with media).
+        let mut channels = if scene.media.is_empty() {
+            ChannelRatios::new(0.0)
+        } else {
+            ChannelRatios::new(sampler.next_1d())
+        };
+        // The throughput's combined weight over the channels (1 until a chromatic medium).
+        let mut mix = 1.0f32;
+        loop {
+            if throughput == Color::ZERO || !throughput.is_finite() || mix == 0.0 {
+                probe.end(PathEnd::ZeroThroughput);
+                break;
+            }
+            if depth > self.rr_depth {
+                let q = (throughput.max_element() * mix * eta * eta).min(0.95);
+                let survived = sampler.next_1d() < q;
+                if survived {
+                    throughput /= q;
+                }
+                probe.roulette(q, survived, throughput);
+                if !survived {
+                    probe.end(PathEnd::Roulette);
+                    break;
+                }
+            }
+            if depth >= max_depth {
+                probe.end(PathEnd::MaxDepth);
+                break;
+            }
+            let mut hit = probe.intersect(scene, &ray);
+            probe.ray(if first_ray {
+                RayKind::Camera
+            } else {
+                RayKind::Continuation
+            });
+            first_ray = false;
+            probe.hit(scene, hit.as_ref(), ray.d);
+            let len = ray.d.norm();
+            let d = ray.d / len;
+            if let Some(m) = medium {
+                let Medium::Homogeneous(h) = &scene.media.media[m as usize];
+                let t_max = hit.as_ref().map_or(f32::INFINITY, |si| si.t * len);
+                let u = sampler.next_1d();
+                let ff = sample_free_flight(h.sigma_t, h.sigma_s(), t_max, channels.channel, u);
+                throughput *= channels.record(&ff);
+                mix = channels.weight();
+                if ff.scattered {
+                    probe.medium(MediumEvent::Scatter);
+                    depth += 1;
+                    if depth >= max_depth || throughput == Color::ZERO {
+                        probe.end(PathEnd::MaxDepth);
+                        break;
+                    }
+                    let p = ray.o + d * ff.t;
+                    let it = medium_point(p, -d);
+                    let phase = h.phase;
+                    if h.sample_emitters {
+                        specular_chain = false;
+                        if scene.features.has_emitters {
+                            if let Some(ml) =
+                                sample_light_through(scene, &it, medium, false, sampler, probe)
+                            {
+                                let f = phase.eval(-d, ml.wo);
+                                let w = if ml.delta { 1.0 } else { power(ml.pdf, f) };
+                                let c = throughput * ml.value * (f * w * mix);
+                                result += c;
+                            }
+                        }
+                    } else {
+                        specular_chain = true;
+                    }
+                    let ps = phase.sample(-d, sampler.next_2d());
+                    if !(ps.pdf > 0.0) {
+                        probe.end(PathEnd::BsdfSampleFailed);
+                        break;
+                    }
+                    last = Some(LastScatter { p, pdf: ps.pdf });
+                    ray = Ray::new(p, ps.wo);
+                    continue;
+                }
+                probe.medium(MediumEvent::Pass);
+            } else if self.hide_emitters && depth == 0 {
+                // Mitsuba 3 steps a camera ray through the area emitters it meets.
+                let mut skips = 0;
+                while let Some(si) = hit.as_ref() {
+                    if scene.shapes[si.shape as usize].emitter.is_none() || skips >= MAX_SKIPS {
+                        break;
+                    }
+                    ray = si.spawn_ray(ray.d);
+                    hit = probe.intersect(scene, &ray);
+                    probe.ray(RayKind::Continuation);
+                    probe.hit(scene, hit.as_ref(), ray.d);
+                    skips += 1;
+                }
+            }
+            // Light the ray ran into (an area emitter, or the environment on escaping).
+            let visible = !(depth == 0 && self.hide_emitters);
+            if visible && (hit.is_some() || scene.features.has_environment) {
+                let counts_fully = depth == 0 || specular_chain;
+                let (from, prev_pdf) = match last {
+                    Some(l) if !counts_fully => (l.p, l.pdf),
+                    _ => (ray.o, 0.0),
+                };
+                emission_along(
+                    scene,
+                    from,
+                    d,
+                    hit.as_ref(),
+                    !counts_fully,
+                    None,
+                    probe,
+                    |probe, le, light_pdf| {
+                        let w = if counts_fully {
+                            1.0
+                        } else {
+                            probe.mis_weight();
+                            power(prev_pdf, light_pdf)
+                        };
+                        let c = throughput * le * (w * mix);
+                        result += c;
+                        probe.emission(le, w, c);
+                    },
+                );
+            }
+            let Some(si) = hit else {
+                probe.end(PathEnd::Escaped);
+                break;
+            };
+            let shape = &scene.shapes[si.shape as usize];
+            let bsdf = &scene.bsdfs[shape.bsdf as usize];
+            let iface = scene.media.interface(si.shape);
+            if let Bsdf::Null(_) = bsdf {
+                // Not a scattering event: the path crosses, the depth unchanged.
+                probe.medium(MediumEvent::NullCrossing);
+                if iface.is_transition() {
+                    medium = iface.target(si.ng, d);
+                }
+                ray = si.spawn_ray(ray.d);
+                continue;
+            }
+            let traits = scene.bsdf_traits(shape.bsdf);
+            let wi = si.frame.to_local(si.wi);
+            let g = scene.partials(shape.bsdf, &si, &ray);
+            let at = ShadingPoint {
+                uv: si.uv,
+                partials: g.as_ref(),
+            };
+            if traits.has_smooth && depth + 1 < max_depth && scene.features.has_emitters {
+                if let Some(ml) = sample_light_through(scene, &si, medium, true, sampler, probe) {
+                    let wo = si.frame.to_local(ml.wo);
+                    let f = bsdf.eval(wi, wo, at);
+                    probe.bsdf_eval(f);
+                    if f != Color::ZERO {
+                        let w = if ml.delta {
+                            1.0
+                        } else {
+                            let pdf = bsdf.pdf(wi, wo, at);
+                            probe.bsdf_pdf(pdf);
+                            probe.mis_weight();
+                            power(ml.pdf, pdf)
+                        };
+                        result += throughput * f * ml.value * (w * mix);
+                    }
+                }
+            }
+            let (u1, u2) = traits.draw_sample_inputs(sampler);
+            let Some(bs) = bsdf.sample(wi, u1, u2, at) else {
+                probe.bsdf_sample(None, Vec3::ZERO, throughput);
+                probe.end(PathEnd::BsdfSampleFailed);
+                break;
+            };
+            throughput *= bs.weight;
+            eta *= bs.eta;
+            depth += 1;
+            last = Some(LastScatter {
+                p: si.p,
+                pdf: bs.pdf,
+            });
+            specular_chain = bs.delta;
+            let wo = si.frame.to_world(bs.wo);
+            probe.bsdf_sample(Some(&bs), wo, throughput);
+            if iface.is_transition() {
+                medium = iface.target(si.ng, wo);
+            }
+            ray = si.spawn_ray(wo);
+        }
+        result
+    }
+}

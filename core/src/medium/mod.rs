@@ -1,0 +1,51 @@
+//! Participating media: what fills the space between surfaces, and how light scatters in it.
+//!
+//! - `phase`: the closed enum of phase functions (the directional law of a scattering event),
+//!   with `isotropic` and `hg` (Henyey-Greenstein) each in its own file, and the sample they
+//!   return (`phase_sample`);
+//! - `homogeneous`: a medium of constant extinction and albedo (Mitsuba 3's `homogeneous`);
+//! - `free_flight`: sampling the distance to the next collision in a medium whose extinction
+//!   differs per colour channel;
+//! - `media`: which media a scene has, which surfaces bound them, and where the camera sits.
+//!
+//! The integrator that uses them is `integrator::volpath`. Parameters are declared with their
+//! loader, in `scene/src/media/`.
+mod free_flight;
+mod hg;
+mod homogeneous;
+mod isotropic;
+mod media;
+mod phase;
+mod phase_sample;
+
+pub use free_flight::{sample_free_flight, ChannelRatios, FreeFlight};
+pub use hg::HenyeyGreenstein;
+pub use homogeneous::Homogeneous;
+pub use isotropic::Isotropic;
+pub use media::{MediumInterface, SceneMedia};
+pub use phase::PhaseFunction;
+pub use phase_sample::PhaseSample;
+
+/// The media a scene can hold: a closed enum (heterogeneous grids are not implemented).
+#[derive(Clone, Debug)]
+pub enum Medium {
+    /// Constant extinction and albedo (`homogeneous`).
+    Homogeneous(Homogeneous),
+}
+
+impl Medium {
+    /// The medium's phase function.
+    #[inline]
+    pub fn phase(&self) -> &PhaseFunction {
+        match self {
+            Medium::Homogeneous(m) => &m.phase,
+        }
+    }
+    /// Whether a scattering event in this medium samples emitters (`sample_emitters`).
+    #[inline]
+    pub fn sample_emitters(&self) -> bool {
+        match self {
+            Medium::Homogeneous(m) => m.sample_emitters,
+        }
+    }
+}

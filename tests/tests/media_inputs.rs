@@ -1,0 +1,251 @@
+//! Scene files with media: what loads, what is refused, and how. Every refusal is one located
+//! line (`file:line:column: ...`) naming what is wrong; a parameter accepted without effect is
+//! one located warning; the media and their interfaces land where the file puts them.
+use tessera_core::integrator::Integrator;
+use tessera_core::medium::{Medium, PhaseFunction};
+use tessera_scene::load_scene_str;
+use tessera_tests::scenes_dir;
+
+fn load(body: &str, integrator: &str) -> Result<tessera_scene::LoadedScene, String> {
+    let xml = format!(
+        r#"<scene version="3.0.0">
+  {integrator}
+  <sensor type="perspective">
+    <film type="hdrfilm"><integer name="width" value="4"/><integer name="height" value="4"/></film>
+  </sensor>
+  {body}
+</scene>"#
+    );
+    load_scene_str(&xml, &scenes_dir().join("media-inputs.xml"), &[]).map_err(|e| e.to_string())
+}
+
+const VOLPATH: &str = r#"<integrator type="volpath"/>"#;
+
+fn refused(body: &str, integrator: &str, needle: &str, line: u32) {
+    let e = load(body, integrator).expect_err("the scene must be refused");
+    println!("{e}");
+    assert!(e.contains(needle), "{e}");
+    assert!(
+        e.contains(&format!("media-inputs.xml:{line}:")),
+        "not located at line {line}: {e}"
+    );
+    assert_eq!(e.lines().count(), 1, "{e}");
+}
+
+const SPHERE_WITH_MEDIUM: &str = r#"<shape type="sphere"><bsdf type="null"/>
+    <medium type="homogeneous" name="interior"><float name="sigma_t" value="2"/></medium>
+  </shape>"#;
+
+#[test]
+fn media_load_into_the_scene() {
+    let body = r#"<medium type="homogeneous" id="fog"><rgb name="sigma_t" value="0.1, 0.2, 0.3"/>
+    <float name="scale" value="2"/><phase type="hg"><float name="g" value="-0.4"/></phase></medium>
+  <shape type="sphere"><bsdf type="null"/><ref name="interior" id="fog"/>
+    <medium type="homogeneous" name="exterior"><boolean name="sample_emitters" value="false"/></medium>
+  </shape>
+  <shape type="sphere"><ref name="exterior" id="fog"/></shape>"#;
+    let l = load(body, VOLPATH).expect("loads");
+    let m = &l.scene.media;
+    assert_eq!(m.media.len(), 2, "a referenced medium is built once");
+    let Medium::Homogeneous(fog) = &m.media[0];
+    assert!(
+        (fog.sigma_t - tessera_core::Color::new(0.2, 0.4, 0.6))
+            .abs()
+            .max_element()
+            < 1e-6
+    );
+    assert_eq!(
+        fog.albedo,
+        tessera_core::Color::splat(0.75),
+        "Mitsuba's default albedo"
+    );
+    assert_eq!(
+        fog.phase,
+        PhaseFunction::Hg(tessera_core::medium::HenyeyGreenstein { g: -0.4 })
+    );
+    assert!(fog.sample_emitters);
+    let Medium::Homogeneous(other) = &m.media[1];
+    assert_eq!(
+        other.sigma_t,
+        tessera_core::Color::ONE,
+        "Mitsuba's default sigma_t"
+    );
+    assert_eq!(other.phase, PhaseFunction::default());
+    assert!(!other.sample_emitters);
+    assert_eq!(m.interface(0).interior, Some(0));
+    assert_eq!(m.interface(0).exterior, Some(1));
+    assert_eq!(m.interface(1).interior, None);
+    assert_eq!(m.interface(1).exterior, Some(0));
+    assert_eq!(m.camera, None);
+    assert!(matches!(l.integrator, Integrator::VolPath(_)));
+}
+
+#[test]
+fn hg_defaults_to_g_0_8_and_the_sensor_takes_a_medium() {
+    let xml = r#"<scene version="3.0.0">
+  <integrator type="volpath"/>
+  <medium type="homogeneous" id="m"><phase type="hg"/></medium>
+  <sensor type="perspective"><ref id="m"/>
+    <film type="hdrfilm"><integer name="width" value="4"/><integer name="height" value="4"/></film>
+  </sensor>
+</scene>"#;
+    let l = load_scene_str(xml, &scenes_dir().join("media-inputs.xml"), &[]).expect("loads");
+    assert_eq!(l.scene.media.camera, Some(0));
+    let Medium::Homogeneous(h) = &l.scene.media.media[0];
+    assert_eq!(
+        h.phase,
+        PhaseFunction::Hg(tessera_core::medium::HenyeyGreenstein { g: 0.8 })
+    );
+}
+
+#[test]
+fn path_on_a_scene_with_media_names_volpath() {
+    refused(
+        SPHERE_WITH_MEDIUM,
+        r#"<integrator type="path"/>"#,
+        "\"volpath\"",
+        2,
+    );
+    // Without an integrator element (the default is path): at the medium.
+    refused(SPHERE_WITH_MEDIUM, "", "\"volpath\"", 7);
+    // The command line's choice is refused as well.
+    let mut l = load(SPHERE_WITH_MEDIUM, VOLPATH).expect("loads");
+    let e = l.set_integrator(Some("path"), None).unwrap_err();
+    assert!(e.contains("volpath"), "{e}");
+    l.set_integrator(Some("volpath"), None).expect("volpath");
+    // Control: the same scene with volpath loads, and path loads a scene without media.
+    load(r#"<shape type="sphere"/>"#, r#"<integrator type="path"/>"#).expect("loads");
+}
+
+#[test]
+fn unsupported_media_are_located_errors_naming_them() {
+    refused(
+        r#"<medium type="heterogeneous" id="h"/>"#,
+        VOLPATH,
+        "medium \"heterogeneous\", which Tessera does not read yet",
+        6,
+    );
+    refused(
+        r#"<shape type="sphere"><bsdf type="null"/><medium type="homogeneous" name="interior">
+    <volume name="sigma_t" type="gridvolume"><string name="filename" value="a.vol"/></volume>
+  </medium></shape>"#,
+        VOLPATH,
+        "unsupported element <volume type=\"gridvolume\">",
+        7,
+    );
+    refused(
+        r#"<shape type="sphere"><medium type="homogeneous" name="interior"><phase type="rayleigh"/></medium></shape>"#,
+        VOLPATH,
+        "phase function \"rayleigh\", which Tessera does not read yet",
+        6,
+    );
+    refused(
+        r#"<integrator type="volpathmis"/>"#,
+        "",
+        "integrator \"volpathmis\", which Tessera does not read yet",
+        6,
+    );
+}
+
+#[test]
+fn bad_media_parameters_are_located_errors() {
+    refused(
+        r#"<shape type="sphere"><medium type="homogeneous" name="interior"><float name="sigma_t" value="-1"/></medium></shape>"#,
+        VOLPATH,
+        "\"sigma_t\"",
+        6,
+    );
+    refused(
+        r#"<shape type="sphere"><medium type="homogeneous" name="interior"><phase type="hg"><float name="g" value="1"/></phase></medium></shape>"#,
+        VOLPATH,
+        "\"g\"",
+        6,
+    );
+    refused(
+        r#"<shape type="sphere"><medium type="homogeneous" name="interior"><float name="density" value="1"/></medium></shape>"#,
+        VOLPATH,
+        "unused parameter \"density\"",
+        6,
+    );
+    refused(
+        r#"<shape type="sphere"><medium type="homogeneous"/></shape>"#,
+        VOLPATH,
+        "needs name=\"interior\" or name=\"exterior\"",
+        6,
+    );
+    refused(
+        r#"<bsdf type="diffuse" id="d"/><shape type="sphere"><ref name="interior" id="d"/></shape>"#,
+        VOLPATH,
+        "must be a <medium>",
+        6,
+    );
+    refused(
+        r#"<shape type="sphere"><medium type="homogeneous" name="interior"><phase type="isotropic"/>
+    <phase type="isotropic"/></medium></shape>"#,
+        VOLPATH,
+        "more than one phase function",
+        7,
+    );
+}
+
+#[test]
+fn has_spectral_extinction_is_one_located_warning() {
+    let body = r#"<shape type="sphere"><bsdf type="null"/>
+    <medium type="homogeneous" name="interior"><boolean name="has_spectral_extinction" value="false"/></medium>
+  </shape>"#;
+    let l = load(body, VOLPATH).expect("loads");
+    let w: Vec<&String> = l
+        .warnings
+        .iter()
+        .filter(|w| w.contains("has_spectral_extinction"))
+        .collect();
+    assert_eq!(w.len(), 1, "{:?}", l.warnings);
+    assert!(w[0].contains("media-inputs.xml:7:"), "{}", w[0]);
+    // Control: without it, no warning.
+    let l = load(SPHERE_WITH_MEDIUM, VOLPATH).expect("loads");
+    assert!(l.warnings.is_empty(), "{:?}", l.warnings);
+}
+
+/// `--stats` counts medium events: a sphere of medium (sigma_t 2) bounded by `null` under a
+/// sky, seen by a 4x4 camera, has scatterings, passes and null crossings (of paths and of shadow
+/// rays); the same scene without its medium has none of them.
+#[test]
+fn probe_counts_medium_events() {
+    use tessera::render::RenderOptions;
+    use tessera::render_stats::render_with_stats;
+    use tessera_core::render::RenderJob;
+    let count = |body: &str| {
+        let xml = format!(
+            r#"<scene version="3.0.0"><integrator type="volpath"/>
+  <sensor type="perspective"><transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="4"/><integer name="height" value="4"/></film>
+  </sensor>
+  <emitter type="constant"/>
+  {body}
+</scene>"#
+        );
+        let l = load_scene_str(&xml, &scenes_dir().join("media-inputs.xml"), &[]).expect("loads");
+        let job = RenderJob::new(&l.scene, &l.integrator, 1);
+        let opts = RenderOptions {
+            threads: 1,
+            ..Default::default()
+        };
+        render_with_stats(&job, 0..64, &opts, &mut |_, _| {}).1
+    };
+    let c = count(SPHERE_WITH_MEDIUM);
+    println!("{c:?}");
+    assert!(c.medium_scatters > 0 && c.medium_passes > 0, "{c:?}");
+    assert!(c.null_crossings > 0 && c.shadow_null_crossings > 0, "{c:?}");
+    // Control: a diffuse sphere without media counts none of them.
+    let c = count(r#"<shape type="sphere"/>"#);
+    assert_eq!(
+        (
+            c.medium_scatters,
+            c.medium_passes,
+            c.null_crossings,
+            c.shadow_null_crossings
+        ),
+        (0, 0, 0, 0)
+    );
+    assert!(c.continuation_rays > 0);
+}
