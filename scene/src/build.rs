@@ -102,9 +102,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
             sensor.sampler.unwrap_or_default(),
         ),
         (None, Some((n, s, k))) => (n, s, k),
-        // A file that names no sampler gets the one with the least error per sample (Mitsuba's
-        // default, `independent`, has no stratification); `sample_count` keeps Mitsuba's 4.
-        (None, None) => (4, 0, SamplerKind::default_for_spp(4)),
+        (None, None) => (4, 0, SamplerKind::Independent),
     };
     root.check_unused()?;
     warn_ignored(root, &families(), &mut warnings, &mut HashSet::new());

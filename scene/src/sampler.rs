@@ -1,6 +1,5 @@
-//! The `<sampler>` plugins ([`SAMPLERS`]): `independent` and Tessera's `zsobol` (the sampler
-//! of a file that names none; Owen-scrambled Sobol in Morton order, see
-//! `tessera_core::sampling::ZSobolSampler`).
+//! The `<sampler>` plugins ([`SAMPLERS`]): `independent` (the default) and Tessera's `zsobol`
+//! (Owen-scrambled Sobol in Morton order, see `tessera_core::sampling::ZSobolSampler`).
 //! Mitsuba's stratified low-discrepancy samplers (`ldsampler`, `stratified`, `multijitter`,
 //! `orthogonal`) render with `zsobol`, the closest Tessera has (not Mitsuba's exact points), and
 //! `correlated` with `independent`; a warning says so.

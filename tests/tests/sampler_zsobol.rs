@@ -542,9 +542,7 @@ fn scene_files_choose_the_sampler() {
         .to_string();
     assert!(err.contains("inline-test.xml:4:5"), "{err}");
     assert!(err.contains("unknown sampler \"sobol\""), "{err}");
-    // Default without a sampler: zsobol for Mitsuba's default 4 samples per pixel.
+    // Default without a sampler: independent.
     let none = r#"<scene version="3.0.0"><sensor type="perspective"/></scene>"#;
-    let l = load_xml(none, &[]);
-    assert_eq!(l.scene.sampler, SamplerKind::ZSobol { log2_spp: 2 });
-    assert_eq!(l.spp, 4);
+    assert_eq!(load_xml(none, &[]).scene.sampler, SamplerKind::Independent);
 }

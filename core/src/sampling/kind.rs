@@ -5,7 +5,7 @@ use super::zsobol::log2_spp_for;
 /// The samplers.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum SamplerKind {
-    /// Independent uniform values from a PCG32 stream per pixel and sample.
+    /// Independent uniform values from a PCG32 stream per pixel and sample (the default).
     #[default]
     Independent,
     /// Owen-scrambled Sobol points in Morton order; `log2_spp` is the pixel block size `K`
@@ -28,15 +28,6 @@ impl SamplerKind {
                 log2_spp: log2_spp_for(spp),
             }),
             _ => None,
-        }
-    }
-
-    /// The sampler used when a scene names none, set up for `spp` samples per pixel: `zsobol`,
-    /// which reaches a lower error than `independent` at equal samples on every scene measured
-    /// (`docs/design/samplers.md`).
-    pub fn default_for_spp(spp: u64) -> SamplerKind {
-        SamplerKind::ZSobol {
-            log2_spp: log2_spp_for(spp),
         }
     }
 
