@@ -13,8 +13,8 @@ use tessera_core::adaptive::{AdaptiveParams, ZSOBOL_BLOCK_FACTOR};
 use tessera_lab::bench::errors;
 use tessera_scene::LoadedScene;
 
-mod scenes;
-mod support;
+use crate::scenes;
+use crate::support;
 use support::{render_adaptive, render_plain, run, sample_counts, stderr};
 
 /// `name` at `res` x `res`, box filter, zsobol set up for 64 samples per pixel.

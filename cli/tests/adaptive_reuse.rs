@@ -15,8 +15,8 @@ use tessera_core::render::RenderJob;
 use tessera_lab::bench::errors;
 use tessera_scene::LoadedScene;
 
-mod scenes;
-mod support;
+use crate::scenes;
+use crate::support;
 use support::{render_adaptive, render_plain, run, sample_counts, stderr};
 
 /// cbox at `res` x `res`, box filter, zsobol for 64 samples per pixel, path reuse on.

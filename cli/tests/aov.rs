@@ -5,7 +5,7 @@
 use std::path::Path;
 use tessera::layers::read_channels_exr;
 
-mod support;
+use crate::support;
 use support::{run, stderr};
 
 #[test]

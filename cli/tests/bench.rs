@@ -13,7 +13,7 @@ use tessera_core::render::RenderJob;
 use tessera_lab::bench::{errors, read_csv, run_waves, WaveLimits, CSV_HEADER};
 use tessera_scene::{load_scene, LoadedScene};
 
-mod support;
+use crate::support;
 use support::run_os;
 use support::temp_dir::TempDir;
 

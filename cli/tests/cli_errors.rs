@@ -10,7 +10,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
-mod support;
+use crate::support;
 use support::temp_dir::TempDir;
 use support::{run_os, stderr as stderr_of};
 

@@ -2,7 +2,7 @@
 //! input refused like `render` refuses it.
 use std::path::Path;
 
-mod support;
+use crate::support;
 use support::{run, stderr};
 
 fn scenes() -> &'static Path {

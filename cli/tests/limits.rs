@@ -13,7 +13,7 @@
 use std::path::Path;
 use std::process::{Command, Output};
 
-mod support;
+use crate::support;
 use support::stderr as stderr_of;
 use support::temp_dir::TempDir;
 

@@ -11,7 +11,7 @@ use tessera_scene::LoadedScene;
 
 const BIN: &str = env!("CARGO_BIN_EXE_tessera");
 
-mod scenes;
+use crate::scenes;
 use scenes::{load, scene_path};
 
 fn opts(threads: usize, tile_size: u32) -> RenderOptions {

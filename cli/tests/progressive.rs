@@ -21,7 +21,7 @@ use tessera_core::integrator::NoProbe;
 use tessera_core::render::RenderJob;
 use tessera_scene::{load_scene, LoadedScene};
 
-mod support;
+use crate::support;
 use support::stderr;
 use support::temp_dir::TempDir;
 

@@ -8,8 +8,8 @@ use tessera_core::film::PixelAccum;
 use tessera_core::render::RenderJob;
 use tessera_scene::LoadedScene;
 
-mod scenes;
-mod support;
+use crate::scenes;
+use crate::support;
 use scenes::load;
 use support::differing_pixels;
 

@@ -16,7 +16,7 @@ use tessera_core::adaptive::{relative_variance, AdaptiveParams};
 use tessera_lab::bench::errors;
 use tessera_scene::{load_scene, LoadedScene};
 
-mod support;
+use crate::support;
 use support::{run, stderr};
 
 fn scene_path(name: &str) -> PathBuf {
