@@ -67,10 +67,15 @@ struct Reply {
 
 /// One HTTP/1.1 request on its own connection.
 fn http(addr: SocketAddr, method: &str, path: &str, body: &[u8]) -> Reply {
+    http_from(addr, method, path, body, "")
+}
+
+/// [`http`] with extra header lines (each ending in CRLF).
+fn http_from(addr: SocketAddr, method: &str, path: &str, body: &[u8], extra: &str) -> Reply {
     let mut s = TcpStream::connect(addr).unwrap();
     s.set_read_timeout(Some(Duration::from_secs(20))).unwrap();
     let head = format!(
-        "{method} {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\nContent-Length: {}\r\n\r\n",
+        "{method} {path} HTTP/1.1\r\nHost: {addr}\r\n{extra}Connection: close\r\nContent-Length: {}\r\n\r\n",
         body.len()
     );
     s.write_all(head.as_bytes()).unwrap();
@@ -254,9 +259,9 @@ fn bad_requests_are_refused_change_nothing_and_the_render_goes_on() {
         assert_eq!(r.status, *status, "{method} {path}: {msg}");
         assert_eq!(msg.trim_end().lines().count(), 1, "one line: {msg:?}");
     }
-    // Control: a good request of the same kind is taken.
+    // Nothing bad was taken, and the render goes on.
     let s = state(addr);
-    assert_eq!(s["generation"], 1, "nothing was taken: {s}");
+    assert_eq!(s["generation"], 1, "{s}");
     assert_eq!(http(addr, "GET", "/api/scene.xml", b"").body, before);
     let spp = s["spp"].as_u64().unwrap();
     let t0 = Instant::now();
@@ -264,9 +269,18 @@ fn bad_requests_are_refused_change_nothing_and_the_render_goes_on() {
         assert!(t0.elapsed() < Duration::from_secs(30), "the render goes on");
         std::thread::sleep(Duration::from_millis(10));
     }
+    // A page of another site posting an edit is refused; controls: the same request from the
+    // view's own page, and a good integrator edit, are taken.
+    let edit = br#"{"dolly": 0.1}"#;
+    let other = http_from(addr, "POST", "/api/camera", edit, "Origin: http://evil.example\r\n");
+    assert_eq!(other.status, 403);
+    assert_eq!(state(addr)["generation"], 1);
+    let own = format!("Origin: http://{addr}\r\n");
+    assert_eq!(http_from(addr, "POST", "/api/camera", edit, &own).status, 200);
+    assert_eq!(state(addr)["generation"], 2);
     let ok = post(addr, "/api/integrator", r#"{"type": "direct"}"#);
     assert_eq!(ok.status, 200, "{}", String::from_utf8_lossy(&ok.body));
-    assert_eq!(state(addr)["generation"], 2);
+    assert_eq!(state(addr)["generation"], 3);
     assert_eq!(state(addr)["integrator"], "direct");
     view.stop();
     let _ = std::fs::remove_dir_all(&dir);

@@ -149,3 +149,76 @@ fn preview(a: &mut Accumulation, opts: &RenderOptions, shared: &Shared) -> Optio
         samples_per_second: 0.0,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::camera::Pose;
+    use crate::edits::Edits;
+    use crate::state::{Inner, SceneFacts};
+    use std::path::Path;
+    use std::sync::atomic::AtomicBool;
+    use std::sync::{Condvar, Mutex};
+
+    fn scene(res: u32) -> String {
+        format!(
+            r#"<scene version="3.0.0">
+            <sensor type="perspective"><float name="fov" value="40"/>
+                <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
+                <film type="hdrfilm"><integer name="width" value="{res}"/><integer name="height" value="{res}"/>
+                <rfilter type="box"/></film></sensor>
+            <shape type="sphere"><bsdf type="diffuse"/></shape>
+            <emitter type="constant"/></scene>"#
+        )
+    }
+
+    #[test]
+    fn the_preview_is_the_scene_at_a_quarter_resolution_and_the_camera_is_restored() {
+        let loaded = crate::state::load(&scene(256), Path::new("inline.xml")).unwrap();
+        let facts = SceneFacts::of(&loaded, Pose::of_scene(&loaded));
+        let shared = Shared {
+            path: "inline.xml".into(),
+            base: String::new(),
+            not_editable: None,
+            spp_limit: None,
+            threads: 2,
+            inner: Mutex::new(Inner {
+                edits: Edits::default(),
+                text: String::new(),
+                pending: None,
+                generation: 1,
+                facts,
+                frame: None,
+            }),
+            wake: Condvar::new(),
+            stop: AtomicBool::new(false),
+            shutdown: AtomicBool::new(false),
+        };
+        let opts = RenderOptions {
+            threads: 2,
+            ..Default::default()
+        };
+        let mut a = Accumulation {
+            fb: Framebuffer::new(256, 256),
+            loaded: Box::new(loaded),
+            generation: 1,
+            started: Instant::now(),
+            busy: 0.0,
+            next: 1,
+            preview_due: true,
+        };
+        let f = preview(&mut a, &opts, &shared).expect("a preview");
+        assert!(f.preview && f.spp == 0);
+        assert_eq!((f.width, f.height), (64, 64));
+        let cam = &a.loaded.scene.camera;
+        assert_eq!((cam.width, cam.height), (256, 256), "the camera is restored");
+        // The same scene loaded at 64x64 and rendered at 1 spp: the same bits.
+        let small = crate::state::load(&scene(64), Path::new("inline.xml")).unwrap();
+        let job = RenderJob::new(&small.scene, &small.integrator, small.seed);
+        let fb = tessera::render::render(&job, 0..1, &opts, &mut |_, _| {});
+        assert_eq!(f.rgb, fb.rgb());
+        pass(&mut a, &opts, &shared);
+        let full = shared.lock().frame.clone().expect("a full frame");
+        assert_eq!((full.width, full.spp, full.preview), (256, 1, false));
+    }
+}

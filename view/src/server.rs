@@ -1,7 +1,8 @@
 //! The HTTP side: one thread taking requests from `tiny_http` in turn and routing them to the
 //! page, the images, the scene text and the JSON handlers of [`crate::api`]. Bodies over
-//! [`MAX_BODY`] bytes, unknown paths and wrong methods are refused with one line; nothing a
-//! request sends can stop the server or the render.
+//! [`MAX_BODY`] bytes, unknown paths and wrong methods are refused with one line, and so are
+//! edits posted by pages of other sites (`Origin` not the `Host`); nothing a request sends can
+//! stop the server or the render.
 use crate::api::{self, Refusal};
 use crate::encode;
 use crate::state::Shared;
@@ -55,7 +56,7 @@ pub fn run(server: Arc<Server>, shared: Arc<Shared>) {
             Ok(r) => r,
             Err(_) => break, // unblocked (shutdown) or the socket failed
         };
-        let reply = match read_body(&mut req) {
+        let reply = match cross_origin(&req).map_or_else(|| read_body(&mut req), Err) {
             Ok(body) => route(&shared, req.method(), req.url(), &body),
             Err(r) => Reply::refused(r),
         };
@@ -72,6 +73,24 @@ pub fn run(server: Arc<Server>, shared: Arc<Shared>) {
         }
         let _ = req.respond(resp); // a client that went away is its own business
     }
+}
+
+/// A POST sent by a page of another site (its `Origin` names another host than the request's
+/// `Host`): browsers send those without asking, so they are refused here.
+fn cross_origin(req: &Request) -> Option<Refusal> {
+    if *req.method() != Method::Post {
+        return None;
+    }
+    let header = |name: &'static str| {
+        req.headers()
+            .iter()
+            .find(|h| h.field.equiv(name))
+            .map(|h| h.value.as_str().to_string())
+    };
+    let origin = header("Origin")?;
+    let host = header("Host").unwrap_or_default();
+    let origin_host = origin.split_once("://").map_or(origin.as_str(), |(_, h)| h);
+    (origin_host != host).then(|| (403, format!("cross-origin request from {origin} refused")))
 }
 
 fn read_body(req: &mut Request) -> Result<String, Refusal> {
