@@ -5,7 +5,7 @@
 //! orthographic camera, its view size).
 use glam::{DMat4, DVec3};
 use serde::Serialize;
-use tessera_core::math::Ray;
+use tessera_core::math::{Norm, Ray};
 use tessera_scene::LoadedScene;
 
 /// A look-at camera pose, in world coordinates.
@@ -55,11 +55,11 @@ impl Pose {
             m.transform_vector3(DVec3::Y),
             m.transform_vector3(DVec3::Z),
         );
-        let dir = z.normalize_or(DVec3::Z);
-        let up = y.normalize_or(DVec3::Y);
+        let dir = z.unit_or(DVec3::Z);
+        let up = y.unit_or(DVec3::Y);
         // A look-at's own x axis is up x dir; the file's may point the other way (mirrored).
         let left = up.cross(dir);
-        let sx = if x.dot(left) < 0.0 { -x.length() } else { x.length() };
+        let sx = if x.dot(left) < 0.0 { -x.norm() } else { x.norm() };
         let ray = Ray::new(origin_core.as_vec3(), dir.as_vec3());
         let hit = loaded.scene.intersect_hit(&ray).map(|h| h.t as f64);
         let dist = hit.filter(|t| t.is_finite() && *t > 1e-4).unwrap_or_else(|| {
@@ -77,21 +77,21 @@ impl Pose {
             origin: origin.to_array(),
             target: (origin + dir * dist).to_array(),
             up: up.to_array(),
-            scale: [sx, y.length(), z.length()],
+            scale: [sx, y.norm(), z.norm()],
         }
     }
 
     /// The pose after `m`, or why it cannot be taken (a degenerate look-at).
     pub fn moved(&self, m: Move) -> Result<Pose, String> {
-        let (o, t, up) = (v(self.origin), v(self.target), v(self.up).normalize());
+        let (o, t, up) = (v(self.origin), v(self.target), v(self.up).unit());
         let offset = o - t;
-        let dist = offset.length();
+        let dist = offset.norm();
         let (o, t, up) = match m {
             Move::Orbit { yaw, pitch } => {
                 let yawed = DMat4::from_axis_angle(up, yaw.to_radians()).transform_vector3(offset);
                 // Pitch about the camera's horizontal axis, kept a degree away from the poles.
-                let right = up.cross(yawed).normalize_or_zero();
-                let now = yawed.normalize().dot(up).clamp(-1.0, 1.0).acos().to_degrees();
+                let right = up.cross(yawed).unit_or_zero();
+                let now = yawed.unit().dot(up).clamp(-1.0, 1.0).acos().to_degrees();
                 let p = pitch.clamp(now - 179.0, now - 1.0);
                 let turned = match right == DVec3::ZERO {
                     true => yawed,
@@ -101,7 +101,7 @@ impl Pose {
             }
             Move::Pan { right, up: u } => {
                 let dir = -offset / dist;
-                let side = dir.cross(up).normalize_or_zero();
+                let side = dir.cross(up).unit_or_zero();
                 let cam_up = side.cross(dir);
                 let d = (side * right + cam_up * u) * dist;
                 (o + d, t + d, up)
@@ -130,11 +130,11 @@ impl Pose {
             return Err("camera coordinates must be finite numbers below 1e12".into());
         }
         let dir = v(self.target) - v(self.origin);
-        if dir.length() < 1e-9 {
+        if dir.norm() < 1e-9 {
             return Err("the camera's target must differ from its origin".into());
         }
         let up = v(self.up);
-        if up.length() < 1e-9 || dir.normalize().cross(up.normalize()).length() < 1e-6 {
+        if up.norm() < 1e-9 || dir.unit().cross(up.unit()).norm() < 1e-6 {
             return Err("the camera's up must not be along its view direction".into());
         }
         Ok(())
@@ -176,7 +176,7 @@ mod tests {
     fn orbit_keeps_the_distance_and_dolly_scales_it() {
         let p = pose().moved(Move::Orbit { yaw: 90.0, pitch: 30.0 }).unwrap();
         let o = v(p.origin);
-        assert!((o.length() - 5.0).abs() < 1e-9, "{o}");
+        assert!((o.norm() - 5.0).abs() < 1e-9, "{o}");
         assert!((o.y - 2.5).abs() < 1e-9, "30 degrees up: {o}");
         assert!((o.x - 5.0 * 30f64.to_radians().cos()).abs() < 1e-9, "{o}");
         let d = pose().moved(Move::Dolly { amount: 2f64.ln() }).unwrap();

@@ -65,7 +65,7 @@ pub fn run(server: Arc<Server>, shared: Arc<Shared>) {
             ("Content-Type", reply.content_type.to_string()),
             ("Cache-Control", "no-store".to_string()),
         ];
-        headers.extend(reply.extra.into_iter().map(|(k, v)| (k, v)));
+        headers.extend(reply.extra);
         for (k, v) in headers {
             if let Ok(h) = Header::from_bytes(k.as_bytes(), v.as_bytes()) {
                 resp.add_header(h);
