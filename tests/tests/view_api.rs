@@ -42,10 +42,10 @@ fn scratch(name: &str) -> PathBuf {
     d
 }
 
-fn start(dir: &Path, spp_limit: Option<u64>) -> View {
+fn config(dir: &Path, spp_limit: Option<u64>) -> Config {
     let scene = dir.join("scene.xml");
     std::fs::write(&scene, SCENE).unwrap();
-    let cfg = Config {
+    Config {
         scene,
         defines: vec![],
         bind: "127.0.0.1".into(),
@@ -55,8 +55,11 @@ fn start(dir: &Path, spp_limit: Option<u64>) -> View {
         max_depth: None,
         sampler: None,
         spp_limit,
-    };
-    View::start(&cfg).expect("the view starts").0
+    }
+}
+
+fn start(dir: &Path, spp_limit: Option<u64>) -> View {
+    View::start(&config(dir, spp_limit)).expect("the view starts").0
 }
 
 struct Reply {
@@ -282,6 +285,37 @@ fn bad_requests_are_refused_change_nothing_and_the_render_goes_on() {
     assert_eq!(ok.status, 200, "{}", String::from_utf8_lossy(&ok.body));
     assert_eq!(state(addr)["generation"], 3);
     assert_eq!(state(addr)["integrator"], "direct");
+    view.stop();
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn command_line_overrides_and_defines_are_written_into_the_served_scene() {
+    const N: u64 = 4;
+    let dir = scratch("flags");
+    let cfg = Config {
+        integrator: Some("path".into()),
+        max_depth: Some(2),
+        sampler: Some("zsobol".into()),
+        defines: vec![("res".into(), "24".into())],
+        ..config(&dir, Some(N))
+    };
+    let view = View::start(&cfg).expect("the view starts").0;
+    let addr = view.addr();
+    wait_for(addr, 1, N);
+    assert_eq!(state(addr)["resolution"], serde_json::json!([24, 24]));
+    assert_eq!(state(addr)["max_depth"], 2);
+    let scene = served_scene(addr, &dir, "served.xml");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    assert!(text.contains(r#"<sampler type="zsobol">"#), "{text}");
+    assert!(text.contains(r#"<integer name="max_depth" value="2"/>"#), "{text}");
+    assert!(text.contains(r#"<default name="res" value="24"/>"#), "{text}");
+    let frame = decode(&dir, "f.exr", &http(addr, "GET", "/api/image.exr", b"").body);
+    assert_eq!(bits(&frame), bits(&render(&scene, N)));
+    // Control: the served scene with the file's own sampler back is another image.
+    let independent = dir.join("independent.xml");
+    std::fs::write(&independent, text.replace("zsobol", "independent")).unwrap();
+    assert_ne!(bits(&frame), bits(&render(&independent, N)));
     view.stop();
     let _ = std::fs::remove_dir_all(&dir);
 }
