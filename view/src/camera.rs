@@ -185,6 +185,48 @@ mod tests {
         assert!((v(pan.target) - v(pan.origin)).z < 0.0 && v(pan.target).x.abs() > 0.4);
     }
 
+    /// The file's camera, written back as a pose, is the same camera: mirrored (Nori files
+    /// write `<scale x="-1"/>`), scaled (an orthographic view's size) or neither.
+    #[test]
+    fn the_file_camera_written_as_a_pose_is_the_same_camera() {
+        for (sensor, prefix) in [
+            ("perspective", ""),
+            ("perspective", r#"<scale value="-1, 1, 1"/>"#),
+            ("orthographic", r#"<scale value="2, 3, 1"/>"#),
+        ] {
+            let text = format!(
+                r#"<scene version="3.0.0"><sensor type="{sensor}">
+                <transform name="to_world">{prefix}<lookat origin="1, 2, 5" target="0.5, 0, 0" up="0.2, 1, 0"/></transform>
+                <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>
+                <shape type="sphere"><float name="radius" value="0.7"/></shape></scene>"#
+            );
+            let path = std::path::Path::new("inline.xml");
+            let loaded = crate::state::load(&text, path).unwrap();
+            let pose = Pose::of_scene(&loaded);
+            // The centre ray hits the sphere: the target is on it, in front of the camera.
+            let d = (v(pose.target) - v(pose.origin)).norm();
+            assert!(d > 3.0 && d < 6.0, "{sensor} {prefix}: target at {d}");
+            let edits = crate::edits::Edits {
+                camera: Some(pose),
+                ..Default::default()
+            };
+            let again = crate::state::load(&edits.apply(&text).unwrap(), path).unwrap();
+            let (a, b) = (loaded.scene.camera.to_world.m, again.scene.camera.to_world.m);
+            let err = (a - b).to_cols_array().iter().fold(0f32, |m, x| m.max(x.abs()));
+            assert!(err < 1e-5, "{sensor} {prefix}: {a} vs {b}");
+            // Control: an orbit of one degree moves the camera by more than that.
+            let moved = Pose::moved(&pose, Move::Orbit { yaw: 1.0, pitch: 0.0 }).unwrap();
+            let edits = crate::edits::Edits {
+                camera: Some(moved),
+                ..Default::default()
+            };
+            let m = crate::state::load(&edits.apply(&text).unwrap(), path).unwrap();
+            let c = m.scene.camera.to_world.m;
+            let err = (a - c).to_cols_array().iter().fold(0f32, |m, x| m.max(x.abs()));
+            assert!(err > 1e-3, "{sensor} {prefix}: the orbit moved nothing");
+        }
+    }
+
     #[test]
     fn degenerate_poses_are_refused() {
         let same = Move::Set {

@@ -62,6 +62,8 @@ pub fn kind_of(p: &Param) -> Option<&'static str> {
         return None;
     }
     match (p.ty, p.range) {
+        // A texture whose default is a number is a scalar one (a roughness): a number input.
+        (ParamType::Texture, _) if !matches!(p.default, Default::Rgb(_)) => Some("float"),
         (ParamType::Rgb | ParamType::Texture, _) => Some("rgb"),
         (ParamType::Float | ParamType::Ior, Range::OneOf(_) | Range::OneOfAnyCase(_)) => None,
         (ParamType::Float | ParamType::Ior, _) => Some("float"),
@@ -198,7 +200,7 @@ fn current(n: Node, p: &Param, kind: &str) -> (Option<Value>, String) {
     let v = match (tag, numbers.as_deref(), kind) {
         ("rgb" | "float" | "spectrum" | "integer", Some(&[x]), "rgb") => Some(Value::Rgb([x; 3])),
         ("rgb", Some(&[r, g, b]), "rgb") => Some(Value::Rgb([r, g, b])),
-        ("float" | "integer", Some(&[x]), "float") => Some(Value::Float(x)),
+        ("float" | "integer" | "rgb" | "spectrum", Some(&[x]), "float") => Some(Value::Float(x)),
         _ => None,
     };
     match v {
@@ -255,4 +257,33 @@ pub fn element_for(n: Node, name: &str, value: &Value) -> Result<String, String>
         ),
         _ => format!("<float name=\"{name}\" value=\"{}\"/>", n(channels[0])),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn colours_get_pickers_and_scalar_textures_numbers() {
+        let text = r#"<scene version="3.0.0">
+            <bsdf type="roughconductor" id="metal"><float name="alpha" value="0.25"/></bsdf>
+            <bsdf type="diffuse"><texture type="bitmap" name="reflectance"/></bsdf></scene>"#;
+        let doc = crate::xml_text::parse(text).unwrap();
+        let list = list(&doc);
+        let p = |i: usize, n: &str| list[i].params.iter().find(|p| p.name == n).unwrap().clone();
+        let alpha = p(0, "alpha");
+        assert_eq!((alpha.kind, alpha.value), ("float", Some(Value::Float(0.25))));
+        assert_eq!((alpha.min, alpha.min_open), (Some(0.0), true));
+        let eta = p(0, "eta");
+        assert_eq!((eta.kind, eta.source.as_str()), ("rgb", "default"));
+        let refl = p(1, "reflectance");
+        assert_eq!((refl.value, refl.source.as_str()), (None, "<texture bitmap>"));
+        let (_, metal) = find(&doc, &Key::Id("metal".into())).unwrap();
+        assert!(element_for(metal, "alpha", &Value::Float(0.0)).is_err(), "alpha > 0");
+        assert_eq!(
+            element_for(metal, "alpha", &Value::Float(0.5)).unwrap(),
+            r#"<float name="alpha" value="0.5"/>"#
+        );
+        assert!(element_for(metal, "alpha", &Value::Rgb([0.5; 3])).is_err());
+    }
 }
