@@ -59,7 +59,9 @@ fn config(dir: &Path, spp_limit: Option<u64>) -> Config {
 }
 
 fn start(dir: &Path, spp_limit: Option<u64>) -> View {
-    View::start(&config(dir, spp_limit)).expect("the view starts").0
+    View::start(&config(dir, spp_limit))
+        .expect("the view starts")
+        .0
 }
 
 struct Reply {
@@ -85,10 +87,20 @@ fn http_from(addr: SocketAddr, method: &str, path: &str, body: &[u8], extra: &st
     let _ = s.write_all(body); // the server may refuse before reading a large body
     let mut raw = Vec::new();
     s.read_to_end(&mut raw).unwrap();
-    let split = raw.windows(4).position(|w| w == b"\r\n\r\n").expect("a header");
+    let split = raw
+        .windows(4)
+        .position(|w| w == b"\r\n\r\n")
+        .expect("a header");
     let head = String::from_utf8_lossy(&raw[..split]).to_string();
     let mut lines = head.lines();
-    let status = lines.next().unwrap().split(' ').nth(1).unwrap().parse().unwrap();
+    let status = lines
+        .next()
+        .unwrap()
+        .split(' ')
+        .nth(1)
+        .unwrap()
+        .parse()
+        .unwrap();
     let headers = lines
         .filter_map(|l| l.split_once(':'))
         .map(|(k, v)| (k.trim().to_ascii_lowercase(), v.trim().to_string()))
@@ -178,20 +190,43 @@ fn the_frame_after_n_spp_is_tessera_render_of_the_served_scene_before_and_after_
     let frame = decode(&dir, "frame0.exr", &exr.body);
     let scene = served_scene(addr, &dir, "served0.xml");
     let reference = render(&scene, N);
-    assert_eq!(bits(&frame), bits(&reference), "the frame is the render at {N} spp");
-    assert_ne!(bits(&frame), bits(&render(&scene, N - 1)), "control: {} spp differs", N - 1);
+    assert_eq!(
+        bits(&frame),
+        bits(&reference),
+        "the frame is the render at {N} spp"
+    );
+    assert_ne!(
+        bits(&frame),
+        bits(&render(&scene, N - 1)),
+        "control: {} spp differs",
+        N - 1
+    );
     // The PNG is the render's sRGB codes (read back as codes / 255); +1 stop brightens it.
     let png = http(addr, "GET", "/api/image.png", b"");
     assert_eq!(png.headers["content-type"], "image/png");
     let png = decode(&dir, "frame0.png", &png.body);
     let codes = tessera::image_io::to_srgb8(&reference);
-    let served: Vec<u8> = png.data.iter().flatten().map(|c| (c * 255.0).round() as u8).collect();
+    let served: Vec<u8> = png
+        .data
+        .iter()
+        .flatten()
+        .map(|c| (c * 255.0).round() as u8)
+        .collect();
     assert_eq!(served, codes);
     let mean = |v: &[u8]| v.iter().map(|c| *c as f64).sum::<f64>() / v.len() as f64;
-    assert!(mean(&codes) > 40.0, "the image shows the scene: mean code {}", mean(&codes));
+    assert!(
+        mean(&codes) > 40.0,
+        "the image shows the scene: mean code {}",
+        mean(&codes)
+    );
     let bright = http(addr, "GET", "/api/image.png?exposure=1", b"");
     let bright = decode(&dir, "bright.png", &bright.body);
-    let bright: Vec<u8> = bright.data.iter().flatten().map(|c| (c * 255.0).round() as u8).collect();
+    let bright: Vec<u8> = bright
+        .data
+        .iter()
+        .flatten()
+        .map(|c| (c * 255.0).round() as u8)
+        .collect();
     assert!(mean(&bright) > mean(&codes) + 10.0);
 
     // A camera edit and a material edit: each starts a new generation. That accumulation
@@ -213,9 +248,16 @@ fn the_frame_after_n_spp_is_tessera_render_of_the_served_scene_before_and_after_
     assert_ne!(bits(&edited), bits(&frame), "the edits change the image");
     let scene = served_scene(addr, &dir, "served1.xml");
     let text = std::fs::read_to_string(&scene).unwrap();
-    assert!(text.contains(r#"<rgb name="reflectance" value="0.9, 0.1, 0.1"/>"#), "{text}");
+    assert!(
+        text.contains(r#"<rgb name="reflectance" value="0.9, 0.1, 0.1"/>"#),
+        "{text}"
+    );
     assert!(text.contains("<lookat origin="), "{text}");
-    assert_eq!(bits(&edited), bits(&render(&scene, N)), "edited: the render at {N} spp");
+    assert_eq!(
+        bits(&edited),
+        bits(&render(&scene, N)),
+        "edited: the render at {N} spp"
+    );
 
     // Reset view: back to the file's camera (with the edited material).
     assert_eq!(post(addr, "/api/camera", r#"{"reset": true}"#).status, 200);
@@ -241,15 +283,45 @@ fn bad_requests_are_refused_change_nothing_and_the_render_goes_on() {
     let cases: &[(&str, &str, &[u8], u16)] = &[
         ("POST", "/api/camera", b"{not json", 400),
         ("POST", "/api/camera", br#"{"orbit": [1e9, 0]}"#, 400),
-        ("POST", "/api/camera", br#"{"origin": [0,0,0], "target": [0,0,0]}"#, 400),
+        (
+            "POST",
+            "/api/camera",
+            br#"{"origin": [0,0,0], "target": [0,0,0]}"#,
+            400,
+        ),
         ("POST", "/api/camera", br#"{"spin": 3}"#, 400),
-        ("POST", "/api/material", br#"{"bsdf": "ball", "param": "reflectance", "value": [1.5, 0, 0]}"#, 400),
-        ("POST", "/api/material", br#"{"bsdf": "nobody", "param": "reflectance", "value": 0.5}"#, 400),
-        ("POST", "/api/material", br#"{"bsdf": 7, "param": "reflectance", "value": 0.5}"#, 400),
-        ("POST", "/api/material", br#"{"bsdf": 0, "param": "shininess", "value": 0.5}"#, 400),
+        (
+            "POST",
+            "/api/material",
+            br#"{"bsdf": "ball", "param": "reflectance", "value": [1.5, 0, 0]}"#,
+            400,
+        ),
+        (
+            "POST",
+            "/api/material",
+            br#"{"bsdf": "nobody", "param": "reflectance", "value": 0.5}"#,
+            400,
+        ),
+        (
+            "POST",
+            "/api/material",
+            br#"{"bsdf": 7, "param": "reflectance", "value": 0.5}"#,
+            400,
+        ),
+        (
+            "POST",
+            "/api/material",
+            br#"{"bsdf": 0, "param": "shininess", "value": 0.5}"#,
+            400,
+        ),
         ("POST", "/api/integrator", br#"{"type": "warp"}"#, 400),
         ("POST", "/api/integrator", br#"{"max_depth": -7}"#, 400),
-        ("POST", "/api/integrator", br#"{"type": "direct", "max_depth": 3}"#, 400),
+        (
+            "POST",
+            "/api/integrator",
+            br#"{"type": "direct", "max_depth": 3}"#,
+            400,
+        ),
         ("POST", "/api/material", &huge, 400),
         ("GET", "/api/camera", b"", 400),
         ("GET", "/api/image.png?exposure=nan", b"", 400),
@@ -275,11 +347,20 @@ fn bad_requests_are_refused_change_nothing_and_the_render_goes_on() {
     // A page of another site posting an edit is refused; controls: the same request from the
     // view's own page, and a good integrator edit, are taken.
     let edit = br#"{"dolly": 0.1}"#;
-    let other = http_from(addr, "POST", "/api/camera", edit, "Origin: http://evil.example\r\n");
+    let other = http_from(
+        addr,
+        "POST",
+        "/api/camera",
+        edit,
+        "Origin: http://evil.example\r\n",
+    );
     assert_eq!(other.status, 403);
     assert_eq!(state(addr)["generation"], 1);
     let own = format!("Origin: http://{addr}\r\n");
-    assert_eq!(http_from(addr, "POST", "/api/camera", edit, &own).status, 200);
+    assert_eq!(
+        http_from(addr, "POST", "/api/camera", edit, &own).status,
+        200
+    );
     assert_eq!(state(addr)["generation"], 2);
     let ok = post(addr, "/api/integrator", r#"{"type": "direct"}"#);
     assert_eq!(ok.status, 200, "{}", String::from_utf8_lossy(&ok.body));
@@ -308,9 +389,19 @@ fn command_line_overrides_and_defines_are_written_into_the_served_scene() {
     let scene = served_scene(addr, &dir, "served.xml");
     let text = std::fs::read_to_string(&scene).unwrap();
     assert!(text.contains(r#"<sampler type="zsobol">"#), "{text}");
-    assert!(text.contains(r#"<integer name="max_depth" value="2"/>"#), "{text}");
-    assert!(text.contains(r#"<default name="res" value="24"/>"#), "{text}");
-    let frame = decode(&dir, "f.exr", &http(addr, "GET", "/api/image.exr", b"").body);
+    assert!(
+        text.contains(r#"<integer name="max_depth" value="2"/>"#),
+        "{text}"
+    );
+    assert!(
+        text.contains(r#"<default name="res" value="24"/>"#),
+        "{text}"
+    );
+    let frame = decode(
+        &dir,
+        "f.exr",
+        &http(addr, "GET", "/api/image.exr", b"").body,
+    );
     assert_eq!(bits(&frame), bits(&render(&scene, N)));
     // Control: the served scene with the file's own sampler back is another image.
     let independent = dir.join("independent.xml");

@@ -27,7 +27,10 @@ fn body<'a, T: Deserialize<'a>>(text: &'a str) -> Result<T, Refusal> {
 pub fn state(shared: &Shared) -> Json {
     let inner = shared.lock();
     let f = &inner.facts;
-    let frame = inner.frame.as_ref().filter(|fr| fr.generation == inner.generation);
+    let frame = inner
+        .frame
+        .as_ref()
+        .filter(|fr| fr.generation == inner.generation);
     let bsdfs = parse(&inner.text)
         .map(|d| materials::list(&d))
         .unwrap_or_default();
@@ -218,7 +221,9 @@ pub fn integrator(shared: &Shared, text: &str) -> Result<Json, Refusal> {
     }
     if let Some(d) = req.max_depth {
         if !(-1..=1024).contains(&d) {
-            return Err(bad(format!("max_depth must be -1 (unbounded) or 0 to 1024, found {d}")));
+            return Err(bad(format!(
+                "max_depth must be -1 (unbounded) or 0 to 1024, found {d}"
+            )));
         }
         edits.max_depth = Some(d);
     }

@@ -34,7 +34,11 @@ pub enum Move {
     /// Move towards the target: the distance is multiplied by `exp(-amount)`.
     Dolly { amount: f64 },
     /// An explicit pose.
-    Set { origin: DVec3, target: DVec3, up: DVec3 },
+    Set {
+        origin: DVec3,
+        target: DVec3,
+        up: DVec3,
+    },
 }
 
 fn v(a: [f64; 3]) -> DVec3 {
@@ -59,19 +63,25 @@ impl Pose {
         let up = y.unit_or(DVec3::Y);
         // A look-at's own x axis is up x dir; the file's may point the other way (mirrored).
         let left = up.cross(dir);
-        let sx = if x.dot(left) < 0.0 { -x.norm() } else { x.norm() };
+        let sx = if x.dot(left) < 0.0 {
+            -x.norm()
+        } else {
+            x.norm()
+        };
         let ray = Ray::new(origin_core.as_vec3(), dir.as_vec3());
         let hit = loaded.scene.intersect_hit(&ray).map(|h| h.t as f64);
-        let dist = hit.filter(|t| t.is_finite() && *t > 1e-4).unwrap_or_else(|| {
-            let b = loaded.scene.bounds();
-            let centre = ((b.min + b.max) * 0.5).as_dvec3();
-            let d = (centre - origin_core).dot(dir);
-            if d.is_finite() && d > 1e-4 {
-                d
-            } else {
-                1.0
-            }
-        });
+        let dist = hit
+            .filter(|t| t.is_finite() && *t > 1e-4)
+            .unwrap_or_else(|| {
+                let b = loaded.scene.bounds();
+                let centre = ((b.min + b.max) * 0.5).as_dvec3();
+                let d = (centre - origin_core).dot(dir);
+                if d.is_finite() && d > 1e-4 {
+                    d
+                } else {
+                    1.0
+                }
+            });
         let origin = origin_core + shift;
         Pose {
             origin: origin.to_array(),
@@ -95,7 +105,9 @@ impl Pose {
                 let p = pitch.clamp(now - 179.0, now - 1.0);
                 let turned = match right == DVec3::ZERO {
                     true => yawed,
-                    false => DMat4::from_axis_angle(right, -p.to_radians()).transform_vector3(yawed),
+                    false => {
+                        DMat4::from_axis_angle(right, -p.to_radians()).transform_vector3(yawed)
+                    }
                 };
                 (t + turned, t, up)
             }
@@ -174,14 +186,24 @@ mod tests {
 
     #[test]
     fn orbit_keeps_the_distance_and_dolly_scales_it() {
-        let p = pose().moved(Move::Orbit { yaw: 90.0, pitch: 30.0 }).unwrap();
+        let p = pose()
+            .moved(Move::Orbit {
+                yaw: 90.0,
+                pitch: 30.0,
+            })
+            .unwrap();
         let o = v(p.origin);
         assert!((o.norm() - 5.0).abs() < 1e-9, "{o}");
         assert!((o.y - 2.5).abs() < 1e-9, "30 degrees up: {o}");
         assert!((o.x - 5.0 * 30f64.to_radians().cos()).abs() < 1e-9, "{o}");
         let d = pose().moved(Move::Dolly { amount: 2f64.ln() }).unwrap();
         assert!((v(d.origin).z - 2.5).abs() < 1e-12);
-        let pan = pose().moved(Move::Pan { right: 0.1, up: 0.0 }).unwrap();
+        let pan = pose()
+            .moved(Move::Pan {
+                right: 0.1,
+                up: 0.0,
+            })
+            .unwrap();
         assert!((v(pan.target) - v(pan.origin)).z < 0.0 && v(pan.target).x.abs() > 0.4);
     }
 
@@ -211,18 +233,34 @@ mod tests {
                 ..Default::default()
             };
             let again = crate::state::load(&edits.apply(&text).unwrap(), path).unwrap();
-            let (a, b) = (loaded.scene.camera.to_world.m, again.scene.camera.to_world.m);
-            let err = (a - b).to_cols_array().iter().fold(0f32, |m, x| m.max(x.abs()));
+            let (a, b) = (
+                loaded.scene.camera.to_world.m,
+                again.scene.camera.to_world.m,
+            );
+            let err = (a - b)
+                .to_cols_array()
+                .iter()
+                .fold(0f32, |m, x| m.max(x.abs()));
             assert!(err < 1e-5, "{sensor} {prefix}: {a} vs {b}");
             // Control: an orbit of one degree moves the camera by more than that.
-            let moved = Pose::moved(&pose, Move::Orbit { yaw: 1.0, pitch: 0.0 }).unwrap();
+            let moved = Pose::moved(
+                &pose,
+                Move::Orbit {
+                    yaw: 1.0,
+                    pitch: 0.0,
+                },
+            )
+            .unwrap();
             let edits = crate::edits::Edits {
                 camera: Some(moved),
                 ..Default::default()
             };
             let m = crate::state::load(&edits.apply(&text).unwrap(), path).unwrap();
             let c = m.scene.camera.to_world.m;
-            let err = (a - c).to_cols_array().iter().fold(0f32, |m, x| m.max(x.abs()));
+            let err = (a - c)
+                .to_cols_array()
+                .iter()
+                .fold(0f32, |m, x| m.max(x.abs()));
             assert!(err > 1e-3, "{sensor} {prefix}: the orbit moved nothing");
         }
     }
@@ -242,7 +280,12 @@ mod tests {
         };
         assert!(pose().moved(along).is_err());
         // Pitch stops short of the pole.
-        let p = pose().moved(Move::Orbit { yaw: 0.0, pitch: 500.0 }).unwrap();
+        let p = pose()
+            .moved(Move::Orbit {
+                yaw: 0.0,
+                pitch: 500.0,
+            })
+            .unwrap();
         assert!(p.check().is_ok());
     }
 }

@@ -8,7 +8,9 @@
 //! sampler, materials, camera), so undoing one (the camera's reset) needs no inverse.
 use crate::camera::Pose;
 use crate::materials::{self, Key, Value};
-use crate::xml_text::{children_tagged, insert_first_child, named_child, parse, set_attribute, splice};
+use crate::xml_text::{
+    children_tagged, insert_first_child, named_child, parse, set_attribute, splice,
+};
 use roxmltree::{Document, Node};
 
 /// Everything edited so far.
@@ -100,7 +102,8 @@ impl Edits {
         let doc = parse(base)?;
         let (index, node) = materials::find(&doc, key)?;
         let element = materials::element_for(node, param, value)?;
-        self.materials.retain(|(i, p, _)| !(*i == index && p == param));
+        self.materials
+            .retain(|(i, p, _)| !(*i == index && p == param));
         self.materials.push((index, param.to_string(), element));
         Ok(())
     }
@@ -213,18 +216,35 @@ mod tests {
     #[test]
     fn edits_rewrite_only_what_they_name() {
         let mut e = Edits::default();
-        e.set_material(SCENE, &Key::Index(1), "reflectance", &Value::Rgb([0.1, 0.2, 0.3]))
-            .unwrap();
+        e.set_material(
+            SCENE,
+            &Key::Index(1),
+            "reflectance",
+            &Value::Rgb([0.1, 0.2, 0.3]),
+        )
+        .unwrap();
         e.integrator = Some("direct".into());
         let t = e.apply(SCENE).unwrap();
-        assert!(t.contains("<integrator type=\"direct\"></integrator>"), "{t}");
-        assert!(t.contains("<rgb name=\"reflectance\" value=\"0.1, 0.2, 0.3\"/>"), "{t}");
+        assert!(
+            t.contains("<integrator type=\"direct\"></integrator>"),
+            "{t}"
+        );
+        assert!(
+            t.contains("<rgb name=\"reflectance\" value=\"0.1, 0.2, 0.3\"/>"),
+            "{t}"
+        );
         assert!(t.contains("<default name=\"d\" value=\"3\"/>"));
         // Out of range, unknown parameter, unknown id: refused, nothing recorded.
         let bad = Value::Rgb([1.5, 0.0, 0.0]);
-        assert!(e.set_material(SCENE, &Key::Index(1), "reflectance", &bad).is_err());
-        assert!(e.set_material(SCENE, &Key::Index(1), "shine", &Value::Float(1.0)).is_err());
-        assert!(e.set_material(SCENE, &Key::Id("zz".into()), "reflectance", &bad).is_err());
+        assert!(e
+            .set_material(SCENE, &Key::Index(1), "reflectance", &bad)
+            .is_err());
+        assert!(e
+            .set_material(SCENE, &Key::Index(1), "shine", &Value::Float(1.0))
+            .is_err());
+        assert!(e
+            .set_material(SCENE, &Key::Id("zz".into()), "reflectance", &bad)
+            .is_err());
         assert_eq!(e.materials.len(), 1);
         e.integrator = None;
         e.max_depth = Some(-1);
@@ -234,7 +254,10 @@ mod tests {
 
     #[test]
     fn defines_are_baked_into_defaults() {
-        let t = bake_defines(SCENE, &[("d".into(), "5".into()), ("new".into(), "x".into())]);
+        let t = bake_defines(
+            SCENE,
+            &[("d".into(), "5".into()), ("new".into(), "x".into())],
+        );
         let t = t.unwrap();
         assert!(t.contains("<default name=\"d\" value=\"5\"/>"));
         assert!(t.contains("<default name=\"new\" value=\"x\"/>"));

@@ -95,7 +95,8 @@ impl View {
             sampler: cfg.sampler.clone(),
             ..Default::default()
         };
-        let wants_edits = edits.integrator.is_some() || edits.max_depth.is_some() || edits.sampler.is_some();
+        let wants_edits =
+            edits.integrator.is_some() || edits.max_depth.is_some() || edits.sampler.is_some();
         if let (Some(why), true) = (&not_editable, wants_edits) {
             return Err(input(format!(
                 "{}: --integrator, --max-depth and --sampler: {why}",

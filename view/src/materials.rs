@@ -206,7 +206,9 @@ fn current(n: Node, p: &Param, kind: &str) -> (Option<Value>, String) {
     match v {
         Some(v) => (Some(v), "file".into()),
         None => {
-            let what = c.attribute("type").map_or(String::new(), |t| format!(" {t}"));
+            let what = c
+                .attribute("type")
+                .map_or(String::new(), |t| format!(" {t}"));
             (None, format!("<{tag}{what}>"))
         }
     }
@@ -218,22 +220,18 @@ pub fn element_for(n: Node, name: &str, value: &Value) -> Result<String, String>
     let ty = n.attribute("type").unwrap_or("");
     let decl = tessera_scene::plugin_declaration("bsdf", ty)
         .ok_or_else(|| format!("BSDF type \"{ty}\" is not one the view can edit"))?;
-    let p = decl
-        .params
-        .iter()
-        .find(|p| p.name == name)
-        .ok_or_else(|| {
-            let names: Vec<&str> = decl
-                .params
-                .iter()
-                .filter(|p| kind_of(p).is_some())
-                .map(|p| p.name)
-                .collect();
-            format!(
-                "BSDF \"{ty}\" has no editable parameter \"{name}\" (it has: {})",
-                names.join(", ")
-            )
-        })?;
+    let p = decl.params.iter().find(|p| p.name == name).ok_or_else(|| {
+        let names: Vec<&str> = decl
+            .params
+            .iter()
+            .filter(|p| kind_of(p).is_some())
+            .map(|p| p.name)
+            .collect();
+        format!(
+            "BSDF \"{ty}\" has no editable parameter \"{name}\" (it has: {})",
+            names.join(", ")
+        )
+    })?;
     let kind = kind_of(p).ok_or_else(|| format!("parameter \"{name}\" is not editable here"))?;
     let n = crate::xml_text::number;
     let channels: Vec<f64> = match (kind, value) {
@@ -272,14 +270,23 @@ mod tests {
         let list = list(&doc);
         let p = |i: usize, n: &str| list[i].params.iter().find(|p| p.name == n).unwrap().clone();
         let alpha = p(0, "alpha");
-        assert_eq!((alpha.kind, alpha.value), ("float", Some(Value::Float(0.25))));
+        assert_eq!(
+            (alpha.kind, alpha.value),
+            ("float", Some(Value::Float(0.25)))
+        );
         assert_eq!((alpha.min, alpha.min_open), (Some(0.0), true));
         let eta = p(0, "eta");
         assert_eq!((eta.kind, eta.source.as_str()), ("rgb", "default"));
         let refl = p(1, "reflectance");
-        assert_eq!((refl.value, refl.source.as_str()), (None, "<texture bitmap>"));
+        assert_eq!(
+            (refl.value, refl.source.as_str()),
+            (None, "<texture bitmap>")
+        );
         let (_, metal) = find(&doc, &Key::Id("metal".into())).unwrap();
-        assert!(element_for(metal, "alpha", &Value::Float(0.0)).is_err(), "alpha > 0");
+        assert!(
+            element_for(metal, "alpha", &Value::Float(0.0)).is_err(),
+            "alpha > 0"
+        );
         assert_eq!(
             element_for(metal, "alpha", &Value::Float(0.5)).unwrap(),
             r#"<float name="alpha" value="0.5"/>"#

@@ -60,9 +60,7 @@ pub fn run(shared: Arc<Shared>) {
             }
             let idle = match &acc {
                 None => true,
-                Some(a) => shared
-                    .spp_limit
-                    .is_some_and(|l| spp_range(&a.fb).0 >= l),
+                Some(a) => shared.spp_limit.is_some_and(|l| spp_range(&a.fb).0 >= l),
             };
             if idle {
                 let _unused = shared
@@ -135,7 +133,14 @@ fn preview(a: &mut Accumulation, opts: &RenderOptions, shared: &Shared) -> Optio
     let mut fb = Framebuffer::with_footprint(pw, ph, a.loaded.scene.splat.as_ref());
     let job = RenderJob::new(&a.loaded.scene, &a.loaded.integrator, a.loaded.seed);
     let span = Span::UpTo(1);
-    let done = render_span::<NoProbe>(&job, opts, &mut fb, span, Some(&shared.stop), &mut |_, _| {});
+    let done = render_span::<NoProbe>(
+        &job,
+        opts,
+        &mut fb,
+        span,
+        Some(&shared.stop),
+        &mut |_, _| {},
+    );
     let cam = &mut a.loaded.scene.camera;
     (cam.width, cam.height) = (w, h);
     done.complete.then(|| Frame {
@@ -211,7 +216,11 @@ mod tests {
         assert!(f.preview && f.spp == 0);
         assert_eq!((f.width, f.height), (64, 64));
         let cam = &a.loaded.scene.camera;
-        assert_eq!((cam.width, cam.height), (256, 256), "the camera is restored");
+        assert_eq!(
+            (cam.width, cam.height),
+            (256, 256),
+            "the camera is restored"
+        );
         // The same scene loaded at 64x64 and rendered at 1 spp: the same bits.
         let small = crate::state::load(&scene(64), Path::new("inline.xml")).unwrap();
         let job = RenderJob::new(&small.scene, &small.integrator, small.seed);

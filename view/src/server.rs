@@ -119,7 +119,10 @@ fn route(shared: &Shared, method: &Method, url: &str, body: &str) -> Reply {
         "/api/image.exr" if get => image_exr(shared),
         "/api/scene.xml" if get => {
             let text = shared.lock().text.clone();
-            Ok(Reply::ok("application/xml; charset=utf-8", text.into_bytes()))
+            Ok(Reply::ok(
+                "application/xml; charset=utf-8",
+                text.into_bytes(),
+            ))
         }
         "/api/camera" if post => api::camera(shared, body).map(Reply::json),
         "/api/material" if post => api::material(shared, body).map(Reply::json),

@@ -124,8 +124,7 @@ impl Shared {
 /// Loads scene text as if read from `path`, with the sampler set up as `tessera render` sets
 /// it up for the scene's own sample count (so pass after pass gives the same bits).
 pub fn load(text: &str, path: &Path) -> Result<LoadedScene, String> {
-    let mut loaded =
-        tessera_scene::load_scene_str(text, path, &[]).map_err(|e| e.to_string())?;
+    let mut loaded = tessera_scene::load_scene_str(text, path, &[]).map_err(|e| e.to_string())?;
     let spp = loaded.spp;
     loaded.set_sampler(None, spp)?;
     Ok(loaded)

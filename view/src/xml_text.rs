@@ -35,11 +35,7 @@ pub fn insert_first_child(text: &str, parent: Node, child: &str) -> String {
     if own.ends_with("/>") {
         // `<tag .../>` becomes `<tag ...>child</tag>`.
         let tag = parent.tag_name().name();
-        return splice(
-            text,
-            r.end - 2..r.end,
-            &format!(">\n    {child}\n</{tag}>"),
-        );
+        return splice(text, r.end - 2..r.end, &format!(">\n    {child}\n</{tag}>"));
     }
     // `<tag ...></tag>`: before the end tag.
     let at = r.start + own.rfind("</").unwrap_or(own.len());
