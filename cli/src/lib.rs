@@ -16,6 +16,7 @@ pub mod render_layers;
 pub mod render_once;
 pub(crate) mod split_args;
 pub mod test;
+pub mod view;
 
 use clap::{Parser, Subcommand};
 
@@ -47,6 +48,9 @@ pub enum Command {
     /// Load a scene without rendering it and print what it holds (settings, shapes, primitives,
     /// BSDFs, emitters, textures and their memory, the acceleration structure, warnings).
     Info(info::InfoArgs),
+    /// Serve a live view of a progressive render on a local web page, where the camera can be
+    /// moved, materials and the integrator edited, and the image and edited scene saved.
+    View(view::ViewArgs),
     /// Assemble part files (from a render with --crop, --tiles or --sample-range) into one image.
     Merge(merge::MergeArgs),
 }

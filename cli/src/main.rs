@@ -44,6 +44,7 @@ fn main() {
         Command::Merge(args) => tessera_cli::merge::run(&args),
         Command::Plugins(args) => tessera_cli::plugins::run(&args),
         Command::Info(args) => tessera_cli::info::run(&args),
+        Command::View(args) => tessera_cli::view::run(&args),
     };
     std::process::exit(code);
 }

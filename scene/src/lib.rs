@@ -101,6 +101,27 @@ pub fn load_scene_str(
     Ok(loaded)
 }
 
+/// The declaration (name, parameters with their types, defaults and ranges) of the plugin
+/// `name` of the family whose element is `<tag>` (`"bsdf"`, `"integrator"`, `"sampler"`, ...),
+/// for tools that edit scene files and must check values the way the loader will.
+pub fn plugin_declaration(tag: &str, name: &str) -> Option<plugin::Declared> {
+    families::families()
+        .into_iter()
+        .find(|f| f.kind.tag() == tag)?
+        .plugins
+        .into_iter()
+        .find(|p| p.is(name))
+}
+
+/// The plugin names of the family whose element is `<tag>`, in table order (aliases left out).
+pub fn plugin_names(tag: &str) -> Vec<&'static str> {
+    families::families()
+        .into_iter()
+        .find(|f| f.kind.tag() == tag)
+        .map(|f| f.plugins.iter().map(|p| p.name).collect())
+        .unwrap_or_default()
+}
+
 /// Builds a standalone BSDF from a parsed `<bsdf>` object (e.g. one inside a `chi2test`).
 pub fn build_bsdf_object(obj: &crate::xml::Object) -> Result<tessera_core::bsdf::Bsdf, InputError> {
     materials::build_bsdf(obj)
