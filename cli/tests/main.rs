@@ -25,6 +25,7 @@ mod reuse;
 mod sampler_cli;
 mod split_merge;
 mod target_error;
+mod view_cli;
 
 /// Cargo builds only this file's modules (`autotests = false`), so a test file left out of the
 /// list above would never run: fail instead.

@@ -64,6 +64,7 @@ mod testfiles;
 mod textured_light_agreement;
 mod textures;
 mod tri4;
+mod view_api;
 
 /// Cargo builds only this file's modules (`autotests = false`), so a test file left out of the
 /// list above would never run: fail instead.
