@@ -14,6 +14,7 @@ use super::util::Result;
 use crate::error::InputError;
 use crate::xml::{Kind, Object};
 use std::collections::HashSet;
+use tessera_core::bsdf::Bsdf;
 use tessera_core::camera::Camera;
 use tessera_core::emitter::{AreaLight, Emitter};
 use tessera_core::geometry::{Disk, Instance, Shape, ShapeKind};
@@ -21,6 +22,7 @@ use tessera_core::integrator::Integrator;
 use tessera_core::medium::{MediumInterface, SceneMedia};
 use tessera_core::sampling::SamplerKind;
 use tessera_core::scene::{Scene, SceneParts};
+use tessera_core::texture::Texture;
 
 /// Builds a loaded scene from the root `<scene>` object.
 pub fn build(root: &Object) -> Result<LoadedScene> {
@@ -228,6 +230,7 @@ fn add_shape(obj: &Object, acc: &mut Acc, in_group: bool) -> Result<Vec<u32>> {
             }
             None => None,
         };
+        check_mesh_attributes(obj, &kind, &acc.bsdfs.list[bsdf as usize])?;
         let kind = match (kind, parts.disk) {
             (ShapeKind::Disk(_), Some(d)) => {
                 acc.disks.push(d);
@@ -272,6 +275,36 @@ fn add_shape(obj: &Object, acc: &mut Acc, in_group: bool) -> Result<Vec<u32>> {
     }
     parts.plugin.check_unused(obj)?;
     Ok(added)
+}
+
+/// Refuses a shape whose BSDF reads a mesh attribute (a `mesh_attribute` texture) that the
+/// shape does not have, at the shape: Mitsuba 3 stops there too, when it renders.
+fn check_mesh_attributes(obj: &Object, kind: &ShapeKind, bsdf: &Bsdf) -> Result<()> {
+    let have: Vec<&str> = match kind {
+        ShapeKind::Mesh(m) => m.attributes.iter().map(|a| a.name.as_str()).collect(),
+        _ => Vec::new(),
+    };
+    let mut missing = None;
+    bsdf.for_each_texture(&mut |t| {
+        if let Texture::MeshAttribute(a) = t {
+            if missing.is_none() && !have.contains(&a.name.as_str()) {
+                missing = Some(a.name.clone());
+            }
+        }
+    });
+    match missing {
+        None => Ok(()),
+        Some(name) => Err(obj.error(format!(
+            "the BSDF of {} reads mesh attribute \"{name}\", which the shape does not have \
+             ({})",
+            obj.describe(),
+            if have.is_empty() {
+                "it has none".to_string()
+            } else {
+                format!("it has {}", have.join(", "))
+            }
+        ))),
+    }
 }
 
 /// Refuses to render a scene with media by an integrator that would ignore them (`path`,

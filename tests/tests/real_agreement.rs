@@ -288,16 +288,22 @@ fn real_scenes_match_mitsuba() {
 /// Controls for the models that only a few corpus scenes use, beside the dimmer emitters: the
 /// scene rendered with a nearby wrong model must disagree with Mitsuba's reference at the same
 /// level. `pplastic` replaced by `roughplastic` with the same parameters (the coupled coating
-/// model); every `polarizer` passing all the light instead of half (transmittance 2).
+/// model); per-face colours read where the file reads per-vertex ones; every `polarizer`
+/// passing all the light instead of half (transmittance 2).
 #[test]
 fn real_scenes_with_a_wrong_model_disagree() {
     let scenes = listed();
     let alpha = region_alpha(&scenes);
     type Edit = fn(String) -> String;
-    let controls: [(&str, Edit); 2] = [
+    let controls: [(&str, Edit); 3] = [
         ("mitsuba-data/docs/scenes/bsdf_pplastic.xml", |t| {
             t.replace("type=\"pplastic\"", "type=\"roughplastic\"")
         }),
+        // Face colours where the file asks for vertex colours blended over each triangle.
+        (
+            "mitsuba-data/tests/scenes/mesh_attributes/test_mesh_attributes_3_vertex_direct.xml",
+            |t| t.replace("\"vertex_color\"", "\"face_color\""),
+        ),
         ("mitsuba-data/docs/scenes/bsdf_polarizer_middle.xml", |t| {
             t.replace(
                 "<bsdf type=\"polarizer\">",

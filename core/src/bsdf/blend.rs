@@ -30,8 +30,8 @@ pub struct Blend<B> {
 }
 
 impl<B: Model> Blend<B> {
-    fn w(&self, uv: Vec2) -> f32 {
-        let w = self.weight.eval_1(uv);
+    fn w(&self, at: ShadingPoint) -> f32 {
+        let w = self.weight.eval_1(at);
         if w.is_finite() {
             w.clamp(0.0, 1.0)
         } else {
@@ -40,7 +40,7 @@ impl<B: Model> Blend<B> {
     }
     /// `f(wi, wo) |cos theta_o|`.
     pub fn eval(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
-        let w = self.w(at.uv);
+        let w = self.w(at);
         let mut v = Color::ZERO;
         if w < 1.0 {
             v += self.first.eval(wi, wo, at) * (1.0 - w);
@@ -52,7 +52,7 @@ impl<B: Model> Blend<B> {
     }
     /// Density of the smooth components.
     pub fn pdf(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> f32 {
-        let w = self.w(at.uv);
+        let w = self.w(at);
         let mut p = 0.0;
         if w < 1.0 {
             p += self.first.pdf(wi, wo, at) * (1.0 - w);
@@ -64,7 +64,7 @@ impl<B: Model> Blend<B> {
     }
     /// Samples one of the two models by weight.
     pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
-        let w = self.w(at.uv);
+        let w = self.w(at);
         let (chosen, prob, u) = if u1 < w {
             (&self.second, w, u1 / w)
         } else {

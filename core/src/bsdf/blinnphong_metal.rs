@@ -35,7 +35,7 @@ impl BlinnPhongMetal {
     pub fn eval(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
         let v = self.lobe.eval(wi, wo);
         if v > 0.0 {
-            self.color.eval(at.uv) * v
+            self.color.eval(at) * v
         } else {
             Color::ZERO
         }
@@ -53,7 +53,7 @@ impl BlinnPhongMetal {
         }
         Some(BsdfSample {
             wo,
-            weight: self.color.eval(at.uv) * (self.lobe.eval(wi, wo) / pdf),
+            weight: self.color.eval(at) * (self.lobe.eval(wi, wo) / pdf),
             pdf,
             delta: false,
             eta: 1.0,

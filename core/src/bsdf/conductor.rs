@@ -39,7 +39,7 @@ impl Conductor {
             return None;
         }
         let f = conductor_fresnel(wi.z, &self.eta, &self.k, at);
-        let weight = f * self.specular_reflectance.eval(at.uv);
+        let weight = f * self.specular_reflectance.eval(at);
         Some(BsdfSample::delta(
             Vec3::new(-wi.x, -wi.y, wi.z),
             weight,
@@ -65,6 +65,6 @@ pub(super) fn conductor_fresnel(cos: f32, eta: &Texture, k: &Texture, at: Shadin
         (Texture::Constant(e), Texture::Constant(k)) if *e == Color::ZERO && *k == Color::ONE => {
             Color::ONE
         }
-        _ => fresnel_conductor(cos, eta.eval(at.uv), k.eval(at.uv)),
+        _ => fresnel_conductor(cos, eta.eval(at), k.eval(at)),
     }
 }

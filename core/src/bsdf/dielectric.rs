@@ -44,7 +44,7 @@ impl Dielectric {
         let fr = fresnel_dielectric(wi.z, self.eta);
         // `<` rather than `<=`: a component of probability zero is never chosen.
         if u1 < fr.f {
-            let weight = self.specular_reflectance.eval(at.uv);
+            let weight = self.specular_reflectance.eval(at);
             Some(BsdfSample::delta(
                 Vec3::new(-wi.x, -wi.y, wi.z),
                 weight,
@@ -54,7 +54,7 @@ impl Dielectric {
             let wo = refract(wi, Vec3::Z, fr.cos_t, fr.eta_ti);
             Some(BsdfSample {
                 wo,
-                weight: self.specular_transmittance.eval(at.uv) * (fr.eta_ti * fr.eta_ti),
+                weight: self.specular_transmittance.eval(at) * (fr.eta_ti * fr.eta_ti),
                 pdf: 1.0 - fr.f,
                 delta: true,
                 eta: fr.eta_it,

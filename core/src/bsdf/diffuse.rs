@@ -25,7 +25,7 @@ impl Diffuse {
         if wi.z <= 0.0 || wo.z <= 0.0 {
             return Color::ZERO;
         }
-        self.reflectance.eval(at.uv) * (INV_PI * wo.z)
+        self.reflectance.eval(at) * (INV_PI * wo.z)
     }
     /// Cosine-hemisphere density.
     #[inline]
@@ -48,7 +48,7 @@ impl Diffuse {
         }
         Some(BsdfSample {
             wo,
-            weight: self.reflectance.eval(at.uv),
+            weight: self.reflectance.eval(at),
             pdf,
             delta: false,
             eta: 1.0,

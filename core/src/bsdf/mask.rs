@@ -26,8 +26,8 @@ pub struct Mask<B> {
 }
 
 impl<B: Model> Mask<B> {
-    fn a(&self, uv: Vec2) -> f32 {
-        let a = self.opacity.eval_1(uv);
+    fn a(&self, at: ShadingPoint) -> f32 {
+        let a = self.opacity.eval_1(at);
         if a.is_finite() {
             a.clamp(0.0, 1.0)
         } else {
@@ -36,7 +36,7 @@ impl<B: Model> Mask<B> {
     }
     /// `opacity f(wi, wo) |cos theta_o|`.
     pub fn eval(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> Color {
-        let a = self.a(at.uv);
+        let a = self.a(at);
         if a > 0.0 {
             self.nested.eval(wi, wo, at) * a
         } else {
@@ -45,7 +45,7 @@ impl<B: Model> Mask<B> {
     }
     /// `opacity` times the nested density.
     pub fn pdf(&self, wi: Vec3, wo: Vec3, at: ShadingPoint) -> f32 {
-        let a = self.a(at.uv);
+        let a = self.a(at);
         if a > 0.0 {
             self.nested.pdf(wi, wo, at) * a
         } else {
@@ -54,7 +54,7 @@ impl<B: Model> Mask<B> {
     }
     /// Passes through with probability `1 - opacity`, else samples the nested model.
     pub fn sample(&self, wi: Vec3, u1: f32, u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
-        let a = self.a(at.uv);
+        let a = self.a(at);
         if u1 >= a {
             return Some(BsdfSample::delta(-wi, Color::ONE, 1.0 - a));
         }

@@ -227,15 +227,22 @@ impl Bsdf {
         let (uses_u1, uses_u2) = self.sample_inputs();
         traits::draw_inputs(uses_u1, uses_u2, sampler)
     }
-    /// Whether some part of the model reads the shading point's partials (`bumpmap`).
+    /// Whether some part of the model reads the shading point's partials (`bumpmap`) or the
+    /// mesh triangle hit (a `mesh_attribute` texture).
     pub fn reads_geometry(&self) -> bool {
+        let mut reads_mesh = false;
+        self.for_each_texture(&mut |t| reads_mesh |= t.reads_mesh());
+        reads_mesh || self.bumps()
+    }
+    /// Whether some part of the model is a bump map.
+    fn bumps(&self) -> bool {
         match self {
             Bsdf::BumpMap(_) => true,
-            Bsdf::TwoSided(b) => b.front.reads_geometry() || b.back.reads_geometry(),
-            Bsdf::Blend(b) => b.first.reads_geometry() || b.second.reads_geometry(),
-            Bsdf::Mask(b) => b.nested.reads_geometry(),
-            Bsdf::NormalMap(b) => b.nested.reads_geometry(),
-            Bsdf::BlinnPhong(b) => b.base.as_ref().is_some_and(|b| b.reads_geometry()),
+            Bsdf::TwoSided(b) => b.front.bumps() || b.back.bumps(),
+            Bsdf::Blend(b) => b.first.bumps() || b.second.bumps(),
+            Bsdf::Mask(b) => b.nested.bumps(),
+            Bsdf::NormalMap(b) => b.nested.bumps(),
+            Bsdf::BlinnPhong(b) => b.base.as_ref().is_some_and(|b| b.bumps()),
             _ => false,
         }
     }

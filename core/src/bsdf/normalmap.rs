@@ -30,7 +30,7 @@ pub struct NormalMap<B> {
 impl<B: Model> NormalMap<B> {
     #[inline]
     fn tilted(&self, wi: Vec3, at: ShadingPoint) -> Tilted {
-        let n = self.normalmap.eval(at.uv) * 2.0 - Color::ONE;
+        let n = self.normalmap.eval(at) * 2.0 - Color::ONE;
         Tilted::new(n, wi, self.options)
     }
     /// The nested value in the perturbed frame.

@@ -95,11 +95,12 @@ impl Tilted {
     /// The partials of `at` in the tilted frame (what a nested perturbation reads), if it has
     /// them.
     #[inline]
-    fn partials(&self, at: &ShadingPoint) -> Option<Partials> {
+    fn partials<'a>(&self, at: &ShadingPoint<'a>) -> Option<Partials<'a>> {
         at.partials.map(|g| Partials {
             dp_du: self.frame.to_local(g.dp_du),
             dp_dv: self.frame.to_local(g.dp_dv),
             ng: self.frame.to_local(g.ng),
+            site: g.site,
         })
     }
 

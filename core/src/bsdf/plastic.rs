@@ -56,7 +56,7 @@ impl Plastic {
     /// the coating's reflectance `fi` toward `wi`.
     fn diffuse_part(&self, fi: f32, wo: Vec3, at: ShadingPoint) -> Color {
         let fo = fresnel_dielectric(wo.z, self.eta).f;
-        let d = internal_scattering(self.diffuse.eval(at.uv), self.fdr_int, self.nonlinear);
+        let d = internal_scattering(self.diffuse.eval(at), self.fdr_int, self.nonlinear);
         d * (INV_PI * wo.z * self.inv_eta_2 * (1.0 - fi) * (1.0 - fo))
     }
 
@@ -90,7 +90,7 @@ impl Plastic {
         let fi = fresnel_dielectric(wi.z, self.eta).f;
         let ps = coating_probability(fi, self.spec_weight)?;
         if u1 < ps {
-            let weight = self.specular.eval(at.uv) * (fi / ps);
+            let weight = self.specular.eval(at) * (fi / ps);
             return Some(BsdfSample::delta(Vec3::new(-wi.x, -wi.y, wi.z), weight, ps));
         }
         let wo = square_to_cosine_hemisphere(u2);

@@ -34,7 +34,7 @@ impl Polarizer {
     }
     /// The straight pass-through, weighted `transmittance / 2`.
     pub fn sample(&self, wi: Vec3, _u1: f32, _u2: Vec2, at: ShadingPoint) -> Option<BsdfSample> {
-        let weight = self.transmittance.eval(at.uv) * 0.5;
+        let weight = self.transmittance.eval(at) * 0.5;
         if !weight.is_finite() {
             return None;
         }

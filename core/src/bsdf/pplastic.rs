@@ -70,8 +70,8 @@ impl PolarizedPlastic {
         self.spec_weight
     }
 
-    fn eta_at(&self, uv: Vec2) -> Option<f32> {
-        let e = self.eta.eval_1(uv);
+    fn eta_at(&self, at: ShadingPoint) -> Option<f32> {
+        let e = self.eta.eval_1(at);
         (e.is_finite() && e > 0.0).then_some(e)
     }
 
@@ -80,17 +80,17 @@ impl PolarizedPlastic {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return Color::ZERO;
         }
-        let Some(eta) = self.eta_at(at.uv) else {
+        let Some(eta) = self.eta_at(at) else {
             return Color::ZERO;
         };
-        let md = distribution_at(&self.distr, &self.roughness, at.uv);
+        let md = distribution_at(&self.distr, &self.roughness, at);
         let h = (wi + wo).unit();
         let f = fresnel_dielectric(wi.dot(h), eta).f;
         let spec = md.d(h) * md.g(wi, wo, h) * f / (4.0 * wi.z);
         let ti = 1.0 - fresnel_dielectric(wi.z, eta).f;
         let to = 1.0 - fresnel_dielectric(wo.z, eta).f;
         let r =
-            self.specular.eval(at.uv) * spec + self.diffuse.eval(at.uv) * (ti * to * wo.z * INV_PI);
+            self.specular.eval(at) * spec + self.diffuse.eval(at) * (ti * to * wo.z * INV_PI);
         if r.is_finite() {
             r
         } else {
@@ -104,7 +104,7 @@ impl PolarizedPlastic {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return 0.0;
         }
-        let md = distribution_at(&self.distr, &self.roughness, at.uv);
+        let md = distribution_at(&self.distr, &self.roughness, at);
         let h = (wi + wo).unit();
         let spec = if wi.dot(h) <= 0.0 || wo.dot(h) <= 0.0 {
             0.0
@@ -126,7 +126,7 @@ impl PolarizedPlastic {
         if !(wi.z > 0.0) {
             return None;
         }
-        let md = distribution_at(&self.distr, &self.roughness, at.uv);
+        let md = distribution_at(&self.distr, &self.roughness, at);
         let wo = md.sample_glossy_or_diffuse(wi, u1, u2, self.spec_weight)?;
         BsdfSample::smooth_reflection(wo, self.eval(wi, wo, at), self.pdf(wi, wo, at))
     }

@@ -31,7 +31,7 @@ use crate::math::{Norm, INV_PI};
 use crate::texture::Texture;
 use crate::Color;
 use alloc::boxed::Box;
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 /// How often each lobe is sampled, relative to its weight (Mitsuba's `*_sampling_rate`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -172,11 +172,11 @@ impl Principled {
         self.p.clearcoat.is_some()
     }
 
-    /// The weights at `uv`.
-    pub(super) fn weights(&self, uv: Vec2) -> Weights {
-        let opt = |t: &Option<Texture>| t.as_ref().map(|t| t.eval_1(uv));
+    /// The weights at `at`.
+    pub(super) fn weights(&self, at: ShadingPoint) -> Weights {
+        let opt = |t: &Option<Texture>| t.as_ref().map(|t| t.eval_1(at));
         Weights {
-            roughness: self.p.roughness.eval_1(uv),
+            roughness: self.p.roughness.eval_1(at),
             anisotropic: opt(&self.p.anisotropic),
             metallic: opt(&self.p.metallic),
             spec_trans: opt(&self.p.spec_trans).unwrap_or(0.0),
@@ -184,10 +184,10 @@ impl Principled {
         }
     }
 
-    /// The clearcoat's normal distribution at `uv`.
-    pub(super) fn clearcoat_distribution(&self, uv: Vec2) -> Gtr1 {
+    /// The clearcoat's normal distribution at `at`.
+    pub(super) fn clearcoat_distribution(&self, at: ShadingPoint) -> Gtr1 {
         Gtr1 {
-            alpha: clearcoat_alpha(self.p.clearcoat_gloss.eval_1(uv)),
+            alpha: clearcoat_alpha(self.p.clearcoat_gloss.eval_1(at)),
         }
     }
 
@@ -207,8 +207,8 @@ impl Principled {
         if ci == 0.0 || !(ci * co != 0.0) {
             return Color::ZERO;
         }
-        let w = self.weights(at.uv);
-        let base = self.p.base_color.eval(at.uv);
+        let w = self.weights(at);
+        let base = self.p.base_color.eval(at);
         let (brdf, bsdf) = (w.brdf(), w.bsdf());
         let reflect = ci * co > 0.0;
         let front = ci > 0.0;
@@ -225,7 +225,7 @@ impl Principled {
             if f > 0.0 {
                 let blend = FresnelBlend {
                     metallic: w.metallic,
-                    spec_tint: self.p.spec_tint.as_ref().map(|t| t.eval_1(at.uv)),
+                    spec_tint: self.p.spec_tint.as_ref().map(|t| t.eval_1(at)),
                     base_color: base,
                     bsdf,
                     eta: self.eta,
@@ -234,7 +234,7 @@ impl Principled {
             }
             if front && self.has_clearcoat() && w.clearcoat > 0.0 {
                 let fcc = schlick_fresnel(0.04, cos_ih, self.eta);
-                let dcc = self.clearcoat_distribution(at.uv).d(wh);
+                let dcc = self.clearcoat_distribution(at).d(wh);
                 let gcc = smith_ggx1(wi, wh, 0.25) * smith_ggx1(wo, wh, 0.25);
                 value += Color::splat(w.clearcoat * 0.25 * fcc * dcc * gcc * co.abs());
             }
@@ -270,14 +270,14 @@ impl Principled {
         at: ShadingPoint,
     ) -> Color {
         let (ci, co) = (ci.abs(), co.abs());
-        let flatness = self.p.flatness.as_ref().map(|t| t.eval_1(at.uv));
+        let flatness = self.p.flatness.as_ref().map(|t| t.eval_1(at));
         let shape = burley_diffuse(w.roughness, flatness, ci, co, cos_d);
         let mut value = base * (brdf * co * INV_PI * shape);
         let metallic = w.metallic.unwrap_or(0.0);
         if let Some(sheen) = &self.p.sheen {
-            let sheen = sheen.eval_1(at.uv);
+            let sheen = sheen.eval_1(at);
             if sheen > 0.0 && 1.0 - metallic > 0.0 {
-                let tint = self.p.sheen_tint.as_ref().map(|t| t.eval_1(at.uv));
+                let tint = self.p.sheen_tint.as_ref().map(|t| t.eval_1(at));
                 value += sheen_color(tint, base, cos_d) * (sheen * (1.0 - metallic) * co);
             }
         }

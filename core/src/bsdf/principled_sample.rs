@@ -79,7 +79,7 @@ impl Principled {
         if ci == 0.0 || !(ci * co != 0.0) {
             return 0.0;
         }
-        let w = self.weights(at.uv);
+        let w = self.weights(at);
         let front = ci > 0.0;
         let eta_path = if front { self.eta } else { 1.0 / self.eta };
         let is_reflect = ci * co > 0.0;
@@ -102,7 +102,7 @@ impl Principled {
             if micro_compatible(wh, wi, wo, ci, true) {
                 pdf += prob.spec_reflect * distr.pdf(wi_up, wh) * jacobian;
                 if self.has_clearcoat() {
-                    pdf += prob.clearcoat * self.clearcoat_distribution(at.uv).pdf(wh) * jacobian;
+                    pdf += prob.clearcoat * self.clearcoat_distribution(at).pdf(wh) * jacobian;
                 }
             }
             pdf += prob.diffuse * cosine_hemisphere_pdf(wo);
@@ -120,7 +120,7 @@ impl Principled {
         if ci == 0.0 || !ci.is_finite() {
             return None;
         }
-        let w = self.weights(at.uv);
+        let w = self.weights(at);
         let front = ci > 0.0;
         let bsdf = if self.has_spec_trans() { w.bsdf() } else { 0.0 };
         if !(front || bsdf > 0.0) {
@@ -132,7 +132,7 @@ impl Principled {
         let (wo, eta, is_reflect, m) = if u1 < prob.diffuse {
             (square_to_cosine_hemisphere(u2), 1.0, true, None)
         } else if u1 < prob.diffuse + prob.clearcoat {
-            let m = self.clearcoat_distribution(at.uv).sample(u2);
+            let m = self.clearcoat_distribution(at).sample(u2);
             (reflect(wi, m), 1.0, true, Some(m))
         } else if u1 < prob.diffuse + prob.clearcoat + prob.spec_trans {
             let m = m_spec?;

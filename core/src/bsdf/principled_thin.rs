@@ -121,14 +121,14 @@ impl PrincipledThin {
         PrincipledThin { p: Box::new(p) }
     }
 
-    fn weights(&self, uv: Vec2) -> ThinWeights {
-        let opt = |t: &Option<Texture>| t.as_ref().map(|t| t.eval_1(uv));
+    fn weights(&self, at: ShadingPoint) -> ThinWeights {
+        let opt = |t: &Option<Texture>| t.as_ref().map(|t| t.eval_1(at));
         ThinWeights {
-            roughness: self.p.roughness.eval_1(uv),
+            roughness: self.p.roughness.eval_1(at),
             anisotropic: opt(&self.p.anisotropic),
             spec_trans: opt(&self.p.spec_trans).unwrap_or(0.0),
             diff_trans: opt(&self.p.diff_trans).map_or(0.0, |d| d / 2.0),
-            eta: self.p.eta.eval_1(uv),
+            eta: self.p.eta.eval_1(at),
         }
     }
 
@@ -171,8 +171,8 @@ impl PrincipledThin {
         if wi.z == 0.0 || !(wi.z * wo.z != 0.0) {
             return Color::ZERO;
         }
-        let w = self.weights(at.uv);
-        let base = self.p.base_color.eval(at.uv);
+        let w = self.weights(at);
+        let base = self.p.base_color.eval(at);
         let (wi, wo) = (mulsign(wi, wi.z), mulsign(wo, wi.z));
         let (ci, co) = (wi.z, wo.z);
         let reflect = co > 0.0;
@@ -183,7 +183,7 @@ impl PrincipledThin {
             let f = fresnel_dielectric(wi.dot(wh), w.eta).f;
             if reflect && micro_compatible(wh, wi, wo, ci, true) {
                 let distr = w.reflection();
-                let tint = self.p.spec_tint.as_ref().map(|s| s.eval_1(at.uv));
+                let tint = self.p.spec_tint.as_ref().map(|s| s.eval_1(at));
                 let f_thin = thin_fresnel(f, tint, base, wi.dot(wh), w.eta);
                 value += f_thin * (t * distr.d(wh) * distr.g(wi, wo, wh) / (4.0 * ci));
             }
@@ -195,12 +195,12 @@ impl PrincipledThin {
         }
         if reflect && t < 1.0 && d < 1.0 {
             let cos_d = wh.dot(wo);
-            let flatness = self.p.flatness.as_ref().map(|f| f.eval_1(at.uv));
+            let flatness = self.p.flatness.as_ref().map(|f| f.eval_1(at));
             let shape = burley_diffuse(w.roughness, flatness, ci, co, cos_d);
             value += base * ((1.0 - t) * co * INV_PI * (1.0 - d) * shape);
             if let Some(sheen) = &self.p.sheen {
-                let tint = self.p.sheen_tint.as_ref().map(|s| s.eval_1(at.uv));
-                let s = sheen.eval_1(at.uv) * (1.0 - t) * (1.0 - d) * co;
+                let tint = self.p.sheen_tint.as_ref().map(|s| s.eval_1(at));
+                let s = sheen.eval_1(at) * (1.0 - t) * (1.0 - d) * co;
                 value += sheen_color(tint, base, cos_d) * s;
             }
         }
@@ -224,7 +224,7 @@ impl PrincipledThin {
         if wi.z == 0.0 || !(wi.z * wo.z != 0.0) {
             return 0.0;
         }
-        let w = self.weights(at.uv);
+        let w = self.weights(at);
         let Some([psr, pst, pdr, pdt]) = self.probabilities(&w) else {
             return 0.0;
         };
@@ -257,7 +257,7 @@ impl PrincipledThin {
         if ci == 0.0 || !ci.is_finite() {
             return None;
         }
-        let w = self.weights(at.uv);
+        let w = self.weights(at);
         let [psr, pst, pdr, _] = self.probabilities(&w)?;
         let wi_t = mulsign(wi, ci);
         let has_st = self.p.spec_trans.is_some();

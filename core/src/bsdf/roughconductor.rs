@@ -47,7 +47,7 @@ impl RoughConductor {
 
     #[inline]
     fn fresnel(&self, cos: f32, at: ShadingPoint) -> Color {
-        conductor_fresnel(cos, &self.eta, &self.k, at) * self.specular_reflectance.eval(at.uv)
+        conductor_fresnel(cos, &self.eta, &self.k, at) * self.specular_reflectance.eval(at)
     }
 
     /// The shape of the lobe toward `wo`, `D(h) / (4 cos theta_i)`: [`RoughConductor::eval`]
@@ -66,7 +66,7 @@ impl RoughConductor {
         let Some(h) = Self::half_vector(wi, wo) else {
             return Color::ZERO;
         };
-        let md = &distribution_at(&self.distribution, &self.roughness, at.uv);
+        let md = &distribution_at(&self.distribution, &self.roughness, at);
         let d = md.d(h);
         if d == 0.0 {
             return Color::ZERO;
@@ -80,7 +80,7 @@ impl RoughConductor {
         let Some(h) = Self::half_vector(wi, wo) else {
             return 0.0;
         };
-        distribution_at(&self.distribution, &self.roughness, at.uv).pdf(wi, h) / (4.0 * wo.dot(h))
+        distribution_at(&self.distribution, &self.roughness, at).pdf(wi, h) / (4.0 * wo.dot(h))
     }
 
     /// Reflects `wi` about a sampled microfacet normal.
@@ -88,7 +88,7 @@ impl RoughConductor {
         if !(wi.z > 0.0) {
             return None;
         }
-        let md = &distribution_at(&self.distribution, &self.roughness, at.uv);
+        let md = &distribution_at(&self.distribution, &self.roughness, at);
         let (m, pdf_m) = md.sample(wi, u2)?;
         let cos_im = wi.dot(m);
         let wo = reflect(wi, m);

@@ -119,7 +119,7 @@ impl RoughDielectric {
         let Some(p) = self.pair(wi, wo) else {
             return Color::ZERO;
         };
-        let md = &distribution_at(&self.distribution, &self.roughness, at.uv);
+        let md = &distribution_at(&self.distribution, &self.roughness, at);
         let d = md.d(p.m);
         if d == 0.0 {
             return Color::ZERO;
@@ -127,11 +127,11 @@ impl RoughDielectric {
         let f = fresnel_dielectric(p.cos_im, self.eta).f;
         let g = md.g(wi, wo, p.m);
         if p.reflect {
-            self.specular_reflectance.eval(at.uv) * (f * d * g / (4.0 * wi.z.abs()))
+            self.specular_reflectance.eval(at) * (f * d * g / (4.0 * wi.z.abs()))
         } else {
             let den = p.cos_im + p.eta * p.cos_om;
             let v = (1.0 - f) * d * g * (p.cos_im * p.cos_om).abs() / (wi.z.abs() * den * den);
-            self.specular_transmittance.eval(at.uv) * v
+            self.specular_transmittance.eval(at) * v
         }
     }
 
@@ -140,7 +140,7 @@ impl RoughDielectric {
         let Some(p) = self.pair(wi, wo) else {
             return 0.0;
         };
-        let md = distribution_at(&self.distribution, &self.roughness, at.uv);
+        let md = distribution_at(&self.distribution, &self.roughness, at);
         let sd = Self::sampling_distribution(&md, wi.z);
         let wi_up = if wi.z > 0.0 { wi } else { -wi };
         let f = fresnel_dielectric(p.cos_im, self.eta).f;
@@ -154,7 +154,7 @@ impl RoughDielectric {
         if ci == 0.0 || !wi.is_finite() {
             return None;
         }
-        let md = &distribution_at(&self.distribution, &self.roughness, at.uv);
+        let md = &distribution_at(&self.distribution, &self.roughness, at);
         let sd = Self::sampling_distribution(md, ci);
         let wi_up = if ci > 0.0 { wi } else { -wi };
         let (m, pdf_m) = sd.sample(wi_up, u2)?;
@@ -169,7 +169,7 @@ impl RoughDielectric {
                 return None;
             }
             let pdf = pdf_m * fr.f / (4.0 * cos_im.abs());
-            (wo, pdf, self.specular_reflectance.eval(at.uv), 1.0)
+            (wo, pdf, self.specular_reflectance.eval(at), 1.0)
         } else {
             let wo = refract(wi, m, fr.cos_t, fr.eta_ti);
             if !(wo.z * ci < 0.0) {
@@ -179,7 +179,7 @@ impl RoughDielectric {
             let den = cos_im + e * wo.dot(m);
             let pdf = pdf_m * (1.0 - fr.f) * e * e * wo.dot(m).abs() / (den * den);
             let scale = fr.eta_ti * fr.eta_ti;
-            (wo, pdf, self.specular_transmittance.eval(at.uv) * scale, e)
+            (wo, pdf, self.specular_transmittance.eval(at) * scale, e)
         };
         // f cos / pdf in closed form: the Fresnel choice and the Jacobian cancel.
         let g = if md.sample_visible {

@@ -5,8 +5,8 @@
 //! shading point and, as Mitsuba 3's microfacet distribution does, raised to at least `1e-4`.
 //! A model without textured roughness keeps its fixed [`Microfacet`] untouched.
 use super::microfacet::Microfacet;
+use crate::geometry::ShadingPoint;
 use crate::texture::Texture;
-use glam::Vec2;
 
 /// Roughness textures along the two tangents (the same texture twice when isotropic).
 #[derive(Clone, Debug)]
@@ -20,8 +20,8 @@ pub struct RoughnessTexture {
 /// The lowest roughness a texture can give (Mitsuba 3's bound).
 const MIN_ALPHA: f32 = 1e-4;
 
-fn alpha(t: &Texture, uv: Vec2) -> f32 {
-    let a = t.eval_1(uv);
+fn alpha(t: &Texture, at: ShadingPoint) -> f32 {
+    let a = t.eval_1(at);
     if a.is_finite() {
         a.max(MIN_ALPHA)
     } else {
@@ -30,26 +30,26 @@ fn alpha(t: &Texture, uv: Vec2) -> f32 {
 }
 
 impl RoughnessTexture {
-    /// `base` with its roughness read at `uv`.
+    /// `base` with its roughness read at `at`.
     #[inline]
-    pub fn at(&self, base: &Microfacet, uv: Vec2) -> Microfacet {
+    pub fn at(&self, base: &Microfacet, at: ShadingPoint) -> Microfacet {
         Microfacet {
-            alpha_u: alpha(&self.alpha_u, uv),
-            alpha_v: alpha(&self.alpha_v, uv),
+            alpha_u: alpha(&self.alpha_u, at),
+            alpha_v: alpha(&self.alpha_v, at),
             ..*base
         }
     }
 }
 
-/// The distribution of a rough model at `uv`: `base` itself without textures.
+/// The distribution of a rough model at `at`: `base` itself without textures.
 #[inline]
 pub(crate) fn distribution_at(
     base: &Microfacet,
     textures: &Option<RoughnessTexture>,
-    uv: Vec2,
+    at: ShadingPoint,
 ) -> Microfacet {
     match textures {
         None => *base,
-        Some(t) => t.at(base, uv),
+        Some(t) => t.at(base, at),
     }
 }

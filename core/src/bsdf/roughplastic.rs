@@ -93,10 +93,10 @@ impl RoughPlastic {
         let d = self.distr.d(h);
         let f = fresnel_dielectric(wi.dot(h), self.eta).f;
         let g = self.distr.g(wi, wo, h);
-        let spec = self.specular.eval(at.uv) * (f * d * g / (4.0 * wi.z));
+        let spec = self.specular.eval(at) * (f * d * g / (4.0 * wi.z));
         let (ti, to) = (self.transmittance(wi.z), self.transmittance(wo.z));
         let base = internal_scattering(
-            self.diffuse.eval(at.uv),
+            self.diffuse.eval(at),
             self.internal_reflectance,
             self.nonlinear,
         );

@@ -48,11 +48,11 @@ impl ThinDielectric {
         let (wo, weight, pdf) = if u1 < r {
             (
                 Vec3::new(-wi.x, -wi.y, wi.z),
-                self.specular_reflectance.eval(at.uv),
+                self.specular_reflectance.eval(at),
                 r,
             )
         } else {
-            (-wi, self.specular_transmittance.eval(at.uv), 1.0 - r)
+            (-wi, self.specular_transmittance.eval(at), 1.0 - r)
         };
         Some(BsdfSample::delta(wo, weight, pdf))
     }

@@ -4,6 +4,7 @@
 //! for their scene parameters). Positions and normals are already transformed to world space.
 use crate::math::{gamma, Frame, Norm};
 use crate::sampling::{warp::square_to_uniform_triangle, Discrete1D};
+use super::MeshAttribute;
 use alloc::vec::Vec;
 use glam::{Vec2, Vec3};
 
@@ -18,6 +19,9 @@ pub struct Mesh {
     pub uvs: Vec<Vec2>,
     /// Triangles as indices into `positions`.
     pub indices: Vec<[u32; 3]>,
+    /// Named per-vertex or per-face values (`mesh_attribute` textures read them); checked by
+    /// the loader to have one row per vertex or per triangle.
+    pub attributes: Vec<MeshAttribute>,
     /// Triangles chosen by area (None when the mesh has no area).
     area_dist: Option<Discrete1D>,
     /// Unit geometric normal of each triangle (zero when degenerate), computed once: every hit
@@ -64,6 +68,7 @@ impl Mesh {
             normals,
             uvs,
             indices,
+            attributes: Vec::new(),
             area_dist: None,
             face_normals: Vec::new(),
             inv_area: 0.0,

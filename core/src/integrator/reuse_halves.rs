@@ -16,10 +16,10 @@ use glam::Vec3;
 /// What a prefix leaves: the first vertex where the path sampled its BSDF, and the vertex that
 /// bounce reached with the state to go on from it.
 #[derive(Clone, Copy, Default)]
-pub(super) struct Prefix {
+pub(super) struct Prefix<'a> {
     /// First vertex, its BSDF index, `wi` in its shading frame and its partials (for a BSDF that reads them) (set when it has a smooth
     /// component and the path sampled its BSDF there).
-    pub x: Option<(Interaction, u32, Vec3, Option<Partials>)>,
+    pub x: Option<(Interaction, u32, Vec3, Option<Partials<'a>>)>,
     /// Whether the bounce from `x` took a delta component.
     pub delta: bool,
     /// The second vertex (its emission already counted) and the path's state there.
@@ -33,13 +33,13 @@ impl PathIntegrator {
     /// [`PathIntegrator::reuses`]: then neither the depth limit nor Russian roulette can end a
     /// path before its second vertex.
     #[inline(always)]
-    pub(super) fn prefix<const ST: u8, S: Sampler, P: Probe>(
+    pub(super) fn prefix<'a, const ST: u8, S: Sampler, P: Probe>(
         &self,
-        scene: &Scene,
+        scene: &'a Scene,
         ray: Ray,
         sampler: &mut S,
         probe: &mut P,
-        prefix: &mut Prefix,
+        prefix: &mut Prefix<'a>,
     ) -> Color {
         debug_assert!(self.reuses());
         let mut result = Color::ZERO;

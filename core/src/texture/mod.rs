@@ -1,18 +1,23 @@
-//! Textures: spatially varying parameters looked up by surface `uv`. A closed enum; constant
-//! values are the common case and cost one branch.
+//! Textures: spatially varying parameters looked up at a shading point (its `uv`, and for
+//! `mesh_attribute` the mesh triangle hit). A closed enum; constant values are the common case
+//! and cost one branch. Lookups take anything that converts to a
+//! [`ShadingPoint`](crate::geometry::ShadingPoint), so callers that know only `uv` pass a `Vec2`.
 //!
 //! Scalar lookups ([`Texture::eval_1`]) follow Mitsuba 3: the mean of the channels for a
 //! constant, the luminance for a bitmap.
 mod bitmap;
 mod checkerboard;
 mod lookup;
+mod mesh_attribute;
 mod to_uv;
 
 pub use bitmap::{Bitmap, FilterType, WrapMode};
 pub use checkerboard::Checkerboard;
 pub use lookup::Lookup;
+pub use mesh_attribute::MeshAttributeTexture;
 pub use to_uv::UvTransform;
 
+use crate::geometry::ShadingPoint;
 use crate::Color;
 use glam::Vec2;
 
@@ -25,6 +30,8 @@ pub enum Texture {
     Bitmap(Bitmap),
     /// A two-colour checkerboard (`checkerboard`).
     Checkerboard(Checkerboard<Texture>),
+    /// A mesh's per-vertex or per-face values (`mesh_attribute`).
+    MeshAttribute(MeshAttributeTexture),
 }
 
 impl Texture {
@@ -40,23 +47,31 @@ impl Texture {
     pub fn constant(v: f32) -> Self {
         Texture::Constant(Color::splat(v))
     }
-    /// The value at `uv`.
+    /// Whether this is a `mesh_attribute` texture (which reads the triangle hit).
+    pub fn reads_mesh(&self) -> bool {
+        matches!(self, Texture::MeshAttribute(_))
+    }
+    /// The value at `at`.
     #[inline]
-    pub fn eval(&self, uv: Vec2) -> Color {
+    pub fn eval<'a>(&self, at: impl Into<ShadingPoint<'a>>) -> Color {
+        let at = at.into();
         match self {
             Texture::Constant(c) => *c,
-            Texture::Bitmap(b) => b.eval(uv),
-            Texture::Checkerboard(c) => c.eval(uv),
+            Texture::Bitmap(b) => b.eval(at.uv),
+            Texture::Checkerboard(c) => c.eval(at.uv),
+            Texture::MeshAttribute(m) => m.eval(at),
         }
     }
-    /// A scalar at `uv`, for weights and opacities: the mean of the channels of a constant (as
+    /// A scalar at `at`, for weights and opacities: the mean of the channels of a constant (as
     /// Mitsuba 3's `rgb` does), the luminance of a bitmap (as Mitsuba 3's `bitmap` does).
     #[inline]
-    pub fn eval_1(&self, uv: Vec2) -> f32 {
+    pub fn eval_1<'a>(&self, at: impl Into<ShadingPoint<'a>>) -> f32 {
+        let at = at.into();
         match self {
             Texture::Constant(c) => (c.x + c.y + c.z) * (1.0 / 3.0),
-            Texture::Bitmap(b) => b.eval_1(uv),
-            Texture::Checkerboard(c) => c.eval_1(uv),
+            Texture::Bitmap(b) => b.eval_1(at.uv),
+            Texture::Checkerboard(c) => c.eval_1(at.uv),
+            Texture::MeshAttribute(m) => m.eval_1(at),
         }
     }
     /// The gradient of [`Texture::eval_1`] with respect to `(u, v)` (what `bumpmap` reads):
@@ -67,7 +82,9 @@ impl Texture {
     pub fn eval_1_grad(&self, uv: Vec2) -> Vec2 {
         match self {
             Texture::Bitmap(b) => b.eval_1_grad(uv),
-            Texture::Constant(_) | Texture::Checkerboard(_) => Vec2::ZERO,
+            Texture::Constant(_) | Texture::Checkerboard(_) | Texture::MeshAttribute(_) => {
+                Vec2::ZERO
+            }
         }
     }
     /// The mean colour over one period of the texture (of the image's pixels, of the two
@@ -77,6 +94,7 @@ impl Texture {
             Texture::Constant(c) => *c,
             Texture::Bitmap(b) => b.mean_value(),
             Texture::Checkerboard(c) => (c.color0.mean_value() + c.color1.mean_value()) * 0.5,
+            Texture::MeshAttribute(m) => Color::splat(m.scale),
         }
     }
     /// The largest channel value anywhere on the surface (an upper bound).
@@ -85,6 +103,7 @@ impl Texture {
             Texture::Constant(c) => c.max_element(),
             Texture::Bitmap(b) => b.max_value(),
             Texture::Checkerboard(c) => c.max_value(),
+            Texture::MeshAttribute(_) => f32::INFINITY,
         }
     }
 }

@@ -8,6 +8,7 @@ mod dielectric;
 mod image_cache;
 pub(crate) mod ior;
 mod maps;
+mod mesh_attribute;
 mod plastic;
 mod polarized;
 mod principled;

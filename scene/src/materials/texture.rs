@@ -1,10 +1,11 @@
 //! Texture-valued parameters: a constant (`<rgb>` or `<float>`) or a `<texture>` (nested with
 //! the parameter's name, or a `<ref name=... id=...>` to one declared elsewhere), and the
-//! texture plugins `bitmap` and `checkerboard` ([`TEXTURES`]). Every value must be finite and
+//! texture plugins `bitmap`, `checkerboard` and `mesh_attribute` ([`TEXTURES`]). Every value must be finite and
 //! non-negative, and in [0, 1] where the parameter is a reflectance or weight. The conventions
 //! (which row is `v = 0`, pixel centres, wrapping) are in `tessera_core::texture`'s plugin files.
 use super::super::util::{at_prop, Result};
 use super::image_cache::shared_pixels;
+use super::mesh_attribute::MESH_ATTRIBUTE;
 use crate::image::{is_srgb_coded, read_image};
 use crate::plugin::{self, Default, Param, Plugin, Range};
 use crate::xml::{Kind, Object};
@@ -33,7 +34,19 @@ pub fn texture(obj: &Object, name: &str, default: [f64; 3], unit: bool) -> Resul
                 ),
             ));
         }
-        return build_texture(&child.obj, unit);
+        let t = build_texture(&child.obj, unit)?;
+        if t.reads_mesh() && obj.kind != Kind::Bsdf {
+            // Only a BSDF's lookups are given the triangle hit.
+            return Err(crate::error::InputError::at(
+                &child.loc,
+                format!(
+                    "a mesh_attribute texture as \"{name}\" of {}: only BSDF parameters can \
+                     read mesh attributes",
+                    obj.describe()
+                ),
+            ));
+        }
+        return Ok(t);
     }
     let c = obj.rgb(name, default)?;
     let v = Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32);
@@ -61,7 +74,7 @@ fn range(unit: bool) -> &'static str {
 pub(crate) type TexturePlugin = Plugin<fn(&Object, bool) -> Result<Texture>>;
 
 /// Every `<texture type=...>` Tessera knows.
-pub static TEXTURES: &[TexturePlugin] = &[BITMAP, CHECKERBOARD];
+pub static TEXTURES: &[TexturePlugin] = &[BITMAP, CHECKERBOARD, MESH_ATTRIBUTE];
 
 /// Builds a `<texture>` object and reports its unused parameters.
 pub(crate) fn build_texture(obj: &Object, unit: bool) -> Result<Texture> {
@@ -269,6 +282,7 @@ mod declaration_tests {
                 |obj| build_texture(obj, unit),
                 |name| match name {
                     "bitmap" => format!("<string name=\"filename\" value=\"{image}\"/>"),
+                    "mesh_attribute" => "<string name=\"name\" value=\"vertex_color\"/>".into(),
                     _ => String::new(),
                 },
                 &[],

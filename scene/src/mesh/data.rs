@@ -3,6 +3,7 @@
 use crate::error::InputError;
 use std::io::Read;
 use std::path::Path;
+use tessera_core::geometry::MeshAttribute;
 use tessera_core::math::Norm;
 
 /// Largest mesh file accepted (4 GiB: a mistake, not a mesh, beyond this).
@@ -49,9 +50,10 @@ pub struct MeshData {
     pub uvs: Vec<[f32; 2]>,
     /// Triangles.
     pub indices: Vec<[u32; 3]>,
-    /// The mesh attributes Mitsuba 3 makes of the file's other properties (names only, see
-    /// `ply_attributes.rs`): a mesh with any is one Mitsuba joins to no other.
-    pub attributes: Vec<String>,
+    /// The mesh attributes Mitsuba 3 makes of the file's other properties (see
+    /// `ply_attributes.rs`), face attributes with one row per triangle: a mesh with any is one
+    /// Mitsuba joins to no other.
+    pub attributes: Vec<MeshAttribute>,
 }
 
 impl MeshData {

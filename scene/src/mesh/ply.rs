@@ -3,16 +3,29 @@
 //! Scene parameters (`<shape type="ply">`): `filename` (string, required), `to_world`,
 //! `face_normals` (boolean, default false), `flip_normals` (boolean, default false). Reads the
 //! `vertex` element's `x y z`, optional `nx ny nz` and `u v` (or `s t`), and the `face` element's
-//! `vertex_indices` (or `vertex_index`) lists, fan-triangulated.
+//! `vertex_indices` (or `vertex_index`) lists, fan-triangulated, and the other properties of
+//! both as Mitsuba 3's mesh attributes (`ply_attributes.rs`; a face's values are repeated for
+//! each triangle of its fan).
 use super::data::MeshData;
 use super::ply_locate::{parse_error, record_error};
 use crate::error::InputError;
 use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{DefaultElement, Header, Property, PropertyType};
 use std::path::Path;
+use tessera_core::geometry::MeshAttribute;
 
 fn scalar(e: &DefaultElement, key: &str) -> Option<f32> {
     e.get(key).and_then(|p| p.to_f32_lossy())
+}
+
+/// A mesh attribute's component `name` of record `e`, as a float (integers as they are, as
+/// Mitsuba 3 reads them).
+fn attribute_value(e: &DefaultElement, name: &str) -> Result<f32, String> {
+    match scalar(e, name) {
+        Some(x) if x.is_finite() => Ok(x),
+        Some(_) => Err(format!("non-finite mesh attribute value {name}")),
+        None => Err(format!("mesh attribute property {name} is not a number")),
+    }
 }
 
 fn list(p: &Property) -> Option<Vec<i64>> {
@@ -68,6 +81,9 @@ pub fn load_ply(path: &Path) -> Result<MeshData, InputError> {
         .get("face")
         .ok_or_else(|| err("PLY file has no face element".into()))?;
     let mut data = MeshData::default();
+    // Each attribute's name and the names of its component properties, per element.
+    let mut vertex_attrs = Vec::new();
+    let mut face_attrs = Vec::new();
     for kind in ["vertex", "face"] {
         if let Some(def) = ply.header.elements.get(kind) {
             let mut fields = Vec::new();
@@ -81,10 +97,18 @@ pub fn load_ply(path: &Path) -> Result<MeshData, InputError> {
                     _ => fields.push(name.clone()),
                 }
             }
-            let attrs = super::ply_attributes::mitsuba_attributes(kind, &fields);
-            data.attributes.extend(attrs.into_iter().map(|a| a.0));
+            for (name, parts) in super::ply_attributes::mitsuba_attributes(kind, &fields) {
+                let parts: Vec<String> = parts.iter().map(|&k| fields[k].clone()).collect();
+                if kind == "vertex" {
+                    vertex_attrs.push((name, parts));
+                } else {
+                    face_attrs.push((name, parts));
+                }
+            }
         }
     }
+    let mut vertex_values: Vec<Vec<f32>> = vec![Vec::new(); vertex_attrs.len()];
+    let mut face_values: Vec<Vec<f32>> = vec![Vec::new(); face_attrs.len()];
     let has_n = verts.first().is_some_and(|v| v.get("nx").is_some());
     let uv_keys = verts.first().and_then(|v| {
         if v.get("u").is_some() {
@@ -123,6 +147,13 @@ pub fn load_ply(path: &Path) -> Result<MeshData, InputError> {
             data.uvs
                 .push([scalar(v, ku).unwrap_or(0.0), scalar(v, kv).unwrap_or(0.0)]);
         }
+        for ((_, parts), values) in vertex_attrs.iter().zip(&mut vertex_values) {
+            for name in parts {
+                values.push(attribute_value(v, name).map_err(|m| {
+                    at("vertex", i, scalar_token(&ply.header, "vertex", name), m)
+                })?);
+            }
+        }
     }
     let n = data.positions.len() as i64;
     for (fi, f) in faces.iter().enumerate() {
@@ -146,10 +177,36 @@ pub fn load_ply(path: &Path) -> Result<MeshData, InputError> {
                 format!("face refers to vertex {bad}, but the file has {n}"),
             ));
         }
+        let mut row = Vec::new();
+        for ((_, parts), values) in face_attrs.iter().zip(&mut face_values) {
+            row.clear();
+            for name in parts {
+                row.push(attribute_value(f, name).map_err(|m| {
+                    at("face", fi, scalar_token(&ply.header, "face", name), m)
+                })?);
+            }
+            // One row per triangle of the face's fan.
+            for _ in 1..idx.len().saturating_sub(1) {
+                values.extend_from_slice(&row);
+            }
+        }
         for k in 1..idx.len().saturating_sub(1) {
             data.indices
                 .push([idx[0] as u32, idx[k] as u32, idx[k + 1] as u32]);
         }
+    }
+    let attributes = vertex_attrs
+        .into_iter()
+        .zip(vertex_values)
+        .map(|(a, v)| (a, v, false))
+        .chain(face_attrs.into_iter().zip(face_values).map(|(a, v)| (a, v, true)));
+    for ((name, parts), values, per_face) in attributes {
+        data.attributes.push(MeshAttribute {
+            name,
+            dim: parts.len(),
+            per_face,
+            values,
+        });
     }
     data.validate(path)?;
     Ok(data)

@@ -9,16 +9,17 @@
 //!   any other count, a suffix that starts no sequence, a property without `_` or with a longer
 //!   suffix, and a prefix met before make nothing (Mitsuba warns).
 //!
-//! Tessera does not read the attributes' values yet; their presence decides how Mitsuba lists
-//! the mesh (`crate::shape_numbering`).
+//! Their presence also decides how Mitsuba lists the mesh (`crate::shape_numbering`); their
+//! values are what `mesh_attribute` textures read.
 
 /// The suffix sequences, by position: column `k` of each row is sequence `k`'s letter there.
 const SUFFIXES: [&[u8; 4]; 4] = [b"xr01", b"yg12", b"zb23", b"wa34"];
 
-/// The attributes (name, number of components) Mitsuba makes of `fields`, the property names
-/// of a PLY element in file order (a list property `NAME` written as `NAME.count`, `i0`, `i1`,
-/// `i2`, as Mitsuba's reader expands it); `kind` is `"vertex"` or `"face"`.
-pub(crate) fn mitsuba_attributes(kind: &str, fields: &[String]) -> Vec<(String, usize)> {
+/// The attributes Mitsuba makes of `fields`, the property names of a PLY element in file order
+/// (a list property `NAME` written as `NAME.count`, `i0`, `i1`, `i2`, as Mitsuba's reader
+/// expands it); `kind` is `"vertex"` or `"face"`. Each is its name and the positions in
+/// `fields` of its components, in order.
+pub(crate) fn mitsuba_attributes(kind: &str, fields: &[String]) -> Vec<(String, Vec<usize>)> {
     let mut fields: Vec<String> = fields.to_vec();
     let has = |f: &[String], n: &str| f.iter().any(|x| x == n);
     let mut reserved: Vec<&str> = match kind {
@@ -52,26 +53,31 @@ pub(crate) fn mitsuba_attributes(kind: &str, fields: &[String]) -> Vec<(String, 
         }
     }
     if has(&fields, "r") && has(&fields, "g") && has(&fields, "b") {
-        out.push((format!("{prefix}color"), 3 + usize::from(has(&fields, "a"))));
+        let at = |n: &str| fields.iter().position(|x| x == n);
+        let parts = ["r", "g", "b", "a"].iter().filter_map(|n| at(n)).collect();
+        out.push((format!("{prefix}color"), parts));
     }
     reserved.extend(["r", "g", "b", "a"]);
 
     let mut seen: Vec<String> = Vec::new();
-    // The attribute being read: its prefix, its suffix sequence and how many letters so far.
+    // The attribute being read: its prefix, its suffix sequence and its components so far.
     let mut current: Option<(String, usize)> = None;
+    let mut parts: Vec<usize> = Vec::new();
     let mut level = 0;
     // Ends the attribute being read: one of 1 or 3 components becomes an attribute.
     let flush = |current: &mut Option<(String, usize)>,
+                 parts: &mut Vec<usize>,
                  level: &mut usize,
                  seen: &mut Vec<String>,
-                 out: &mut Vec<(String, usize)>| {
+                 out: &mut Vec<(String, Vec<usize>)>| {
         if let Some((p, seq)) = current.take() {
             if *level == 1 || *level == 3 {
                 let color = if seq == 1 { "_color" } else { "" };
-                out.push((format!("{prefix}{p}{color}"), *level));
+                out.push((format!("{prefix}{p}{color}"), core::mem::take(parts)));
                 seen.push(p);
             }
         }
+        parts.clear();
         *level = 0;
     };
     let mut i = 0;
@@ -82,17 +88,17 @@ pub(crate) fn mitsuba_attributes(kind: &str, fields: &[String]) -> Vec<(String, 
             continue;
         }
         let Some((p, suffix)) = name.rsplit_once('_') else {
-            flush(&mut current, &mut level, &mut seen, &mut out);
+            flush(&mut current, &mut parts, &mut level, &mut seen, &mut out);
             i += 1;
             continue;
         };
         if suffix.len() != 1 {
-            flush(&mut current, &mut level, &mut seen, &mut out);
+            flush(&mut current, &mut parts, &mut level, &mut seen, &mut out);
             i += 1;
             continue;
         }
         if current.as_ref().is_some_and(|c| c.0 != p) {
-            flush(&mut current, &mut level, &mut seen, &mut out);
+            flush(&mut current, &mut parts, &mut level, &mut seen, &mut out);
         }
         let c = suffix.as_bytes()[0];
         match &current {
@@ -117,6 +123,7 @@ pub(crate) fn mitsuba_attributes(kind: &str, fields: &[String]) -> Vec<(String, 
                 if level >= SUFFIXES.len() || SUFFIXES[level][*seq] != c {
                     // A broken sequence: nothing is made of it.
                     current = None;
+                    parts.clear();
                     level = 0;
                     let p = p.to_string();
                     while i < fields.len() && fields[i].starts_with(&p) {
@@ -126,10 +133,11 @@ pub(crate) fn mitsuba_attributes(kind: &str, fields: &[String]) -> Vec<(String, 
                 }
             }
         }
+        parts.push(i);
         level += 1;
         i += 1;
     }
-    flush(&mut current, &mut level, &mut seen, &mut out);
+    flush(&mut current, &mut parts, &mut level, &mut seen, &mut out);
     out
 }
 
@@ -145,7 +153,10 @@ mod tests {
 
     fn attrs(kind: &str, fields: &[&str]) -> Vec<(String, usize)> {
         let fields: Vec<String> = fields.iter().map(|s| s.to_string()).collect();
-        let mut a = mitsuba_attributes(kind, &fields);
+        let mut a: Vec<(String, usize)> = mitsuba_attributes(kind, &fields)
+            .into_iter()
+            .map(|(n, parts)| (n, parts.len()))
+            .collect();
         a.sort();
         a
     }

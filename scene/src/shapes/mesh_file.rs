@@ -39,7 +39,10 @@ pub const OBJ: ShapePlugin = Plugin {
 pub const PLY: ShapePlugin = Plugin {
     name: "ply",
     aliases: &[],
-    doc: "A PLY triangle mesh (ASCII or binary).",
+    doc: "A PLY triangle mesh (ASCII or binary). Polygons are fan-triangulated; the vertex \
+          and face properties beyond positions, normals, uv and indices become mesh \
+          attributes named as Mitsuba 3 names them (`vertex_color`, `face_weight`, ...), which \
+          `mesh_attribute` textures read.",
     params: &[FILENAME, FACE_NORMALS, TO_WORLD, FLIP_NORMALS],
     nested: "an optional `<bsdf>` and `<emitter type=\"area\">`",
     build: build_mesh_file,
@@ -156,5 +159,7 @@ pub(crate) fn to_world_mesh(
         .map(|n| tf.normal(Vec3::from(*n)).unit_or_zero())
         .collect();
     let uvs = data.uvs.iter().map(|u| Vec2::from(*u)).collect();
-    Ok(Mesh::new(positions, normals, uvs, data.indices))
+    let mut mesh = Mesh::new(positions, normals, uvs, data.indices);
+    mesh.attributes = data.attributes;
+    Ok(mesh)
 }
