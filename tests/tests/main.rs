@@ -41,6 +41,7 @@ mod materials_agreement;
 mod media_agreement;
 mod media_analytic;
 mod media_inputs;
+mod mesh_attributes;
 mod medium_chi2;
 mod mtl;
 mod projector_agreement;
