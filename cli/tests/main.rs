@@ -4,8 +4,6 @@
 //! fails when a file here is missing from the list below. `support/` and `scenes/` are shared
 //! helpers.
 
-mod scenes;
-mod support;
 mod adaptive;
 mod adaptive_reuse;
 mod aov;
@@ -23,7 +21,9 @@ mod probe;
 mod progressive;
 mod reuse;
 mod sampler_cli;
+mod scenes;
 mod split_merge;
+mod support;
 mod target_error;
 mod view_cli;
 

@@ -55,8 +55,10 @@ fn a_ply_files_attributes_are_its_values() {
     );
     let l = load(&body).expect("loads");
     let a = attributes(&l);
-    let names: Vec<(&str, usize, bool)> =
-        a.iter().map(|a| (a.name.as_str(), a.dim, a.per_face)).collect();
+    let names: Vec<(&str, usize, bool)> = a
+        .iter()
+        .map(|a| (a.name.as_str(), a.dim, a.per_face))
+        .collect();
     assert_eq!(
         names,
         [
@@ -102,7 +104,11 @@ fn named_colours_and_polygons() {
     assert_eq!(a[0].name, "vertex_color");
     assert_eq!(a[0].values[..6], [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]);
     assert_eq!(a[1].name, "face_weight");
-    assert_eq!(a[1].values, [0.5, 0.5, 0.25], "the quad's two triangles, then the triangle");
+    assert_eq!(
+        a[1].values,
+        [0.5, 0.5, 0.25],
+        "the quad's two triangles, then the triangle"
+    );
 }
 
 fn refused(body: &str, needle: &str, line: u32) {
@@ -121,7 +127,9 @@ fn misuse_is_a_located_error() {
     let ply = sphere_ply();
     let ply = ply.display();
     let attr = |name: &str| {
-        format!(r#"<texture type="mesh_attribute" name="reflectance"><string name="name" value="{name}"/></texture>"#)
+        format!(
+            r#"<texture type="mesh_attribute" name="reflectance"><string name="name" value="{name}"/></texture>"#
+        )
     };
     // A name that is neither a vertex nor a face attribute.
     refused(

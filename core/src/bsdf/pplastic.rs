@@ -89,8 +89,7 @@ impl PolarizedPlastic {
         let spec = md.d(h) * md.g(wi, wo, h) * f / (4.0 * wi.z);
         let ti = 1.0 - fresnel_dielectric(wi.z, eta).f;
         let to = 1.0 - fresnel_dielectric(wo.z, eta).f;
-        let r =
-            self.specular.eval(at) * spec + self.diffuse.eval(at) * (ti * to * wo.z * INV_PI);
+        let r = self.specular.eval(at) * spec + self.diffuse.eval(at) * (ti * to * wo.z * INV_PI);
         if r.is_finite() {
             r
         } else {

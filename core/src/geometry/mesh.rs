@@ -2,9 +2,9 @@
 //!
 //! Built by the driver from `obj`, `ply`, `rectangle` and `cube` shapes (see the driver's loaders
 //! for their scene parameters). Positions and normals are already transformed to world space.
+use super::MeshAttribute;
 use crate::math::{gamma, Frame, Norm};
 use crate::sampling::{warp::square_to_uniform_triangle, Discrete1D};
-use super::MeshAttribute;
 use alloc::vec::Vec;
 use glam::{Vec2, Vec3};
 

@@ -34,9 +34,7 @@ pub(crate) const MESH_ATTRIBUTE: TexturePlugin = Plugin {
             return Err(super::super::util::at_prop(
                 obj,
                 NAME.name,
-                format!(
-                    "mesh attribute name \"{name}\" must start with \"vertex_\" or \"face_\""
-                ),
+                format!("mesh attribute name \"{name}\" must start with \"vertex_\" or \"face_\""),
             ));
         }
         let scale = SCALE.read_f32(obj)?;

@@ -149,9 +149,11 @@ pub fn load_ply(path: &Path) -> Result<MeshData, InputError> {
         }
         for ((_, parts), values) in vertex_attrs.iter().zip(&mut vertex_values) {
             for name in parts {
-                values.push(attribute_value(v, name).map_err(|m| {
-                    at("vertex", i, scalar_token(&ply.header, "vertex", name), m)
-                })?);
+                values.push(
+                    attribute_value(v, name).map_err(|m| {
+                        at("vertex", i, scalar_token(&ply.header, "vertex", name), m)
+                    })?,
+                );
             }
         }
     }
@@ -181,9 +183,10 @@ pub fn load_ply(path: &Path) -> Result<MeshData, InputError> {
         for ((_, parts), values) in face_attrs.iter().zip(&mut face_values) {
             row.clear();
             for name in parts {
-                row.push(attribute_value(f, name).map_err(|m| {
-                    at("face", fi, scalar_token(&ply.header, "face", name), m)
-                })?);
+                row.push(
+                    attribute_value(f, name)
+                        .map_err(|m| at("face", fi, scalar_token(&ply.header, "face", name), m))?,
+                );
             }
             // One row per triangle of the face's fan.
             for _ in 1..idx.len().saturating_sub(1) {
@@ -199,7 +202,12 @@ pub fn load_ply(path: &Path) -> Result<MeshData, InputError> {
         .into_iter()
         .zip(vertex_values)
         .map(|(a, v)| (a, v, false))
-        .chain(face_attrs.into_iter().zip(face_values).map(|(a, v)| (a, v, true)));
+        .chain(
+            face_attrs
+                .into_iter()
+                .zip(face_values)
+                .map(|(a, v)| (a, v, true)),
+        );
     for ((name, parts), values, per_face) in attributes {
         data.attributes.push(MeshAttribute {
             name,
