@@ -61,7 +61,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
                 acc.names.emitters.push(obj.plugin.clone());
             }
             // Declared to be referenced (`<ref>`); built where it is used.
-            Kind::Texture => {}
+            Kind::Texture | Kind::Volume => {}
             // Built here, so that a medium nobody refers to is still checked.
             Kind::Medium => {
                 acc.media.index_of(obj)?;
