@@ -18,6 +18,7 @@ pub(crate) mod volumes;
 
 pub use phase::PHASES;
 pub use table::MEDIA;
+pub(crate) use volumes::build_volume;
 pub use volumes::VOLUMES;
 
 #[cfg(test)]

@@ -142,6 +142,15 @@ pub(crate) const GRIDVOLUME: VolumePlugin = Plugin {
             p.read_bool(obj)?;
         }
         MAX_VALUE.read_f32(obj)?;
+        let filter = match FILTER_TYPE.read_choice(obj)? {
+            "nearest" => GridFilter::Nearest,
+            _ => GridFilter::Trilinear,
+        };
+        let wrap = match WRAP_MODE.read_choice(obj)? {
+            "repeat" => GridWrap::Repeat,
+            "mirror" => GridWrap::Mirror,
+            _ => GridWrap::Clamp,
+        };
         let name = obj
             .string_opt(FILENAME.name)?
             .ok_or_else(|| obj.error(format!("{} needs \"filename\"", obj.describe())))?;
@@ -171,15 +180,6 @@ pub(crate) const GRIDVOLUME: VolumePlugin = Plugin {
                 format!("\"to_world\" of {} is not invertible", obj.describe()),
             )
         })?;
-        let filter = match FILTER_TYPE.read_choice(obj)? {
-            "nearest" => GridFilter::Nearest,
-            _ => GridFilter::Trilinear,
-        };
-        let wrap = match WRAP_MODE.read_choice(obj)? {
-            "repeat" => GridWrap::Repeat,
-            "mirror" => GridWrap::Mirror,
-            _ => GridWrap::Clamp,
-        };
         Ok(Volume {
             data: VolumeData::Grid(GridVolume {
                 grid: file.grid,
