@@ -16,6 +16,10 @@ use alloc::vec;
 use alloc::vec::Vec;
 use glam::Vec3;
 
+/// Relative margin on every bound: a trilinear blend computed in f32 may exceed the largest
+/// voxel it blends by an ulp or two.
+const MARGIN: f32 = 1.0 + 8.0 * f32::EPSILON;
+
 /// Cells per axis at most.
 pub const MAJORANT_CELLS: u32 = 16;
 
@@ -48,7 +52,7 @@ impl MajorantGrid {
         match &sigma_t.data {
             VolumeData::Constant(c) => MajorantGrid {
                 res: [1; 3],
-                values: vec![c.max_element() * scale],
+                values: vec![c.max_element() * scale * MARGIN],
             },
             VolumeData::Grid(g) => {
                 let vres = g.grid.res();
@@ -66,7 +70,7 @@ impl MajorantGrid {
                                 lo[a] = l;
                                 hi[a] = h;
                             }
-                            values.push(g.grid.max_in(lo, hi, g.wrap) * scale);
+                            values.push(g.grid.max_in(lo, hi, g.wrap) * scale * MARGIN);
                         }
                     }
                 }
