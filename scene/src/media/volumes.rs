@@ -94,9 +94,10 @@ const RAW: Param = Param::boolean(
      rendering has none to skip",
 )
 .ignored();
-const MAX_VALUE: Param = Param::float(
+const MAX_VALUE: Param = Param::new(
     "max_value",
-    0.0,
+    ParamType::Float,
+    Default::Note("the grid's maximum"),
     Range::NonNegative,
     "has no effect: Mitsuba 3's override of the grid's maximum (its majorant); Tessera bounds \
      the extinction from the voxels themselves",
@@ -141,7 +142,7 @@ pub(crate) const GRIDVOLUME: VolumePlugin = Plugin {
         for p in [RAW, ACCEL] {
             p.read_bool(obj)?;
         }
-        MAX_VALUE.read_f32(obj)?;
+        MAX_VALUE.read_f32_or(obj, 0.0)?;
         let filter = match FILTER_TYPE.read_choice(obj)? {
             "nearest" => GridFilter::Nearest,
             _ => GridFilter::Trilinear,
@@ -191,6 +192,10 @@ pub(crate) const GRIDVOLUME: VolumePlugin = Plugin {
     },
 };
 
+const CONST_TO_WORLD: Param = Param::transform(
+    "to_world",
+    "places the volume: its local unit cube [0, 1]^3 in the world",
+);
 const VALUE: Param = Param::rgb(
     "value",
     Default::Rgb([1.0; 3]),
@@ -205,12 +210,12 @@ pub(crate) const CONSTVOLUME: VolumePlugin = Plugin {
     doc: "The same value everywhere. As a heterogeneous medium's sigma_t it still bounds the \
           medium, as in Mitsuba 3: to its unit cube placed by to_world (a float or rgb given \
           directly for sigma_t is this with to_world the identity).",
-    params: &[VALUE, TO_WORLD],
+    params: &[VALUE, CONST_TO_WORLD],
     nested: "",
     build: |obj| {
         Ok(Volume {
             data: VolumeData::Constant(VALUE.read_color(obj)?),
-            to_world: TO_WORLD.read_transform(obj)?,
+            to_world: CONST_TO_WORLD.read_transform(obj)?,
         })
     },
 };
