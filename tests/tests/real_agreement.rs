@@ -174,9 +174,7 @@ fn load_overridden(s: &Listed) -> LoadedScene {
 fn load_edited(s: &Listed, edit: impl Fn(String) -> String) -> LoadedScene {
     let path = real_dir().join(&s.scene);
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", s.scene));
-    let edited = edit(text.clone());
-    assert_ne!(edited, text, "{}: the edit changed nothing", s.scene);
-    let mut root = tessera_scene::xml::load_str(&edited, &path, &s.defines)
+    let mut root = tessera_scene::xml::load_str(&edit(text), &path, &s.defines)
         .unwrap_or_else(|e| panic!("{e}"));
     let mut counts = (0, 0);
     override_film(&mut root, s.width, s.height, &mut counts);
@@ -293,7 +291,7 @@ fn real_scenes_match_mitsuba() {
 /// Controls for the models that only a few corpus scenes use, beside the dimmer emitters: the
 /// scene rendered with a nearby wrong model must disagree with Mitsuba's reference at the same
 /// level. `pplastic` replaced by `roughplastic` with the same parameters (the coupled coating
-/// model); the heterogeneous media's extinction 5% high; every `polarizer` passing all the light
+/// model); the heterogeneous media's extinction higher (see the list); every `polarizer` passing all the light
 /// instead of half (transmittance 2).
 #[test]
 fn real_scenes_with_a_wrong_model_disagree() {
@@ -304,14 +302,19 @@ fn real_scenes_with_a_wrong_model_disagree() {
         ("mitsuba-data/docs/scenes/bsdf_pplastic.xml", |t| {
             t.replace("type=\"pplastic\"", "type=\"roughplastic\"")
         }),
-        // The heterogeneous media's extinction 5% high (scale 5 -> 5.25).
+        // The heterogeneous media's extinction high: 50% (scale 5 -> 7.5) for the grids, 20%
+        // (scale 5 -> 6) for the absorbing constant. Smaller changes go unseen at this test's
+        // samples: the grids are an optically thick scattering medium whose image hardly
+        // depends on the extinction (10%: worst p = 4.4e-3), and the constant fills few pixels
+        // of a noisy background (5%: worst p = 2.0e-2). hetero_agreement.rs and
+        // hetero_analytic.rs show 5% on scenes made to see it.
         (
             "mitsuba-data/tests/scenes/participating_media/test_hetero_sigmat_albedo_volpath.xml",
-            |t| t.replace("name=\"scale\" value=\"5\"", "name=\"scale\" value=\"5.25\""),
+            |t| t.replace("name=\"scale\" value=\"5\"", "name=\"scale\" value=\"7.5\""),
         ),
         (
             "mitsuba-data/tests/scenes/participating_media/test_hetero_spectral_sigmat_no_scattering_volpath.xml",
-            |t| t.replace("name=\"scale\" value=\"5\"", "name=\"scale\" value=\"5.25\""),
+            |t| t.replace("name=\"scale\" value=\"5\"", "name=\"scale\" value=\"6\""),
         ),
         ("mitsuba-data/docs/scenes/bsdf_polarizer_middle.xml", |t| {
             t.replace(
@@ -325,6 +328,8 @@ fn real_scenes_with_a_wrong_model_disagree() {
             .iter()
             .find(|s| s.scene == scene)
             .unwrap_or_else(|| panic!("{scene} is not in refs/LIST"));
+        let text = std::fs::read_to_string(real_dir().join(scene)).expect("scene file");
+        assert_ne!(edit(text.clone()), text, "{scene}: the edit changed nothing");
         let l = load_edited(s, edit);
         let ours = render_loaded(&l, s.spp, 7);
         let like = like_mitsuba(&l, s.spp, 8);

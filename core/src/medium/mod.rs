@@ -42,8 +42,8 @@ pub use voxel_grid::{GridFilter, GridWrap, VoxelGrid};
 pub enum Medium {
     /// Constant extinction and albedo (`homogeneous`).
     Homogeneous(Homogeneous),
-    /// Extinction and albedo from volumes (`heterogeneous`).
-    Heterogeneous(Heterogeneous),
+    /// Extinction and albedo from volumes (`heterogeneous`; boxed, as it holds its grids).
+    Heterogeneous(alloc::boxed::Box<Heterogeneous>),
 }
 
 impl Medium {

@@ -46,12 +46,12 @@ pub(crate) const HETEROGENEOUS: MediumPlugin = Plugin {
             return Err(SIGMA_T.out_of_range(obj, "finite after scale", top));
         }
         let albedo = read_volume(obj, &ALBEDO)?;
-        Ok(Medium::Heterogeneous(Heterogeneous::new(
+        Ok(Medium::Heterogeneous(Box::new(Heterogeneous::new(
             sigma_t,
             albedo,
             scale,
             nested_phase(obj)?,
             SAMPLE_EMITTERS.read_bool(obj)?,
-        )))
+        ))))
     },
 };
