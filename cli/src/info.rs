@@ -154,12 +154,19 @@ pub fn report(file: &str, loaded: &LoadedScene, seconds: f64) -> String {
             Some(_) => "the camera in one",
             None => "the camera in none",
         };
+        let homogeneous = s
+            .media
+            .media
+            .iter()
+            .filter(|m| matches!(m, tessera_core::medium::Medium::Homogeneous(_)))
+            .count();
+        let heterogeneous = s.media.media.len() - homogeneous;
         row(
             "media",
             format!(
-                "{}: homogeneous {}; shapes bounding them: {bounding}; {camera}",
+                "{}: homogeneous {homogeneous}, heterogeneous {heterogeneous}; shapes bounding \
+                 them: {bounding}; {camera}",
                 s.media.media.len(),
-                s.media.media.len()
             ),
         );
     }

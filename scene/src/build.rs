@@ -64,6 +64,11 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
             }
             // Declared to be referenced (`<ref>`); built where it is used.
             Kind::Texture => {}
+            Kind::Volume if obj.is_referenced() => {}
+            // A volume nobody refers to is still checked.
+            Kind::Volume => {
+                crate::media::build_volume(obj)?;
+            }
             // Built here, so that a medium nobody refers to is still checked.
             Kind::Medium => {
                 acc.media.index_of(obj)?;

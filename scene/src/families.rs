@@ -47,6 +47,7 @@ pub fn families() -> Vec<Family> {
         ),
         family(Kind::Emitter, "Emitters", crate::emitters::EMITTERS),
         family(Kind::Medium, "Media", crate::media::MEDIA),
+        family(Kind::Volume, "Volumes", crate::media::VOLUMES),
         family(Kind::Phase, "Phase functions", crate::media::PHASES),
     ]
 }

@@ -108,6 +108,7 @@ pub(crate) const MITSUBA_PLUGINS: &[(Kind, &[&str])] = &[
         &["bitmap", "checkerboard", "mesh_attribute", "volume"],
     ),
     (Kind::Medium, &["heterogeneous", "homogeneous"]),
+    (Kind::Volume, &["constvolume", "gridvolume"]),
     (
         Kind::Phase,
         &[

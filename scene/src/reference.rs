@@ -39,8 +39,7 @@ pub fn reference() -> String {
     s.push_str(
         "\n## Mitsuba 3 plugins Tessera does not read\n\nMitsuba 3.9.1's plugins of the \
          families above that the loader has no entry for; a scene file naming one is refused \
-         with a located error that says so. (Volumes, `<volume>` such as `gridvolume`, are refused \
-         as an element.)\n\n",
+         with a located error that says so.\n\n",
     );
     for f in families() {
         let missing = f.not_read();

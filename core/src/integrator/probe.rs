@@ -59,6 +59,11 @@ pub enum MediumEvent {
     NullCrossing,
     /// A shadow ray crossed a `null` surface.
     ShadowNullCrossing,
+    /// Delta tracking in a heterogeneous medium met a null collision (a tentative collision
+    /// that did not scatter).
+    NullCollision,
+    /// Ratio tracking on a shadow ray through a heterogeneous medium met a tentative collision.
+    ShadowNullCollision,
 }
 
 /// Receives the events of one sample's path. Every method defaults to doing nothing.
@@ -182,6 +187,10 @@ pub struct Counters {
     pub null_crossings: u64,
     /// `null` surfaces crossed by shadow rays.
     pub shadow_null_crossings: u64,
+    /// Null collisions of delta tracking in heterogeneous media (paths).
+    pub null_collisions: u64,
+    /// Tentative collisions of ratio tracking in heterogeneous media (shadow rays).
+    pub shadow_null_collisions: u64,
 }
 
 impl Counters {
@@ -193,7 +202,7 @@ impl Counters {
     }
 
     /// Every count with its name, in a fixed order (for printing).
-    pub fn rows(&self) -> [(&'static str, u64); 25] {
+    pub fn rows(&self) -> [(&'static str, u64); 27] {
         [
             ("samples", self.samples),
             ("camera rays", self.camera_rays),
@@ -220,10 +229,12 @@ impl Counters {
             ("medium passes", self.medium_passes),
             ("null crossings", self.null_crossings),
             ("shadow null crossings", self.shadow_null_crossings),
+            ("null collisions", self.null_collisions),
+            ("shadow null collisions", self.shadow_null_collisions),
         ]
     }
 
-    fn fields_mut(&mut self) -> [&mut u64; 25] {
+    fn fields_mut(&mut self) -> [&mut u64; 27] {
         [
             &mut self.samples,
             &mut self.camera_rays,
@@ -250,6 +261,8 @@ impl Counters {
             &mut self.medium_passes,
             &mut self.null_crossings,
             &mut self.shadow_null_crossings,
+            &mut self.null_collisions,
+            &mut self.shadow_null_collisions,
         ]
     }
 }
@@ -334,6 +347,8 @@ impl Probe for Counters {
             MediumEvent::Pass => self.medium_passes += 1,
             MediumEvent::NullCrossing => self.null_crossings += 1,
             MediumEvent::ShadowNullCrossing => self.shadow_null_crossings += 1,
+            MediumEvent::NullCollision => self.null_collisions += 1,
+            MediumEvent::ShadowNullCollision => self.shadow_null_collisions += 1,
         }
     }
 }

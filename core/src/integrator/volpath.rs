@@ -1,5 +1,5 @@
-//! Volumetric path tracer (`volpath`), Mitsuba 3.9.1's: paths through homogeneous participating
-//! media and surfaces, with emitter sampling at both kinds of vertex.
+//! Volumetric path tracer (`volpath`), Mitsuba 3.9.1's: paths through participating media
+//! (homogeneous and heterogeneous) and surfaces, with emitter sampling at both kinds of vertex.
 //!
 //! Scene parameters (`<integrator type="volpath">`): `max_depth` (integer, default -1 =
 //! unbounded), `rr_depth` (integer, default 5), `hide_emitters` (boolean, default false), with
@@ -10,7 +10,9 @@
 //!   0.95)`), checked at every step as Mitsuba 3 does;
 //! - the ray is cast; inside a medium a free flight is sampled (`medium::sample_free_flight`)
 //!   up to the surface it meets, from the colour channel the path chose when it started, and
-//!   weighted over the three channels along the whole path (`medium::ChannelRatios`). A collision is a real scattering event: the depth grows, the
+//!   weighted over the three channels along the whole path (`medium::ChannelRatios`); in a
+//!   heterogeneous medium delta tracking samples it (`Heterogeneous::sample_flight`), its null
+//!   collisions weighted into the same ratios. A collision is a real scattering event: the depth grows, the
 //!   emitters are sampled (when the medium's `sample_emitters` is set) with the phase function
 //!   as the scattering factor, and the phase function samples the next direction;
 //! - at a surface (or on escaping), emitted light is added; then a `null` surface is crossed
@@ -152,23 +154,37 @@ impl VolPathIntegrator {
             let len = ray.d.norm();
             let d = ray.d / len;
             if let Some(m) = medium {
-                let Medium::Homogeneous(h) = &scene.media.media[m as usize];
                 let t_max = hit.as_ref().map_or(f32::INFINITY, |si| si.t * len);
-                let u = sampler.next_1d();
-                let ff = sample_free_flight(h.sigma_t, h.sigma_s(), t_max, channels.channel, u);
-                throughput *= channels.record(&ff);
+                let med = &scene.media.media[m as usize];
+                let (scattered, t) = match med {
+                    Medium::Homogeneous(h) => {
+                        let u = sampler.next_1d();
+                        let ff =
+                            sample_free_flight(h.sigma_t, h.sigma_s(), t_max, channels.channel, u);
+                        throughput *= channels.record(&ff);
+                        (ff.scattered, ff.t)
+                    }
+                    Medium::Heterogeneous(h) => {
+                        let fl = h.sample_flight(ray.o, d, t_max, &mut channels, sampler);
+                        for _ in 0..fl.null_collisions {
+                            probe.medium(MediumEvent::NullCollision);
+                        }
+                        throughput *= fl.weight;
+                        (fl.scattered, fl.t)
+                    }
+                };
                 mix = channels.weight();
-                if ff.scattered {
+                if scattered {
                     probe.medium(MediumEvent::Scatter);
                     depth += 1;
                     if depth >= max_depth || throughput == Color::ZERO {
                         probe.end(PathEnd::MaxDepth);
                         break;
                     }
-                    let p = ray.o + d * ff.t;
+                    let p = ray.o + d * t;
                     let it = medium_point(p, -d);
-                    let phase = h.phase;
-                    if h.sample_emitters {
+                    let phase = *med.phase();
+                    if med.sample_emitters() {
                         specular_chain = false;
                         if scene.features.has_emitters {
                             if let Some(ml) =

@@ -1,11 +1,12 @@
 //! Emitter sampling through participating media, for `volpath`: a light is picked and sampled
 //! from a surface or medium vertex, and its shadow segment is followed through every `null`
-//! surface on the way, each medium it crosses multiplying the light by its transmittance
-//! `exp(-sigma_t d)` (computed exactly: the media here are homogeneous). Any other surface
-//! blocks the light, as in Mitsuba 3's `volpath`.
+//! surface on the way, each medium it crosses multiplying the light by its transmittance: for a
+//! homogeneous medium `exp(-sigma_t d)` computed exactly, for a heterogeneous one estimated by
+//! ratio tracking (`Heterogeneous::transmittance`). Any other surface blocks the light, as in
+//! Mitsuba 3's `volpath`.
 //!
-//! Mitsuba 3.9.1 estimates the same transmittance by sampling a free flight along the shadow
-//! ray and dropping the light when it collides; its expectation is the exact value used here.
+//! Mitsuba 3.9.1 estimates the transmittance by sampling a free flight along the shadow ray and
+//! dropping the light when it collides; its expectation is the value used here.
 use super::probe::{MediumEvent, Probe, RayKind};
 use crate::bsdf::Bsdf;
 use crate::geometry::Interaction;
@@ -65,7 +66,7 @@ pub(super) fn sample_light_through<S: Sampler, P: Probe>(
         Some(t) => it.spawn_ray_to(t),
         None => it.spawn_ray(es.wo),
     };
-    let tr = transmittance_along(scene, first, es.target, medium, probe)?;
+    let tr = transmittance_along(scene, first, es.target, medium, sampler, probe)?;
     Some(MediumLight {
         wo: es.wo,
         value: es.weight * tr / sel_pdf,
@@ -76,11 +77,12 @@ pub(super) fn sample_light_through<S: Sampler, P: Probe>(
 
 /// Transmittance along the shadow segment `ray` (toward `target`, or to infinity) starting in
 /// `medium`, crossing `null` surfaces; `None` when something else blocks it or nothing passes.
-fn transmittance_along<P: Probe>(
+fn transmittance_along<S: Sampler, P: Probe>(
     scene: &Scene,
     mut ray: Ray,
     target: Option<Vec3>,
     mut medium: Option<u32>,
+    sampler: &mut S,
     probe: &mut P,
 ) -> Option<Color> {
     let mut tr = Color::ONE;
@@ -88,15 +90,23 @@ fn transmittance_along<P: Probe>(
         let hit = probe.intersect(scene, &ray);
         probe.ray(RayKind::Shadow);
         let len = ray.d.norm();
-        let through = |m: Option<u32>, t: f32| match m {
+        let o = ray.o;
+        let mut through = |m: Option<u32>, t: f32, probe: &mut P| match m {
             Some(m) => match &scene.media.media[m as usize] {
                 Medium::Homogeneous(h) => h.transmittance(t * len),
+                Medium::Heterogeneous(h) => {
+                    let (tr, n) = h.transmittance(o, ray.d / len, t * len, sampler);
+                    for _ in 0..n {
+                        probe.medium(MediumEvent::ShadowNullCollision);
+                    }
+                    tr
+                }
             },
             None => Color::ONE,
         };
         let Some(si) = hit else {
             probe.shadow(false);
-            tr *= through(medium, ray.t_max);
+            tr *= through(medium, ray.t_max, probe);
             return (tr != Color::ZERO).then_some(tr);
         };
         let shape = &scene.shapes[si.shape as usize];
@@ -105,7 +115,7 @@ fn transmittance_along<P: Probe>(
             return None;
         }
         probe.medium(MediumEvent::ShadowNullCrossing);
-        tr *= through(medium, si.t);
+        tr *= through(medium, si.t, probe);
         if tr == Color::ZERO {
             probe.shadow(true);
             return None;

@@ -4,6 +4,9 @@
 //!   with `isotropic` and `hg` (Henyey-Greenstein) each in its own file, and the sample they
 //!   return (`phase_sample`);
 //! - `homogeneous`: a medium of constant extinction and albedo (Mitsuba 3's `homogeneous`);
+//! - `heterogeneous`: extinction and albedo from volumes (Mitsuba 3's `heterogeneous`), with
+//!   delta and ratio tracking; `volume` and `voxel_grid` (the `<volume>` data) and `majorant`
+//!   (per-cell bounds on the extinction) below it;
 //! - `free_flight`: sampling the distance to the next collision in a medium whose extinction
 //!   differs per colour channel;
 //! - `media`: which media a scene has, which surfaces bound them, and where the camera sits.
@@ -11,26 +14,36 @@
 //! The integrator that uses them is `integrator::volpath`. Parameters are declared with their
 //! loader, in `scene/src/media/`.
 mod free_flight;
+mod heterogeneous;
 mod hg;
 mod homogeneous;
 mod isotropic;
 mod media;
 mod phase;
 mod phase_sample;
+mod majorant;
+mod volume;
+mod voxel_grid;
 
 pub use free_flight::{sample_free_flight, ChannelRatios, FreeFlight};
+pub use heterogeneous::{Heterogeneous, TrackedFlight};
 pub use hg::HenyeyGreenstein;
 pub use homogeneous::Homogeneous;
 pub use isotropic::Isotropic;
 pub use media::{MediumInterface, SceneMedia};
 pub use phase::PhaseFunction;
+pub use majorant::{MajorantGrid, MAJORANT_CELLS};
 pub use phase_sample::PhaseSample;
+pub use volume::{GridVolume, Volume, VolumeData};
+pub use voxel_grid::{GridFilter, GridWrap, VoxelGrid};
 
-/// The media a scene can hold: a closed enum (heterogeneous grids are not implemented).
+/// The media a scene can hold: a closed enum.
 #[derive(Clone, Debug)]
 pub enum Medium {
     /// Constant extinction and albedo (`homogeneous`).
     Homogeneous(Homogeneous),
+    /// Extinction and albedo from volumes (`heterogeneous`; boxed, as it holds its grids).
+    Heterogeneous(alloc::boxed::Box<Heterogeneous>),
 }
 
 impl Medium {
@@ -39,6 +52,7 @@ impl Medium {
     pub fn phase(&self) -> &PhaseFunction {
         match self {
             Medium::Homogeneous(m) => &m.phase,
+            Medium::Heterogeneous(m) => &m.phase,
         }
     }
     /// Whether a scattering event in this medium samples emitters (`sample_emitters`).
@@ -46,6 +60,7 @@ impl Medium {
     pub fn sample_emitters(&self) -> bool {
         match self {
             Medium::Homogeneous(m) => m.sample_emitters,
+            Medium::Heterogeneous(m) => m.sample_emitters,
         }
     }
 }

@@ -1,25 +1,10 @@
-//! The `<medium>` plugins ([`MEDIA`]): `homogeneous`. Its conventions are in
-//! `tessera_core::medium::homogeneous`; Mitsuba 3's `heterogeneous` (voxel grids) is refused
-//! with a located error naming it.
-use super::phase::build_phase;
-use crate::plugin::{self, Default, Param, Plugin, Range};
-use crate::util::Result;
-use crate::xml::{Kind, Object};
-use tessera_core::medium::{Homogeneous, Medium, PhaseFunction};
-
-/// A medium plugin.
-pub(crate) type MediumPlugin = Plugin<fn(&Object) -> Result<Medium>>;
-
-/// Every `<medium type=...>` Tessera knows.
-pub static MEDIA: &[MediumPlugin] = &[HOMOGENEOUS];
-
-/// Builds a medium (with its nested phase function) and reports unused parameters.
-pub(crate) fn build_medium(obj: &Object) -> Result<Medium> {
-    let plugin = plugin::find(MEDIA, "medium", obj)?;
-    let m = (plugin.build)(obj)?;
-    plugin.check_unused(obj)?;
-    Ok(m)
-}
+//! The `homogeneous` `<medium>` plugin. Its conventions are in
+//! `tessera_core::medium::homogeneous`.
+use super::common::{
+    nested_phase, MediumPlugin, HAS_SPECTRAL_EXTINCTION, SAMPLE_EMITTERS, SCALE,
+};
+use crate::plugin::{Default, Param, Plugin, Range};
+use tessera_core::medium::{Homogeneous, Medium};
 
 const SIGMA_T: Param = Param::rgb(
     "sigma_t",
@@ -33,44 +18,6 @@ const ALBEDO: Param = Param::rgb(
     Range::NonNegative,
     "single-scattering albedo: the fraction of extinction that scatters (a float or rgb)",
 );
-const SCALE: Param = Param::float(
-    "scale",
-    1.0,
-    Range::NonNegative,
-    "factor on sigma_t (for data in other units)",
-);
-const SAMPLE_EMITTERS: Param = Param::boolean(
-    "sample_emitters",
-    true,
-    "whether scattering events in the medium sample emitters (shadow rays from inside it)",
-);
-
-const HAS_SPECTRAL_EXTINCTION: Param = Param::boolean(
-    "has_spectral_extinction",
-    true,
-    "has no effect: Mitsuba 3's hint that sigma_t differs per channel; free flights are weighed \
-     over the channels either way",
-)
-.ignored();
-
-/// The phase function nested in `obj` (default `isotropic`); one at most.
-fn nested_phase(obj: &Object) -> Result<PhaseFunction> {
-    let mut phases = obj.children_of(Kind::Phase);
-    let Some(first) = phases.next() else {
-        return Ok(PhaseFunction::default());
-    };
-    if let Some(second) = phases.next() {
-        return Err(crate::error::InputError::at(
-            &second.loc,
-            format!(
-                "{} has more than one phase function (one at most, as in Mitsuba 3)",
-                obj.describe()
-            ),
-        ));
-    }
-    first.mark_used();
-    build_phase(&first.obj)
-}
 
 /// `homogeneous`.
 pub(crate) const HOMOGENEOUS: MediumPlugin = Plugin {

@@ -1,6 +1,6 @@
 //! The scene's media as indices: each `<medium>` built once however often it is referenced, the
 //! media a shape names on its sides (`interior`, `exterior`) and the medium a sensor names.
-use super::homogeneous::build_medium;
+use super::table::build_medium;
 use crate::error::{InputError, Loc};
 use crate::util::Result;
 use crate::xml::{Child, Kind, Object};

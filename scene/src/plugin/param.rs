@@ -21,6 +21,8 @@ pub enum ParamType {
     Rgb,
     /// `<rgb>` or `<float>`, or a nested or referenced `<texture>`.
     Texture,
+    /// `<rgb>` or `<float>`, or a nested or referenced `<volume>`.
+    Volume,
     /// An index of refraction: `<float>`, or a `<string>` naming a material.
     Ior,
     /// `<point>` (a `<vector>` is accepted too).
@@ -42,6 +44,7 @@ impl ParamType {
             ParamType::Choice => "string",
             ParamType::Rgb => "rgb",
             ParamType::Texture => "rgb or texture",
+            ParamType::Volume => "rgb or volume",
             ParamType::Ior => "float or material name",
             ParamType::Point => "point",
             ParamType::Vector => "vector",

@@ -42,11 +42,13 @@ pub enum Kind {
     Medium,
     /// `<phase>` (a medium's phase function).
     Phase,
+    /// `<volume>` (a quantity varying through space: a heterogeneous medium's parameters).
+    Volume,
 }
 
 impl Kind {
     /// All kinds.
-    pub(crate) const ALL: [Kind; 13] = [
+    pub(crate) const ALL: [Kind; 14] = [
         Kind::Scene,
         Kind::Integrator,
         Kind::Sensor,
@@ -60,6 +62,7 @@ impl Kind {
         Kind::Test,
         Kind::Medium,
         Kind::Phase,
+        Kind::Volume,
     ];
 
     /// The Mitsuba element name (`"bsdf"`, `"rfilter"`, ...).
@@ -78,6 +81,7 @@ impl Kind {
             Kind::Test => "test",
             Kind::Medium => "medium",
             Kind::Phase => "phase",
+            Kind::Volume => "volume",
         }
     }
 

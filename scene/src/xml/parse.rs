@@ -39,7 +39,7 @@ pub const MAX_DEPTH: usize = 64;
 pub const MAX_INCLUDE_DEPTH: usize = 32;
 
 /// Mitsuba elements this renderer does not implement (a clearer error than "unknown").
-const UNSUPPORTED: &[&str] = &["volume", "tensor"];
+const UNSUPPORTED: &[&str] = &["tensor"];
 
 /// Property element names (after dialect aliasing).
 const PROPERTY_TAGS: &[&str] = &[
@@ -336,7 +336,7 @@ impl Parser {
                 err(format!("<{written}> is only allowed inside <transform>"))
             }
             t if UNSUPPORTED.contains(&t) => {
-                // Name the plugin too: `<volume type="gridvolume">` is a voxel grid.
+                // Name the plugin too.
                 let plugin = match node.attribute("type") {
                     Some(ty) => format!(" type=\"{ty}\""),
                     None => String::new(),

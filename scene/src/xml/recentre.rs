@@ -5,6 +5,7 @@
 //! emitting sphere seen from inside came out 3-5% dark). What a camera sees is near the camera,
 //! so the loader moves the whole scene, in f64 and before anything is stored in f32, so that the
 //! camera sits at the origin: the sensor, every shape (a shape without `to_world` gets one),
+//! every `<volume>` (a heterogeneous medium's extent, likewise),
 //! positioned lights (`point`, `spot`) and Nori's `simple` integrator's light. Directions,
 //! environments and light nested in shapes do not depend on the frame.
 //!
@@ -55,7 +56,9 @@ pub(super) fn recentre(drafts: &mut [Option<Draft>]) -> Option<DVec3> {
             (Kind::Shape, _) if transform(d, "to_world").is_none() && has(d, "center") => {
                 move_point(d, "center", c);
             }
-            (Kind::Sensor | Kind::Shape, _) | (Kind::Emitter, "spot") => prepend(d, shift),
+            (Kind::Sensor | Kind::Shape | Kind::Volume, _) | (Kind::Emitter, "spot") => {
+                prepend(d, shift)
+            }
             (Kind::Emitter, "point") => move_or_prepend(d, "position", c, shift),
             (Kind::Integrator, "simple") => {
                 move_point(d, "position", c);

@@ -5,10 +5,10 @@ use super::*;
 fn structural_errors() {
     assert_err("<scene>\n  <foo/>\n</scene>", 2, 3, "unknown element <foo>");
     assert_err(
-        "<scene>\n  <volume type=\"gridvolume\"/>\n</scene>",
+        "<scene>\n  <tensor type=\"data\"/>\n</scene>",
         2,
         3,
-        "unsupported element <volume type=\"gridvolume\">",
+        "unsupported element <tensor type=\"data\">",
     );
     assert_err(
         "<scene>\n  <shape type=\"sphere\" colour=\"x\"/>\n</scene>",
