@@ -212,6 +212,7 @@ fn degenerate_partials_give_no_nan() {
         dp_du: glam::Vec3::ZERO,
         dp_dv: glam::Vec3::ZERO,
         ng: glam::Vec3::Z,
+        site: None,
     };
     let at = tessera_core::geometry::ShadingPoint {
         uv: UV,

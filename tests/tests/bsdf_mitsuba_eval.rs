@@ -26,7 +26,7 @@ fn close(a: f32, b: f32) -> bool {
 
 /// The partials a table was made at: those its comment states, else none (the flat unit
 /// parametrisation).
-fn partials(text: &str) -> Option<Partials> {
+fn partials(text: &str) -> Option<Partials<'static>> {
     let line = text.lines().find_map(|l| l.strip_prefix("# geometry "))?;
     let mut g = Partials::FLAT;
     for field in line.split_whitespace() {

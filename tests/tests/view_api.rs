@@ -2,7 +2,9 @@
 //! with a few lines of HTTP over `TcpStream`. The frame after N spp is `tessera render` of
 //! `/api/scene.xml` at N spp bit for bit, before and after camera and material edits (controls:
 //! the frame differs from the render at N-1 spp, and the edits change it); the PNG is the
-//! render's sRGB codes; bad requests are refused with 400/404 and change nothing while the render
+//! render's sRGB codes; the error estimate in `/api/state` is within a factor of 2 of the error
+//! measured against a converged render (control: a render with a quarter of the samples is
+//! outside that band); bad requests are refused with 400/404 and change nothing while the render
 //! goes on.
 use std::collections::HashMap;
 use std::io::{Read, Write};
@@ -10,6 +12,7 @@ use std::net::{SocketAddr, TcpStream};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 use tessera::image_io::{read_image, RgbImage};
+use tessera_lab::bench::errors;
 use tessera_view::{Config, View};
 
 /// A small scene of its own: a diffuse ball (id `ball`) on a diffuse floor under a constant sky.
@@ -188,6 +191,7 @@ fn the_frame_after_n_spp_is_tessera_render_of_the_served_scene_before_and_after_
     assert_eq!(exr.status, 200);
     assert_eq!(exr.headers["x-tessera-spp"], N.to_string());
     let frame = decode(&dir, "frame0.exr", &exr.body);
+    assert!(state(addr)["rel_mse"].is_null(), "no estimate below 16 spp");
     let scene = served_scene(addr, &dir, "served0.xml");
     let reference = render(&scene, N);
     assert_eq!(
@@ -266,6 +270,28 @@ fn the_frame_after_n_spp_is_tessera_render_of_the_served_scene_before_and_after_
     assert!(text.contains(r#"<lookat origin="0, 1, 5" target="0, 0.5, 0" up="0, 1, 0"/>"#));
     view.stop();
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_error_estimate_is_the_measured_error() {
+    const N: u64 = 64;
+    let dir = scratch("error");
+    let view = start(&dir, Some(N));
+    let addr = view.addr();
+    wait_for(addr, 1, N);
+    let estimate = state(addr)["rel_mse"].as_f64().expect("an estimate at 64 spp");
+    let frame = decode(&dir, "frame.exr", &http(addr, "GET", "/api/image.exr", b"").body);
+    let scene = served_scene(addr, &dir, "served.xml");
+    let converged = render(&scene, 4096);
+    let measured = errors(&frame.data, &converged.data).relmse;
+    println!("relMSE at {N} spp: estimated {estimate:.3e}, measured {measured:.3e}");
+    assert!(
+        estimate > measured / 2.0 && estimate < measured * 2.0,
+        "estimated {estimate:.3e}, measured {measured:.3e}"
+    );
+    // Control: the error of a render with a quarter of the samples is outside the band.
+    let coarse = errors(&render(&scene, N / 4).data, &converged.data).relmse;
+    assert!(coarse > estimate * 2.0, "{coarse:.3e} against {estimate:.3e}");
 }
 
 #[test]

@@ -42,6 +42,7 @@ pub fn state(shared: &Shared) -> Json {
         "preview": frame.is_some_and(|fr| fr.preview),
         "elapsed": frame.map_or(0.0, |fr| fr.elapsed),
         "samples_per_second": frame.map_or(0.0, |fr| fr.samples_per_second),
+        "rel_mse": frame.and_then(|fr| fr.rel_mse),
         "resolution": [f.width, f.height],
         "frame_resolution": frame.map(|fr| [fr.width, fr.height]),
         "integrator": f.integrator,

@@ -10,6 +10,8 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 use tessera::progressive::{spp_range, taken};
 use tessera::render::{render_span, Framebuffer, RenderOptions, Span};
+use tessera_core::error_estimate::{halves_rel_mse, MIN_CHECK_SPP};
+use tessera_core::film::PixelAccum;
 use tessera_core::integrator::NoProbe;
 use tessera_core::render::RenderJob;
 use tessera_scene::LoadedScene;
@@ -31,7 +33,13 @@ struct Accumulation {
     /// spp of the next pass.
     next: u64,
     preview_due: bool,
+    /// The accumulators at an earlier pass's end and its spp: the first half of the error
+    /// estimate, replaced once the render has doubled it.
+    half: Option<(u64, Vec<PixelAccum>)>,
 }
+
+/// The relMSE floor of the estimate (that of `tessera bench` and `--target-error`).
+const ERROR_FLOOR: f64 = 0.01;
 
 /// Runs until shutdown.
 pub fn run(shared: Arc<Shared>) {
@@ -56,6 +64,7 @@ pub fn run(shared: Arc<Shared>) {
                     busy: 0.0,
                     next: 1,
                     preview_due: w as u64 * h as u64 >= PREVIEW_PIXELS,
+                    half: None,
                 });
             }
             let idle = match &acc {
@@ -107,6 +116,17 @@ fn pass(a: &mut Accumulation, opts: &RenderOptions, shared: &Shared) {
     // The next pass: as many spp as fit in PASS_SECONDS, at most double this one.
     let rate = (end - low) as f64 / dt;
     a.next = ((rate * PASS_SECONDS) as u64).clamp(1, (end - low).saturating_mul(2));
+    // The error estimate of `tessera render --target-error`, from the samples since the kept
+    // state against those before it.
+    let error = match &a.half {
+        Some((_, before)) if end >= MIN_CHECK_SPP => {
+            halves_rel_mse(before, &a.fb.pixels, ERROR_FLOOR)
+        }
+        _ => None,
+    };
+    if a.half.as_ref().is_none_or(|(s, _)| end >= 2 * *s) {
+        a.half = Some((end, a.fb.pixels.clone()));
+    }
     let frame = Frame {
         width: a.fb.width,
         height: a.fb.height,
@@ -116,6 +136,7 @@ fn pass(a: &mut Accumulation, opts: &RenderOptions, shared: &Shared) {
         generation: a.generation,
         elapsed: a.started.elapsed().as_secs_f64(),
         samples_per_second: taken(&a.fb) as f64 / a.busy.max(1e-9),
+        rel_mse: error,
     };
     let mut inner = shared.lock();
     if inner.pending.is_none() {
@@ -152,6 +173,7 @@ fn preview(a: &mut Accumulation, opts: &RenderOptions, shared: &Shared) -> Optio
         generation: a.generation,
         elapsed: a.started.elapsed().as_secs_f64(),
         samples_per_second: 0.0,
+        rel_mse: None,
     })
 }
 
@@ -211,6 +233,7 @@ mod tests {
             busy: 0.0,
             next: 1,
             preview_due: true,
+            half: None,
         };
         let f = preview(&mut a, &opts, &shared).expect("a preview");
         assert!(f.preview && f.spp == 0);

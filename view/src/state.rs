@@ -29,6 +29,9 @@ pub struct Frame {
     pub elapsed: f64,
     /// Samples per second of the passes of this generation.
     pub samples_per_second: f64,
+    /// The image's relative MSE estimated from its own samples (two halves, as `tessera
+    /// render --target-error` estimates it), from 16 spp on.
+    pub rel_mse: Option<f64>,
 }
 
 /// Facts about the current scene for `GET /api/state`.
