@@ -2,7 +2,7 @@
 //! one binary links the workspace once instead of once per file, which halves the suite's build.
 //! Each file beside this one is a module named after it (`cargo test --release -p tessera-tests
 //! --test suite bvh8::` runs one file's tests); `every_file_is_a_module` fails when a
-//! file here is missing from the list below.
+//! file here or in cli/tests is missing from its list.
 
 mod analytic;
 mod aov_agreement;
@@ -71,27 +71,30 @@ mod textures;
 mod tri4;
 mod view_api;
 
-/// Cargo builds only this file's modules (`autotests = false`), so a test file left out of the
-/// list above would never run: fail instead.
+/// Cargo builds only the modules listed in `main.rs` (`autotests = false`), here and in the
+/// command line's `cli/tests/`, so a test file left out of a list would never run: fail instead.
 #[test]
 fn every_file_is_a_module() {
-    let here = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
-    let listed = include_str!("main.rs");
-    for entry in std::fs::read_dir(&here).unwrap() {
-        let path = entry.unwrap().path();
-        let (Some(stem), Some("rs")) = (
-            path.file_stem().and_then(|s| s.to_str()),
-            path.extension().and_then(|e| e.to_str()),
-        ) else {
-            continue;
-        };
-        if stem != "main" {
-            assert!(
-                listed.contains(&format!("\nmod {stem};\n")),
-                "{} is not a module of {}: add `mod {stem};`",
-                path.display(),
-                here.join("main.rs").display()
-            );
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    for here in [root.join("tests"), root.join("../cli/tests")] {
+        let main = here.join("main.rs");
+        let listed = std::fs::read_to_string(&main).unwrap();
+        for entry in std::fs::read_dir(&here).unwrap() {
+            let path = entry.unwrap().path();
+            let (Some(stem), Some("rs")) = (
+                path.file_stem().and_then(|s| s.to_str()),
+                path.extension().and_then(|e| e.to_str()),
+            ) else {
+                continue;
+            };
+            if stem != "main" {
+                assert!(
+                    listed.contains(&format!("\nmod {stem};\n")),
+                    "{} is not a module of {}: add `mod {stem};`",
+                    path.display(),
+                    main.display()
+                );
+            }
         }
     }
 }
