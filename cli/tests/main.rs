@@ -27,4 +27,3 @@ mod split_merge;
 mod support;
 mod target_error;
 mod view_cli;
-

@@ -24,8 +24,8 @@ fn worst_against_mitsuba(defines: &[(&str, &str)]) -> (f64, String) {
     let loaded = load_file("media/smoke.xml", &all);
     let ours = render_loaded(&loaded, SPP, 31);
     assert_eq!(ours.dropped(), 0, "non-finite samples");
-    let reference = read_image(&scenes_dir().join("refs/smoke_32x32_mitsuba.exr"))
-        .expect("reference image");
+    let reference =
+        read_image(&scenes_dir().join("refs/smoke_32x32_mitsuba.exr")).expect("reference image");
     worst_against_reference(&ours, &ours, SPP, &reference, REF_SPP, RES, BLOCK)
 }
 

@@ -25,7 +25,12 @@ const SLAB: [[f64; 4]; 3] = [
 const THICKNESS: f64 = 1.5;
 
 /// Writes a `.vol` file of `res` voxels, `channels` each (x fastest), into the temp folder.
-fn write_vol(name: &str, res: [usize; 3], channels: usize, value: impl Fn(usize, usize, usize, usize) -> f32) -> String {
+fn write_vol(
+    name: &str,
+    res: [usize; 3],
+    channels: usize,
+    value: impl Fn(usize, usize, usize, usize) -> f32,
+) -> String {
     let mut b = b"VOL\x03".to_vec();
     for v in [1, res[0], res[1], res[2], channels] {
         b.extend_from_slice(&(v as i32).to_le_bytes());
@@ -163,9 +168,19 @@ fn grid_slab_on_a_shadow_ray() {
     );
     let xml = scene("0, -3, 0.5", "0, 0, 0", &body);
     let pi = std::f64::consts::PI;
-    check("grid slab, shadow ray", &xml, 20_000, beer(1.0).map(|t| t / pi));
+    check(
+        "grid slab, shadow ray",
+        &xml,
+        20_000,
+        beer(1.0).map(|t| t / pi),
+    );
     let wrong = beer(1.05).map(|t| t / pi);
-    control("grid slab, shadow ray, sigma_t 5% high", &xml, 20_000, wrong);
+    control(
+        "grid slab, shadow ray, sigma_t 5% high",
+        &xml,
+        20_000,
+        wrong,
+    );
 }
 
 /// A grid medium of albedo 1 in the box [-0.55, 0.55]^3 inside a null sphere of radius 1, under
@@ -214,5 +229,8 @@ fn grid_white_furnace_hg() {
 #[test]
 fn grid_white_furnace_chromatic() {
     let phase = r#"<phase type="hg"><float name="g" value="0.7"/></phase>"#;
-    furnace_case("grid furnace, 3-channel sigma_t, hg g = 0.7", &furnace(3, phase));
+    furnace_case(
+        "grid furnace, 3-channel sigma_t, hg g = 0.7",
+        &furnace(3, phase),
+    );
 }

@@ -88,7 +88,10 @@ fn distances_chi2(factor: f64, seed: u64) -> Chi2Result {
         nulls += f.null_collisions as u64;
         let cell = if f.scattered {
             let t = f.t as f64;
-            assert!(t >= t0 - 1e-4 && t <= t1 + 1e-4, "collision at {t} outside the grid");
+            assert!(
+                t >= t0 - 1e-4 && t <= t1 + 1e-4,
+                "collision at {t} outside the grid"
+            );
             (((t - t0) / (t1 - t0) * BINS as f64) as usize).min(BINS - 1)
         } else {
             assert_eq!(f.t, t_max);
@@ -96,7 +99,10 @@ fn distances_chi2(factor: f64, seed: u64) -> Chi2Result {
         };
         observed[cell] += 1.0;
     }
-    println!("{:.2} null collisions per sample", nulls as f64 / SAMPLES as f64);
+    println!(
+        "{:.2} null collisions per sample",
+        nulls as f64 / SAMPLES as f64
+    );
     let cdf = |t: f64| -> f64 {
         let x = (t - t0) * d.x as f64;
         (0..3)

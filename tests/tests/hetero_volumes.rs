@@ -173,7 +173,10 @@ fn bad_volumes_are_refused_where_they_are_written() {
     for (body, at, words) in cases {
         let e = error_of(&body);
         println!("{e}");
-        assert!(e.contains(at) && e.contains(words), "{e:?} should say {at} {words:?}");
+        assert!(
+            e.contains(at) && e.contains(words),
+            "{e:?} should say {at} {words:?}"
+        );
         assert_eq!(e.lines().count(), 1, "{e:?}");
     }
     // Control: the good file with the same markup loads.

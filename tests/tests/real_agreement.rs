@@ -335,7 +335,11 @@ fn real_scenes_with_a_wrong_model_disagree() {
             .find(|s| s.scene == scene)
             .unwrap_or_else(|| panic!("{scene} is not in refs/LIST"));
         let text = std::fs::read_to_string(real_dir().join(scene)).expect("scene file");
-        assert_ne!(edit(text.clone()), text, "{scene}: the edit changed nothing");
+        assert_ne!(
+            edit(text.clone()),
+            text,
+            "{scene}: the edit changed nothing"
+        );
         let l = load_edited(s, edit);
         let ours = render_loaded(&l, s.spp, 7);
         let like = like_mitsuba(&l, s.spp, 8);

@@ -279,8 +279,14 @@ fn the_error_estimate_is_the_measured_error() {
     let view = start(&dir, Some(N));
     let addr = view.addr();
     wait_for(addr, 1, N);
-    let estimate = state(addr)["rel_mse"].as_f64().expect("an estimate at 64 spp");
-    let frame = decode(&dir, "frame.exr", &http(addr, "GET", "/api/image.exr", b"").body);
+    let estimate = state(addr)["rel_mse"]
+        .as_f64()
+        .expect("an estimate at 64 spp");
+    let frame = decode(
+        &dir,
+        "frame.exr",
+        &http(addr, "GET", "/api/image.exr", b"").body,
+    );
     let scene = served_scene(addr, &dir, "served.xml");
     let converged = render(&scene, 4096);
     let measured = errors(&frame.data, &converged.data).relmse;
@@ -291,7 +297,10 @@ fn the_error_estimate_is_the_measured_error() {
     );
     // Control: the error of a render with a quarter of the samples is outside the band.
     let coarse = errors(&render(&scene, N / 4).data, &converged.data).relmse;
-    assert!(coarse > estimate * 2.0, "{coarse:.3e} against {estimate:.3e}");
+    assert!(
+        coarse > estimate * 2.0,
+        "{coarse:.3e} against {estimate:.3e}"
+    );
 }
 
 #[test]

@@ -67,7 +67,9 @@ impl VoxelGrid {
     /// A grid of `res` voxels with `channels` (1 or 3) values each; `None` when the data's length
     /// does not match, a resolution is zero, or a value is negative or not finite.
     pub fn new(res: [u32; 3], channels: u32, data: Vec<f32>) -> Option<Self> {
-        let n = res.iter().try_fold(1usize, |a, &r| a.checked_mul(r as usize))?;
+        let n = res
+            .iter()
+            .try_fold(1usize, |a, &r| a.checked_mul(r as usize))?;
         let ok = res.iter().all(|&r| r > 0)
             && matches!(channels, 1 | 3)
             && n.checked_mul(channels as usize) == Some(data.len())

@@ -50,4 +50,3 @@ pub(crate) fn nested_phase(obj: &Object) -> Result<PhaseFunction> {
     first.mark_used();
     build_phase(&first.obj)
 }
-

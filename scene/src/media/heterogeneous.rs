@@ -1,9 +1,7 @@
 //! The `heterogeneous` `<medium>` plugin: extinction and albedo from volumes (a `gridvolume`,
 //! a `constvolume`, or a float or rgb). Its conventions are in
 //! `tessera_core::medium::heterogeneous`.
-use super::common::{
-    nested_phase, MediumPlugin, HAS_SPECTRAL_EXTINCTION, SAMPLE_EMITTERS, SCALE,
-};
+use super::common::{nested_phase, MediumPlugin, HAS_SPECTRAL_EXTINCTION, SAMPLE_EMITTERS, SCALE};
 use super::volumes::{read_volume, volume_param};
 use crate::plugin::{Param, Plugin};
 use tessera_core::medium::{Heterogeneous, Medium};

@@ -1,8 +1,6 @@
 //! The `homogeneous` `<medium>` plugin. Its conventions are in
 //! `tessera_core::medium::homogeneous`.
-use super::common::{
-    nested_phase, MediumPlugin, HAS_SPECTRAL_EXTINCTION, SAMPLE_EMITTERS, SCALE,
-};
+use super::common::{nested_phase, MediumPlugin, HAS_SPECTRAL_EXTINCTION, SAMPLE_EMITTERS, SCALE};
 use crate::plugin::{Default, Param, Plugin, Range};
 use tessera_core::medium::{Homogeneous, Medium};
 

@@ -26,11 +26,7 @@ pub(crate) fn build_volume(obj: &Object) -> Result<Volume> {
 }
 
 /// A volume-valued parameter with a constant default.
-pub(crate) const fn volume_param(
-    name: &'static str,
-    default: f64,
-    doc: &'static str,
-) -> Param {
+pub(crate) const fn volume_param(name: &'static str, default: f64, doc: &'static str) -> Param {
     Param::new(
         name,
         ParamType::Volume,
@@ -64,7 +60,10 @@ pub(crate) fn read_volume(obj: &Object, p: &Param) -> Result<Volume> {
     Ok(Volume::constant(check_color(obj, name, obj.rgb(name, d)?)?))
 }
 
-const FILENAME: Param = Param::file(".vol (Mitsuba's binary grid, version 3, float32, 1 or 3 channels)", "the grid's file");
+const FILENAME: Param = Param::file(
+    ".vol (Mitsuba's binary grid, version 3, float32, 1 or 3 channels)",
+    "the grid's file",
+);
 const TO_WORLD: Param = Param::transform(
     "to_world",
     "places the volume: its local unit cube [0, 1]^3 (or the file's box with use_grid_bbox) in \
