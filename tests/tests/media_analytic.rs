@@ -6,8 +6,7 @@
 //! isotropic, Henyey-Greenstein and chromatic-extinction media. Significance 0.01,
 //! Sidak-corrected over the file; each case has a control (the same render against a reference
 //! 1% off, or the slab against 5% more extinction) that must be rejected.
-use tessera_lab::stats::sidak_alpha;
-use tessera_tests::{load_xml, render_loaded, t_test_f32};
+use tessera_tests::pixel_ttest::{check_pixel, control_pixel as control};
 
 /// t-tests in this file: 2 slabs + 4 furnaces, 3 channels each.
 const N_TESTS: usize = 6 * 3;
@@ -57,39 +56,8 @@ fn slab(scale: f64) -> String {
     )
 }
 
-/// Renders `xml` with `spp` samples and t-tests the pixel against `expected`; returns the
-/// smallest p-value of the three channels.
-fn p_value(xml: &str, spp: u64, expected: [f64; 3]) -> f64 {
-    let loaded = load_xml(xml, &[]);
-    let fb = render_loaded(&loaded, spp, 5);
-    let p = fb.at(0, 0);
-    assert_eq!(p.dropped, 0, "non-finite samples");
-    let n = p.count as f64;
-    (0..3)
-        .map(|k| {
-            let mean = p.sum[k] / n;
-            let var = ((p.sum_sq[k] - n * mean * mean) / (n - 1.0)).max(0.0);
-            let (t, pv) = t_test_f32(n, mean, var, expected[k]);
-            println!(
-                "  channel {k}: mean {mean:.6} expected {:.6} t = {t:.3} p = {pv:.3e}",
-                expected[k]
-            );
-            pv
-        })
-        .fold(1.0, f64::min)
-}
-
 fn check(label: &str, xml: &str, spp: u64, expected: [f64; 3]) {
-    println!("{label}");
-    let p = p_value(xml, spp, expected);
-    let alpha = sidak_alpha(0.01, N_TESTS);
-    assert!(p >= alpha, "{label}: p = {p:.3e} < {alpha:.3e}");
-}
-
-fn control(label: &str, xml: &str, spp: u64, wrong: [f64; 3]) {
-    println!("control: {label}");
-    let p = p_value(xml, spp, wrong);
-    assert!(p < 1e-6, "control {label} passed: p = {p:.3e}");
+    check_pixel(label, xml, spp, expected, N_TESTS);
 }
 
 fn beer(scale: f64, path: f64) -> [f64; 3] {
