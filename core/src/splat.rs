@@ -14,7 +14,7 @@
 use crate::camera::{Filter, FilterTable};
 use crate::Color;
 use alloc::vec::Vec;
-use glam::Vec2;
+use glam::{Vec2, Vec4};
 
 /// The largest reach splatted: filters reaching further (a Lanczos filter of 5 lobes or more)
 /// are applied by filter importance sampling instead.
@@ -79,21 +79,21 @@ impl Footprint {
             wx[i] = self.table.eval(d - offset.x);
             wy[i] = self.table.eval(d - offset.y);
         }
+        // The value and a weight of 1 in four lanes: each lane's product and sum are the
+        // scalar ones, so the bits are those of adding channel by channel.
+        let c4 = Vec4::new(c.x, c.y, c.z, 1.0);
         for (iy, &y) in wy[..side].iter().enumerate() {
             if y == 0.0 {
                 continue;
             }
             let row = &mut sums[CHANNELS * iy * side..CHANNELS * (iy + 1) * side];
-            for (ix, &x) in wx[..side].iter().enumerate() {
+            for (t, &x) in row.chunks_exact_mut(CHANNELS).zip(&wx[..side]) {
                 let w = x * y;
                 if w == 0.0 {
                     continue;
                 }
-                let t = &mut row[CHANNELS * ix..CHANNELS * (ix + 1)];
-                t[0] += c.x * w;
-                t[1] += c.y * w;
-                t[2] += c.z * w;
-                t[3] += w;
+                let sum = Vec4::from_slice(t) + c4 * w;
+                sum.write_to_slice(t);
             }
         }
     }

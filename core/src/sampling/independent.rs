@@ -37,10 +37,52 @@ impl IndependentSampler {
     /// The stream of sample `index` of pixel `(x, y)` under `seed`.
     pub fn new(seed: u64, x: u32, y: u32, index: u64) -> Self {
         let key = pixel_key(seed, x, y);
-        let mut rng = Pcg32::new(key, mix64(key ^ 0xda94_2042_e4dd_58b5));
-        rng.advance(index.wrapping_mul(SAMPLE_WINDOW));
-        IndependentSampler { rng }
+        let start = Pcg32::new(key, mix64(key ^ 0xda94_2042_e4dd_58b5));
+        let stream = start.stream();
+        let state = skip_windows(start.state(), (stream << 1) | 1, index);
+        IndependentSampler {
+            rng: Pcg32::from_state(state, stream),
+        }
     }
+}
+
+/// PCG32's multiplier (the LCG under `rand_pcg::Pcg32`).
+const PCG_MULT: u64 = 6_364_136_223_846_793_005;
+
+/// The LCG's jump over one window of 2^32 steps, as `(a, h)`: from state `s` with increment `c`
+/// the state 2^32 steps on is `a s + c h` (mod 2^64). The increment enters the jump linearly, so
+/// `h` is the jump's additive part for increment 1.
+const WINDOW_JUMP: (u64, u64) = {
+    let (mut a, mut h) = (PCG_MULT, 1u64);
+    let mut k = 0;
+    while k < 32 {
+        // Two jumps of 2^k make one of 2^(k+1): (a, h) then (a, h) is (a^2, (a + 1) h).
+        h = a.wrapping_add(1).wrapping_mul(h);
+        a = a.wrapping_mul(a);
+        k += 1;
+    }
+    (a, h)
+};
+
+/// The state `n` windows (`n * 2^32` steps) after `state`, for increment `inc`: the same state
+/// `Pcg32::advance(n * 2^32)` reaches (exact arithmetic mod 2^64), by square-and-multiply over
+/// the bits of `n` alone instead of the bits of `n * 2^32`.
+#[inline]
+fn skip_windows(state: u64, inc: u64, mut n: u64) -> u64 {
+    let (mut acc_a, mut acc_h) = (1u64, 0u64);
+    let (mut a, mut h) = WINDOW_JUMP;
+    while n > 0 {
+        if n & 1 != 0 {
+            acc_a = acc_a.wrapping_mul(a);
+            acc_h = acc_h.wrapping_mul(a).wrapping_add(h);
+        }
+        h = a.wrapping_add(1).wrapping_mul(h);
+        a = a.wrapping_mul(a);
+        n >>= 1;
+    }
+    acc_a
+        .wrapping_mul(state)
+        .wrapping_add(inc.wrapping_mul(acc_h))
 }
 
 impl Sampler for IndependentSampler {
@@ -48,5 +90,43 @@ impl Sampler for IndependentSampler {
     fn next_1d(&mut self) -> f32 {
         // 24 high bits: exactly representable, strictly below 1.
         (self.rng.next_u32() >> 8) as f32 * (1.0 / 16_777_216.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The window jump lands on the state `rand_pcg`'s own `advance` reaches, for small, large
+    /// and wrapping sample indices and several streams; the control, one step short, does not.
+    #[test]
+    fn skipping_windows_is_pcg_advance() {
+        for key in [0u64, 1, 0x1234_5678_9abc_def0, u64::MAX] {
+            let start = Pcg32::new(key, mix64(key ^ 0xda94_2042_e4dd_58b5));
+            let inc = (start.stream() << 1) | 1;
+            for n in [
+                0u64,
+                1,
+                2,
+                3,
+                7,
+                1000,
+                65_537,
+                (1 << 31) + 5,
+                (1 << 32) + 3,
+                u64::MAX,
+            ] {
+                let mut by_advance = start.clone();
+                by_advance.advance(n.wrapping_mul(SAMPLE_WINDOW));
+                assert_eq!(
+                    skip_windows(start.state(), inc, n),
+                    by_advance.state(),
+                    "n {n}"
+                );
+                let mut short = start.clone();
+                short.advance(n.wrapping_mul(SAMPLE_WINDOW).wrapping_sub(1));
+                assert_ne!(skip_windows(start.state(), inc, n), short.state(), "n {n}");
+            }
+        }
     }
 }
