@@ -164,6 +164,31 @@ fn bad_textures_are_located_errors() {
             "\"color0\" of texture \"checkerboard\" must be in [0, 1]",
         ),
         (
+            tex(&format!(r#"{png}<string name="format" value="half"/>"#)),
+            "<string name=\"format\"",
+            "unknown format \"half\"",
+        ),
+        (
+            tex(r#"<string name="filename" value="../../scenes/textures/tess_linear.exr"/><string name="format" value="uint8"/>"#),
+            "<string name=\"format\"",
+            "format \"uint8\" of texture \"bitmap\" on the floating-point image",
+        ),
+        (
+            r#"<bsdf type="diffuse"><texture type="rawconstant" name="reflectance"/></bsdf>"#.into(),
+            "<texture",
+            "needs its parameter \"value\"",
+        ),
+        (
+            r#"<bsdf type="diffuse"><texture type="rawconstant" name="reflectance"><string name="value" value="red"/></texture></bsdf>"#.into(),
+            "<string name=\"value\"",
+            "must be a float or a vector, found string",
+        ),
+        (
+            r#"<bsdf type="diffuse"><texture type="rawconstant" name="reflectance"><vector name="value" value="0.5, -0.1, 0.2"/></texture></bsdf>"#.into(),
+            "<vector name=\"value\"",
+            "\"value\" of texture \"rawconstant\" must be in [0, 1]",
+        ),
+        (
             r#"<bsdf type="diffuse"><bsdf type="diffuse" name="reflectance"/></bsdf>"#.into(),
             "<bsdf type=\"diffuse\" name",
             "must be a texture or a value",

@@ -49,13 +49,13 @@ impl IndependentSampler {
 /// PCG32's multiplier (the LCG under `rand_pcg::Pcg32`).
 const PCG_MULT: u64 = 6_364_136_223_846_793_005;
 
-/// The LCG's jump over one window of 2^32 steps, as `(a, h)`: from state `s` with increment `c`
+/// The LCG's jump over one window ([`SAMPLE_WINDOW`] = 2^32 steps), as `(a, h)`: from state `s` with increment `c`
 /// the state 2^32 steps on is `a s + c h` (mod 2^64). The increment enters the jump linearly, so
 /// `h` is the jump's additive part for increment 1.
 const WINDOW_JUMP: (u64, u64) = {
     let (mut a, mut h) = (PCG_MULT, 1u64);
     let mut k = 0;
-    while k < 32 {
+    while k < SAMPLE_WINDOW.trailing_zeros() {
         // Two jumps of 2^k make one of 2^(k+1): (a, h) then (a, h) is (a^2, (a + 1) h).
         h = a.wrapping_add(1).wrapping_mul(h);
         a = a.wrapping_mul(a);

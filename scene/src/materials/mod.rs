@@ -13,6 +13,8 @@ mod plastic;
 mod polarized;
 mod principled;
 mod principled_thin;
+mod raw_constant;
+mod storage_format;
 mod table;
 pub(crate) mod texture;
 mod wakame;

@@ -1,11 +1,13 @@
 //! Texture-valued parameters: a constant (`<rgb>` or `<float>`) or a `<texture>` (nested with
 //! the parameter's name, or a `<ref name=... id=...>` to one declared elsewhere), and the
-//! texture plugins `bitmap`, `checkerboard` and `mesh_attribute` ([`TEXTURES`]). Every value must be finite and
+//! texture plugins `bitmap`, `checkerboard`, `mesh_attribute` and `rawconstant` ([`TEXTURES`]). Every value must be finite and
 //! non-negative, and in [0, 1] where the parameter is a reflectance or weight. The conventions
 //! (which row is `v = 0`, pixel centres, wrapping) are in `tessera_core::texture`'s plugin files.
 use super::super::util::{at_prop, Result};
 use super::image_cache::shared_pixels;
 use super::mesh_attribute::MESH_ATTRIBUTE;
+use super::raw_constant::RAW_CONSTANT;
+use super::storage_format::{round_to_half, Storage, FORMAT};
 use crate::image::{is_srgb_coded, read_image};
 use crate::plugin::{self, Default, Param, Plugin, Range};
 use crate::xml::{Kind, Object};
@@ -74,7 +76,7 @@ fn range(unit: bool) -> &'static str {
 pub(crate) type TexturePlugin = Plugin<fn(&Object, bool) -> Result<Texture>>;
 
 /// Every `<texture type=...>` Tessera knows.
-pub static TEXTURES: &[TexturePlugin] = &[BITMAP, CHECKERBOARD, MESH_ATTRIBUTE];
+pub static TEXTURES: &[TexturePlugin] = &[BITMAP, CHECKERBOARD, MESH_ATTRIBUTE, RAW_CONSTANT];
 
 /// Builds a `<texture>` object and reports its unused parameters.
 pub(crate) fn build_texture(obj: &Object, unit: bool) -> Result<Texture> {
@@ -138,7 +140,7 @@ pub(crate) const BITMAP: TexturePlugin = Plugin {
     name: "bitmap",
     aliases: &[],
     doc: "An image texture.",
-    params: &[FILENAME, RAW, FILTER_TYPE, WRAP_MODE, TO_UV, ACCEL],
+    params: &[FILENAME, RAW, FILTER_TYPE, WRAP_MODE, TO_UV, ACCEL, FORMAT],
     nested: "",
     build: |obj, unit| Ok(Texture::Bitmap(bitmap(obj, unit)?)),
 };
@@ -193,6 +195,19 @@ fn bitmap(obj: &Object, unit: bool) -> Result<Bitmap> {
     };
     let to_uv = to_uv(obj)?;
     ACCEL.read_bool(obj)?;
+    let storage = Storage::of(FORMAT.read_choice(obj)?);
+    if storage == Storage::Byte && !is_srgb_coded(&obj.resolve_file(&name)) {
+        return Err(at_prop(
+            obj,
+            FORMAT.name,
+            format!(
+                "format \"uint8\" of {} on the floating-point image \"{name}\": Tessera does \
+                 not quantize such images to 8 bits as Mitsuba 3 does (use \"auto\" or \
+                 \"variant\")",
+                obj.describe()
+            ),
+        ));
+    }
     let settings = BitmapSettings {
         raw,
         unit,
@@ -200,6 +215,7 @@ fn bitmap(obj: &Object, unit: bool) -> Result<Bitmap> {
         wrap,
         to_uv,
         scale: Vec3::ONE,
+        half: storage == Storage::Half,
     };
     load_bitmap(&obj.resolve_file(&name), &name, settings)
         .map_err(|msg| at_prop(obj, "filename", msg))
@@ -220,6 +236,8 @@ pub(crate) struct BitmapSettings {
     pub to_uv: UvTransform,
     /// Factor applied to every pixel (after sRGB decoding).
     pub scale: Vec3,
+    /// Round every value to half precision (`format="float16"`), after decoding and scaling.
+    pub half: bool,
 }
 
 /// Reads the image at `path` (named `name` in messages) as a bitmap texture; the message of an
@@ -230,6 +248,11 @@ pub(crate) fn load_bitmap(
     s: BitmapSettings,
 ) -> std::result::Result<Bitmap, String> {
     let (w, h, pixels) = shared_pixels(path, s.raw, s.unit, s.scale, || decode(path, name, &s))?;
+    let pixels: std::sync::Arc<[Vec3]> = if s.half {
+        pixels.iter().map(|&c| round_to_half(c)).collect()
+    } else {
+        pixels
+    };
     Bitmap::new(w, h, pixels, s.filter, s.wrap, s.to_uv)
         .ok_or_else(|| format!("\"{name}\": unusable image size {w}x{h}"))
 }
@@ -283,6 +306,7 @@ mod declaration_tests {
                 |name| match name {
                     "bitmap" => format!("<string name=\"filename\" value=\"{image}\"/>"),
                     "mesh_attribute" => "<string name=\"name\" value=\"vertex_color\"/>".into(),
+                    "rawconstant" => "<vector name=\"value\" value=\"0.5, 0.5, 1\"/>".into(),
                     _ => String::new(),
                 },
                 &[],

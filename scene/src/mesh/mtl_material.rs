@@ -56,6 +56,7 @@ fn map_texture(
         wrap: WrapMode::Repeat,
         to_uv: UvTransform::IDENTITY,
         scale,
+        half: false,
     };
     let name = map.value.display().to_string();
     let bitmap =
