@@ -232,6 +232,32 @@ impl EnvMap {
         self.pdf_uv(s, v) / (2.0 * PI * PI * sin_t)
     }
 
+    /// [`EnvMap::eval`] and [`EnvMap::pdf`] of one direction, its map coordinates and the
+    /// bilinear weights of its four pixels found once (same values as the two calls).
+    #[inline]
+    pub fn eval_pdf(&self, d: Vec3) -> (Color, f32) {
+        let l = (self.to_local * d).unit_or_zero();
+        if l == Vec3::ZERO {
+            return (Color::ZERO, 0.0);
+        }
+        let (s, v) = self.coords(l);
+        let sin_t = sqrt(l.x * l.x + l.z * l.z);
+        if self.dist.is_none() || !(sin_t > 0.0) {
+            return (self.lookup(s, v), 0.0);
+        }
+        let (le, pdf_uv) = self.lookup_and_pdf_uv(s, v);
+        (le, pdf_uv / (2.0 * PI * PI * sin_t))
+    }
+
+    /// [`EnvMap::lookup`] and [`EnvMap::pdf_uv`] in one interpolation: the radiance in three
+    /// lanes and the sampling weight in the fourth, each lane computed as the scalar
+    /// interpolation computes it.
+    #[inline]
+    fn lookup_and_pdf_uv(&self, s: f32, v: f32) -> (Color, f32) {
+        let both = self.bilinear(s, v, |i| self.pixels[i].extend(self.weights[i]));
+        (both.truncate(), both.w * self.pdf_scale)
+    }
+
     /// A direction by importance: a cell of the image by its weight, then a point of the cell
     /// from the bilinear interpolant of the weights.
     pub fn sample(&self, _it: &Interaction, u: Vec2) -> Option<EmitterSample> {
@@ -252,8 +278,8 @@ impl EnvMap {
         let (sin_p, cos_p) = (libm::sinf(phi), libm::cosf(phi));
         let local = Vec3::new(sin_p * sin_t, cos_t, -cos_p * sin_t);
         let wo = (self.to_world * local).unit_or_zero();
-        let pdf = self.pdf_uv(s, v) / (2.0 * PI * PI * sin_t);
-        let le = self.lookup(s, v);
+        let (le, pdf_uv) = self.lookup_and_pdf_uv(s, v);
+        let pdf = pdf_uv / (2.0 * PI * PI * sin_t);
         if wo == Vec3::ZERO || le == Color::ZERO || !(pdf > 0.0) || !pdf.is_finite() {
             return None;
         }

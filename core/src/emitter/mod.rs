@@ -110,6 +110,15 @@ impl Emitter {
             _ => Color::ZERO,
         }
     }
+    /// [`Emitter::eval_environment`] and [`Emitter::pdf_environment`] together (an
+    /// environment map finds the direction's pixels once for both).
+    #[inline]
+    pub fn eval_pdf_environment(&self, r: Vec3, d: Vec3) -> (Color, f32) {
+        match self {
+            Emitter::EnvMap(e) => e.eval_pdf(d),
+            _ => (self.eval_environment(d), self.pdf_environment(r, d)),
+        }
+    }
     /// Density with which `sample` from `r` picks the direction `d` toward an environment.
     pub fn pdf_environment(&self, _r: Vec3, d: Vec3) -> f32 {
         match self {

@@ -114,12 +114,18 @@ pub(crate) fn emission_along<P: Probe>(
         None => {
             for &env in &scene.environments {
                 let e = &scene.emitters[env as usize];
-                let le = e.eval_environment(d);
+                // The radiance and, for weighing, the density: one lookup each in the
+                // counters, found together.
+                let (le, pdf) = if with_pdf {
+                    e.eval_pdf_environment(from, d)
+                } else {
+                    (e.eval_environment(d), 0.0)
+                };
                 probe.env_lookup();
                 if le != Color::ZERO {
                     let pdf = if with_pdf {
                         probe.env_lookup();
-                        e.pdf_environment(from, d) * selection_pdf(scene, sel, env as usize)
+                        pdf * selection_pdf(scene, sel, env as usize)
                     } else {
                         0.0
                     };
