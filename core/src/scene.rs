@@ -40,6 +40,8 @@ pub struct SceneFeatures {
     pub has_spheres: bool,
     /// Any disk primitives.
     pub has_disks: bool,
+    /// Any `null` BSDF (a surface `volpath` steps through without a bounce).
+    pub has_null_bsdfs: bool,
 }
 
 /// Everything needed to build a [`Scene`].
@@ -242,6 +244,7 @@ impl Scene {
             has_triangles: prims.iter().any(|pr| matches!(pr, Prim::Triangle { .. })),
             has_spheres: prims.iter().any(|pr| matches!(pr, Prim::Sphere { .. })),
             has_disks: prims.iter().any(|pr| matches!(pr, Prim::Disk { .. })),
+            has_null_bsdfs: p.bsdfs.iter().any(|b| matches!(b, Bsdf::Null(_))),
         };
         let bsdf_traits = p.bsdfs.iter().map(BsdfTraits::of).collect();
         Ok(Scene {

@@ -12,6 +12,7 @@ mod record;
 mod reuse;
 mod reuse_halves;
 mod simple;
+mod surfaces_only;
 mod unweighted_hit;
 mod visibility;
 mod volpath;
@@ -88,7 +89,10 @@ impl Radiance for Integrator {
         match self {
             Integrator::Path(p) => p.li_probed(scene, ray, sampler, probe),
             Integrator::Direct(d) => d.li_probed(scene, ray, sampler, probe),
-            Integrator::VolPath(v) => v.li_probed(scene, ray, sampler, probe),
+            Integrator::VolPath(v) => match surfaces_only::as_surface_path(v, scene) {
+                Some(p) => p.li_probed(scene, ray, sampler, probe),
+                None => v.li_probed(scene, ray, sampler, probe),
+            },
             Integrator::Normals(n) => n.li_probed(scene, ray, probe),
             Integrator::Simple(s) => s.li_probed(scene, ray, probe),
             Integrator::Visibility(v) => v.li_probed(scene, ray, sampler, probe),
