@@ -48,6 +48,8 @@ mod media_inputs;
 mod medium_chi2;
 mod mesh_attributes;
 mod mtl;
+mod phase_chi2;
+mod phase_mitsuba_eval;
 mod projector_agreement;
 mod projector_analytic;
 mod real_agreement;

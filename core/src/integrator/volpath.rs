@@ -183,7 +183,7 @@ impl VolPathIntegrator {
                     }
                     let p = ray.o + d * t;
                     let it = medium_point(p, -d);
-                    let phase = *med.phase();
+                    let phase = med.phase();
                     if med.sample_emitters() {
                         specular_chain = false;
                         if scene.features.has_emitters {
@@ -191,7 +191,11 @@ impl VolPathIntegrator {
                                 sample_light_through(scene, &it, medium, false, sampler, probe)
                             {
                                 let f = phase.eval(-d, ml.wo);
-                                let w = if ml.delta { 1.0 } else { power(ml.pdf, f) };
+                                let w = if ml.delta {
+                                    1.0
+                                } else {
+                                    power(ml.pdf, phase.pdf(-d, ml.wo))
+                                };
                                 let c = throughput * ml.value * (f * w * mix);
                                 result += c;
                             }
@@ -204,6 +208,7 @@ impl VolPathIntegrator {
                         probe.end(PathEnd::BsdfSampleFailed);
                         break;
                     }
+                    throughput *= ps.weight;
                     last = Some(LastScatter { p, pdf: ps.pdf });
                     ray = Ray::new(p, ps.wo);
                     continue;
