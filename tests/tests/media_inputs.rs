@@ -139,11 +139,39 @@ fn unsupported_media_are_located_errors_naming_them() {
         "phase function \"sggx\", which Tessera does not read yet",
         6,
     );
+}
+
+#[test]
+fn volpathmis_reads_its_parameters() {
+    use tessera_core::integrator::MediumMis;
+    let read = |params: &str| {
+        let l = load(
+            SPHERE_WITH_MEDIUM,
+            &format!(r#"<integrator type="volpathmis">{params}</integrator>"#),
+        )
+        .expect("loads");
+        let Integrator::VolPath(v) = l.integrator else {
+            panic!("not a volumetric path tracer")
+        };
+        v
+    };
+    let v = read("");
+    assert_eq!(v.mis, MediumMis::Joint { spectral: true });
+    assert_eq!((v.max_depth, v.rr_depth, v.hide_emitters), (None, 5, false));
+    let v = read(
+        r#"<boolean name="use_spectral_mis" value="false"/><integer name="max_depth" value="4"/>
+        <integer name="rr_depth" value="2"/><boolean name="hide_emitters" value="true"/>"#,
+    );
+    assert_eq!(v.mis, MediumMis::Joint { spectral: false });
+    assert_eq!(
+        (v.max_depth, v.rr_depth, v.hide_emitters),
+        (Some(4), 2, true)
+    );
     refused(
-        r#"<integrator type="volpathmis"/>"#,
-        "",
-        "integrator \"volpathmis\", which Tessera does not read yet",
-        6,
+        SPHERE_WITH_MEDIUM,
+        r#"<integrator type="volpathmis"><float name="use_spectral_mis" value="1"/></integrator>"#,
+        "\"use_spectral_mis\"",
+        2,
     );
 }
 
