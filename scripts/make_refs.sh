@@ -38,6 +38,10 @@ PYTHON="${PYTHON:-python3}"
     --spp 8192 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
 "$PYTHON" scripts/mitsuba_ref.py scenes/media/glass_sphere.xml -o scenes/refs/glass_sphere_64x64_mitsuba.exr \
     --spp 8192 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
+# Chromatic media rendered by volpathmis, with rayleigh, tabphase and blendphase
+# (tests/tests/volpathmis_agreement.rs).
+"$PYTHON" scripts/mitsuba_ref.py scenes/media/chromatic_fog.xml -o scenes/refs/chromatic_fog_64x64_mitsuba.exr \
+    --spp 8192 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
 # A heterogeneous medium (tests/tests/hetero_agreement.rs); its grid by scripts/make_smoke_grid.py.
 "$PYTHON" scripts/mitsuba_ref.py scenes/media/smoke.xml -o scenes/refs/smoke_32x32_mitsuba.exr \
     --spp 8192 --seed 0 -D res=32 -D rfilter=box --variant scalar_rgb

@@ -266,6 +266,7 @@ pub mod bsdf;
 pub mod bsdf_checks;
 pub mod cap;
 pub mod filter_reference;
+pub mod phase;
 pub mod pixel_ttest;
 pub mod rng;
 pub mod soup;

@@ -48,6 +48,8 @@ mod media_inputs;
 mod medium_chi2;
 mod mesh_attributes;
 mod mtl;
+mod phase_chi2;
+mod phase_mitsuba_eval;
 mod projector_agreement;
 mod projector_analytic;
 mod real_agreement;
@@ -70,6 +72,8 @@ mod textured_light_agreement;
 mod textures;
 mod tri4;
 mod view_api;
+mod volpathmis_agreement;
+mod volpathmis_analytic;
 
 /// Cargo builds only the modules listed in `main.rs` (`autotests = false`), here and in the
 /// command line's `cli/tests/`, so a test file left out of a list would never run: fail instead.

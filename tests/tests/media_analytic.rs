@@ -5,17 +5,18 @@
 //! medium of albedo 1 bounded by `null` under a sky of radiance 1: every pixel is 1) with
 //! isotropic, Henyey-Greenstein and chromatic-extinction media. Significance 0.01,
 //! Sidak-corrected over the file; each case has a control (the same render against a reference
-//! 1% off, or the slab against 5% more extinction) that must be rejected.
+//! 1% off, or the slab against 5% more extinction) that must be rejected. `volpathmis_analytic.rs`
+//! renders the same scenes with `volpathmis`.
 use tessera_tests::pixel_ttest::{check_pixel, control_pixel as control};
 
 /// t-tests in this file: 2 slabs + 4 furnaces, 3 channels each.
 const N_TESTS: usize = 6 * 3;
 
-const SIGMA: [f64; 3] = [0.2, 0.5, 0.9];
-const THICKNESS: f64 = 1.5;
+pub(crate) const SIGMA: [f64; 3] = [0.2, 0.5, 0.9];
+pub(crate) const THICKNESS: f64 = 1.5;
 
 /// A 1x1 camera at `origin` looking at `target`, in the medium `camera_medium` (an id or "").
-fn scene(origin: &str, target: &str, camera_medium: &str, body: &str) -> String {
+pub(crate) fn scene(origin: &str, target: &str, camera_medium: &str, body: &str) -> String {
     let medium_ref = if camera_medium.is_empty() {
         String::new()
     } else {
@@ -37,7 +38,7 @@ fn scene(origin: &str, target: &str, camera_medium: &str, body: &str) -> String 
 
 /// A slab `THICKNESS` thick between z = 1 and z = 1 + THICKNESS, 40 wide, absorbing only, with
 /// extinction `SIGMA` (times `scale`), bounded by `null`.
-fn slab(scale: f64) -> String {
+pub(crate) fn slab(scale: f64) -> String {
     let half = THICKNESS / 2.0;
     format!(
         r#"<shape type="cube">
@@ -60,7 +61,7 @@ fn check(label: &str, xml: &str, spp: u64, expected: [f64; 3]) {
     check_pixel(label, xml, spp, expected, N_TESTS);
 }
 
-fn beer(scale: f64, path: f64) -> [f64; 3] {
+pub(crate) fn beer(scale: f64, path: f64) -> [f64; 3] {
     SIGMA.map(|s| (-s * scale * path).exp())
 }
 
@@ -110,7 +111,7 @@ fn absorbing_slab_on_a_shadow_ray() {
 
 /// A sphere of radius 1 filled with a medium of albedo 1 (`sigma_t` and `phase` as given) under
 /// a sky of radiance 1; the camera outside (`inside` false) or inside it.
-fn furnace(sigma_t: &str, phase: &str, inside: bool) -> String {
+pub(crate) fn furnace(sigma_t: &str, phase: &str, inside: bool) -> String {
     let body = format!(
         r#"<medium type="homogeneous" id="m">
     {sigma_t}

@@ -134,16 +134,44 @@ fn unsupported_media_are_located_errors_naming_them() {
         7,
     );
     refused(
-        r#"<shape type="sphere"><medium type="homogeneous" name="interior"><phase type="rayleigh"/></medium></shape>"#,
+        r#"<shape type="sphere"><medium type="homogeneous" name="interior"><phase type="sggx"/></medium></shape>"#,
         VOLPATH,
-        "phase function \"rayleigh\", which Tessera does not read yet",
+        "phase function \"sggx\", which Tessera does not read yet",
         6,
     );
+}
+
+#[test]
+fn volpathmis_reads_its_parameters() {
+    use tessera_core::integrator::MediumMis;
+    let read = |params: &str| {
+        let l = load(
+            SPHERE_WITH_MEDIUM,
+            &format!(r#"<integrator type="volpathmis">{params}</integrator>"#),
+        )
+        .expect("loads");
+        let Integrator::VolPath(v) = l.integrator else {
+            panic!("not a volumetric path tracer")
+        };
+        v
+    };
+    let v = read("");
+    assert_eq!(v.mis, MediumMis::Joint { spectral: true });
+    assert_eq!((v.max_depth, v.rr_depth, v.hide_emitters), (None, 5, false));
+    let v = read(
+        r#"<boolean name="use_spectral_mis" value="false"/><integer name="max_depth" value="4"/>
+        <integer name="rr_depth" value="2"/><boolean name="hide_emitters" value="true"/>"#,
+    );
+    assert_eq!(v.mis, MediumMis::Joint { spectral: false });
+    assert_eq!(
+        (v.max_depth, v.rr_depth, v.hide_emitters),
+        (Some(4), 2, true)
+    );
     refused(
-        r#"<integrator type="volpathmis"/>"#,
-        "",
-        "integrator \"volpathmis\", which Tessera does not read yet",
-        6,
+        SPHERE_WITH_MEDIUM,
+        r#"<integrator type="volpathmis"><float name="use_spectral_mis" value="1"/></integrator>"#,
+        "\"use_spectral_mis\"",
+        2,
     );
 }
 
@@ -186,6 +214,89 @@ fn bad_media_parameters_are_located_errors() {
         "more than one phase function",
         7,
     );
+}
+
+/// A homogeneous medium in a sphere holding `phase`, for the phase function refusals.
+fn with_phase(phase: &str) -> String {
+    format!(
+        r#"<shape type="sphere"><medium type="homogeneous" name="interior">{phase}</medium></shape>"#
+    )
+}
+
+#[test]
+fn bad_phase_functions_are_located_errors() {
+    let tab = |v: &str| {
+        with_phase(&format!(
+            r#"<phase type="tabphase"><string name="values" value="{v}"/></phase>"#
+        ))
+    };
+    refused(&tab("1"), VOLPATH, "needs at least two numbers, found 1", 6);
+    refused(
+        &tab("1, -1, 2"),
+        VOLPATH,
+        "must be finite and non-negative, found -1 (entry 2)",
+        6,
+    );
+    refused(&tab("0, 0"), VOLPATH, "are all zero", 6);
+    refused(&tab("1, 2, x"), VOLPATH, "\"x\" is not a number", 6);
+    refused(
+        &with_phase(r#"<phase type="tabphase"/>"#),
+        VOLPATH,
+        "\"values\"",
+        6,
+    );
+    refused(
+        &with_phase(r#"<phase type="tabphase"><float name="values" value="1"/></phase>"#),
+        VOLPATH,
+        "\"values\"",
+        6,
+    );
+    let blend = |inner: &str| with_phase(&format!(r#"<phase type="blendphase">{inner}</phase>"#));
+    let two = r#"<phase type="isotropic"/><phase type="rayleigh"/>"#;
+    refused(&blend(two), VOLPATH, "\"weight\"", 6);
+    refused(
+        &blend(&format!(r#"<float name="weight" value="1.5"/>{two}"#)),
+        VOLPATH,
+        "must be in [0, 1], found 1.5",
+        6,
+    );
+    refused(
+        &blend(r#"<float name="weight" value="0.5"/><phase type="isotropic"/>"#),
+        VOLPATH,
+        "needs exactly two nested phase functions, found 1",
+        6,
+    );
+    refused(
+        &blend(&format!(
+            r#"<float name="weight" value="0.5"/>{two}<phase type="isotropic"/>"#
+        )),
+        VOLPATH,
+        "needs exactly two nested phase functions, found 3",
+        6,
+    );
+    refused(
+        &blend(&format!(
+            r#"<volume type="gridvolume" name="weight"><string name="filename" value="media/smoke.vol"/></volume>{two}"#
+        )),
+        VOLPATH,
+        "must be the same everywhere",
+        6,
+    );
+}
+
+#[test]
+fn blendphase_reads_a_constant_volume_and_file_order() {
+    let body = with_phase(
+        r#"<phase type="blendphase"><volume type="constvolume" name="weight"><float name="value" value="0.25"/></volume>
+        <phase type="rayleigh"/><phase type="isotropic"/></phase>"#,
+    );
+    let l = load(&body, VOLPATH).expect("loads");
+    let PhaseFunction::Blend(b) = l.scene.media.media[0].phase() else {
+        panic!("not a blend")
+    };
+    assert_eq!(b.weight, 0.25);
+    assert!(matches!(*b.first, PhaseFunction::Rayleigh(_)), "{b:?}");
+    assert!(matches!(*b.second, PhaseFunction::Isotropic(_)), "{b:?}");
 }
 
 #[test]

@@ -49,7 +49,11 @@ fn hg(g: f32) -> PhaseFunction {
 #[test]
 fn t01_isotropic() {
     let iso = PhaseFunction::Isotropic(Isotropic);
-    assert_chi2_passes("isotropic", &phase_chi2(iso, iso, 1), N_TESTS);
+    assert_chi2_passes(
+        "isotropic",
+        &phase_chi2(iso.clone(), iso.clone(), 1),
+        N_TESTS,
+    );
     // Control: isotropic samples are not those of hg with g = 0.1.
     let control = phase_chi2(iso, hg(0.1), 1);
     println!("control isotropic vs hg 0.1: {control}");
@@ -121,7 +125,7 @@ fn phase_functions_integrate_to_one() {
         hg(0.9),
     ];
     for p in all {
-        let i = integral(p);
+        let i = integral(p.clone());
         println!("{p:?}: integral {i:.6}");
         assert!((i - 1.0).abs() < 1e-3, "{p:?} integrates to {i}");
     }

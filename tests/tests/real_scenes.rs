@@ -70,13 +70,13 @@ fn control_an_unsupported_construct_fails_located() {
     let text = std::fs::read_to_string(&path).unwrap();
     let with_medium = text.replacen(
         "    <default name=\"spp\"",
-        "    <medium type=\"homogeneous\" id=\"fog\"><phase type=\"rayleigh\"/></medium>\n    <default name=\"spp\"",
+        "    <medium type=\"homogeneous\" id=\"fog\"><phase type=\"sggx\"/></medium>\n    <default name=\"spp\"",
         1,
     );
     assert_ne!(with_medium, text);
     let e = error_of(&with_medium, &path);
     let want = format!(
-        "{}:4:41: Mitsuba 3's phase function \"rayleigh\", which Tessera does not read yet",
+        "{}:4:41: Mitsuba 3's phase function \"sggx\", which Tessera does not read yet",
         path.display()
     );
     assert!(e.starts_with(&want), "{e}");

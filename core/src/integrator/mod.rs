@@ -17,6 +17,7 @@ mod unweighted_hit;
 mod visibility;
 mod volpath;
 mod volpath_light;
+mod volpath_mis;
 mod whitted;
 
 pub use aov::{albedo, Aov, AovIntegrator};
@@ -32,6 +33,7 @@ pub use reuse::{GROUP, GROUP_H, GROUP_W};
 pub use simple::SimpleIntegrator;
 pub use visibility::Visibility;
 pub use volpath::VolPathIntegrator;
+pub use volpath_mis::MediumMis;
 pub use whitted::WhittedIntegrator;
 
 use crate::math::Ray;

@@ -28,6 +28,7 @@
 //! the camera ray outside media are stepped through, as Mitsuba 3 does.
 use super::probe::{MediumEvent, PathEnd, Probe, RayKind};
 use super::volpath_light::sample_light_through;
+use super::volpath_mis::MediumMis;
 use crate::bsdf::Bsdf;
 use crate::geometry::{Interaction, ShadingPoint};
 use crate::light::emission_along;
@@ -50,6 +51,8 @@ pub struct VolPathIntegrator {
     pub rr_depth: u32,
     /// Whether emitters seen directly by the camera are hidden.
     pub hide_emitters: bool,
+    /// How estimates are weighed over channels and strategies (`volpath` or `volpathmis`).
+    pub mis: MediumMis,
 }
 
 impl Default for VolPathIntegrator {
@@ -58,6 +61,7 @@ impl Default for VolPathIntegrator {
             max_depth: None,
             rr_depth: 5,
             hide_emitters: false,
+            mis: MediumMis::Separate,
         }
     }
 }
@@ -68,6 +72,8 @@ impl Default for VolPathIntegrator {
 struct LastScatter {
     p: Vec3,
     pdf: f32,
+    /// The path's channel density ratios there.
+    ratios: Color,
 }
 
 /// The power heuristic for two densities, 0 where it is not finite.
@@ -122,6 +128,12 @@ impl VolPathIntegrator {
         };
         // The throughput's combined weight over the channels (1 until a chromatic medium).
         let mut mix = 1.0f32;
+        let joint = matches!(self.mis, MediumMis::Joint { .. });
+        let spectral = self.mis.spectral();
+        // Since the last real scattering vertex: each channel's probability of the free flights
+        // passing (homogeneous media), and whether only homogeneous media were crossed.
+        let mut pass = Color::ONE;
+        let mut plain = true;
         loop {
             if throughput == Color::ZERO || !throughput.is_finite() || mix == 0.0 {
                 probe.end(PathEnd::ZeroThroughput);
@@ -162,6 +174,9 @@ impl VolPathIntegrator {
                         let ff =
                             sample_free_flight(h.sigma_t, h.sigma_s(), t_max, channels.channel, u);
                         throughput *= channels.record(&ff);
+                        if !ff.scattered {
+                            pass *= ff.pdf;
+                        }
                         (ff.scattered, ff.t)
                     }
                     Medium::Heterogeneous(h) => {
@@ -170,10 +185,11 @@ impl VolPathIntegrator {
                             probe.medium(MediumEvent::NullCollision);
                         }
                         throughput *= fl.weight;
+                        plain = false;
                         (fl.scattered, fl.t)
                     }
                 };
-                mix = channels.weight();
+                mix = if spectral { channels.weight() } else { 1.0 };
                 if scattered {
                     probe.medium(MediumEvent::Scatter);
                     depth += 1;
@@ -183,7 +199,7 @@ impl VolPathIntegrator {
                     }
                     let p = ray.o + d * t;
                     let it = medium_point(p, -d);
-                    let phase = *med.phase();
+                    let phase = med.phase();
                     if med.sample_emitters() {
                         specular_chain = false;
                         if scene.features.has_emitters {
@@ -191,8 +207,20 @@ impl VolPathIntegrator {
                                 sample_light_through(scene, &it, medium, false, sampler, probe)
                             {
                                 let f = phase.eval(-d, ml.wo);
-                                let w = if ml.delta { 1.0 } else { power(ml.pdf, f) };
-                                let c = throughput * ml.value * (f * w * mix);
+                                let p_dir = if ml.delta { 0.0 } else { phase.pdf(-d, ml.wo) };
+                                let fk = if joint && ml.plain {
+                                    f * self.mis.emitter_factor(
+                                        channels.ratios,
+                                        channels.channel,
+                                        ml.pdf,
+                                        p_dir,
+                                        ml.pass,
+                                    )
+                                } else {
+                                    let w = if ml.delta { 1.0 } else { power(ml.pdf, p_dir) };
+                                    f * w * mix
+                                };
+                                let c = throughput * ml.value * fk;
                                 result += c;
                             }
                         }
@@ -204,7 +232,14 @@ impl VolPathIntegrator {
                         probe.end(PathEnd::BsdfSampleFailed);
                         break;
                     }
-                    last = Some(LastScatter { p, pdf: ps.pdf });
+                    throughput *= ps.weight;
+                    last = Some(LastScatter {
+                        p,
+                        pdf: ps.pdf,
+                        ratios: channels.ratios,
+                    });
+                    pass = Color::ONE;
+                    plain = true;
                     ray = Ray::new(p, ps.wo);
                     continue;
                 }
@@ -227,10 +262,11 @@ impl VolPathIntegrator {
             let visible = !(depth == 0 && self.hide_emitters);
             if visible && (hit.is_some() || scene.features.has_environment) {
                 let counts_fully = depth == 0 || specular_chain;
-                let (from, prev_pdf) = match last {
-                    Some(l) if !counts_fully => (l.p, l.pdf),
-                    _ => (ray.o, 0.0),
+                let (from, prev_pdf, prev_ratios) = match last {
+                    Some(l) if !counts_fully => (l.p, l.pdf, l.ratios),
+                    _ => (ray.o, 0.0, Color::ONE),
                 };
+                let joint_here = joint && plain;
                 emission_along(
                     scene,
                     from,
@@ -240,13 +276,25 @@ impl VolPathIntegrator {
                     None,
                     probe,
                     |probe, le, light_pdf| {
-                        let w = if counts_fully {
-                            1.0
+                        // The MIS weight, and the factor on the throughput it makes.
+                        let (w, k) = if counts_fully {
+                            (1.0, mix)
+                        } else if joint_here {
+                            probe.mis_weight();
+                            let k = self.mis.hit_factor(
+                                prev_ratios,
+                                channels.channel,
+                                light_pdf,
+                                prev_pdf,
+                                pass,
+                            );
+                            (k, k)
                         } else {
                             probe.mis_weight();
-                            power(prev_pdf, light_pdf)
+                            let w = power(prev_pdf, light_pdf);
+                            (w, w * mix)
                         };
-                        let c = throughput * le * (w * mix);
+                        let c = throughput * le * k;
                         result += c;
                         probe.emission(le, w, c);
                     },
@@ -281,15 +329,27 @@ impl VolPathIntegrator {
                     let f = bsdf.eval(wi, wo, at);
                     probe.bsdf_eval(f);
                     if f != Color::ZERO {
-                        let w = if ml.delta {
-                            1.0
+                        let p_dir = if ml.delta {
+                            0.0
                         } else {
                             let pdf = bsdf.pdf(wi, wo, at);
                             probe.bsdf_pdf(pdf);
                             probe.mis_weight();
-                            power(ml.pdf, pdf)
+                            pdf
                         };
-                        result += throughput * f * ml.value * (w * mix);
+                        let k = if joint && ml.plain {
+                            self.mis.emitter_factor(
+                                channels.ratios,
+                                channels.channel,
+                                ml.pdf,
+                                p_dir,
+                                ml.pass,
+                            )
+                        } else {
+                            let w = if ml.delta { 1.0 } else { power(ml.pdf, p_dir) };
+                            w * mix
+                        };
+                        result += throughput * f * ml.value * k;
                     }
                 }
             }
@@ -305,7 +365,10 @@ impl VolPathIntegrator {
             last = Some(LastScatter {
                 p: si.p,
                 pdf: bs.pdf,
+                ratios: channels.ratios,
             });
+            pass = Color::ONE;
+            plain = true;
             specular_chain = bs.delta;
             let wo = si.frame.to_world(bs.wo);
             probe.bsdf_sample(Some(&bs), wo, throughput);

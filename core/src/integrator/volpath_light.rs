@@ -33,6 +33,11 @@ pub(super) struct MediumLight {
     pub pdf: f32,
     /// Whether the light is a delta distribution.
     pub delta: bool,
+    /// The transmittance along the way per channel (for homogeneous media also the probability
+    /// that each channel's free flights pass the segment).
+    pub pass: Color,
+    /// Whether the segment crossed homogeneous media only (no heterogeneous one).
+    pub plain: bool,
 }
 
 /// Picks a light with the scene's selection, samples it from `it`, and traces the shadow segment
@@ -66,17 +71,20 @@ pub(super) fn sample_light_through<S: Sampler, P: Probe>(
         Some(t) => it.spawn_ray_to(t),
         None => it.spawn_ray(es.wo),
     };
-    let tr = transmittance_along(scene, first, es.target, medium, sampler, probe)?;
+    let (tr, plain) = transmittance_along(scene, first, es.target, medium, sampler, probe)?;
     Some(MediumLight {
         wo: es.wo,
         value: es.weight * tr / sel_pdf,
         pdf: es.pdf * sel_pdf,
         delta: es.delta,
+        pass: tr,
+        plain,
     })
 }
 
 /// Transmittance along the shadow segment `ray` (toward `target`, or to infinity) starting in
-/// `medium`, crossing `null` surfaces; `None` when something else blocks it or nothing passes.
+/// `medium`, crossing `null` surfaces, and whether it crossed homogeneous media only; `None` when
+/// something else blocks it or nothing passes.
 fn transmittance_along<S: Sampler, P: Probe>(
     scene: &Scene,
     mut ray: Ray,
@@ -84,8 +92,9 @@ fn transmittance_along<S: Sampler, P: Probe>(
     mut medium: Option<u32>,
     sampler: &mut S,
     probe: &mut P,
-) -> Option<Color> {
+) -> Option<(Color, bool)> {
     let mut tr = Color::ONE;
+    let mut plain = true;
     for _ in 0..MAX_CROSSINGS {
         let hit = probe.intersect(scene, &ray);
         probe.ray(RayKind::Shadow);
@@ -95,6 +104,7 @@ fn transmittance_along<S: Sampler, P: Probe>(
             Some(m) => match &scene.media.media[m as usize] {
                 Medium::Homogeneous(h) => h.transmittance(t * len),
                 Medium::Heterogeneous(h) => {
+                    plain = false;
                     let (tr, n) = h.transmittance(o, ray.d / len, t * len, sampler);
                     for _ in 0..n {
                         probe.medium(MediumEvent::ShadowNullCollision);
@@ -107,7 +117,7 @@ fn transmittance_along<S: Sampler, P: Probe>(
         let Some(si) = hit else {
             probe.shadow(false);
             tr *= through(medium, ray.t_max, probe);
-            return (tr != Color::ZERO).then_some(tr);
+            return (tr != Color::ZERO).then_some((tr, plain));
         };
         let shape = &scene.shapes[si.shape as usize];
         if !matches!(scene.bsdfs[shape.bsdf as usize], Bsdf::Null(_)) {

@@ -53,6 +53,7 @@ impl HenyeyGreenstein {
         PhaseSample {
             wo,
             pdf: self.eval_cos(c),
+            weight: 1.0,
         }
     }
 }

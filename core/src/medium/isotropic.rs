@@ -21,6 +21,7 @@ impl Isotropic {
         PhaseSample {
             wo: square_to_uniform_sphere(u),
             pdf: self.eval(),
+            weight: 1.0,
         }
     }
 }

@@ -1,7 +1,8 @@
 //! Participating media: what fills the space between surfaces, and how light scatters in it.
 //!
 //! - `phase`: the closed enum of phase functions (the directional law of a scattering event),
-//!   with `isotropic` and `hg` (Henyey-Greenstein) each in its own file, and the sample they
+//!   with `isotropic`, `hg` (Henyey-Greenstein), `rayleigh`, `tabulated` (`tabphase`) and
+//!   `blend` (`blendphase`, over any [`PhaseModel`]) each in its own file, and the sample they
 //!   return (`phase_sample`);
 //! - `homogeneous`: a medium of constant extinction and albedo (Mitsuba 3's `homogeneous`);
 //! - `heterogeneous`: extinction and albedo from volumes (Mitsuba 3's `heterogeneous`), with
@@ -13,6 +14,7 @@
 //!
 //! The integrator that uses them is `integrator::volpath`. Parameters are declared with their
 //! loader, in `scene/src/media/`.
+mod blend;
 mod free_flight;
 mod heterogeneous;
 mod hg;
@@ -21,10 +23,14 @@ mod isotropic;
 mod majorant;
 mod media;
 mod phase;
+mod phase_model;
 mod phase_sample;
+mod rayleigh;
+mod tabulated;
 mod volume;
 mod voxel_grid;
 
+pub use blend::Blend;
 pub use free_flight::{sample_free_flight, ChannelRatios, FreeFlight};
 pub use heterogeneous::{Heterogeneous, TrackedFlight};
 pub use hg::HenyeyGreenstein;
@@ -33,7 +39,10 @@ pub use isotropic::Isotropic;
 pub use majorant::{MajorantGrid, MAJORANT_CELLS};
 pub use media::{MediumInterface, SceneMedia};
 pub use phase::PhaseFunction;
+pub use phase_model::PhaseModel;
 pub use phase_sample::PhaseSample;
+pub use rayleigh::Rayleigh;
+pub use tabulated::{TableError, Tabulated};
 pub use volume::{GridVolume, Volume, VolumeData};
 pub use voxel_grid::{GridFilter, GridWrap, VoxelGrid};
 

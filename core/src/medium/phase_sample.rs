@@ -7,6 +7,9 @@ use glam::Vec3;
 pub struct PhaseSample {
     /// Unit direction toward the next vertex (world space).
     pub wo: Vec3,
-    /// Solid-angle density of `wo`, equal to the phase function's value there (weight 1).
+    /// Solid-angle density of `wo`.
     pub pdf: f32,
+    /// The phase function's value over `pdf`: what the sample multiplies a path's throughput
+    /// by (1 for a function sampled exactly by its density).
+    pub weight: f32,
 }

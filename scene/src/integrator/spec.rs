@@ -35,6 +35,8 @@ pub struct IntegratorSpec {
     pub point_light: Option<(Vec3, Color)>,
     /// Segment length of `av`.
     pub visibility_length: f32,
+    /// Whether `volpathmis` weighs the colour channels together (`use_spectral_mis`).
+    pub spectral_mis: bool,
     /// Located warnings about what the file asks and the integrator does not do (a wrapper's
     /// extra outputs), reported with the scene's other warnings.
     pub warnings: Vec<String>,
@@ -57,6 +59,7 @@ impl Default for IntegratorSpec {
             light_selection: LightSelection::Contribution,
             point_light: None,
             visibility_length: 1.0,
+            spectral_mis: true,
             warnings: Vec::new(),
             layers: Vec::new(),
         }

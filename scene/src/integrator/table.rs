@@ -4,7 +4,7 @@ use super::aov::{AOV, MOMENT};
 use super::spec::{IntegratorPlugin, IntegratorSpec, Layer, LayerSource};
 use super::tracers::{
     AO, AV, DIRECT, DIRECT_EMS, DIRECT_MATS, DIRECT_MIS, NORMALS, PATH, PATH_EMS, PATH_HALF,
-    PATH_MATS, SIMPLE, VOLPATH, WHITTED,
+    PATH_MATS, SIMPLE, VOLPATH, VOLPATHMIS, WHITTED,
 };
 use crate::plugin;
 use crate::util::Result;
@@ -18,6 +18,7 @@ pub static INTEGRATORS: &[IntegratorPlugin] = &[
     PATH_EMS,
     PATH_MATS,
     VOLPATH,
+    VOLPATHMIS,
     DIRECT,
     DIRECT_EMS,
     DIRECT_MATS,

@@ -8,8 +8,8 @@ use crate::util::Result;
 use crate::xml::Object;
 use tessera_core::glam::Vec3;
 use tessera_core::integrator::{
-    DirectIntegrator, Heuristic, Integrator, NormalsIntegrator, PathIntegrator, SimpleIntegrator,
-    Strategy, Visibility, VolPathIntegrator, WhittedIntegrator,
+    DirectIntegrator, Heuristic, Integrator, MediumMis, NormalsIntegrator, PathIntegrator,
+    SimpleIntegrator, Strategy, Visibility, VolPathIntegrator, WhittedIntegrator,
 };
 use tessera_core::light::LightSelection;
 use tessera_core::Color;
@@ -365,6 +365,50 @@ pub(crate) const VOLPATH: IntegratorPlugin = Plugin {
                 max_depth: s.max_depth,
                 rr_depth: s.rr_depth,
                 hide_emitters: s.hide_emitters,
+                mis: MediumMis::Separate,
+            })
+        }),
+    },
+};
+
+const USE_SPECTRAL_MIS: Param = Param::boolean(
+    "use_spectral_mis",
+    true,
+    "whether the colour channels' free-flight strategies are combined by the balance heuristic \
+     (else each path is weighed by the channel it drew its distances from alone)",
+);
+
+/// `volpathmis`.
+pub(crate) const VOLPATHMIS: IntegratorPlugin = Plugin {
+    name: "volpathmis",
+    aliases: &[],
+    doc: "Volumetric path tracing with spectral MIS (Mitsuba 3's volpathmis): volpath's paths, \
+          each contribution weighed by the balance heuristic over the colour channels and the \
+          two directional strategies (emitter sampling, phase-function or BSDF sampling) \
+          together, the channels' probabilities of passing the segment to the light included. \
+          Where that segment crosses a heterogeneous medium, volpath's weights are used. Shadow \
+          rays evaluate the transmittance (exactly, or by ratio tracking) rather than sampling it.",
+    params: &[
+        MAX_DEPTH,
+        RR_DEPTH,
+        HIDE_EMITTERS,
+        USE_SPECTRAL_MIS,
+        LIGHT_SELECTION,
+    ],
+    nested: "",
+    build: IntegratorBuild {
+        read: |obj, spec, nest| {
+            spec.spectral_mis = USE_SPECTRAL_MIS.read_bool(obj)?;
+            read_volpath(obj, spec, nest)
+        },
+        make: Some(|s| {
+            Integrator::VolPath(VolPathIntegrator {
+                max_depth: s.max_depth,
+                rr_depth: s.rr_depth,
+                hide_emitters: s.hide_emitters,
+                mis: MediumMis::Joint {
+                    spectral: s.spectral_mis,
+                },
             })
         }),
     },

@@ -1,6 +1,6 @@
 //! What the `<medium>` plugins share: the builder's type, the parameters both media take
 //! (`scale`, `sample_emitters`, `has_spectral_extinction`) and the nested phase function.
-use super::phase::build_phase;
+use super::phases::build_phase;
 use crate::plugin::{Param, Plugin, Range};
 use crate::util::Result;
 use crate::xml::{Kind, Object};

@@ -1,23 +1,17 @@
-//! The `<phase>` plugins ([`PHASES`]), nested in a `<medium>`: `isotropic` and `hg`. Their
-//! conventions are in `tessera_core::medium::phase`.
-use crate::plugin::{self, Param, Plugin, Range};
+//! The simplest `<phase>` plugins, `isotropic`, `hg` and `rayleigh`, and what every phase plugin
+//! is (`PhasePlugin`). Their conventions are in `tessera_core::medium::phase`; the table of
+//! them all is in `phases.rs`.
+use crate::plugin::{Param, Plugin, Range};
 use crate::util::Result;
 use crate::xml::Object;
-use tessera_core::medium::{HenyeyGreenstein, Isotropic, PhaseFunction};
+use tessera_core::medium::{HenyeyGreenstein, Isotropic, PhaseFunction, Rayleigh};
+
+/// What builds a nested `<phase>` (handed to the plugins that nest phase functions, so that
+/// their files do not depend on this table).
+pub(crate) type PhaseNest = fn(&Object) -> Result<PhaseFunction>;
 
 /// A phase function plugin.
-pub(crate) type PhasePlugin = Plugin<fn(&Object) -> Result<PhaseFunction>>;
-
-/// Every `<phase type=...>` Tessera knows.
-pub static PHASES: &[PhasePlugin] = &[ISOTROPIC, HG];
-
-/// Builds a phase function and reports unused parameters.
-pub(crate) fn build_phase(obj: &Object) -> Result<PhaseFunction> {
-    let plugin = plugin::find(PHASES, "phase function", obj)?;
-    let p = (plugin.build)(obj)?;
-    plugin.check_unused(obj)?;
-    Ok(p)
-}
+pub(crate) type PhasePlugin = Plugin<fn(&Object, PhaseNest) -> Result<PhaseFunction>>;
 
 /// `isotropic`.
 pub(crate) const ISOTROPIC: PhasePlugin = Plugin {
@@ -27,7 +21,7 @@ pub(crate) const ISOTROPIC: PhasePlugin = Plugin {
           function of a medium that names none.",
     params: &[],
     nested: "",
-    build: |_| Ok(PhaseFunction::Isotropic(Isotropic)),
+    build: |_, _| Ok(PhaseFunction::Isotropic(Isotropic)),
 };
 
 const G: Param = Param::float(
@@ -46,9 +40,21 @@ pub(crate) const HG: PhasePlugin = Plugin {
           the direction of travel and the scattered direction, sampled exactly.",
     params: &[G],
     nested: "",
-    build: |obj| {
+    build: |obj, _| {
         Ok(PhaseFunction::Hg(HenyeyGreenstein {
             g: G.read_f32(obj)?,
         }))
     },
+};
+
+/// `rayleigh`.
+pub(crate) const RAYLEIGH: PhasePlugin = Plugin {
+    name: "rayleigh",
+    aliases: &[],
+    doc: "Rayleigh scattering by particles much smaller than the wavelength: 3 (1 + cos^2) / \
+          (16 pi) of the scattering angle, the same forward and backward, sampled exactly. The \
+          same for every colour channel (as in Mitsuba 3's non-polarised modes).",
+    params: &[],
+    nested: "",
+    build: |_, _| Ok(PhaseFunction::Rayleigh(Rayleigh)),
 };
