@@ -5,7 +5,7 @@
 //! The values are not known until the texture meets a mesh, so they are not range-checked
 //! here: a reflectance above 1 from a file's attribute is the file's. A shape whose BSDF reads
 //! an attribute its mesh lacks is refused where the shape is built.
-use super::texture::TexturePlugin;
+use super::texture_plugin::TexturePlugin;
 use crate::plugin::{Default, Param, ParamType, Plugin, Range};
 use tessera_core::texture::{MeshAttributeTexture, Texture};
 

@@ -17,6 +17,7 @@ mod raw_constant;
 mod storage_format;
 mod table;
 pub(crate) mod texture;
+mod texture_plugin;
 mod wakame;
 
 use super::util::Result;

@@ -5,7 +5,7 @@
 //! obeys the parameter it feeds (in [0, 1] for a reflectance, non-negative otherwise), as every
 //! constant does.
 use super::super::util::at_prop;
-use super::texture::TexturePlugin;
+use super::texture_plugin::TexturePlugin;
 use crate::error::InputError;
 use crate::plugin::{Default, Param, ParamType, Plugin, Range};
 use crate::xml::Value;

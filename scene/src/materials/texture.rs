@@ -8,6 +8,7 @@ use super::image_cache::shared_pixels;
 use super::mesh_attribute::MESH_ATTRIBUTE;
 use super::raw_constant::RAW_CONSTANT;
 use super::storage_format::{round_to_half, Storage, FORMAT};
+use super::texture_plugin::TexturePlugin;
 use crate::image::{is_srgb_coded, read_image};
 use crate::plugin::{self, Default, Param, Plugin, Range};
 use crate::xml::{Kind, Object};
@@ -70,10 +71,6 @@ fn range(unit: bool) -> &'static str {
         "finite and non-negative"
     }
 }
-
-/// A texture plugin: built for a parameter whose values must lie in [0, 1] (`unit`) or only
-/// be non-negative.
-pub(crate) type TexturePlugin = Plugin<fn(&Object, bool) -> Result<Texture>>;
 
 /// Every `<texture type=...>` Tessera knows.
 pub static TEXTURES: &[TexturePlugin] = &[BITMAP, CHECKERBOARD, MESH_ATTRIBUTE, RAW_CONSTANT];
