@@ -38,7 +38,8 @@ pub struct Curve {
     pub points: Vec<DVec4>,
     /// Per segment: index of its first control point.
     pub segments: Vec<u32>,
-    /// Per segment: whether it is the first of its curve (a linear curve's start sphere).
+    /// Per segment: whether it is the first of its curve (a linear curve's start sphere, a
+    /// B-spline's open start; a segment is the last of its curve when the next is a first).
     pub first: Vec<bool>,
 }
 
@@ -110,7 +111,8 @@ impl Curve {
                     self.point(seg, 2),
                     self.point(seg, 3),
                 ]);
-                super::curve_bspline::intersect(&cubic, o, d)
+                let last = seg + 1 == self.segments.len() || self.first[seg + 1];
+                super::curve_bspline::intersect(&cubic, o, d, [self.first[seg], last])
             }
         }?;
         let tf = hit.0 as f32;

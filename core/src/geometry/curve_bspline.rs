@@ -6,16 +6,20 @@
 //! `t(v) = b(v) - sqrt(r^2 - q(v))`, with `b` the distance along the (unit) ray to the foot of
 //! `c(v)` and `q` the squared distance of `c(v)` from the ray's line. So the hit is a local
 //! minimum of `t(v)` over `v`:
-//! 1. `t(v)` is sampled at 33 evenly spaced `v`; outside the spheres' shadow (`q > r^2`) it is
-//!    continued by `b + 8 (sqrt(q) - r)`, which meets it at the shadow's edge and rises away
-//!    from it, so a local minimum of the sampled values brackets each entry.
-//! 2. An interval between two samples whose distances `sqrt(q) - r` might dip below zero in
-//!    between (by the Lipschitz bound of the distance, the control polygon's longest leg plus
-//!    its largest radius step) is searched too, so narrow grazing hits are not missed.
+//! 1. `t(v)` and the distance `sqrt(q) - r` are sampled at 33 evenly spaced `v`. The ray meets
+//!    the spheres over runs of samples at distance <= 0, the shadow; its edges are found by
+//!    bisection. At an edge `t` falls steeply into the shadow, so each local minimum of `t`
+//!    over a run's edges and samples brackets a minimum inside.
+//! 2. An interval between two samples outside whose distance might dip below zero in between
+//!    (by the Lipschitz bound of the distance, the control polygon's longest leg plus its
+//!    largest radius step) is searched for its least distance, so narrow grazing shadows are
+//!    not missed.
 //! 3. Each bracket is narrowed by golden-section search to a width of 1e-10 in `v`; at a
 //!    minimum `t` is flat, so its error is of the order of that width squared.
-//! A minimum on the segment's end (`v` within 1e-7 of 0 or 1) is the end sphere's cap, which
-//! the open tube does not have: it is no hit. With a varying radius the swept circles are not
+//! A minimum on the segment's end (`v` within 1e-7 of 0 or 1) is, at the curve's end, the end
+//! sphere's cap, which the open tube does not have: no hit; at a joint it is a hit when `t`
+//! rises on both sides of it (1e-4 before it and 1e-4 beyond it on the segment's own cubic,
+//! which the next segment continues to second order). With a varying radius the swept circles are not
 //! the spheres' envelope; Newton steps (at most 8) on the circle conditions (`(p - c).c' = 0`,
 //! `|p - c| = r`) move the point onto the circles Mitsuba (Embree) intersects. A hit counts
 //! when it is in front of the origin and the ray meets the surface from outside (Mitsuba's
@@ -45,10 +49,11 @@ pub(crate) struct CubicEval {
 const SAMPLES: usize = 32;
 /// Final bracket width of the golden-section search, in `v`.
 const V_TOLERANCE: f64 = 1e-10;
-/// Most Newton steps onto the circles (they stop once a step is below 1e-13).
+/// Most Newton steps onto the circles (they stop once a step is below 1e-13; a hit whose
+/// steps do not get there is dropped).
 const NEWTON_STEPS: usize = 8;
-/// Slope of the continuation of `t(v)` outside the spheres' shadow.
-const OUTSIDE_SLOPE: f64 = 8.0;
+/// How far past a joint the cubic is followed to see that `t` rises there.
+const JOINT_STEP: f64 = 1e-4;
 
 impl Cubic {
     /// The segment of control points `p`.
@@ -110,8 +115,9 @@ impl Cubic {
     }
 }
 
-/// The sampled function at `v` for the ray from `o` along unit `d`: `(t, distance)`, `t` the
-/// near root (or its continuation) and distance `sqrt(q) - r`.
+/// The near root at `v` for the ray from `o` along unit `d`, and the distance `sqrt(q) - r` of
+/// the sphere from the ray's line (the root is that of the grazing ray, `b`, where the sphere is
+/// missed).
 #[inline]
 fn near_root(cubic: &Cubic, o: DVec3, d: DVec3, v: f64) -> (f64, f64) {
     let x = cubic.point(v);
@@ -119,18 +125,12 @@ fn near_root(cubic: &Cubic, o: DVec3, d: DVec3, v: f64) -> (f64, f64) {
     let b = w.dot(d);
     let q = (w.length_squared() - b * b).max(0.0);
     let r = x.w;
-    let dist = sqrt_f64(q) - r;
-    if dist <= 0.0 {
-        (b - sqrt_f64((r * r - q).max(0.0)), dist)
-    } else {
-        (b + OUTSIDE_SLOPE * dist, dist)
-    }
+    (b - sqrt_f64((r * r - q).max(0.0)), sqrt_f64(q) - r)
 }
 
-/// Golden-section search for a minimum of `t(v)` in `[lo, hi]`.
-fn golden(cubic: &Cubic, o: DVec3, d: DVec3, mut lo: f64, mut hi: f64) -> f64 {
+/// Golden-section search for a minimum of `f` in `[lo, hi]`, to a width of [`V_TOLERANCE`].
+fn golden(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
     const INV_PHI: f64 = 0.618_033_988_749_894_8;
-    let f = |v: f64| near_root(cubic, o, d, v).0;
     let mut x1 = hi - INV_PHI * (hi - lo);
     let mut x2 = lo + INV_PHI * (hi - lo);
     let (mut f1, mut f2) = (f(x1), f(x2));
@@ -153,9 +153,23 @@ fn golden(cubic: &Cubic, o: DVec3, d: DVec3, mut lo: f64, mut hi: f64) -> f64 {
     0.5 * (lo + hi)
 }
 
+/// The edge of the spheres' shadow between `inside` (distance <= 0) and `outside`, by
+/// bisection to [`V_TOLERANCE`]; the end returned is on the inside.
+fn edge(cubic: &Cubic, o: DVec3, d: DVec3, mut inside: f64, mut outside: f64) -> f64 {
+    while (outside - inside).abs() > V_TOLERANCE {
+        let mid = 0.5 * (inside + outside);
+        if near_root(cubic, o, d, mid).1 <= 0.0 {
+            inside = mid;
+        } else {
+            outside = mid;
+        }
+    }
+    inside
+}
+
 /// Newton steps moving `(v, t)` onto the circle perpendicular to the tangent (Mitsuba's
-/// surface when the radius varies). Returns the input when a step fails.
-fn onto_circles(cubic: &Cubic, o: DVec3, d: DVec3, v: f64, t: f64) -> (f64, f64) {
+/// surface when the radius varies); `None` unless they converge (a step below 1e-13).
+fn onto_circles(cubic: &Cubic, o: DVec3, d: DVec3, v: f64, t: f64) -> Option<(f64, f64)> {
     let (mut v, mut t) = (v, t);
     for _ in 0..NEWTON_STEPS {
         let e = cubic.eval(v);
@@ -168,25 +182,24 @@ fn onto_circles(cubic: &Cubic, o: DVec3, d: DVec3, v: f64, t: f64) -> (f64, f64)
         let a21 = -2.0 * rad.dot(e.dc) - 2.0 * e.r * e.dr;
         let a22 = 2.0 * rad.dot(d);
         let det = a11 * a22 - a12 * a21;
-        if !(det.abs() > 1e-300) {
-            return (v, t);
-        }
         let dv = (f1 * a22 - f2 * a12) / det;
         let dt = (a11 * f2 - a21 * f1) / det;
         if !(dv.is_finite() && dt.is_finite()) {
-            return (v, t);
+            return None;
         }
         v -= dv;
         t -= dt;
         if dv.abs() < 1e-13 && dt.abs() < 1e-13 * t.abs().max(1.0) {
-            break;
+            return Some((v, t));
         }
     }
-    (v, t)
+    None
 }
 
-/// The nearest hit from outside of the ray `o + t d` with the segment: `(t, v)`.
-pub(crate) fn intersect(cubic: &Cubic, o: DVec3, d: DVec3) -> Option<(f64, f64)> {
+/// The nearest hit from outside of the ray `o + t d` with the segment: `(t, v)`. `open`:
+/// whether the segment's start and end are its curve's ends (open), else joints with the
+/// neighbouring segments.
+pub(crate) fn intersect(cubic: &Cubic, o: DVec3, d: DVec3, open: [bool; 2]) -> Option<(f64, f64)> {
     let len = d.length();
     if !(len > 0.0) {
         return None;
@@ -202,17 +215,28 @@ pub(crate) fn intersect(cubic: &Cubic, o: DVec3, d: DVec3) -> Option<(f64, f64)>
         (ts[k], ds[k]) = near_root(cubic, org, dn, k as f64 * step);
     }
     let lip = cubic.lipschitz();
+    let root = |v: f64| near_root(cubic, org, dn, v).0;
     let mut best: Option<(f64, f64)> = None;
     let mut consider = |lo: f64, hi: f64| {
-        let v = golden(cubic, org, dn, lo.max(0.0), hi.min(1.0));
-        if !(1e-7..=1.0 - 1e-7).contains(&v) {
-            return; // the end cap of the open tube
-        }
+        let v = golden(root, lo.max(0.0), hi.min(1.0));
         let (t, dist) = near_root(cubic, org, dn, v);
+        // A minimum on an end: the open tube's missing cap, or at a joint a minimum of the
+        // whole curve if `t` rises beyond it too (the neighbour continues this cubic to second
+        // order, so the cubic itself is followed a little past the joint).
+        for (end, within, beyond, is_open) in [
+            (v < 1e-7, JOINT_STEP, -JOINT_STEP, open[0]),
+            (v > 1.0 - 1e-7, 1.0 - JOINT_STEP, 1.0 + JOINT_STEP, open[1]),
+        ] {
+            if end && (is_open || root(beyond) < t || root(within) < t) {
+                return;
+            }
+        }
         if dist > 0.0 {
             return;
         }
-        let (v, t) = onto_circles(cubic, org, dn, v, t);
+        let Some((v, t)) = onto_circles(cubic, org, dn, v, t) else {
+            return;
+        };
         if !(0.0..=1.0).contains(&v) {
             return;
         }
@@ -224,24 +248,58 @@ pub(crate) fn intersect(cubic: &Cubic, o: DVec3, d: DVec3) -> Option<(f64, f64)>
             best = Some((t_world, v));
         }
     };
-    // Whether the distance may dip to zero between samples `k` and `k + 1`.
-    let dip = |k: usize| k < SAMPLES && 0.5 * (ds[k] + ds[k + 1] - lip * step) <= 0.0;
-    for k in 0..=SAMPLES {
-        let left = if k > 0 { ts[k - 1] } else { f64::INFINITY };
-        let right = if k < SAMPLES {
-            ts[k + 1]
+    let at = |k: usize| k as f64 * step;
+    let mut k = 0;
+    while k <= SAMPLES {
+        if ds[k] > 0.0 {
+            // A shadow too narrow to hold a sample, where the distance may dip below zero.
+            if k < SAMPLES && ds[k + 1] > 0.0 && 0.5 * (ds[k] + ds[k + 1] - lip * step) <= 0.0 {
+                let vm = golden(|v| near_root(cubic, org, dn, v).1, at(k), at(k + 1));
+                if near_root(cubic, org, dn, vm).1 <= 0.0 {
+                    let lo = edge(cubic, org, dn, vm, at(k));
+                    let hi = edge(cubic, org, dn, vm, at(k + 1));
+                    consider(lo, hi);
+                }
+            }
+            k += 1;
+            continue;
+        }
+        // A run of samples k..=j in the shadow, between its edges: each local minimum of `t`
+        // over the edges and samples brackets one.
+        let mut j = k;
+        while j < SAMPLES && ds[j + 1] <= 0.0 {
+            j += 1;
+        }
+        let lo = if k == 0 {
+            0.0
         } else {
-            f64::INFINITY
+            edge(cubic, org, dn, at(k), at(k - 1))
         };
-        let near = ds[k] <= 0.0 || dip(k) || (k > 0 && dip(k - 1));
-        if ts[k] <= left && ts[k] <= right && near {
-            consider((k as f64 - 1.0) * step, (k as f64 + 1.0) * step);
+        let hi = if j == SAMPLES {
+            1.0
+        } else {
+            edge(cubic, org, dn, at(j), at(j + 1))
+        };
+        let n = j - k + 3;
+        let point = |i: usize| match i {
+            0 => lo,
+            i if i == n - 1 => hi,
+            i => at(k + i - 1),
+        };
+        let value = |i: usize| match i {
+            0 => root(lo),
+            i if i == n - 1 => root(hi),
+            i => ts[k + i - 1],
+        };
+        for i in 0..n {
+            let here = value(i);
+            let left_ok = i == 0 || here <= value(i - 1);
+            let right_ok = i == n - 1 || here <= value(i + 1);
+            if left_ok && right_ok {
+                consider(point(i.saturating_sub(1)), point((i + 1).min(n - 1)));
+            }
         }
-    }
-    for k in 0..SAMPLES {
-        if ds[k] > 0.0 && ds[k + 1] > 0.0 && dip(k) {
-            consider(k as f64 * step, (k as f64 + 1.0) * step);
-        }
+        k = j + 1;
     }
     best
 }
