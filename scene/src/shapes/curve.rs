@@ -121,3 +121,68 @@ fn build_curve(obj: &Object, basis: CurveBasis) -> Result<Geometry> {
         first,
     }))
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    fn load(shape: &str) -> Result<crate::LoadedScene, String> {
+        let root = env!("CARGO_MANIFEST_DIR");
+        let text = format!(
+            "<scene version=\"3.0.0\">\n<sensor type=\"perspective\"/>\n{}\n</scene>\n",
+            shape.replace("ROOT", root)
+        );
+        crate::load_scene_str(&text, Path::new("/nowhere/c.xml"), &[]).map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn an_emitter_on_a_curve_is_refused_where_it_is() {
+        let e = load(
+            "<shape type=\"linearcurve\">\n<string name=\"filename\" \
+             value=\"ROOT/../tests/curve_cases/wave.txt\"/>\n<emitter type=\"area\"/>\n</shape>",
+        )
+        .unwrap_err();
+        assert!(
+            e.starts_with("/nowhere/c.xml:5:1:") && e.contains("cannot emit"),
+            "{e}"
+        );
+        // The control: the same shape without the emitter loads.
+        load(
+            "<shape type=\"linearcurve\">\n<string name=\"filename\" \
+             value=\"ROOT/../tests/curve_cases/wave.txt\"/>\n</shape>",
+        )
+        .unwrap();
+    }
+
+    #[test]
+    fn a_bad_curve_file_is_located_in_it_and_flip_normals_warns() {
+        let dir = std::env::temp_dir().join(format!("tessera-curve-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let f = dir.join("bad.txt");
+        std::fs::write(&f, "0 0 0 1\n1 0 0 1\n2 0 0 1\n").unwrap();
+        let shape = format!(
+            "<shape type=\"bsplinecurve\">\n<string name=\"filename\" value=\"{}\"/>\n</shape>",
+            f.display()
+        );
+        let e = load(&shape).unwrap_err();
+        assert!(
+            e.starts_with(&format!("{}:1:1:", f.display())) && e.contains("at least 4"),
+            "{e}"
+        );
+        let l = load(
+            "<shape type=\"linearcurve\">\n<string name=\"filename\" \
+             value=\"ROOT/../tests/curve_cases/wave.txt\"/>\n<boolean name=\"flip_normals\" \
+             value=\"true\"/>\n</shape>",
+        )
+        .unwrap();
+        assert!(
+            l.warnings
+                .iter()
+                .any(|w| w.contains("\"flip_normals\"") && w.contains("ignored")),
+            "{:?}",
+            l.warnings
+        );
+        assert!(!l.scene.shapes[0].flip_normals);
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}
