@@ -114,18 +114,24 @@ pub fn report(file: &str, loaded: &LoadedScene, seconds: f64) -> String {
     );
     row("shapes", by_plugin(&loaded.names.shapes));
     let (mut tris, mut spheres, mut disks, mut cylinders) = (0usize, 0usize, 0usize, 0usize);
+    let mut curves = 0usize;
     for p in &s.prims {
         match p {
             Prim::Triangle { .. } => tris += 1,
             Prim::Sphere { .. } => spheres += 1,
             Prim::Disk { .. } => disks += 1,
             Prim::Cylinder { .. } => cylinders += 1,
+            Prim::Curve { .. } => curves += 1,
             Prim::Instance { .. } => {}
         }
     }
     let cyl = match cylinders {
         0 => String::new(),
         n => format!(", {n} cylinders"),
+    };
+    let cyl = match curves {
+        0 => cyl,
+        n => format!("{cyl}, {n} curve segments"),
     };
     let inst = match s.instances.len() {
         0 => "no instances".to_string(),

@@ -133,7 +133,8 @@ mod tests {
             .unwrap();
         let missing = shapes.not_read();
         assert!(
-            missing.contains(&"linearcurve")
+            missing.contains(&"sdfgrid")
+                && !missing.contains(&"linearcurve")
                 && !missing.contains(&"sphere")
                 && !missing.contains(&"cylinder")
                 && !missing.contains(&"instance")

@@ -160,15 +160,15 @@ mod tests {
     /// A Mitsuba plugin Tessera lacks is named as such; a typo is unknown (the control).
     #[test]
     fn a_mitsuba_plugin_is_told_apart_from_a_typo() {
-        let e = error("linearcurve");
+        let e = error("sdfgrid");
         assert!(e.starts_with("/nowhere/n.xml:3:1:"), "{e}");
         assert!(
-            e.contains("Mitsuba 3's shape \"linearcurve\", which Tessera does not read yet"),
+            e.contains("Mitsuba 3's shape \"sdfgrid\", which Tessera does not read yet"),
             "{e}"
         );
-        let e = error("linearcurv");
+        let e = error("sdfgri");
         assert!(
-            e.contains("unknown shape \"linearcurv\" (Tessera reads:"),
+            e.contains("unknown shape \"sdfgri\" (Tessera reads:"),
             "{e}"
         );
     }

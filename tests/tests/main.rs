@@ -25,6 +25,8 @@ mod bvh8_mixed;
 mod cameras;
 mod cbox_agreement;
 mod course_integrators;
+mod curves_analytic;
+mod curves_mitsuba;
 mod cylinder_chi2;
 mod dialect_wakame;
 mod dialects;

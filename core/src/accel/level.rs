@@ -67,6 +67,13 @@ impl LevelPrims {
                 self.prims.push(Prim::Cylinder { shape });
                 self.tris.push(NOT_A_TRIANGLE);
             }
+            ShapeKind::Curve(c) => {
+                for seg in 0..c.segment_count() {
+                    let segment = u32::try_from(seg).map_err(|_| LevelError::TooLarge)?;
+                    self.prims.push(Prim::Curve { shape, segment });
+                    self.tris.push(NOT_A_TRIANGLE);
+                }
+            }
         }
         Ok(())
     }

@@ -1,4 +1,8 @@
 //! Shapes, their intersection routines, and surface sampling.
+mod curve;
+mod curve_bspline;
+mod curve_frame;
+mod curve_linear;
 mod cylinder;
 mod disk;
 mod instance;
@@ -13,6 +17,7 @@ mod shape;
 mod sphere;
 mod triangle;
 
+pub use curve::{Curve, CurveBasis, CurveSurface};
 pub use cylinder::Cylinder;
 pub use disk::Disk;
 pub use instance::Instance;

@@ -32,6 +32,13 @@ pub enum Prim {
         /// The shape's index.
         shape: u32,
     },
+    /// One segment of a curve shape (its geometry is the shape's `ShapeKind::Curve`).
+    Curve {
+        /// The shape's index.
+        shape: u32,
+        /// The segment's index in the curve.
+        segment: u32,
+    },
     /// An instance of a shape group (top level only; the scene tests it through the group's
     /// own hierarchy).
     Instance {
@@ -47,7 +54,7 @@ pub struct Hit {
     pub t: f32,
     /// Index into the scene's primitive array.
     pub prim: u32,
-    /// Barycentrics (triangles) or the local disk point.
+    /// Barycentrics (triangles), the local disk point, or a curve's local parameter (x).
     pub uv: glam::Vec2,
 }
 
@@ -59,7 +66,8 @@ impl Prim {
             Prim::Triangle { shape, .. }
             | Prim::Sphere { shape, .. }
             | Prim::Disk { shape, .. }
-            | Prim::Cylinder { shape } => shape,
+            | Prim::Cylinder { shape }
+            | Prim::Curve { shape, .. } => shape,
             Prim::Instance { .. } => u32::MAX,
         }
     }

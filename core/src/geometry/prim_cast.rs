@@ -30,6 +30,10 @@ impl Prim {
                 ShapeKind::Cylinder(c) => c.bounds(),
                 _ => Aabb::EMPTY,
             },
+            Prim::Curve { shape, segment } => match &shapes[*shape as usize].kind {
+                ShapeKind::Curve(c) => c.bounds(*segment as usize),
+                _ => Aabb::EMPTY,
+            },
             Prim::Instance { .. } => Aabb::EMPTY,
         }
     }
@@ -56,6 +60,12 @@ impl Prim {
             Prim::Disk { disk, .. } => disks[*disk as usize].intersect(ray, t_max),
             Prim::Cylinder { shape } => match &shapes[*shape as usize].kind {
                 ShapeKind::Cylinder(c) => c.intersect(ray, t_max).map(|t| (t, glam::Vec2::ZERO)),
+                _ => None,
+            },
+            Prim::Curve { shape, segment } => match &shapes[*shape as usize].kind {
+                ShapeKind::Curve(c) => c
+                    .intersect(*segment as usize, ray, t_max)
+                    .map(|(t, v)| (t, glam::Vec2::new(v, 0.0))),
                 _ => None,
             },
             Prim::Instance { .. } => None,

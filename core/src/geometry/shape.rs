@@ -3,7 +3,7 @@
 //! Common scene parameters of every `<shape>`: `flip_normals` (boolean, default false), a nested
 //! or referenced `<bsdf>` (default: `diffuse` with reflectance 0.5, as in Mitsuba 3), an optional
 //! nested `<emitter type="area">`.
-use super::{Cylinder, Disk, Hit, Interaction, Mesh, Prim, Sphere};
+use super::{Curve, Cylinder, Disk, Hit, Interaction, Mesh, Prim, Sphere};
 use crate::math::{acos, sqrt, Frame, Norm, Ray};
 use glam::{Vec2, Vec3};
 
@@ -18,6 +18,8 @@ pub enum ShapeKind {
     Disk(u32),
     /// An analytic open cylinder.
     Cylinder(Cylinder),
+    /// Linear or B-spline curves (never an emitter: Mitsuba 3 cannot sample them).
+    Curve(Curve),
 }
 
 /// A shape in the scene.
@@ -69,6 +71,8 @@ impl Shape {
             ShapeKind::Sphere(s) => s.area(),
             ShapeKind::Disk(d) => disks[*d as usize].area,
             ShapeKind::Cylinder(c) => c.area(),
+            // Not computed: only emitters need it, and the loader refuses emitting curves.
+            ShapeKind::Curve(_) => 0.0,
         }
     }
 
@@ -117,6 +121,10 @@ impl Shape {
                 let n = c.normal(l.x, l.y);
                 let (uv, dpdu) = c.uv_dpdu(l);
                 (p, err, n, n, uv, dpdu, None)
+            }
+            (ShapeKind::Curve(c), Prim::Curve { segment, .. }) => {
+                let (p, err, s) = c.surface(*segment as usize, hit.uv.x, ray.at(hit.t));
+                (p, err, s.n, s.n, s.uv, s.dp_du, None)
             }
             _ => unreachable_shape(),
         };
@@ -180,6 +188,10 @@ impl Shape {
                 let (_, dp_du) = c.uv_dpdu(l);
                 (dp_du, (c.axes[2] * c.length).as_vec3())
             }
+            (ShapeKind::Curve(c), Prim::Curve { segment, .. }) => {
+                let s = c.surface(*segment as usize, hit.uv.x, p).2;
+                (s.dp_du, s.dp_dv)
+            }
             _ => (Vec3::ZERO, Vec3::ZERO),
         }
     }
@@ -208,6 +220,7 @@ impl Shape {
                 let (p, err, n) = c.sample(u);
                 (p, err, n, n, c.sample_uv(u))
             }
+            ShapeKind::Curve(_) => return None,
         };
         Some(PositionSample {
             p,

@@ -310,7 +310,9 @@ impl Probe for Counters {
         match scene.shapes[si.shape as usize].kind {
             ShapeKind::Mesh(_) => self.triangle_hits += 1,
             ShapeKind::Sphere(_) => self.sphere_hits += 1,
-            ShapeKind::Disk(_) | ShapeKind::Cylinder(_) => self.disk_hits += 1,
+            ShapeKind::Disk(_) | ShapeKind::Cylinder(_) | ShapeKind::Curve(_) => {
+                self.disk_hits += 1
+            }
         }
     }
     fn shadow(&mut self, blocked: bool) {

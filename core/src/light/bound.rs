@@ -95,6 +95,12 @@ impl LightBound {
                         area: c.area(),
                         lum,
                     },
+                    // The loader refuses an emitter on a curve; nothing to bound.
+                    ShapeKind::Curve(_) => LightBound::Solid {
+                        center: Vec3::ZERO,
+                        area: 0.0,
+                        lum: 0.0,
+                    },
                     ShapeKind::Disk(i) => {
                         let d = &ctx.disks[*i as usize];
                         LightBound::Flat {

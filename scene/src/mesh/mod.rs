@@ -1,6 +1,7 @@
 //! Triangle mesh sources: OBJ (with MTL materials), PLY and Mitsuba `.serialized` files, and
 //! Mitsuba's built-in `rectangle` and `cube`.
 mod builtin;
+pub mod curve_file;
 mod data;
 pub mod mtl;
 mod mtl_material;

@@ -3,6 +3,7 @@
 //! (nested or `<ref>`; default diffuse 0.5, or black diffuse on an emitting shape, as in
 //! Mitsuba 3) and an optional `<emitter type="area">`. This file holds what every shape's file
 //! shares: the builder's result and the common parameters.
+mod curve;
 pub(crate) mod cylinder;
 pub(crate) mod instancing;
 mod mesh_file;

@@ -2,7 +2,7 @@
 //! `<bsdf>` and `<emitter>`: the one file that knows every shape plugin.
 use super::mesh_file::{OBJ, PLY, SERIALIZED};
 use super::simple::{CUBE, DISK, RECTANGLE, SPHERE};
-use super::{cylinder, instancing, Geometry, MtlPart, ShapePlugin, FLIP_NORMALS};
+use super::{curve, cylinder, instancing, Geometry, MtlPart, ShapePlugin, FLIP_NORMALS};
 use crate::error::InputError;
 use crate::plugin;
 use crate::util::Result;
@@ -19,6 +19,8 @@ pub static SHAPES: &[ShapePlugin] = &[
     CUBE,
     DISK,
     cylinder::CYLINDER,
+    curve::LINEARCURVE,
+    curve::BSPLINECURVE,
     instancing::SHAPEGROUP,
     instancing::INSTANCE,
 ];
@@ -76,9 +78,21 @@ pub(crate) fn build_shape(obj: &Object) -> Result<ShapeParts<'_>> {
                 ),
             ));
         }
+        if c.obj.kind == Kind::Emitter && matches!(kind, Some(ShapeKind::Curve(_))) {
+            return Err(InputError::at(
+                &c.loc,
+                format!(
+                    "an emitter on {}: curves cannot emit light (Mitsuba 3 cannot sample \
+                     points on them either)",
+                    obj.describe()
+                ),
+            ));
+        }
         c.mark_used();
         *slot = Some(c);
     }
+    // Mitsuba 3's curves ignore flip_normals (declared ignored: a located warning).
+    let flip_normals = flip_normals && !matches!(kind, Some(ShapeKind::Curve(_)));
     Ok(ShapeParts {
         plugin,
         kind,
@@ -115,6 +129,9 @@ mod tests {
                 "serialized" => format!(
                     "<string name=\"filename\" \
                      value=\"{root}/../tests/real/mitsuba-data/rectangle_normals_uv.serialized\"/>"
+                ),
+                "linearcurve" | "bsplinecurve" => format!(
+                    "<string name=\"filename\" value=\"{root}/../tests/curve_cases/wave.txt\"/>"
                 ),
                 _ => String::new(),
             },
