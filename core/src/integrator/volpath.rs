@@ -27,7 +27,7 @@
 //! strategies and cancel): Mitsuba 3.9.1's rule. With `hide_emitters`, area emitters met by
 //! the camera ray outside media are stepped through, as Mitsuba 3 does.
 use super::probe::{MediumEvent, PathEnd, Probe, RayKind};
-use super::volpath_light::sample_light_through;
+use super::volpath_light::{sample_light_through, MediumLight};
 use super::volpath_mis::MediumMis;
 use crate::bsdf::Bsdf;
 use crate::geometry::{Interaction, ShadingPoint};
@@ -84,6 +84,31 @@ fn power(a: f32, b: f32) -> f32 {
         w
     } else {
         0.0
+    }
+}
+
+impl VolPathIntegrator {
+    /// The weight of an emitter sample `ml` taken at a vertex (medium or surface) whose
+    /// direction sampling has density `p_dir` toward it: Mitsuba's joint weights over channels
+    /// and strategies where they apply (`volpathmis`, a segment through homogeneous media
+    /// only), else the power heuristic (1 for a delta light) times the path's channel weight
+    /// `mix`.
+    #[inline]
+    fn light_factor(
+        &self,
+        joint: bool,
+        ml: &MediumLight,
+        p_dir: f32,
+        channels: &ChannelRatios,
+        mix: f32,
+    ) -> f32 {
+        if joint && ml.plain {
+            self.mis
+                .emitter_factor(channels.ratios, channels.channel, ml.pdf, p_dir, ml.pass)
+        } else {
+            let w = if ml.delta { 1.0 } else { power(ml.pdf, p_dir) };
+            w * mix
+        }
     }
 }
 
@@ -208,18 +233,7 @@ impl VolPathIntegrator {
                             {
                                 let f = phase.eval(-d, ml.wo);
                                 let p_dir = if ml.delta { 0.0 } else { phase.pdf(-d, ml.wo) };
-                                let fk = if joint && ml.plain {
-                                    f * self.mis.emitter_factor(
-                                        channels.ratios,
-                                        channels.channel,
-                                        ml.pdf,
-                                        p_dir,
-                                        ml.pass,
-                                    )
-                                } else {
-                                    let w = if ml.delta { 1.0 } else { power(ml.pdf, p_dir) };
-                                    f * w * mix
-                                };
+                                let fk = f * self.light_factor(joint, &ml, p_dir, &channels, mix);
                                 let c = throughput * ml.value * fk;
                                 result += c;
                             }
@@ -337,18 +351,7 @@ impl VolPathIntegrator {
                             probe.mis_weight();
                             pdf
                         };
-                        let k = if joint && ml.plain {
-                            self.mis.emitter_factor(
-                                channels.ratios,
-                                channels.channel,
-                                ml.pdf,
-                                p_dir,
-                                ml.pass,
-                            )
-                        } else {
-                            let w = if ml.delta { 1.0 } else { power(ml.pdf, p_dir) };
-                            w * mix
-                        };
+                        let k = self.light_factor(joint, &ml, p_dir, &channels, mix);
                         result += throughput * f * ml.value * k;
                     }
                 }
