@@ -38,6 +38,13 @@ PYTHON="${PYTHON:-python3}"
     --spp 8192 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
 "$PYTHON" scripts/mitsuba_ref.py scenes/media/glass_sphere.xml -o scenes/refs/glass_sphere_64x64_mitsuba.exr \
     --spp 8192 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
+# A homogeneous medium with a grid albedo.
+"$PYTHON" scripts/mitsuba_ref.py scenes/media/albedo_grid.xml -o scenes/refs/albedo_grid_64x64_mitsuba.exr \
+    --spp 8192 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb
+# Microflake media (the sggx phase function), absorbing only (see the scene's comment); grids by
+# scripts/make_flakes_grid.py.
+"$PYTHON" scripts/mitsuba_ref.py scenes/media/flakes.xml -o scenes/refs/flakes_64x64_mitsuba.exr \
+    --spp 8192 --seed 0 -D res=64 -D rfilter=box -D fibre_albedo=0 -D sheet_albedo=0 --variant scalar_rgb
 # Chromatic media rendered by volpathmis, with rayleigh, tabphase and blendphase
 # (tests/tests/volpathmis_agreement.rs).
 "$PYTHON" scripts/mitsuba_ref.py scenes/media/chromatic_fog.xml -o scenes/refs/chromatic_fog_64x64_mitsuba.exr \

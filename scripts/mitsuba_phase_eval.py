@@ -12,6 +12,7 @@ cover the whole sphere, denser near the forward direction -wi where peaked funct
 fastest.
 """
 import math
+import os
 import sys
 import xml.etree.ElementTree as ET
 
@@ -56,6 +57,8 @@ def load_phase(path):
     if node is None:
         sys.exit(f"{path}: no top-level <phase>")
     node.set("version", "3.0.0")
+    # Files the function reads (an sggx grid) sit beside the case file.
+    mi.file_resolver().prepend(os.path.dirname(os.path.abspath(path)))
     return mi.load_string(ET.tostring(node, encoding="unicode"))
 
 

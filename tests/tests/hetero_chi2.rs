@@ -9,8 +9,8 @@
 use glam::{Mat4, Vec3};
 use tessera_core::math::{Norm, Transform};
 use tessera_core::medium::{
-    ChannelRatios, GridFilter, GridVolume, GridWrap, Heterogeneous, PhaseFunction, Volume,
-    VolumeData, VoxelGrid,
+    ChannelRatios, GridFilter, GridVolume, GridWrap, Heterogeneous, MediumPhase, PhaseFunction,
+    Volume, VolumeData, VoxelGrid,
 };
 use tessera_core::sampling::IndependentSampler;
 use tessera_lab::stats::{chi2_test, Chi2Result, DEFAULT_MIN_EXPECTED};
@@ -50,7 +50,7 @@ fn ramp_medium() -> Heterogeneous {
         sigma_t,
         Volume::constant(Vec3::splat(0.5)),
         1.0,
-        PhaseFunction::default(),
+        MediumPhase::Fixed(PhaseFunction::default()),
         true,
     )
 }
@@ -141,7 +141,7 @@ fn the_majorant_grid_bounds_every_lookup_and_varies() {
     for _ in 0..100_000 {
         let p = Vec3::new(s.next_f32(), s.next_f32(), s.next_f32());
         let c = [0, 1, 2].map(|a| ((p[a] * res[a] as f32) as u32).min(res[a] - 1));
-        let sigma = m.sigma_t_at(p).max_element();
+        let sigma = m.sigma_t_at(p, Vec3::X).max_element();
         assert!(sigma <= m.majorants.cell(c), "{sigma} above cell {c:?}");
     }
 }

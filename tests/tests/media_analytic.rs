@@ -3,14 +3,14 @@
 //! surfaces, seen directly against a constant sky and crossed by a shadow ray toward a
 //! directional light, with a different extinction per channel; and white furnaces (a sphere of
 //! medium of albedo 1 bounded by `null` under a sky of radiance 1: every pixel is 1) with
-//! isotropic, Henyey-Greenstein and chromatic-extinction media. Significance 0.01,
+//! isotropic, Henyey-Greenstein, chromatic-extinction and SGGX microflake media. Significance 0.01,
 //! Sidak-corrected over the file; each case has a control (the same render against a reference
 //! 1% off, or the slab against 5% more extinction) that must be rejected. `volpathmis_analytic.rs`
 //! renders the same scenes with `volpathmis`.
 use tessera_tests::pixel_ttest::{check_pixel, control_pixel as control};
 
-/// t-tests in this file: 2 slabs + 4 furnaces, 3 channels each.
-const N_TESTS: usize = 6 * 3;
+/// t-tests in this file: 2 slabs + 5 furnaces, 3 channels each.
+const N_TESTS: usize = 7 * 3;
 
 pub(crate) const SIGMA: [f64; 3] = [0.2, 0.5, 0.9];
 pub(crate) const THICKNESS: f64 = 1.5;
@@ -165,6 +165,19 @@ fn white_furnace_chromatic_extinction() {
 }
 
 /// The camera inside the medium (a medium on the sensor) sees 1 as well.
+/// SGGX sheet-like flakes (one voxel): extinction that depends on the direction.
+#[test]
+fn white_furnace_sggx() {
+    let s = tessera_tests::scenes_dir().join("media/flakes_uniform.vol");
+    let phase = format!(
+        r#"<phase type="sggx"><volume type="gridvolume" name="S">
+      <string name="filename" value="{}"/></volume></phase>"#,
+        s.display()
+    );
+    let xml = furnace(r#"<float name="sigma_t" value="2"/>"#, &phase, false);
+    furnace_case("furnace, sggx", &xml);
+}
+
 #[test]
 fn white_furnace_camera_inside() {
     let xml = furnace(r#"<float name="sigma_t" value="2"/>"#, "", true);

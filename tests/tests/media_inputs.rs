@@ -57,7 +57,7 @@ fn media_load_into_the_scene() {
             < 1e-6
     );
     assert_eq!(
-        fog.albedo,
+        fog.albedo.eval(glam::Vec3::ZERO),
         tessera_core::Color::splat(0.75),
         "Mitsuba's default albedo"
     );
@@ -133,10 +133,11 @@ fn unsupported_media_are_located_errors_naming_them() {
         "must be an rgb color (or a float), found volume \"gridvolume\"",
         7,
     );
+    // Every phase function of Mitsuba 3 is read; a misspelt one is named with the known ones.
     refused(
-        r#"<shape type="sphere"><medium type="homogeneous" name="interior"><phase type="sggx"/></medium></shape>"#,
+        r#"<shape type="sphere"><medium type="homogeneous" name="interior"><phase type="sggxx"/></medium></shape>"#,
         VOLPATH,
-        "phase function \"sggx\", which Tessera does not read yet",
+        "\"sggxx\"",
         6,
     );
 }
@@ -291,7 +292,7 @@ fn blendphase_reads_a_constant_volume_and_file_order() {
         <phase type="rayleigh"/><phase type="isotropic"/></phase>"#,
     );
     let l = load(&body, VOLPATH).expect("loads");
-    let PhaseFunction::Blend(b) = l.scene.media.media[0].phase() else {
+    let PhaseFunction::Blend(b) = &*l.scene.media.media[0].phase_at(glam::Vec3::ZERO) else {
         panic!("not a blend")
     };
     assert_eq!(b.weight, 0.25);
@@ -359,4 +360,120 @@ fn probe_counts_medium_events() {
         (0, 0, 0, 0)
     );
     assert!(c.continuation_rays > 0);
+}
+
+/// `sggx <phase>` text with `S` read from `file` (relative to `scenes/`).
+fn sggx_from(file: &str) -> String {
+    format!(
+        r#"<phase type="sggx"><volume type="gridvolume" name="S"><string name="filename" value="{file}"/></volume></phase>"#
+    )
+}
+
+#[test]
+fn sggx_loads_fixed_or_varying_and_a_homogeneous_albedo_may_be_a_grid() {
+    // One voxel: a fixed function, also in a homogeneous medium.
+    let l = load(&with_phase(&sggx_from("media/flakes_uniform.vol")), VOLPATH).expect("loads");
+    let p = l.scene.media.media[0]
+        .phase_at(glam::Vec3::ZERO)
+        .into_owned();
+    assert!(matches!(p, PhaseFunction::Sggx(_)), "{p:?}");
+    // A grid that varies: the heterogeneous medium looks it up where it scatters.
+    let body = format!(
+        r#"<shape type="sphere"><medium type="heterogeneous" name="interior">{}</medium></shape>"#,
+        sggx_from("media/flakes.vol")
+    );
+    let l = load(&body, VOLPATH).expect("loads");
+    let Medium::Heterogeneous(h) = &l.scene.media.media[0] else {
+        panic!("not heterogeneous")
+    };
+    let (a, b) = (glam::Vec3::splat(0.1), glam::Vec3::new(0.9, 0.5, 0.5));
+    assert_ne!(
+        h.phase.at(a),
+        h.phase.at(b),
+        "the matrix varies through the grid"
+    );
+    // A homogeneous medium's albedo from a grid, looked up in place.
+    let body = r#"<shape type="sphere"><medium type="homogeneous" name="interior">
+      <volume type="gridvolume" name="albedo"><string name="filename" value="media/smoke.vol"/></volume>
+    </medium></shape>"#;
+    let l = load(body, VOLPATH).expect("loads");
+    let Medium::Homogeneous(m) = &l.scene.media.media[0] else {
+        panic!("not homogeneous")
+    };
+    let (lo, hi) = (
+        m.albedo.eval(glam::Vec3::splat(0.02)),
+        m.albedo.eval(glam::Vec3::new(0.5, 0.3, 0.5)),
+    );
+    assert!(hi.x > lo.x, "albedo {lo} at the grid's corner, {hi} inside");
+}
+
+#[test]
+fn bad_sggx_phases_are_located_errors() {
+    refused(
+        &with_phase(&sggx_from("media/flakes.vol")),
+        VOLPATH,
+        "whose S varies through space, which would make its extinction vary: use a \
+         heterogeneous medium",
+        6,
+    );
+    refused(
+        &with_phase(r#"<phase type="sggx"/>"#),
+        VOLPATH,
+        "missing parameter \"S\"",
+        6,
+    );
+    refused(
+        &with_phase(r#"<phase type="sggx"><float name="S" value="1"/></phase>"#),
+        VOLPATH,
+        "must be a gridvolume of 6 channels, not a value",
+        6,
+    );
+    refused(
+        &with_phase(&sggx_from("media/smoke.vol")),
+        VOLPATH,
+        "has 1 channel(s) per voxel: it needs 6",
+        6,
+    );
+    refused(
+        &with_phase(
+            r#"<phase type="sggx"><volume type="constvolume" name="S"><float name="value" value="1"/></volume></phase>"#,
+        ),
+        VOLPATH,
+        "is a constant: it must be a gridvolume of 6 channels",
+        6,
+    );
+    // A matrix that is not positive definite (S_xx negative).
+    let dir = std::env::temp_dir().join(format!("tessera-sggx-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let bad = dir.join("bad.vol");
+    let mut b = b"VOL\x03".to_vec();
+    for v in [1i32, 1, 1, 1, 6] {
+        b.extend_from_slice(&v.to_le_bytes());
+    }
+    for v in [
+        0.0f32, 0.0, 0.0, 1.0, 1.0, 1.0, -1.0, 1.0, 1.0, 0.0, 0.0, 0.0,
+    ] {
+        b.extend_from_slice(&v.to_le_bytes());
+    }
+    std::fs::write(&bad, b).expect("write");
+    refused(
+        &with_phase(&sggx_from(&bad.display().to_string())),
+        VOLPATH,
+        "the matrix of voxel (0, 0, 0)",
+        6,
+    );
+    // A varying grid nested in a blend: no place to look it up at.
+    let body = format!(
+        r#"<shape type="sphere"><medium type="heterogeneous" name="interior"><phase type="blendphase"><float name="weight" value="0.5"/><phase type="isotropic"/>{}</phase></medium></shape>"#,
+        sggx_from("media/flakes.vol")
+    );
+    refused(&body, VOLPATH, "only a medium's own phase function may", 6);
+    // A 6-channel grid where 1 or 3 are meant.
+    let body = r#"<shape type="sphere"><medium type="heterogeneous" name="interior"><volume type="gridvolume" name="sigma_t"><string name="filename" value="media/flakes.vol"/></volume></medium></shape>"#;
+    refused(
+        body,
+        VOLPATH,
+        "takes a volume of 1 or 3 channels, found 6",
+        6,
+    );
 }

@@ -18,6 +18,7 @@ use tessera_lab::stats::{
     DEFAULT_MIN_EXPECTED,
 };
 use tessera_tests::bsdf::assert_chi2_passes;
+use tessera_tests::phase::sphere_integral;
 
 /// Chi-square tests in this file: 1 isotropic, 2-6 hg, 7 free-flight distances.
 const N_TESTS: usize = 7;
@@ -97,21 +98,9 @@ fn t06_hg_0_9() {
     hg_case(0.9, 0.85, 6);
 }
 
-/// `∫ p dω` by the midpoint rule in `cos` (about the propagation direction) and the azimuth.
+/// `∫ p dω`, many cosines about the direction of travel and a few azimuths.
 fn integral(p: PhaseFunction) -> f64 {
-    let wi = Vec3::new(0.0, 0.0, -1.0); // propagation along +z: cos = z
-    let (nz, nphi) = (200_000, 8);
-    let mut sum = 0.0;
-    for i in 0..nz {
-        let z = -1.0 + (i as f64 + 0.5) * 2.0 / nz as f64;
-        let s = (1.0 - z * z).sqrt();
-        for j in 0..nphi {
-            let phi = (j as f64 + 0.5) * std::f64::consts::TAU / nphi as f64;
-            let wo = Vec3::new((s * phi.cos()) as f32, (s * phi.sin()) as f32, z as f32);
-            sum += f64::from(p.eval(wi, wo));
-        }
-    }
-    sum * (2.0 / nz as f64) * (std::f64::consts::TAU / nphi as f64)
+    sphere_integral(&p, Vec3::new(0.0, 0.0, -1.0), 200_000, 8)
 }
 
 #[test]

@@ -1,4 +1,4 @@
-//! Sampling of the phase functions `rayleigh`, `tabphase` and `blendphase` against their
+//! Sampling of the phase functions `rayleigh`, `tabphase`, `blendphase` and `sggx` against their
 //! densities (chi-square on the sphere), their normalisation by quadrature, and what each
 //! sample reports (its density equal to the function's, its weight 1 for these exactly sampled
 //! kinds). The functions are built from scene text by the loader.
@@ -8,13 +8,13 @@
 //! must be rejected.
 use glam::Vec3;
 use tessera_core::math::Norm;
-use tessera_core::medium::PhaseFunction;
+use tessera_core::medium::{PhaseFunction, Sggx, SggxMatrix};
 use tessera_lab::stats::{Chi2Result, Pcg32, SphereChi2};
 use tessera_tests::bsdf::assert_chi2_passes;
-use tessera_tests::phase::phase_from_xml;
+use tessera_tests::phase::{phase_from_xml, sphere_integral};
 
 /// Chi-square tests in this file.
-const N_TESTS: usize = 6;
+const N_TESTS: usize = 9;
 
 const RAYLEIGH: &str = r#"<phase type="rayleigh"/>"#;
 const TAB_SMOOTH: &str =
@@ -53,10 +53,13 @@ fn phase_chi2(phase: &PhaseFunction, claimed: &PhaseFunction, seed: u64) -> Chi2
 /// The chi-square of `xml`'s samples against its density passes; against `control`'s it fails;
 /// and each sample's density and weight are what the function says.
 fn case(name: &str, xml: &str, control: &str, seed: u64) {
-    let p = phase_from_xml(xml);
-    assert_chi2_passes(name, &phase_chi2(&p, &p, seed), N_TESTS);
-    let c = phase_from_xml(control);
-    let r = phase_chi2(&p, &c, seed);
+    case_of(name, &phase_from_xml(xml), &phase_from_xml(control), seed);
+}
+
+/// [`case`] for functions already built.
+fn case_of(name: &str, p: &PhaseFunction, c: &PhaseFunction, seed: u64) {
+    assert_chi2_passes(name, &phase_chi2(p, p, seed), N_TESTS);
+    let r = phase_chi2(p, c, seed);
     println!("control {name}: {r}");
     assert!(!r.passes(1e-6), "control passed: {r}");
     let mut rng = Pcg32::new(seed + 100);
@@ -77,6 +80,55 @@ fn case(name: &str, xml: &str, control: &str, seed: u64) {
         assert!((s.weight - 1.0).abs() < 1e-4, "weight {}", s.weight);
         assert!((s.wo.norm() - 1.0).abs() < 1e-5);
     }
+}
+
+fn sggx(c: [f32; 6]) -> PhaseFunction {
+    PhaseFunction::Sggx(Sggx {
+        s: SggxMatrix::from_channels(c),
+    })
+}
+
+/// The skewed matrix of Mitsuba 3's own SGGX chi-square test.
+const SKEWED: [f32; 6] = [1.0, 0.35, 0.32, 0.52, 0.44, 0.2];
+
+#[test]
+fn t07_sggx_skewed() {
+    let mut control = SKEWED;
+    control[3] = 0.48;
+    case_of("sggx skewed", &sggx(SKEWED), &sggx(control), 18);
+}
+
+#[test]
+fn t08_sggx_fibre_and_sheet() {
+    // A thin fibre along y (S_yy small) and a sheet facing y (S_yy large), each seen obliquely.
+    let fibre = [1.0, 0.01, 1.0, 0.0, 0.0, 0.0];
+    case_of(
+        "sggx fibre",
+        &sggx(fibre),
+        &sggx([1.0, 0.012, 1.0, 0.0, 0.0, 0.0]),
+        19,
+    );
+    let sheet = [0.04, 1.0, 0.04, 0.0, 0.0, 0.0];
+    case_of(
+        "sggx sheet",
+        &sggx(sheet),
+        &sggx([0.04, 1.0, 0.05, 0.0, 0.0, 0.0]),
+        20,
+    );
+}
+
+/// The loader reads a one-voxel grid into the fixed function of its matrix.
+#[test]
+fn t09_sggx_from_a_grid_file() {
+    let vol = tessera_tests::scenes_dir().join("media/flakes_uniform.vol");
+    let xml = format!(
+        r#"<phase type="sggx"><volume type="gridvolume" name="S">
+        <string name="filename" value="{}"/></volume></phase>"#,
+        vol.display()
+    );
+    let p = phase_from_xml(&xml);
+    assert!(matches!(p, PhaseFunction::Sggx(_)), "{p:?}");
+    case_of("sggx from flakes_uniform.vol", &p, &sggx(SKEWED), 21);
 }
 
 #[test]
@@ -146,22 +198,10 @@ fn t06_blendphase_nested() {
     case("blendphase nested", &nested(0.6), &nested(0.75), 17);
 }
 
-/// `∫ p dω` by the midpoint rule in the cosine about the propagation direction (split at the
-/// table's nodes by the fine grid) and the azimuth.
+/// `∫ p dω`, many cosines about the direction of travel (split at the table's nodes by the fine
+/// grid) and a few azimuths.
 fn integral(p: &PhaseFunction) -> f64 {
-    let wi = Vec3::new(0.0, 0.0, -1.0); // propagation along +z: cos = z
-    let (nz, nphi) = (280_000, 4);
-    let mut sum = 0.0;
-    for i in 0..nz {
-        let z = -1.0 + (i as f64 + 0.5) * 2.0 / nz as f64;
-        let s = (1.0 - z * z).sqrt();
-        for j in 0..nphi {
-            let phi = (j as f64 + 0.5) * std::f64::consts::TAU / nphi as f64;
-            let wo = Vec3::new((s * phi.cos()) as f32, (s * phi.sin()) as f32, z as f32);
-            sum += f64::from(p.eval(wi, wo));
-        }
-    }
-    sum * (2.0 / nz as f64) * (std::f64::consts::TAU / nphi as f64)
+    sphere_integral(p, Vec3::new(0.0, 0.0, -1.0), 280_000, 4)
 }
 
 #[test]
@@ -171,6 +211,13 @@ fn phase_functions_integrate_to_one() {
         let i = integral(&p);
         println!("{xml}: integral {i:.6}");
         assert!((i - 1.0).abs() < 1e-3, "{xml} integrates to {i}");
+    }
+    // SGGX is not symmetric about the incident direction: a full grid over the sphere, for
+    // several incident directions.
+    for wi in [wi(), Vec3::Y, Vec3::new(0.8, -0.1, 0.59).unit()] {
+        let i = sphere_integral(&sggx(SKEWED), wi, 2000, 2000);
+        println!("sggx, wi {wi}: integral {i:.6}");
+        assert!((i - 1.0).abs() < 2e-3, "sggx integrates to {i}");
     }
     // Control: a table normalised by the plain sum of its values (not its integral) is seen.
     let values = [0.5f64, 1.0, 1.5];

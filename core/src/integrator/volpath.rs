@@ -33,7 +33,7 @@ use crate::bsdf::Bsdf;
 use crate::geometry::{Interaction, ShadingPoint};
 use crate::light::emission_along;
 use crate::math::{Frame, Norm, Ray};
-use crate::medium::{sample_free_flight, ChannelRatios, Medium};
+use crate::medium::{ChannelRatios, Medium};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
 use crate::Color;
@@ -196,8 +196,7 @@ impl VolPathIntegrator {
                 let (scattered, t) = match med {
                     Medium::Homogeneous(h) => {
                         let u = sampler.next_1d();
-                        let ff =
-                            sample_free_flight(h.sigma_t, h.sigma_s(), t_max, channels.channel, u);
+                        let ff = h.sample_flight(ray.o, d, t_max, channels.channel, u);
                         throughput *= channels.record(&ff);
                         if !ff.scattered {
                             pass *= ff.pdf;
@@ -224,7 +223,7 @@ impl VolPathIntegrator {
                     }
                     let p = ray.o + d * t;
                     let it = medium_point(p, -d);
-                    let phase = med.phase();
+                    let phase = med.phase_at(p);
                     if med.sample_emitters() {
                         specular_chain = false;
                         if scene.features.has_emitters {

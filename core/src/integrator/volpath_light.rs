@@ -102,7 +102,7 @@ fn transmittance_along<S: Sampler, P: Probe>(
         let o = ray.o;
         let mut through = |m: Option<u32>, t: f32, probe: &mut P| match m {
             Some(m) => match &scene.media.media[m as usize] {
-                Medium::Homogeneous(h) => h.transmittance(t * len),
+                Medium::Homogeneous(h) => h.transmittance(ray.d / len, t * len),
                 Medium::Heterogeneous(h) => {
                     plain = false;
                     let (tr, n) = h.transmittance(o, ray.d / len, t * len, sampler);

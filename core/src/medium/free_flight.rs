@@ -17,7 +17,6 @@
 //! channel's density alone (`f_j / P_c`): the same expectation, with weights that grow without
 //! bound along a path when the channels' extinctions differ. With equal extinctions both give
 //! weight `albedo` at a collision and 1 for a pass, and the ratios stay 1.
-use super::homogeneous::transmittance;
 use crate::Color;
 
 /// The outcome of one free-flight sample.
@@ -47,6 +46,13 @@ impl FreeFlight {
             Color::ZERO
         }
     }
+}
+
+/// `exp(-sigma_t d)` per channel, exactly 1 where `sigma_t` is 0 (also for infinite `d`).
+#[inline]
+pub(super) fn transmittance(sigma_t: Color, d: f32) -> Color {
+    let one = |s: f32| if s > 0.0 { libm::expf(-s * d) } else { 1.0 };
+    Color::new(one(sigma_t.x), one(sigma_t.y), one(sigma_t.z))
 }
 
 /// Samples the distance to the next collision along a segment of length `t_max` (may be

@@ -4,7 +4,9 @@
 //! The extinction is `scale * sigma_t(p)`; outside the extinction volume's extent (its unit cube
 //! placed by its `to_world`) there is none, as in Mitsuba 3, whose medium intersects rays with
 //! that extent. The albedo volume is looked up wherever a collision happens (its own `to_world`
-//! and wrap mode apply).
+//! and wrap mode apply). With SGGX flakes the extinction along direction `w` is also scaled by
+//! their projected area `sigma(w)` at the point (as in Mitsuba 3), and the majorants by a bound
+//! on it.
 //!
 //! Distances are sampled by delta tracking against the majorant grid (`majorant`): tentative
 //! collisions are drawn from the piecewise-constant majorant `m`; at each, with the path's
@@ -16,7 +18,7 @@
 //! tracking: the product of `sigma_n / m` over the tentative collisions, per channel.
 use super::free_flight::{ChannelRatios, FreeFlight};
 use super::majorant::MajorantGrid;
-use super::phase::PhaseFunction;
+use super::medium_phase::MediumPhase;
 use super::volume::Volume;
 use crate::sampling::Sampler;
 use crate::Color;
@@ -35,8 +37,8 @@ pub struct Heterogeneous {
     pub albedo: Volume,
     /// Factor on the extinction.
     pub scale: f32,
-    /// How scattered light is distributed over directions.
-    pub phase: PhaseFunction,
+    /// How scattered light is distributed over directions, perhaps varying through space.
+    pub phase: MediumPhase,
     /// Whether scattering events in it sample emitters.
     pub sample_emitters: bool,
     /// Bounds on `scale * sigma_t` per cell of its extent.
@@ -62,10 +64,10 @@ impl Heterogeneous {
         sigma_t: Volume,
         albedo: Volume,
         scale: f32,
-        phase: PhaseFunction,
+        phase: MediumPhase,
         sample_emitters: bool,
     ) -> Self {
-        let majorants = MajorantGrid::new(&sigma_t, scale);
+        let majorants = MajorantGrid::new(&sigma_t, scale * phase.projected_area_bound());
         Heterogeneous {
             sigma_t,
             albedo,
@@ -75,10 +77,15 @@ impl Heterogeneous {
             majorants,
         }
     }
-    /// Extinction at world point `p` (scale applied).
+    /// Extinction at world point `p` along unit direction `d` (scale applied; for SGGX
+    /// flakes, times their projected area).
     #[inline]
-    pub fn sigma_t_at(&self, p: Vec3) -> Color {
-        self.sigma_t.eval(p) * self.scale
+    pub fn sigma_t_at(&self, p: Vec3, d: Vec3) -> Color {
+        let s = self.sigma_t.eval(p) * self.scale;
+        match self.phase.flakes_at(p) {
+            Some(m) => s * m.projected_area(d),
+            None => s,
+        }
     }
     /// The part of the ray `o + t d`, `t` in `[0, t_max]`, inside the extent, in local
     /// coordinates: `(o_local, d_local, t0, t1)`.
@@ -134,7 +141,7 @@ impl Heterogeneous {
             };
             t = tc;
             let p = o + d * t;
-            let sigma_t = self.sigma_t_at(p);
+            let sigma_t = self.sigma_t_at(p, d);
             let real = sampler.next_1d() * m < sigma_t[channels.channel.min(2)];
             if real {
                 let sigma_s = sigma_t * self.albedo.eval(p);
@@ -191,7 +198,7 @@ impl Heterogeneous {
             };
             t = tc;
             n += 1;
-            let sigma_t = self.sigma_t_at(o + d * t);
+            let sigma_t = self.sigma_t_at(o + d * t, d);
             tr *= (Color::ONE - sigma_t / m).max(Color::ZERO);
             if tr == Color::ZERO {
                 return (tr, n);

@@ -2,8 +2,9 @@
 //!
 //! - `phase`: the closed enum of phase functions (the directional law of a scattering event),
 //!   with `isotropic`, `hg` (Henyey-Greenstein), `rayleigh`, `tabulated` (`tabphase`) and
-//!   `blend` (`blendphase`, over any [`PhaseModel`]) each in its own file, and the sample they
-//!   return (`phase_sample`);
+//!   `blend` (`blendphase`, over any [`PhaseModel`]) and `sggx` (microflakes) each in its own
+//!   file, and the sample they return (`phase_sample`); `medium_phase`: a phase function that
+//!   varies through space (SGGX flakes from a grid);
 //! - `homogeneous`: a medium of constant extinction and albedo (Mitsuba 3's `homogeneous`);
 //! - `heterogeneous`: extinction and albedo from volumes (Mitsuba 3's `heterogeneous`), with
 //!   delta and ratio tracking; `volume` and `voxel_grid` (the `<volume>` data) and `majorant`
@@ -22,10 +23,12 @@ mod homogeneous;
 mod isotropic;
 mod majorant;
 mod media;
+mod medium_phase;
 mod phase;
 mod phase_model;
 mod phase_sample;
 mod rayleigh;
+mod sggx;
 mod tabulated;
 mod volume;
 mod voxel_grid;
@@ -38,10 +41,12 @@ pub use homogeneous::Homogeneous;
 pub use isotropic::Isotropic;
 pub use majorant::{MajorantGrid, MAJORANT_CELLS};
 pub use media::{MediumInterface, SceneMedia};
+pub use medium_phase::MediumPhase;
 pub use phase::PhaseFunction;
 pub use phase_model::PhaseModel;
 pub use phase_sample::PhaseSample;
 pub use rayleigh::Rayleigh;
+pub use sggx::{Sggx, SggxMatrix};
 pub use tabulated::{TableError, Tabulated};
 pub use volume::{GridVolume, Volume, VolumeData};
 pub use voxel_grid::{GridFilter, GridWrap, VoxelGrid};
@@ -56,12 +61,12 @@ pub enum Medium {
 }
 
 impl Medium {
-    /// The medium's phase function.
+    /// The medium's phase function at world point `p`.
     #[inline]
-    pub fn phase(&self) -> &PhaseFunction {
+    pub fn phase_at(&self, p: glam::Vec3) -> alloc::borrow::Cow<'_, PhaseFunction> {
         match self {
-            Medium::Homogeneous(m) => &m.phase,
-            Medium::Heterogeneous(m) => &m.phase,
+            Medium::Homogeneous(m) => alloc::borrow::Cow::Borrowed(&m.phase),
+            Medium::Heterogeneous(m) => m.phase.at(p),
         }
     }
     /// Whether a scattering event in this medium samples emitters (`sample_emitters`).

@@ -1,5 +1,6 @@
 //! Phase functions: the angular distribution of light scattered at a point in a medium, a closed
-//! enum over the kinds in `isotropic.rs`, `hg.rs`, `rayleigh.rs`, `tabulated.rs` and `blend.rs`.
+//! enum over the kinds in `isotropic.rs`, `hg.rs`, `rayleigh.rs`, `tabulated.rs`, `blend.rs` and
+//! `sggx.rs`.
 //!
 //! Conventions (Mitsuba 3's): `wi` is the unit direction back toward where the light goes (the
 //! previous path vertex), `wo` the unit direction toward the next vertex, both in world space.
@@ -12,6 +13,7 @@ use super::isotropic::Isotropic;
 use super::phase_model::PhaseModel;
 use super::phase_sample::PhaseSample;
 use super::rayleigh::Rayleigh;
+use super::sggx::Sggx;
 use super::tabulated::Tabulated;
 use alloc::boxed::Box;
 use glam::{Vec2, Vec3};
@@ -29,6 +31,8 @@ pub enum PhaseFunction {
     Tabulated(Box<Tabulated>),
     /// A constant-weight blend of two phase functions (`blendphase`).
     Blend(Blend<PhaseFunction>),
+    /// SGGX microflakes of one matrix (`sggx`; the matrix at the scattering point).
+    Sggx(Sggx),
 }
 
 impl Default for PhaseFunction {
@@ -63,6 +67,7 @@ impl PhaseFunction {
             PhaseFunction::Rayleigh(p) => p.eval(wi, wo),
             PhaseFunction::Tabulated(p) => p.eval(wi, wo),
             PhaseFunction::Blend(p) => p.eval(wi, wo),
+            PhaseFunction::Sggx(p) => p.eval(wi, wo),
         }
     }
     /// Solid-angle density with which [`PhaseFunction::sample`] returns `wo` for `wi`.
@@ -83,6 +88,7 @@ impl PhaseFunction {
             PhaseFunction::Rayleigh(p) => p.sample(wi, u),
             PhaseFunction::Tabulated(p) => p.sample(wi, u),
             PhaseFunction::Blend(p) => p.sample(wi, u),
+            PhaseFunction::Sggx(p) => p.sample(wi, u),
         }
     }
 }

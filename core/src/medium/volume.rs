@@ -4,6 +4,7 @@
 //! Each has a local space whose unit cube `[0, 1]^3` is its extent; `to_world` places it. That
 //! cube, transformed, is where a heterogeneous medium whose `sigma_t` this is has any extinction
 //! (as in Mitsuba 3, also for a constant: its cube is the unit cube unless `to_world` moves it).
+use super::sggx::SggxMatrix;
 use super::voxel_grid::{GridFilter, GridWrap, VoxelGrid};
 use crate::math::Transform;
 use crate::Color;
@@ -54,6 +55,21 @@ impl Volume {
             VolumeData::Grid(g) => {
                 g.grid
                     .lookup(self.to_world.inv.transform_point3(p), g.filter, g.wrap)
+            }
+        }
+    }
+    /// The matrix at world point `p` of a 6-channel grid (an SGGX phase function's `S`); the
+    /// identity for a constant, which the loader never builds for `S`.
+    #[inline]
+    pub fn eval_matrix(&self, p: Vec3) -> SggxMatrix {
+        match &self.data {
+            VolumeData::Constant(_) => SggxMatrix {
+                diag: Vec3::ONE,
+                off: Vec3::ZERO,
+            },
+            VolumeData::Grid(g) => {
+                g.grid
+                    .lookup_matrix(self.to_world.inv.transform_point3(p), g.filter, g.wrap)
             }
         }
     }

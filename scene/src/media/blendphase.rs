@@ -9,7 +9,7 @@ use crate::error::InputError;
 use crate::plugin::{Default, Param, ParamType, Plugin, Range};
 use crate::util::Result;
 use crate::xml::{Kind, Object};
-use tessera_core::medium::{Blend, PhaseFunction, VolumeData};
+use tessera_core::medium::{Blend, MediumPhase, PhaseFunction, VolumeData};
 
 const WEIGHT: Param = Param::new(
     "weight",
@@ -68,7 +68,7 @@ fn read_weight(obj: &Object) -> Result<f32> {
     Ok(value as f32)
 }
 
-fn build_blendphase(obj: &Object, nest: PhaseNest) -> Result<PhaseFunction> {
+fn build_blendphase(obj: &Object, nest: PhaseNest) -> Result<MediumPhase> {
     let weight = read_weight(obj)?;
     let kids: Vec<_> = obj.children_of(Kind::Phase).collect();
     if kids.len() != 2 {
@@ -85,9 +85,9 @@ fn build_blendphase(obj: &Object, nest: PhaseNest) -> Result<PhaseFunction> {
     }
     let second = built.pop().expect("two phase functions");
     let first = built.pop().expect("two phase functions");
-    Ok(PhaseFunction::Blend(Blend {
+    Ok(MediumPhase::Fixed(PhaseFunction::Blend(Blend {
         weight,
         first: Box::new(first),
         second: Box::new(second),
-    }))
+    })))
 }

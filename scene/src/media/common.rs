@@ -1,10 +1,10 @@
 //! What the `<medium>` plugins share: the builder's type, the parameters both media take
 //! (`scale`, `sample_emitters`, `has_spectral_extinction`) and the nested phase function.
-use super::phases::build_phase;
+use super::phases::build_medium_phase;
 use crate::plugin::{Param, Plugin, Range};
 use crate::util::Result;
 use crate::xml::{Kind, Object};
-use tessera_core::medium::{Medium, PhaseFunction};
+use tessera_core::medium::{Medium, MediumPhase, PhaseFunction};
 
 /// A medium plugin.
 pub(crate) type MediumPlugin = Plugin<fn(&Object) -> Result<Medium>>;
@@ -33,10 +33,10 @@ pub(crate) const HAS_SPECTRAL_EXTINCTION: Param = Param::boolean(
 .ignored();
 
 /// The phase function nested in `obj` (default `isotropic`); one at most.
-pub(crate) fn nested_phase(obj: &Object) -> Result<PhaseFunction> {
+pub(crate) fn nested_phase(obj: &Object) -> Result<MediumPhase> {
     let mut phases = obj.children_of(Kind::Phase);
     let Some(first) = phases.next() else {
-        return Ok(PhaseFunction::default());
+        return Ok(MediumPhase::Fixed(PhaseFunction::default()));
     };
     if let Some(second) = phases.next() {
         return Err(crate::error::InputError::at(
@@ -48,5 +48,5 @@ pub(crate) fn nested_phase(obj: &Object) -> Result<PhaseFunction> {
         ));
     }
     first.mark_used();
-    build_phase(&first.obj)
+    build_medium_phase(&first.obj)
 }

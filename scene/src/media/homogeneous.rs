@@ -1,8 +1,9 @@
 //! The `homogeneous` `<medium>` plugin. Its conventions are in
 //! `tessera_core::medium::homogeneous`.
 use super::common::{nested_phase, MediumPlugin, HAS_SPECTRAL_EXTINCTION, SAMPLE_EMITTERS, SCALE};
+use super::volumes::{read_volume, volume_param};
 use crate::plugin::{Default, Param, Plugin, Range};
-use tessera_core::medium::{Homogeneous, Medium};
+use tessera_core::medium::{Homogeneous, Medium, MediumPhase};
 
 const SIGMA_T: Param = Param::rgb(
     "sigma_t",
@@ -10,11 +11,11 @@ const SIGMA_T: Param = Param::rgb(
     Range::NonNegative,
     "extinction coefficient per unit of scene length (a float, or rgb for one per channel)",
 );
-const ALBEDO: Param = Param::rgb(
+const ALBEDO: Param = volume_param(
     "albedo",
-    Default::Rgb([0.75; 3]),
-    Range::NonNegative,
-    "single-scattering albedo: the fraction of extinction that scatters (a float or rgb)",
+    0.75,
+    "single-scattering albedo: the fraction of extinction that scatters (a float or rgb, or a \
+     <volume> looked up where a collision happens)",
 );
 
 /// `homogeneous`.
@@ -41,11 +42,21 @@ pub(crate) const HOMOGENEOUS: MediumPlugin = Plugin {
         if !sigma_t.is_finite() {
             return Err(SIGMA_T.out_of_range(obj, "finite after scale", sigma_t.max_element()));
         }
+        let phase = match nested_phase(obj)? {
+            MediumPhase::Fixed(f) => f,
+            MediumPhase::SggxGrid(_) => {
+                return Err(obj.error(format!(
+                    "{} has an sggx phase function whose S varies through space, which would \
+                     make its extinction vary: use a heterogeneous medium",
+                    obj.describe()
+                )))
+            }
+        };
         Ok(Medium::Homogeneous(Homogeneous {
             sigma_t,
-            albedo: ALBEDO.read_color(obj)?,
+            albedo: read_volume(obj, &ALBEDO)?,
             sample_emitters: SAMPLE_EMITTERS.read_bool(obj)?,
-            phase: nested_phase(obj)?,
+            phase,
         }))
     },
 };

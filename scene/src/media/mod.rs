@@ -2,7 +2,7 @@
 //! often it is referenced, the media on each shape's sides, and the camera's medium.
 //!
 //! - `phases`: the `<phase>` plugins ([`PHASES`]): `isotropic`, `hg`, `rayleigh` (in `phase`),
-//!   `tabphase` and `blendphase` (in files of their own);
+//!   `tabphase`, `blendphase` and `sggx` (in files of their own);
 //! - `table`: the `<medium>` plugins ([`MEDIA`]): `homogeneous` and `heterogeneous`, each in its
 //!   own file, with what they share in `common`;
 //! - `volumes`: the `<volume>` plugins ([`VOLUMES`]): `gridvolume`, `constvolume`, read from
@@ -15,6 +15,7 @@ pub(crate) mod homogeneous;
 pub(crate) mod interfaces;
 pub(crate) mod phase;
 pub(crate) mod phases;
+pub(crate) mod sggx;
 pub(crate) mod table;
 pub(crate) mod tabphase;
 pub(crate) mod vol_file;
@@ -60,6 +61,14 @@ mod tests {
             super::phases::build_phase,
             |name| match name {
                 "tabphase" => "<string name=\"values\" value=\"0.5, 1, 2\"/>".to_string(),
+                "sggx" => format!(
+                    "<volume type=\"gridvolume\" name=\"S\"><string name=\"filename\" \
+                     value=\"{}\"/></volume>",
+                    concat!(
+                        env!("CARGO_MANIFEST_DIR"),
+                        "/../scenes/media/flakes_uniform.vol"
+                    )
+                ),
                 "blendphase" => "<float name=\"weight\" value=\"0.3\"/><phase type=\"isotropic\"/>\
                                  <phase type=\"rayleigh\"/>"
                     .to_string(),

@@ -4,14 +4,15 @@
 use crate::plugin::{Param, Plugin, Range};
 use crate::util::Result;
 use crate::xml::Object;
-use tessera_core::medium::{HenyeyGreenstein, Isotropic, PhaseFunction, Rayleigh};
+use tessera_core::medium::{HenyeyGreenstein, Isotropic, MediumPhase, PhaseFunction, Rayleigh};
 
 /// What builds a nested `<phase>` (handed to the plugins that nest phase functions, so that
 /// their files do not depend on this table).
 pub(crate) type PhaseNest = fn(&Object) -> Result<PhaseFunction>;
 
-/// A phase function plugin.
-pub(crate) type PhasePlugin = Plugin<fn(&Object, PhaseNest) -> Result<PhaseFunction>>;
+/// A phase function plugin: it builds a function that may vary through space (only `sggx`
+/// does).
+pub(crate) type PhasePlugin = Plugin<fn(&Object, PhaseNest) -> Result<MediumPhase>>;
 
 /// `isotropic`.
 pub(crate) const ISOTROPIC: PhasePlugin = Plugin {
@@ -21,7 +22,7 @@ pub(crate) const ISOTROPIC: PhasePlugin = Plugin {
           function of a medium that names none.",
     params: &[],
     nested: "",
-    build: |_, _| Ok(PhaseFunction::Isotropic(Isotropic)),
+    build: |_, _| Ok(MediumPhase::Fixed(PhaseFunction::Isotropic(Isotropic))),
 };
 
 const G: Param = Param::float(
@@ -41,9 +42,9 @@ pub(crate) const HG: PhasePlugin = Plugin {
     params: &[G],
     nested: "",
     build: |obj, _| {
-        Ok(PhaseFunction::Hg(HenyeyGreenstein {
+        Ok(MediumPhase::Fixed(PhaseFunction::Hg(HenyeyGreenstein {
             g: G.read_f32(obj)?,
-        }))
+        })))
     },
 };
 
@@ -56,5 +57,5 @@ pub(crate) const RAYLEIGH: PhasePlugin = Plugin {
           same for every colour channel (as in Mitsuba 3's non-polarised modes).",
     params: &[],
     nested: "",
-    build: |_, _| Ok(PhaseFunction::Rayleigh(Rayleigh)),
+    build: |_, _| Ok(MediumPhase::Fixed(PhaseFunction::Rayleigh(Rayleigh))),
 };

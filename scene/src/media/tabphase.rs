@@ -7,7 +7,7 @@ use crate::error::InputError;
 use crate::plugin::{Default, Param, ParamType, Plugin, Range};
 use crate::util::{at_prop, Result};
 use crate::xml::Object;
-use tessera_core::medium::{PhaseFunction, TableError, Tabulated};
+use tessera_core::medium::{MediumPhase, PhaseFunction, TableError, Tabulated};
 
 const VALUES: Param = Param::new(
     "values",
@@ -30,7 +30,7 @@ pub(crate) const TABPHASE: PhasePlugin = Plugin {
     build: build_tabphase,
 };
 
-fn build_tabphase(obj: &Object, _: PhaseNest) -> Result<PhaseFunction> {
+fn build_tabphase(obj: &Object, _: PhaseNest) -> Result<MediumPhase> {
     let text = VALUES.read_string(obj)?;
     let err = |msg: String| -> InputError { at_prop(obj, "values", msg) };
     let mut values = Vec::new();
@@ -62,5 +62,7 @@ fn build_tabphase(obj: &Object, _: PhaseNest) -> Result<PhaseFunction> {
             TableError::NoMass => format!("\"values\" of {} are all zero", obj.describe()),
         })
     })?;
-    Ok(PhaseFunction::Tabulated(Box::new(table)))
+    Ok(MediumPhase::Fixed(PhaseFunction::Tabulated(Box::new(
+        table,
+    ))))
 }

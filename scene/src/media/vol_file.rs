@@ -4,12 +4,14 @@
 //! - bytes 0-2: `VOL`; byte 3: the format version, 3;
 //! - bytes 4-7: the encoding (int32), 1 = float32, the only one defined;
 //! - bytes 8-19: the resolution along x, y and z (int32 each);
-//! - bytes 20-23: channels per voxel (int32): 1 or 3 here (Mitsuba's 6, for SGGX, is refused);
+//! - bytes 20-23: channels per voxel (int32): 1, 3, or 6 (an SGGX matrix per voxel: `xx, yy, zz,
+//!   xy, xz, yz`);
 //! - bytes 24-47: the grid's bounding box (float32: x, y, z of its minimum, then of its maximum);
 //! - then the voxels, x fastest, then y, then z, channels interleaved.
 //!
 //! Every departure (a short or long file, another magic, version or encoding, a value that is
-//! negative or not finite) is an error naming the file and what was found.
+//! not finite, or negative in a grid of 1 or 3 channels) is an error naming the file and what was
+//! found. Which channel counts a parameter takes is its plugin's to check.
 use std::path::Path;
 use tessera_core::medium::VoxelGrid;
 
@@ -67,9 +69,9 @@ pub fn parse_vol(b: &[u8]) -> Result<VolFile, String> {
         ));
     }
     let channels = i32_at(b, 20);
-    if channels != 1 && channels != 3 {
+    if !matches!(channels, 1 | 3 | 6) {
         return Err(format!(
-            ".vol with {channels} channels per voxel: only 1 or 3 are read"
+            ".vol with {channels} channels per voxel: only 1, 3 or 6 are read"
         ));
     }
     let count = res
@@ -101,11 +103,11 @@ pub fn parse_vol(b: &[u8]) -> Result<VolFile, String> {
     let mut data = Vec::with_capacity(count);
     for i in 0..count {
         let v = f32_at(b, HEADER_BYTES + 4 * i);
-        if !(v.is_finite() && v >= 0.0) {
+        if !(v.is_finite() && (v >= 0.0 || channels == 6)) {
             let voxel = i / channels as usize;
             return Err(format!(
                 ".vol value {v} at voxel {voxel} (channel {}): values must be finite and \
-                 non-negative",
+                 non-negative (negative only in a matrix's off-diagonal, of 6 channels)",
                 i % channels as usize
             ));
         }
@@ -177,7 +179,8 @@ mod tests {
                 },
                 "encoding 2",
             ),
-            (file([2, 2, 2], 6, 1.0), "6 channels"),
+            (file([2, 2, 2], 5, 1.0), "5 channels"),
+            (file([2, 2, 2], 6, f32::INFINITY), "value inf"),
             (file([2, 0, 2], 1, 1.0), "resolution 2 x 0 x 2"),
             (file([2, 2, 2], 1, -1.0), "value -1 at voxel 0"),
             (file([2, 2, 2], 1, f32::NAN), "value NaN"),
@@ -186,7 +189,14 @@ mod tests {
             let e = parse_vol(&bytes).expect_err(words);
             assert!(e.contains(words), "{e:?} should say {words:?}");
         }
-        // Control: the good file reads.
+        // Controls: the good file reads, and so does a 6-channel grid with negative values.
         assert!(parse_vol(&good).is_ok());
+        assert_eq!(
+            parse_vol(&file([2, 2, 2], 6, -0.5))
+                .expect("6 channels")
+                .grid
+                .channels(),
+            6
+        );
     }
 }

@@ -52,7 +52,20 @@ pub(crate) fn read_volume(obj: &Object, p: &Param) -> Result<Volume> {
                 ),
             ));
         }
-        return build_volume(&child.obj);
+        let v = build_volume(&child.obj)?;
+        if let VolumeData::Grid(g) = &v.data {
+            if g.grid.channels() == 6 {
+                return Err(InputError::at(
+                    &child.loc,
+                    format!(
+                        "parameter \"{name}\" of {} takes a volume of 1 or 3 channels, found 6 \
+                         (a grid of SGGX matrices, for an sggx phase function's S)",
+                        obj.describe()
+                    ),
+                ));
+            }
+        }
+        return Ok(v);
     }
     let Default::Rgb(d) = p.default else {
         unreachable!("\"{name}\" has a colour default")
@@ -61,7 +74,7 @@ pub(crate) fn read_volume(obj: &Object, p: &Param) -> Result<Volume> {
 }
 
 const FILENAME: Param = Param::file(
-    ".vol (Mitsuba's binary grid, version 3, float32, 1 or 3 channels)",
+    ".vol (Mitsuba's binary grid, version 3, float32, 1, 3 or 6 channels)",
     "the grid's file",
 );
 const TO_WORLD: Param = Param::transform(
@@ -124,7 +137,8 @@ pub(crate) const GRIDVOLUME: VolumePlugin = Plugin {
     aliases: &[],
     doc: "A voxel grid read from a `.vol` file, looked up as Mitsuba 3 does: voxel centres at \
           (i + 0.5) / n of the local unit cube, trilinear or nearest, indices beyond the ends \
-          mapped by wrap_mode. Used as a heterogeneous medium's sigma_t or albedo; the \
+          mapped by wrap_mode. Used as a medium's sigma_t or albedo (1 or 3 channels) \
+          or an sggx phase function's S (6 channels); the \
           medium's extinction is zero outside its sigma_t grid's box.",
     params: &[
         FILENAME,

@@ -3,8 +3,8 @@
 //! Element aliases: `<mesh>` is `<shape>`, `<camera>` is `<sensor>`, `<color>` is `<rgb>`.
 //! Parameter names are converted from camelCase to snake_case (`toWorld` -> `to_world`,
 //! `intIOR` -> `int_ior`), which is also what Mitsuba 3 does when it upgrades 0.x files. One
-//! Mitsuba 3 plugin has upper-case parameter names, the `mitchell` filter's `B` and `C`: those
-//! are kept. Nori's `albedo` on a diffuse BSDF is Mitsuba's `reflectance`.
+//! Mitsuba 3 plugins have upper-case parameter names, the `mitchell` filter's `B` and `C` and the
+//! `sggx` phase function's `S`: those are kept. Nori's `albedo` on a diffuse BSDF is Mitsuba's `reflectance`.
 
 use super::object::Kind;
 
@@ -43,7 +43,9 @@ pub fn snake_case(name: &str) -> String {
 /// The normalized name of a parameter (property or named child) of an object of `kind` with
 /// plugin type `plugin`.
 pub(crate) fn param_name(name: &str, kind: Kind, plugin: &str) -> String {
-    if kind == Kind::RFilter && plugin == "mitchell" && matches!(name, "B" | "C") {
+    if (kind == Kind::RFilter && plugin == "mitchell" && matches!(name, "B" | "C"))
+        || (kind == Kind::Phase && plugin == "sggx" && name == "S")
+    {
         return name.to_string();
     }
     let name = snake_case(name);
@@ -75,6 +77,10 @@ mod tests {
         assert_eq!(param_name("albedo", Kind::Bsdf, "diffuse"), "reflectance");
         assert_eq!(param_name("albedo", Kind::Bsdf, "principled"), "albedo");
         assert_eq!(param_name("albedo", Kind::Shape, "diffuse"), "albedo");
+        // Mitsuba 3's own upper-case names stay, only on their plugins.
+        assert_eq!(param_name("B", Kind::RFilter, "mitchell"), "B");
+        assert_eq!(param_name("S", Kind::Phase, "sggx"), "S");
+        assert_eq!(param_name("S", Kind::Phase, "hg"), "s");
         assert_eq!(element_alias("mesh"), "shape");
         assert_eq!(element_alias("camera"), "sensor");
         assert_eq!(element_alias("color"), "rgb");
