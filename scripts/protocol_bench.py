@@ -28,6 +28,7 @@ noise adds to both renderers' relMSE; it is estimated from Mitsuba's run (relMSE
 over the samples) and subtracted from both, and the table says how large it was.
 """
 import argparse
+import atexit
 import json
 import os
 import re
@@ -60,7 +61,7 @@ mi.set_variant(sys.argv[1])
 dr.set_thread_count(int(sys.argv[2]))
 scene_path, out, spp, res = sys.argv[3], sys.argv[4], int(sys.argv[5]), sys.argv[6]
 t1 = time.perf_counter()
-scene = mi.load_file(scene_path, res=int(res))
+scene = mi.load_file(scene_path, res=int(res)) if res != "-" else mi.load_file(scene_path)
 t2 = time.perf_counter()
 img = mi.render(scene, spp=spp, seed=7)
 import numpy as np
@@ -88,28 +89,73 @@ def scene_path(name):
     return name if name.endswith(".xml") else os.path.join(ROOT, "scenes", name + ".xml")
 
 
+SIZED = []
+
+
+def sized(path, size):
+    """The scene to render at `size` pixels wide, and the value of its `res` parameter ("-"
+    for none). A file that declares `res` (as scenes/ do) is used as it is; any other (a
+    public scene) is copied beside itself, with each film's width set to `size` and its height
+    scaled alike, and so is every file it includes, so that relative paths still resolve. The
+    copies are removed at exit."""
+    text = open(path).read()
+    if re.search(r'name="res"', text):
+        return path, str(size)
+
+    def copy(p):
+        t = open(p).read()
+        d = os.path.dirname(p)
+
+        def inc(m):
+            name = os.path.basename(copy(os.path.join(d, m.group(2))))
+            return m.group(1) + os.path.join(os.path.dirname(m.group(2)), name) + m.group(3)
+        t = re.sub(r'(<include\s+filename=")([^"]+)(")', inc, t)
+        w = re.search(r'<integer\s+name="width"\s+value="(\d+)"', t)
+        h = re.search(r'<integer\s+name="height"\s+value="(\d+)"', t)
+        if w and h:
+            height = max(1, round(size * int(h.group(1)) / int(w.group(1))))
+            t = t[:w.start(1)] + str(size) + t[w.end(1):h.start(1)] + str(height) + t[h.end(1):] \
+                if w.start() < h.start() else t
+        out = os.path.join(d, f".{os.path.basename(p)[:-4]}.protocol{size}.xml")
+        open(out, "w").write(t)
+        SIZED.append(out)
+        return out
+    return copy(path), "-"
+
+
+def cleanup():
+    for p in SIZED:
+        if os.path.exists(p):
+            os.remove(p)
+
+
 def reference(a, name, size):
     os.makedirs(a.refs, exist_ok=True)
     base = os.path.basename(scene_path(name))[:-4]
     out = os.path.join(a.refs, f"{base}_{size}_{a.ref_spp}spp_{a.variant}.exr")
     if not os.path.exists(out):
         print(f"reference {out} ...", flush=True)
+        path, res = sized(scene_path(name), size)
+        defines = [] if res == "-" else ["-D", f"res={res}"]
         subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "mitsuba_ref.py"),
-                        scene_path(name), "-o", out, "--spp", str(a.ref_spp), "--seed", "1000",
-                        "-D", f"res={size}", "--variant", a.variant], check=True)
+                        path, "-o", out, "--spp", str(a.ref_spp), "--seed", "1000",
+                        "--variant", a.variant] + defines, check=True)
     return load(out)
 
 
 def tessera_run(a, name, size, spp, out):
-    cmd = [a.tessera, "render", scene_path(name), "-D", f"res={size}", "--spp", str(spp),
+    path, res = sized(scene_path(name), size)
+    defines = [] if res == "-" else ["-D", f"res={res}"]
+    cmd = [a.tessera, "render", path] + defines + ["--spp", str(spp),
            "--threads", str(a.threads), "-q", "-o", out] + a.tessera_args.split()
     wall, rss, _ = timed(cmd)
     return {"seconds": wall, "rss": rss, "load": None}
 
 
 def mitsuba_run(a, name, size, spp, out, env):
-    cmd = [sys.executable, "-c", MITSUBA_RUN, a.variant, str(a.threads), scene_path(name), out,
-           str(spp), str(size)]
+    path, res = sized(scene_path(name), size)
+    cmd = [sys.executable, "-c", MITSUBA_RUN, a.variant, str(a.threads), path, out,
+           str(spp), res]
     wall, rss, stdout = timed(cmd, env)
     parts = json.loads(stdout.strip().splitlines()[-1])
     # The whole process less Python's and Mitsuba's import: what loading and rendering took.
@@ -154,7 +200,10 @@ def main():
     ap.add_argument("--refs", default=os.path.join(ROOT, "target", "protocol-refs"))
     ap.add_argument("--csv", default=None)
     ap.add_argument("--label", default="scene file's own settings")
+    ap.add_argument("--refs-only", action="store_true",
+                    help="only render the missing references (needs no quiet machine), then stop")
     a = ap.parse_args()
+    atexit.register(cleanup)
 
     env = dict(os.environ)
     llvm = "/usr/lib/x86_64-linux-gnu/libLLVM-19.so"
@@ -173,6 +222,8 @@ def main():
     for name in a.scenes.split(","):
         for size in [int(s) for s in a.sizes.split(",")]:
             ref = reference(a, name, size)
+            if a.refs_only:
+                continue
             with tempfile.TemporaryDirectory() as d:
                 # Fill Dr.Jit's kernel cache (untimed).
                 mitsuba_run(a, name, size, 1, os.path.join(d, "w.exr"), env)
