@@ -38,7 +38,7 @@ case "${ADAPTIVE:-}" in
     1) ADAPTIVE_FLAG=(--adaptive) ;;
     only) ADAPTIVE_FLAG=(--adaptive-only) ;;
 esac
-FRESH_FLAG=()
+FRESH_FLAG=(--waves)
 if [ "${FRESH:-}" = 1 ]; then FRESH_FLAG=(--fresh); fi
 mkdir -p "$OUT"
 for NAME in cbox veach_mis; do

@@ -1,6 +1,10 @@
-//! `tessera bench`: error against time for one or more integrators (see `tessera_lab::bench`), or
-//! (`--plot-only`) just the plot of an existing report, e.g. one with Mitsuba 3 rows appended by
-//! `scripts/mitsuba_bench.py`.
+//! `tessera bench`: error against time for one or more integrators, or (`--plot-only`) just the
+//! plot of an existing report, e.g. one with Mitsuba 3 rows appended by
+//! `scripts/mitsuba_bench.py`. By default each curve follows the protocol of
+//! `bench_protocol.rs` (whole renders from 64 spp until one takes 5 s, the efficiency of the
+//! last); `--waves` and `--fresh` measure waves of 1, 2, 4, ... spp instead (see
+//! `tessera_lab::bench`).
+use crate::bench_protocol::{efficiency_line, run_protocol, ProtocolCurve, ProtocolLimits};
 use clap::Args;
 use std::path::{Path, PathBuf};
 use tessera::image_io::{read_image, Format};
@@ -33,7 +37,19 @@ pub struct BenchArgs {
     /// (with --fresh, for each wave's count).
     #[arg(long, value_delimiter = ',')]
     pub sampler: Vec<String>,
-    /// Stop a curve before a wave that would end after this many seconds.
+    /// Measure waves of 1, 2, 4, ... spp added to one image (each row the time so far), instead
+    /// of the protocol's whole renders from --min-spp until one takes --min-seconds.
+    #[arg(long, conflicts_with = "fresh")]
+    pub waves: bool,
+    /// The protocol: the first render's samples per pixel.
+    #[arg(long, default_value_t = 64)]
+    pub min_spp: u64,
+    /// The protocol: stop at the first render (load included) that takes this many seconds,
+    /// then render its count once more and keep the faster.
+    #[arg(long, default_value_t = 5.0)]
+    pub min_seconds: f64,
+    /// Waves (--waves, --fresh): stop a curve before a wave that would end after this many
+    /// seconds.
     #[arg(long, default_value_t = 60.0)]
     pub max_seconds: f64,
     /// Stop a curve at this many samples per pixel.
@@ -58,11 +74,11 @@ pub struct BenchArgs {
     /// Longest path (-1 = unbounded), overriding the scene file.
     #[arg(long, allow_hyphen_values = true)]
     pub max_depth: Option<i64>,
-    /// Tile edge in pixels. Smaller than `render`'s 32: the benchmark's images are small
-    /// (128x128 is 16 tiles of 32) and its first waves short, so finer tiles leave the threads
-    /// less idle at each wave's end (the image bits do not depend on it).
-    #[arg(long, default_value_t = 16)]
-    pub tile_size: u32,
+    /// Tile edge in pixels (the image bits do not depend on it). Default: `render`'s 32 for the
+    /// protocol; 16 for waves, whose images are small (128x128 is 16 tiles of 32) and first
+    /// waves short, so finer tiles leave the threads less idle at each wave's end.
+    #[arg(long)]
+    pub tile_size: Option<u32>,
     /// The relMSEs whose time to reach is printed per curve, comma separated (the plot marks
     /// the first).
     #[arg(long, value_delimiter = ',', default_value = "0.01")]
@@ -189,8 +205,7 @@ pub fn run(args: &BenchArgs) -> i32 {
     if let Some(csv) = &args.plot_only {
         return plot_only(args, csv);
     }
-    let (Some(scene_path), Some(ref_path), Some(output)) =
-        (&args.scene, &args.reference, &args.output)
+    let (Some(scene_path), Some(ref_path), Some(_)) = (&args.scene, &args.reference, &args.output)
     else {
         return usage("give SCENE, --reference and -o (or --plot-only REPORT --plot PNG)");
     };
@@ -209,11 +224,29 @@ pub fn run(args: &BenchArgs) -> i32 {
     if args.repeats == 0 {
         return usage("--repeats must be at least 1");
     }
-    if args.tile_size == 0 || args.tile_size > 4096 {
+    let protocol = !(args.waves || args.fresh);
+    let tile_size = args.tile_size.unwrap_or(if protocol { 32 } else { 16 });
+    if tile_size == 0 || tile_size > 4096 {
         return usage(format!(
-            "--tile-size must be between 1 and 4096, found {}",
-            args.tile_size
+            "--tile-size must be between 1 and 4096, found {tile_size}"
         ));
+    }
+    if protocol {
+        if args.adaptive || args.adaptive_only || args.seeds > 1 || args.repeats > 1 {
+            return usage(
+                "--adaptive, --seeds and --repeats measure waves: add --waves or --fresh (the \
+                 protocol renders each count afresh and keeps the faster of two runs)",
+            );
+        }
+        if args.min_spp == 0 {
+            return usage("--min-spp must be at least 1");
+        }
+        if !(args.min_seconds >= 0.0 && args.min_seconds.is_finite()) {
+            return usage(format!(
+                "--min-seconds must be finite and not negative, found {}",
+                args.min_seconds
+            ));
+        }
     }
     let threads = args
         .threads
@@ -264,9 +297,20 @@ pub fn run(args: &BenchArgs) -> i32 {
     }
     let opts = RenderOptions {
         threads,
-        tile_size: args.tile_size,
+        tile_size,
         pixels: Default::default(),
     };
+    if protocol {
+        return run_protocol_curves(
+            args,
+            scene_path,
+            &reference,
+            &names,
+            &samplers,
+            &opts,
+            (w, h),
+        );
+    }
     let first_seed = args.seed.unwrap_or(loaded.seed);
     let limits = WaveLimits {
         max_seconds: args.max_seconds,
@@ -329,13 +373,25 @@ pub fn run(args: &BenchArgs) -> i32 {
             }
         }
     }
+    finish(args, scene_path, &rows, threads, (w, h))
+}
+
+/// Prints the times to target, writes the report and the plot; the exit code.
+fn finish(
+    args: &BenchArgs,
+    scene_path: &Path,
+    rows: &[Row],
+    threads: usize,
+    (w, h): (u32, u32),
+) -> i32 {
     // A bad --ratio-to is found only now, when the curves exist; the measurements are still
     // written, and the exit code says the command was misused.
     let mut code = 0;
-    if let Err(e) = print_times(&rows, &args.target_relmse, args.ratio_to.as_deref()) {
+    if let Err(e) = print_times(rows, &args.target_relmse, args.ratio_to.as_deref()) {
         code = usage(e);
     }
-    if let Err(e) = write_csv(output, &rows) {
+    let output = args.output.as_deref().expect("checked by run");
+    if let Err(e) = write_csv(output, rows) {
         eprintln!("error: {e}");
         code = 1;
     }
@@ -344,12 +400,69 @@ pub fn run(args: &BenchArgs) -> i32 {
             .title
             .clone()
             .unwrap_or_else(|| format!("{} ({w}x{h}, {threads} threads)", file_name(scene_path)));
-        if let Err(e) = write_plot(p, &rows, &title, args.target_relmse.first().copied()) {
+        if let Err(e) = write_plot(p, rows, &title, args.target_relmse.first().copied()) {
             eprintln!("error: {e}");
             code = 1;
         }
     }
     code
+}
+
+/// The protocol's curves, one per integrator and sampler; then [`finish`].
+fn run_protocol_curves(
+    args: &BenchArgs,
+    scene_path: &Path,
+    reference: &tessera::image_io::RgbImage,
+    names: &[String],
+    samplers: &[Option<&str>],
+    opts: &RenderOptions,
+    size: (u32, u32),
+) -> i32 {
+    let limits = ProtocolLimits {
+        min_spp: args.min_spp,
+        min_seconds: args.min_seconds,
+        max_spp: args.max_spp,
+    };
+    let mut rows = Vec::new();
+    let mut summary = Vec::new();
+    for n in names {
+        for s in samplers {
+            let curve = ProtocolCurve {
+                scene: scene_path,
+                defines: &args.defines,
+                integrator: n,
+                sampler: *s,
+                max_depth: args.max_depth,
+                seed: args.seed,
+            };
+            let mut print = |row: &Row| {
+                if !args.quiet {
+                    eprintln!(
+                        "{n} ({}): {:>7} spp {:>9.3} s (load included) {:>7.3} M samples/s  relMSE {:.4e}",
+                        row.sampler,
+                        row.spp,
+                        row.seconds,
+                        row.samples_per_second / 1e6,
+                        row.errors.relmse
+                    );
+                }
+            };
+            match run_protocol(&curve, opts, reference, &limits, &mut print) {
+                Ok(r) => {
+                    summary.extend(efficiency_line(&r));
+                    rows.extend(r);
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return 1;
+                }
+            }
+        }
+    }
+    for line in summary {
+        println!("{line}");
+    }
+    finish(args, scene_path, &rows, opts.threads, size)
 }
 
 /// One seed's curve: `args.repeats` runs of the waves, each wave keeping its least time

@@ -3,6 +3,7 @@
 // `!(x > 0.0)` rejects NaN along with the values it names (as in the core).
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 pub mod bench;
+pub mod bench_protocol;
 pub mod compare;
 pub(crate) mod decor;
 pub mod define;

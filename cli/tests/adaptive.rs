@@ -315,7 +315,15 @@ fn command_line() {
         ("--adaptive-only", &["zsobol+adaptive"]),
     ] {
         let csv = t.file("b.csv");
-        let mut a = vec!["bench", "--quiet", "--sampler", "zsobol", "--max-spp", "8"];
+        let mut a = vec![
+            "bench",
+            "--waves",
+            "--quiet",
+            "--sampler",
+            "zsobol",
+            "--max-spp",
+            "8",
+        ];
         a.extend_from_slice(&base[..5]);
         a.extend_from_slice(&["--reference", &reference, flag, "-o", &csv]);
         let o = run(&a);

@@ -60,11 +60,12 @@ fn os(s: &str) -> &std::ffi::OsStr {
     std::ffi::OsStr::new(s)
 }
 
-/// `tessera bench` on the 12x12 box-filtered box against `reference`, then `rest`.
+/// `tessera bench --waves` on the 12x12 box-filtered box against `reference`, then `rest`.
 fn bench_small(reference: &Path, rest: &[&std::ffi::OsStr]) -> Output {
     let scene = cbox();
     let mut args = vec![
         os("bench"),
+        os("--waves"),
         scene.as_os_str(),
         os("-D"),
         os("res=12"),
@@ -468,4 +469,63 @@ fn ratio_to_prints_ratios_and_bounds_for_each_target() {
         "--target-relmse must be positive, found 0",
         &before,
     );
+}
+
+/// The default protocol: whole renders from --min-spp, each count's image exactly a plain
+/// render of that count (the sampler set up for it), the sample count jumping toward
+/// --min-seconds and stopping at --max-spp, the last count rendered twice and kept once; its
+/// efficiency printed. Waves-only options without --waves are a usage error.
+#[test]
+fn the_protocol_renders_whole_images_until_long_enough() {
+    let tmp = temp_dir("protocol");
+    let l = small_cbox();
+    let reference = write_reference(&tmp.0, &l);
+    let csv = tmp.0.join("p.csv");
+    let scene = cbox();
+    let run = |extra: &[&str]| {
+        let mut a = vec![
+            os("bench"),
+            scene.as_os_str(),
+            os("-D"),
+            os("res=12"),
+            os("-D"),
+            os("rfilter=box"),
+            os("--reference"),
+            reference.as_os_str(),
+            os("--seed"),
+            os("3"),
+            os("-o"),
+            csv.as_os_str(),
+        ];
+        a.extend(extra.iter().map(|s| os(s)));
+        run_os(&a)
+    };
+    // Never long enough: 4 spp, then straight to the cap of 16, rendered twice.
+    let o = run(&["--min-spp", "4", "--min-seconds", "1e9", "--max-spp", "16"]);
+    assert_eq!(o.status.code(), Some(0), "{o:?}");
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("16 spp in"), "{stdout}");
+    assert!(stdout.contains("efficiency (relMSE x seconds)"), "{stdout}");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(stderr.matches("16 spp").count(), 2, "{stderr}");
+    let rows = read_csv(&csv).unwrap();
+    assert_eq!(rows.iter().map(|r| r.spp).collect::<Vec<_>>(), [4, 16]);
+    let img = read_image(&reference).unwrap();
+    for r in &rows {
+        let mut fresh = small_cbox();
+        fresh.set_sampler(None, r.spp).unwrap();
+        let plain = render_seeded(&fresh, 0..r.spp, 2, 3);
+        assert_eq!(r.errors, errors(&plain.rgb(), &img.data), "{} spp", r.spp);
+    }
+    // Long enough at once: one count.
+    let o = run(&["--min-spp", "8", "--min-seconds", "0"]);
+    assert_eq!(o.status.code(), Some(0), "{o:?}");
+    let rows = read_csv(&csv).unwrap();
+    assert_eq!(rows.iter().map(|r| r.spp).collect::<Vec<_>>(), [8]);
+    // Waves-only options.
+    for bad in [&["--adaptive"][..], &["--seeds", "2"], &["--repeats", "2"]] {
+        let o = run(bad);
+        assert_eq!(o.status.code(), Some(2), "{bad:?}");
+        assert!(String::from_utf8_lossy(&o.stderr).contains("add --waves or --fresh"));
+    }
 }

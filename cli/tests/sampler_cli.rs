@@ -70,6 +70,7 @@ fn bench_measures_both_samplers_in_one_report() {
     let o = on_cbox(
         "bench",
         &[
+            "--waves",
             "-D",
             "rfilter=box",
             "--max-spp",
