@@ -16,7 +16,7 @@
 //! rays, and the dense reference of a tube 0.1% thicker must be rejected at the tolerance.
 use glam::{DVec3, DVec4};
 use tessera_core::geometry::{Curve, CurveBasis, Cylinder};
-use tessera_core::math::Ray;
+use tessera_core::math::{Norm, Ray};
 use tessera_lab::stats::Pcg32;
 
 /// Uniform in `[lo, hi)`.
@@ -42,20 +42,20 @@ fn rays(n: usize, h: f64, seed: u64) -> Vec<Ray> {
                 uniform(&mut rng, -h, h),
                 uniform(&mut rng, -h, h),
             );
-            Ray::new(o.as_vec3(), (p - o).normalize().as_vec3())
+            Ray::new(o.as_vec3(), (p - o).unit().as_vec3())
         })
         .collect()
 }
 
 /// The cylinder around the segment from `a` to `b` of radius `r`.
 fn cylinder(a: DVec3, b: DVec3, r: f64) -> Cylinder {
-    let z = (b - a).normalize();
+    let z = (b - a).unit();
     let x = z.any_orthonormal_vector();
     Cylinder {
         origin: a,
         axes: [x, z.cross(x), z],
         radius: r,
-        length: (b - a).length(),
+        length: (b - a).norm(),
     }
 }
 
@@ -239,7 +239,7 @@ fn dense(c: &Curve, r: f64, o: DVec3, d: DVec3) -> Option<(f64, DVec3)> {
         }
         let g = 0.5 * (lo + hi);
         let t = f(g).min(m);
-        let n = (o + d * t - at(g)).normalize();
+        let n = (o + d * t - at(g)).unit();
         if t > 0.0 && n.dot(d) < 0.0 && best.is_none_or(|(bt, _)| t < bt) {
             best = Some((t, n));
         }
@@ -257,7 +257,7 @@ fn against_dense(r_ref: f64) -> (usize, f64, usize) {
             .filter_map(|s| curve.intersect(s, &ray, f32::INFINITY).map(|h| (s, h)))
             .min_by(|a, b| a.1 .0.total_cmp(&b.1 .0));
         // The reference walks a unit direction; t is along the ray's own (f32) direction.
-        let len = ray.d.as_dvec3().length();
+        let len = ray.d.as_dvec3().norm();
         let theirs = dense(&curve, r_ref, ray.o.as_dvec3(), ray.d.as_dvec3() / len)
             .map(|(t, n)| (t / len, n));
         match (ours, theirs) {

@@ -124,18 +124,7 @@ fn grid_slab_against_the_sky() {
 /// the slab, seen from below it: (0.5 / pi) 2 exp(-tau); only the shadow ray carries the light.
 #[test]
 fn grid_slab_on_a_shadow_ray() {
-    let body = format!(
-        r#"{}
-  <shape type="rectangle">
-    <transform name="to_world"><scale value="10"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf>
-  </shape>
-  <emitter type="directional">
-    <vector name="direction" x="0" y="0" z="-1"/>
-    <rgb name="irradiance" value="2"/>
-  </emitter>"#,
-        slab()
-    );
+    let body = format!("{}{}", slab(), crate::media_analytic::LIT_FLOOR);
     let xml = scene("0, -3, 0.5", "0, 0, 0", &body);
     let pi = std::f64::consts::PI;
     check(

@@ -65,16 +65,39 @@ pub(crate) fn beer(scale: f64, path: f64) -> [f64; 3] {
     SIGMA.map(|s| (-s * scale * path).exp())
 }
 
-/// The camera looks down through the slab at a constant sky of radiance 1 behind it:
-/// exp(-sigma_t d) per channel.
-#[test]
-fn absorbing_slab_against_the_sky() {
+/// The slab seen from above against a constant sky of radiance 1 behind it.
+pub(crate) fn slab_against_the_sky() -> String {
     let body = format!(
         r#"{}
   <emitter type="constant"><rgb name="radiance" value="1"/></emitter>"#,
         slab(1.0)
     );
-    let xml = scene("0, 0, 5", "0, 0, 0", "", &body);
+    scene("0, 0, 5", "0, 0, 0", "", &body)
+}
+
+/// A diffuse floor (albedo 0.5) at z = 0 lit straight down by a directional light of
+/// irradiance 2: under a slab, only a shadow ray through it carries the light.
+pub(crate) const LIT_FLOOR: &str = r#"
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="10"/></transform>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf>
+  </shape>
+  <emitter type="directional">
+    <vector name="direction" x="0" y="0" z="-1"/>
+    <rgb name="irradiance" value="2"/>
+  </emitter>"#;
+
+/// The slab over [`LIT_FLOOR`], seen from below the slab.
+pub(crate) fn slab_on_a_shadow_ray() -> String {
+    let body = format!("{}{LIT_FLOOR}", slab(1.0));
+    scene("0, -3, 0.5", "0, 0, 0", "", &body)
+}
+
+/// The camera looks down through the slab at a constant sky of radiance 1 behind it:
+/// exp(-sigma_t d) per channel.
+#[test]
+fn absorbing_slab_against_the_sky() {
+    let xml = slab_against_the_sky();
     check("slab, sky", &xml, 40_000, beer(1.0, THICKNESS));
     // Control: the same render against 5% more extinction.
     control(
@@ -90,19 +113,7 @@ fn absorbing_slab_against_the_sky() {
 /// delta, so only the shadow ray's transmittance through the two null surfaces carries it.
 #[test]
 fn absorbing_slab_on_a_shadow_ray() {
-    let body = format!(
-        r#"{}
-  <shape type="rectangle">
-    <transform name="to_world"><scale value="10"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf>
-  </shape>
-  <emitter type="directional">
-    <vector name="direction" x="0" y="0" z="-1"/>
-    <rgb name="irradiance" value="2"/>
-  </emitter>"#,
-        slab(1.0)
-    );
-    let xml = scene("0, -3, 0.5", "0, 0, 0", "", &body);
+    let xml = slab_on_a_shadow_ray();
     let expected = beer(1.0, THICKNESS).map(|t| t / std::f64::consts::PI);
     check("slab, shadow ray", &xml, 20_000, expected);
     let wrong = beer(1.05, THICKNESS).map(|t| t / std::f64::consts::PI);

@@ -5,7 +5,7 @@
 //! strategies matter, with and without spectral MIS, and with the blend and tabulated phase
 //! functions. One pixel's samples, Student's t-test, significance 0.01 Sidak-corrected over the
 //! file; each case has a control (a reference 1% off, or 5% more extinction) that must fail.
-use crate::media_analytic::{beer, furnace, scene, slab, THICKNESS};
+use crate::media_analytic::{beer, furnace, slab_against_the_sky, slab_on_a_shadow_ray, THICKNESS};
 use tessera_tests::pixel_ttest::{check_pixel, control_pixel as control};
 
 /// t-tests in this file: 2 slabs + 4 furnaces, 3 channels each.
@@ -23,12 +23,7 @@ fn mis(xml: &str, extra: &str) -> String {
 
 #[test]
 fn absorbing_slab_against_the_sky() {
-    let body = format!(
-        r#"{}
-  <emitter type="constant"><rgb name="radiance" value="1"/></emitter>"#,
-        slab(1.0)
-    );
-    let xml = mis(&scene("0, 0, 5", "0, 0, 0", "", &body), "");
+    let xml = mis(&slab_against_the_sky(), "");
     check_pixel("slab, sky", &xml, 40_000, beer(1.0, THICKNESS), N_TESTS);
     control(
         "slab, sky, sigma_t 5% high",
@@ -40,19 +35,7 @@ fn absorbing_slab_against_the_sky() {
 
 #[test]
 fn absorbing_slab_on_a_shadow_ray() {
-    let body = format!(
-        r#"{}
-  <shape type="rectangle">
-    <transform name="to_world"><scale value="10"/></transform>
-    <bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf>
-  </shape>
-  <emitter type="directional">
-    <vector name="direction" x="0" y="0" z="-1"/>
-    <rgb name="irradiance" value="2"/>
-  </emitter>"#,
-        slab(1.0)
-    );
-    let xml = mis(&scene("0, -3, 0.5", "0, 0, 0", "", &body), "");
+    let xml = mis(&slab_on_a_shadow_ray(), "");
     let expected = beer(1.0, THICKNESS).map(|t| t / std::f64::consts::PI);
     check_pixel("slab, shadow ray", &xml, 20_000, expected, N_TESTS);
     let wrong = beer(1.05, THICKNESS).map(|t| t / std::f64::consts::PI);

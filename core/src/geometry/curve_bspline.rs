@@ -16,6 +16,7 @@
 //!    not missed.
 //! 3. Each bracket is narrowed by golden-section search to a width of 1e-10 in `v`; at a
 //!    minimum `t` is flat, so its error is of the order of that width squared.
+//!
 //! A minimum on the segment's end (`v` within 1e-7 of 0 or 1) is, at the curve's end, the end
 //! sphere's cap, which the open tube does not have: no hit; at a joint it is a hit when `t`
 //! rises on both sides of it (1e-4 before it and 1e-4 beyond it on the segment's own cubic,
@@ -25,7 +26,7 @@
 //! when it is in front of the origin and the ray meets the surface from outside (Mitsuba's
 //! normal against the ray), as Mitsuba culls back faces.
 use super::curve_frame::unit;
-use crate::math::sqrt_f64;
+use crate::math::{sqrt_f64, Norm};
 use glam::{DVec3, DVec4, Vec3};
 
 /// A segment's four control points (xyz, radius in w).
@@ -108,7 +109,7 @@ impl Cubic {
         let mut lr: f64 = 0.0;
         for k in 0..3 {
             let e = self.p[k + 1] - self.p[k];
-            lc = lc.max(e.truncate().length());
+            lc = lc.max(e.truncate().norm());
             lr = lr.max(e.w.abs());
         }
         lc + lr
@@ -200,7 +201,7 @@ fn onto_circles(cubic: &Cubic, o: DVec3, d: DVec3, v: f64, t: f64) -> Option<(f6
 /// whether the segment's start and end are its curve's ends (open), else joints with the
 /// neighbouring segments.
 pub(crate) fn intersect(cubic: &Cubic, o: DVec3, d: DVec3, open: [bool; 2]) -> Option<(f64, f64)> {
-    let len = d.length();
+    let len = d.norm();
     if !(len > 0.0) {
         return None;
     }
@@ -308,13 +309,13 @@ pub(crate) fn intersect(cubic: &Cubic, o: DVec3, d: DVec3, open: [bool; 2]) -> O
 /// `count` segments: `dp/du` is `2 pi r` around the tangent, `dp/dv` follows the centre line,
 /// the radius and the Frenet frame's turn along the global parameter.
 pub(crate) fn partials(e: &CubicEval, rad: DVec3, count: f64) -> (Vec3, Vec3) {
-    let nc = e.dc.length();
+    let nc = e.dc.norm();
     let cr = e.dc.cross(e.ddc);
-    let ncr = cr.length();
+    let ncr = cr.norm();
     let t = e.dc / nc;
     let mut kappa = ncr / (nc * nc * nc);
     let mut tau = e.dddc.dot(cr) / (ncr * ncr);
-    if ncr < 1e-6 || e.dddc.length() < 1e-6 {
+    if ncr < 1e-6 || e.dddc.norm() < 1e-6 {
         tau = 0.0;
     }
     let mut fn_ = unit(cr.cross(e.dc));

@@ -54,8 +54,8 @@ pub use voxel_grid::{GridFilter, GridWrap, VoxelGrid};
 /// The media a scene can hold: a closed enum.
 #[derive(Clone, Debug)]
 pub enum Medium {
-    /// Constant extinction and albedo (`homogeneous`).
-    Homogeneous(Homogeneous),
+    /// Constant extinction (`homogeneous`; boxed, as its albedo may be a grid).
+    Homogeneous(alloc::boxed::Box<Homogeneous>),
     /// Extinction and albedo from volumes (`heterogeneous`; boxed, as it holds its grids).
     Heterogeneous(alloc::boxed::Box<Heterogeneous>),
 }

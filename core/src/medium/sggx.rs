@@ -17,7 +17,7 @@
 //! scattering point and hands this function the matrix there. Keeping `S` positive definite is
 //! the scene's duty, as in Mitsuba 3; a matrix that is not gives zero density.
 use super::phase_sample::PhaseSample;
-use crate::math::{sqrt, Frame, PI};
+use crate::math::{sqrt, Frame, Norm, PI};
 use crate::sampling::warp::square_to_cosine_hemisphere;
 use core::ops::{Add, Mul};
 use glam::{Vec2, Vec3};
@@ -132,7 +132,7 @@ impl Sggx {
     #[inline]
     pub fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
         let h = wi + wo;
-        let len = h.length();
+        let len = h.norm();
         let area = self.s.projected_area(wi);
         if !(len > 0.0) || !(area > 0.0) {
             return 0.0;
@@ -167,9 +167,9 @@ impl Sggx {
         );
         let mi = Vec3::new(ski, sji, sii) * inv_sqrt_sii;
         let c = square_to_cosine_hemisphere(u);
-        let n_local = (mk * c.x + mj * c.y + mi * c.z).normalize_or_zero();
+        let n_local = (mk * c.x + mj * c.y + mi * c.z).unit_or_zero();
         let n = e[0] * n_local.x + e[1] * n_local.y + e[2] * n_local.z;
-        let wo = (n * (2.0 * wi.dot(n)) - wi).normalize_or_zero();
+        let wo = (n * (2.0 * wi.dot(n)) - wi).unit_or_zero();
         let pdf = self.eval(wi, wo);
         if !(pdf > 0.0) {
             return failed;
@@ -194,7 +194,7 @@ mod tests {
     fn the_ndf_integrates_to_the_projected_area() {
         // Integral over the sphere of max(0, w.m) D(m) dm = sigma(w).
         let s = fibre();
-        let w = Vec3::new(0.3, -0.5, 0.81).normalize();
+        let w = Vec3::new(0.3, -0.5, 0.81).unit();
         let n = 400;
         let mut sum = 0.0f64;
         for i in 0..n {
@@ -230,7 +230,7 @@ mod tests {
     #[test]
     fn a_sample_reports_the_value_as_its_density() {
         let p = Sggx { s: fibre() };
-        let wi = Vec3::new(0.2, 0.7, -0.4).normalize();
+        let wi = Vec3::new(0.2, 0.7, -0.4).unit();
         for k in 0..64 {
             let u = Vec2::new(
                 (k as f32 + 0.5) / 64.0,
@@ -239,7 +239,7 @@ mod tests {
             let s = p.sample(wi, u);
             assert!(s.pdf > 0.0);
             assert!((s.pdf - p.eval(wi, s.wo)).abs() <= 1e-5 * s.pdf);
-            assert!((s.wo.length() - 1.0).abs() < 1e-5);
+            assert!((s.wo.norm() - 1.0).abs() < 1e-5);
         }
     }
 }

@@ -60,6 +60,7 @@ mod tests {
     /// (`mi.load_dict({'type': 'bitmap', 'format': 'float16', ...}).eval(...)`), against the
     /// rounding here; the control, the values unrounded, differs from them.
     #[test]
+    #[allow(clippy::excessive_precision)] // Mitsuba's half values, written out exactly.
     fn half_rounding_is_mitsubas() {
         let stored = Vec3::new(0.1234, 0.7, 0.003);
         let mitsuba = Vec3::new(

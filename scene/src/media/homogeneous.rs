@@ -52,11 +52,11 @@ pub(crate) const HOMOGENEOUS: MediumPlugin = Plugin {
                 )))
             }
         };
-        Ok(Medium::Homogeneous(Homogeneous {
+        Ok(Medium::Homogeneous(Box::new(Homogeneous {
             sigma_t,
             albedo: read_volume(obj, &ALBEDO)?,
             sample_emitters: SAMPLE_EMITTERS.read_bool(obj)?,
             phase,
-        }))
+        })))
     },
 };
