@@ -8,8 +8,10 @@ Usage:
         [--threads 2] [--min-seconds 5] [--min-spp 64] [--ref-spp 2048]
         [--variant llvm_ad_rgb] [--tessera target/release/tessera] [--refs DIR]
         [--csv OUT.csv] [--tessera-args "--sampler zsobol ..."] [--label NAME]
+        [--plots DIR] [--refs-only]
 
-For each scene (`scenes/NAME.xml`, or a path) and image size (`-D res=SIZE`):
+For each scene (`scenes/NAME.xml`, or a path: a file without a `res` parameter is rendered
+from a copy whose films are SIZE wide) and image size (`-D res=SIZE`):
 - a reference: Mitsuba 3 at --ref-spp (passes of 256 spp, `scripts/mitsuba_ref.py`, kept in
   --refs and reused);
 - Tessera: `tessera render` at 64, 128, 256, ... spp until one run takes at least --min-seconds
@@ -164,25 +166,56 @@ def mitsuba_run(a, name, size, spp, out, env):
 
 
 def measure(a, run, name, size, ref):
-    """Doubles the sample count from --min-spp until a run takes --min-seconds; the last run."""
+    """Doubles the sample count from --min-spp until a run takes --min-seconds; the last run,
+    with every run kept (the last count's faster one) in its "curve"."""
     spp = a.min_spp
+    curve = []
     with tempfile.TemporaryDirectory() as d:
         out = os.path.join(d, "x.exr")
         while True:
             r = run(spp, out)
+            img = load(out)
+            r["spp"] = spp
+            r["pixels"] = img.shape[0] * img.shape[1]
+            r["errors"] = errors(img, ref)
+            r["relmse"] = r["errors"][1]
             if r["seconds"] >= a.min_seconds or spp >= 1 << 16:
                 # The same run again, the faster kept: the first run at a sample count may
                 # include one-off costs (Dr.Jit compiles a kernel per launch size), and on a
                 # shared machine the faster of two identical runs is the better estimate.
                 again = run(spp, out)
                 if again["seconds"] < r["seconds"]:
+                    again["spp"] = spp
+                    again["pixels"] = r["pixels"]
+                    again["errors"] = errors(load(out), ref)
+                    again["relmse"] = again["errors"][1]
                     r = again
-                r["spp"] = spp
-                r["relmse"] = errors(load(out), ref)[1]
+                curve.append(r)
+                r["curve"] = curve
                 return r
+            curve.append(r)
             # Jump straight to about the sample count that takes long enough.
             factor = max(2, 2 ** int(np.ceil(np.log2(a.min_seconds / max(r["seconds"], 1e-3)))))
             spp *= factor
+
+
+def plot(a, name, size, t, m):
+    """The runs of both renderers as a tessera bench report, and its plot."""
+    os.makedirs(a.plots, exist_ok=True)
+    base = f"{os.path.basename(scene_path(name))[:-4]}_{size}"
+    csv = os.path.join(a.plots, base + ".csv")
+    lines = ["integrator,sampler,spp,threads,seconds,samples_per_second,rmse,relmse,mae"]
+    for label, r in (("tessera", t), ("mitsuba-" + a.variant, m)):
+        for c in r["curve"]:
+            pixels = c.get("pixels", size * size)
+            lines.append(f"{label},independent,{c['spp']},{a.threads},{c['seconds']:.6f},"
+                         f"{pixels * c['spp'] / c['seconds']:.1f},{c['errors'][0]:.9g},"
+                         f"{c['errors'][1]:.9g},{c['errors'][2]:.9g}")
+    open(csv, "w").write("\n".join(lines) + "\n")
+    title = f"{os.path.basename(scene_path(name))}, {size} wide, {a.threads} threads"
+    subprocess.run([a.tessera, "bench", "--plot-only", csv, "--plot", csv[:-4] + ".png",
+                    "--title", title, "--ratio-to", "mitsuba"], check=True,
+                   stdout=subprocess.DEVNULL)
 
 
 def main():
@@ -200,6 +233,9 @@ def main():
     ap.add_argument("--refs", default=os.path.join(ROOT, "target", "protocol-refs"))
     ap.add_argument("--csv", default=None)
     ap.add_argument("--label", default="scene file's own settings")
+    ap.add_argument("--plots", default=None,
+                    help="write DIR/NAME_SIZE.csv (in tessera bench's report format, every run) "
+                         "and DIR/NAME_SIZE.png (relMSE against seconds, both renderers)")
     ap.add_argument("--refs-only", action="store_true",
                     help="only render the missing references (needs no quiet machine), then stop")
     a = ap.parse_args()
@@ -242,6 +278,8 @@ def main():
                   f"| {t['spp']}, {t['seconds']:.2f}, {t['relmse']:.3e}, {t['rss']:.0f} "
                   f"| {m['spp']}, {m['seconds']:.2f} ({m['load']:.2f}), {m['relmse']:.3e}, "
                   f"{m['rss']:.0f} | {noise:.1e} | {ratio:.2f} |", flush=True)
+            if a.plots:
+                plot(a, name, size, t, m)
             for label, r in (("tessera", t), ("mitsuba-" + a.variant, m)):
                 rows.append(f"{name},{size},{label},{r['spp']},{r['seconds']:.3f},"
                             f"{'' if r['load'] is None else round(r['load'], 3)},"
