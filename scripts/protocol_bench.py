@@ -151,7 +151,15 @@ def tessera_run(a, name, size, spp, out):
     cmd = [a.tessera, "render", path] + defines + ["--spp", str(spp),
            "--threads", str(a.threads), "-q", "-o", out] + a.tessera_args.split()
     wall, rss, _ = timed(cmd)
-    return {"seconds": wall, "rss": rss, "load": None}
+    return {"seconds": wall, "rss": rss, "load": tessera_load(a, path, defines)}
+
+
+def tessera_load(a, path, defines):
+    """Seconds `tessera info` reports for loading the scene (parsing, meshes, textures, the
+    acceleration structure): what precedes the first sample."""
+    p = subprocess.run([a.tessera, "info", path] + defines, capture_output=True, text=True)
+    m = re.search(r"load\s+([0-9.]+) s in all", p.stdout)
+    return float(m.group(1)) if m else float("nan")
 
 
 def mitsuba_run(a, name, size, spp, out, env):
@@ -252,7 +260,7 @@ def main():
     rows = []
     header = ("scene,size,renderer,spp,seconds,load_seconds,max_rss_mb,relmse,"
               "relmse_less_ref,efficiency")
-    print("| scene | size | Tessera spp, s, relMSE, MB | Mitsuba spp, s (load), relMSE, MB "
+    print("| scene | size | Tessera spp, s (load), relMSE, MB | Mitsuba spp, s (load), relMSE, MB "
           "| reference noise | efficiency ratio |")
     print("|---|---|---|---|---|---|")
     for name in a.scenes.split(","):
@@ -274,9 +282,11 @@ def main():
                 r["clean"] = max(r["relmse"] - noise, 1e-30)
                 r["eff"] = r["clean"] * r["seconds"]
             ratio = t["eff"] / m["eff"]
-            print(f"| {os.path.basename(scene_path(name))} | {size}x{size} "
-                  f"| {t['spp']}, {t['seconds']:.2f}, {t['relmse']:.3e}, {t['rss']:.0f} "
-                  f"| {m['spp']}, {m['seconds']:.2f} ({m['load']:.2f}), {m['relmse']:.3e}, "
+            h = t["pixels"] // size
+            print(f"| {os.path.basename(scene_path(name))} | {size}x{h} "
+                  f"| {t['spp']}, {t['seconds']:.2f} ({t['load']:.3f}), {t['relmse']:.3e}, "
+                  f"{t['rss']:.0f} "
+                  f"| {m['spp']}, {m['seconds']:.2f} ({m['load']:.3f}), {m['relmse']:.3e}, "
                   f"{m['rss']:.0f} | {noise:.1e} | {ratio:.2f} |", flush=True)
             if a.plots:
                 plot(a, name, size, t, m)
