@@ -65,18 +65,18 @@ fn every_listed_real_scene_loads() {
 
 #[test]
 fn control_an_unsupported_construct_fails_located() {
-    // A listed scene with a medium of an unimplemented phase function added fails at it.
+    // A listed scene with an emitter Tessera does not read added fails at it.
     let path = real_dir().join("mitsuba-data/docs/scenes/integrator_depth_1.xml");
     let text = std::fs::read_to_string(&path).unwrap();
     let with_medium = text.replacen(
         "    <default name=\"spp\"",
-        "    <medium type=\"homogeneous\" id=\"fog\"><phase type=\"sggx\"/></medium>\n    <default name=\"spp\"",
+        "    <emitter type=\"sunsky\" id=\"sky\"></emitter>\n    <default name=\"spp\"",
         1,
     );
     assert_ne!(with_medium, text);
     let e = error_of(&with_medium, &path);
     let want = format!(
-        "{}:4:41: Mitsuba 3's phase function \"sggx\", which Tessera does not read yet",
+        "{}:4:5: Mitsuba 3's emitter \"sunsky\", which Tessera does not read yet",
         path.display()
     );
     assert!(e.starts_with(&want), "{e}");
