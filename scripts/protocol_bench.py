@@ -8,7 +8,7 @@ Usage:
         [--threads 2] [--min-seconds 5] [--min-spp 64] [--ref-spp 2048]
         [--variant llvm_ad_rgb] [--tessera target/release/tessera] [--refs DIR]
         [--csv OUT.csv] [--tessera-args "--sampler zsobol ..."] [--label NAME]
-        [--plots DIR] [--refs-only]
+        [--plots DIR [--doubling]] [--refs-only]
 
 For each scene (`scenes/NAME.xml`, or a path: a file without a `res` parameter is rendered
 from a copy whose films are SIZE wide) and image size (`-D res=SIZE`):
@@ -202,9 +202,10 @@ def measure(a, run, name, size, ref):
                 r["curve"] = curve
                 return r
             curve.append(r)
-            # Jump straight to about the sample count that takes long enough.
+            # Jump straight to about the sample count that takes long enough (or, for a
+            # curve to plot, double).
             factor = max(2, 2 ** int(np.ceil(np.log2(a.min_seconds / max(r["seconds"], 1e-3)))))
-            spp *= factor
+            spp *= 2 if a.doubling else factor
 
 
 def plot(a, name, size, t, m):
@@ -244,6 +245,9 @@ def main():
     ap.add_argument("--plots", default=None,
                     help="write DIR/NAME_SIZE.csv (in tessera bench's report format, every run) "
                          "and DIR/NAME_SIZE.png (relMSE against seconds, both renderers)")
+    ap.add_argument("--doubling", action="store_true",
+                    help="double the sample count from --min-spp (no jumps): more runs, for --plots "
+                         "(with a small --min-spp, e.g. 4)")
     ap.add_argument("--refs-only", action="store_true",
                     help="only render the missing references (needs no quiet machine), then stop")
     a = ap.parse_args()
