@@ -60,12 +60,10 @@ fn os(s: &str) -> &std::ffi::OsStr {
     std::ffi::OsStr::new(s)
 }
 
-/// `tessera bench --waves` on the 12x12 box-filtered box against `reference`, then `rest`.
-fn bench_small(reference: &Path, rest: &[&std::ffi::OsStr]) -> Output {
-    let scene = cbox();
-    let mut args = vec![
+/// `tessera bench` arguments for the 12x12 box-filtered box `scene` against `reference`.
+fn small_args<'a>(scene: &'a Path, reference: &'a Path) -> Vec<&'a std::ffi::OsStr> {
+    vec![
         os("bench"),
-        os("--waves"),
         scene.as_os_str(),
         os("-D"),
         os("res=12"),
@@ -73,7 +71,14 @@ fn bench_small(reference: &Path, rest: &[&std::ffi::OsStr]) -> Output {
         os("rfilter=box"),
         os("--reference"),
         reference.as_os_str(),
-    ];
+    ]
+}
+
+/// `tessera bench --waves` on the 12x12 box-filtered box against `reference`, then `rest`.
+fn bench_small(reference: &Path, rest: &[&std::ffi::OsStr]) -> Output {
+    let scene = cbox();
+    let mut args = small_args(&scene, reference);
+    args.push(os("--waves"));
     args.extend_from_slice(rest);
     run_os(&args)
 }
@@ -483,20 +488,8 @@ fn the_protocol_renders_whole_images_until_long_enough() {
     let csv = tmp.0.join("p.csv");
     let scene = cbox();
     let run = |extra: &[&str]| {
-        let mut a = vec![
-            os("bench"),
-            scene.as_os_str(),
-            os("-D"),
-            os("res=12"),
-            os("-D"),
-            os("rfilter=box"),
-            os("--reference"),
-            reference.as_os_str(),
-            os("--seed"),
-            os("3"),
-            os("-o"),
-            csv.as_os_str(),
-        ];
+        let mut a = small_args(&scene, &reference);
+        a.extend([os("--seed"), os("3"), os("-o"), csv.as_os_str()]);
         a.extend(extra.iter().map(|s| os(s)));
         run_os(&a)
     };

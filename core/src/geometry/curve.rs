@@ -67,6 +67,12 @@ impl Curve {
         self.points[self.segments[seg] as usize + k]
     }
 
+    /// The cubic of B-spline segment `seg`, from its four control points.
+    #[inline]
+    fn cubic(&self, seg: usize) -> Cubic {
+        Cubic::new([0, 1, 2, 3].map(|k| self.point(seg, k)))
+    }
+
     /// Bounding box of segment `seg`: its control points' spheres (a B-spline segment lies in
     /// the convex hull of its control points and its radius never exceeds their largest).
     pub fn bounds(&self, seg: usize) -> Aabb {
@@ -105,12 +111,7 @@ impl Curve {
                 d,
             ),
             CurveBasis::BSpline => {
-                let cubic = Cubic::new([
-                    self.point(seg, 0),
-                    self.point(seg, 1),
-                    self.point(seg, 2),
-                    self.point(seg, 3),
-                ]);
+                let cubic = self.cubic(seg);
                 let last = seg + 1 == self.segments.len() || self.first[seg + 1];
                 super::curve_bspline::intersect(&cubic, o, d, [self.first[seg], last])
             }
@@ -145,12 +146,7 @@ impl Curve {
                 (pf, err_bound(pf, c, r), s)
             }
             CurveBasis::BSpline => {
-                let cubic = Cubic::new([
-                    self.point(seg, 0),
-                    self.point(seg, 1),
-                    self.point(seg, 2),
-                    self.point(seg, 3),
-                ]);
+                let cubic = self.cubic(seg);
                 let e = cubic.eval(v);
                 let rad = p64 - e.c;
                 let n = unit((e.dc.length_squared() - rad.dot(e.ddc)) * rad - e.dc * (e.r * e.dr));

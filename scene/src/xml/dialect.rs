@@ -40,12 +40,17 @@ pub fn snake_case(name: &str) -> String {
     out
 }
 
+/// Mitsuba 3's own upper-case parameter names: (kind, plugin, name), kept as written.
+const UPPER_CASE_PARAMS: &[(Kind, &str, &str)] = &[
+    (Kind::RFilter, "mitchell", "B"),
+    (Kind::RFilter, "mitchell", "C"),
+    (Kind::Phase, "sggx", "S"),
+];
+
 /// The normalized name of a parameter (property or named child) of an object of `kind` with
 /// plugin type `plugin`.
 pub(crate) fn param_name(name: &str, kind: Kind, plugin: &str) -> String {
-    if (kind == Kind::RFilter && plugin == "mitchell" && matches!(name, "B" | "C"))
-        || (kind == Kind::Phase && plugin == "sggx" && name == "S")
-    {
+    if UPPER_CASE_PARAMS.contains(&(kind, plugin, name)) {
         return name.to_string();
     }
     let name = snake_case(name);
