@@ -127,7 +127,8 @@ impl Ray4 {
 pub struct LaneHits<const N: usize> {
     /// Lanes the ray hits within `(0, t_max)` (never a `fallback` lane).
     pub hit: u32,
-    /// Lanes left to the scalar test: an edge function exactly zero, or no triangle (NaN).
+    /// Lanes left to the scalar test: an edge function exactly zero, no triangle (NaN), or a
+    /// hit no farther than its f32 error bound.
     pub fallback: u32,
     /// Hit distances.
     pub t: [f32; N],
@@ -231,9 +232,14 @@ pub fn test4_scalar(blk: &Tri4, r: &Ray4, t_max: f32) -> Lanes {
             3.0 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * inv_det.abs();
         // `t <= delta_t` (false for NaN) rejects, as in the scalar test.
         let within_error = t <= delta_t;
-        let hit = !mixed && det_ok && !neg_bad && !pos_bad && t < t_max && !within_error;
-        if hit && out.fallback & (1 << l) == 0 {
-            out.hit |= 1 << l;
+        let pass = !mixed && det_ok && !neg_bad && !pos_bad && t < t_max;
+        if pass && out.fallback & (1 << l) == 0 {
+            // A distance within its error bound is the scalar test's to judge (in f64).
+            if within_error {
+                out.fallback |= 1 << l;
+            } else {
+                out.hit |= 1 << l;
+            }
         }
         out.t[l] = t;
         out.b[0][l] = e0 * inv_det;
@@ -362,7 +368,10 @@ pub fn test4_sse(blk: &Tri4, r: &Ray4, t_max: f32) -> Lanes {
             _mm_mul_ps(delta_z, max_e),
         );
         let delta_t = _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(3.0), sum), abs(inv_det));
-        out.hit = _mm_movemask_ps(_mm_andnot_ps(_mm_cmple_ps(t, delta_t), pass)) as u32;
+        let within_error = _mm_cmple_ps(t, delta_t);
+        out.hit = _mm_movemask_ps(_mm_andnot_ps(within_error, pass)) as u32;
+        // A distance within its error bound is the scalar test's to judge (in f64).
+        out.fallback |= _mm_movemask_ps(_mm_and_ps(within_error, pass)) as u32;
         _mm_storeu_ps(out.t.as_mut_ptr(), t);
         _mm_storeu_ps(out.b[0].as_mut_ptr(), _mm_mul_ps(e0, inv_det));
         _mm_storeu_ps(out.b[1].as_mut_ptr(), _mm_mul_ps(e1, inv_det));

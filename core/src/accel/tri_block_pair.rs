@@ -254,7 +254,10 @@ pub(super) unsafe fn test8_avx2_inline(a: &Tri4, b: &Tri4, r: &Ray4, t_max: f32)
         _mm256_mul_ps(delta_z, max_e),
     );
     let delta_t = _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(3.0), sum), abs!(inv_det));
-    out.hit = _mm256_movemask_ps(_mm256_andnot_ps(le!(t, delta_t), pass)) as u32;
+    let within_error = le!(t, delta_t);
+    out.hit = _mm256_movemask_ps(_mm256_andnot_ps(within_error, pass)) as u32;
+    // A distance within its error bound is the scalar test's to judge (in f64).
+    out.fallback |= _mm256_movemask_ps(and!(within_error, pass)) as u32;
     // SAFETY: each store writes the eight f32s of an `[f32; 8]` field of the local `out`,
     // exclusively borrowed here (`storeu` needs no alignment).
     unsafe {

@@ -3,9 +3,11 @@
 //! The ray is sheared so it runs along +z; the edge functions are then evaluated in 2-D. Rays
 //! through a shared edge or vertex hit exactly one of the triangles around it (or both, never
 //! neither). Edge functions that round to exactly zero are recomputed in f64. The hit distance is
-//! accepted only beyond its own error bound, so a ray leaving a surface never re-hits it.
+//! accepted only beyond its own error bound, so a ray leaving a surface never re-hits it; a
+//! distance within the f32 bound is recomputed in f64 and judged against the f64 bound, so a
+//! ray leaving a surface very near another (a concave edge or corner) still hits the other.
 use crate::math::{gamma, Ray};
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
 /// The per-ray part of the test, computed once per ray and reused for every triangle: the axis
 /// permutation making the direction's largest component z, and the shear to +z.
@@ -150,10 +152,75 @@ impl TriRay {
         let delta_t =
             3.0 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * inv_det.abs();
         if t <= delta_t {
-            return None;
+            return self.near_hit::<KX, KY, KZ>(t_max, p0, p1, p2);
         }
         Some((t, e0 * inv_det, e1 * inv_det, e2 * inv_det))
     }
+
+    /// A hit the f32 test found inside the triangle but no farther than its own error bound:
+    /// the distance recomputed in f64 from the same corners, origin and shear, and accepted
+    /// beyond the f64 bound (about 2^-29 of the f32 one). The f32 bound is loose when the
+    /// corners lie far along the ray's main axis, so a surface a ray leaves within ~1e-6 of
+    /// another (at a concave edge or corner) would otherwise let the ray through the neighbour;
+    /// a ray leaving its own surface, whose offset origin lies strictly on the departing side,
+    /// still finds a negative distance here.
+    #[inline(never)]
+    fn near_hit<const KX: usize, const KY: usize, const KZ: usize>(
+        &self,
+        t_max: f32,
+        p0: Vec3,
+        p1: Vec3,
+        p2: Vec3,
+    ) -> Option<(f32, f32, f32, f32)> {
+        let o = self.o.as_dvec3();
+        let (sx, sy, sz) = (self.sx as f64, self.sy as f64, self.sz as f64);
+        let sheared = |v: Vec3| {
+            let d = v.as_dvec3() - o;
+            let (x, y, z) = (d[KX], d[KY], d[KZ]);
+            DVec3::new(x + sx * z, y + sy * z, z)
+        };
+        let (a, b, c) = (sheared(p0), sheared(p1), sheared(p2));
+        let e0 = b.x * c.y - b.y * c.x;
+        let e1 = c.x * a.y - c.y * a.x;
+        let e2 = a.x * b.y - a.y * b.x;
+        let det = e0 + e1 + e2;
+        if det == 0.0 || !det.is_finite() {
+            return None;
+        }
+        let max_z_len = DVec3::new(a.z, b.z, c.z).abs().max_element();
+        let (az, bz, cz) = (a.z * sz, b.z * sz, c.z * sz);
+        let inv_det = 1.0 / det;
+        let t = (e0 * az + e1 * bz + e2 * cz) * inv_det;
+        // The f32 test's bound with f64 rounding (and one more rounding for the subtraction
+        // from the origin, exact in f32 but counted here all the same).
+        let max_zt = DVec3::new(az, bz, cz).abs().max_element();
+        let delta_z = gamma64(4) * max_zt;
+        let max_xt = DVec3::new(a.x, b.x, c.x).abs().max_element();
+        let max_yt = DVec3::new(a.y, b.y, c.y).abs().max_element();
+        let delta_x = gamma64(6) * (max_xt + max_z_len);
+        let delta_y = gamma64(6) * (max_yt + max_z_len);
+        let delta_e =
+            2.0 * (gamma64(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
+        let max_e = DVec3::new(e0, e1, e2).abs().max_element();
+        let delta_t = 3.0
+            * (gamma64(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e)
+            * inv_det.abs();
+        let t32 = t as f32;
+        if !(t > delta_t && t32 > 0.0 && t32 < t_max) {
+            return None;
+        }
+        // The f32 edge functions decided the ray is inside; f64 ones of a ray along an edge
+        // may be a rounding below zero.
+        let bary = |e: f64| (e * inv_det).max(0.0) as f32;
+        Some((t32, bary(e0), bary(e1), bary(e2)))
+    }
+}
+
+/// [`gamma`] for f64 arithmetic.
+#[inline]
+fn gamma64(n: i32) -> f64 {
+    let e = f64::EPSILON * 0.5 * n as f64;
+    e / (1.0 - e)
 }
 
 /// Intersects `ray` (within `[0, t_max)`) with the triangle; returns `(t, b0, b1, b2)`.
