@@ -20,7 +20,7 @@ use tessera_core::emitter::{AreaLight, Emitter};
 use tessera_core::geometry::{Disk, Instance, Shape, ShapeKind};
 use tessera_core::integrator::Integrator;
 use tessera_core::medium::{MediumInterface, SceneMedia};
-use tessera_core::sampling::SamplerKind;
+use tessera_core::sampling::{SamplerKind, MAX_LOG2_SPP};
 use tessera_core::scene::{Scene, SceneParts};
 use tessera_core::texture::Texture;
 
@@ -102,6 +102,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
     let integrator = integrator_spec
         .build()
         .expect("read_integrator checks the name");
+    let sampler_named = sensor.spp.is_some() || scene_sampler.is_some();
     let (spp, seed, sampler) = match (sensor.spp, scene_sampler) {
         (Some(n), _) => (
             n,
@@ -109,7 +110,9 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
             sensor.sampler.unwrap_or_default(),
         ),
         (None, Some((n, s, k))) => (n, s, k),
-        (None, None) => (4, 0, SamplerKind::Independent),
+        // A file that names no sampler renders with Tessera's best: zsobol, set up once for
+        // any count (see `LoadedScene::sampler_named`).
+        (None, None) => (4, 0, SamplerKind::ZSobol { log2_spp: MAX_LOG2_SPP }),
     };
     root.check_unused()?;
     warn_ignored(root, &families(), &mut warnings, &mut HashSet::new());
@@ -162,6 +165,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         integrator_spec,
         spp,
         seed,
+        sampler_named,
         warnings,
         names,
         source_hash: 0,

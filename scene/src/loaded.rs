@@ -18,6 +18,12 @@ pub struct LoadedScene {
     pub spp: u64,
     /// Seed from the sampler (default 0).
     pub seed: u64,
+    /// Whether the file names a sampler. One that does not renders with `zsobol` set up for
+    /// the largest block (2^32 samples a pixel), whatever count is rendered: a pixel's first
+    /// `n` samples are then the first `n` of one Owen-scrambled Sobol sequence (stratified at
+    /// every power of two), so any `--spp`, `--time`, pass or part draws one sequence. Mitsuba
+    /// 3 uses `independent` there; at equal samples zsobol's error is lower.
+    pub sampler_named: bool,
     /// Things that load but are not rendered exactly as written (one line each).
     pub warnings: Vec<String>,
     /// The plugin each shape, BSDF and emitter was built from, by index.
@@ -49,11 +55,13 @@ pub struct PluginNames {
 
 impl LoadedScene {
     /// Switches to another sampler by name (`None`: keep the file's) and sets it up for `spp`
-    /// samples per pixel (zsobol's pixel blocks depend on it; see `ZSobolSampler`).
+    /// samples per pixel (zsobol's pixel blocks depend on it; see `ZSobolSampler`). The
+    /// default of a file that names no sampler stays as it is (see [`Self::sampler_named`]).
     pub fn set_sampler(&mut self, name: Option<&str>, spp: u64) -> Result<(), String> {
         self.scene.sampler = match name {
             Some(n) => SamplerKind::from_name(n, spp)
                 .ok_or_else(|| format!("unknown sampler \"{n}\" (known: {SAMPLER_NAMES})"))?,
+            None if !self.sampler_named => self.scene.sampler,
             None => self.scene.sampler.for_spp(spp),
         };
         Ok(())

@@ -1,5 +1,6 @@
-//! The `<sampler>` plugins ([`SAMPLERS`]): `independent` (the default) and Tessera's `zsobol`
-//! (Owen-scrambled Sobol in Morton order, see `tessera_core::sampling::ZSobolSampler`).
+//! The `<sampler>` plugins ([`SAMPLERS`]): `independent` and Tessera's `zsobol` (Owen-scrambled
+//! Sobol in Morton order, see `tessera_core::sampling::ZSobolSampler`; what a file that names
+//! no sampler renders with, see `LoadedScene::sampler_named`).
 //! Mitsuba's stratified low-discrepancy samplers (`ldsampler`, `stratified`, `multijitter`,
 //! `orthogonal`) render with `zsobol`, the closest Tessera has (not Mitsuba's exact points), and
 //! `correlated` with `independent`; a warning says so.

@@ -542,7 +542,17 @@ fn scene_files_choose_the_sampler() {
         .to_string();
     assert!(err.contains("inline-test.xml:4:5"), "{err}");
     assert!(err.contains("unknown sampler \"sobol\""), "{err}");
-    // Default without a sampler: independent.
+    // Without a sampler: zsobol with the largest block, kept whatever count is asked for.
     let none = r#"<scene version="3.0.0"><sensor type="perspective"/></scene>"#;
-    assert_eq!(load_xml(none, &[]).scene.sampler, SamplerKind::Independent);
+    let mut l = load_xml(none, &[]);
+    let largest = SamplerKind::ZSobol { log2_spp: 32 };
+    assert_eq!((l.scene.sampler, l.spp, l.sampler_named), (largest, 4, false));
+    l.set_sampler(None, 64).expect("keep the default");
+    assert_eq!(l.scene.sampler, largest);
+    l.set_sampler(Some("zsobol"), 64).expect("zsobol by name");
+    assert_eq!(l.scene.sampler, SamplerKind::ZSobol { log2_spp: 6 });
+    // A file's own zsobol follows the count it is set up for.
+    let mut l = load_xml(&xml("zsobol"), &[]);
+    l.set_sampler(None, 16).expect("keep the file's");
+    assert_eq!(l.scene.sampler, SamplerKind::ZSobol { log2_spp: 4 });
 }

@@ -5,7 +5,8 @@ use super::zsobol::log2_spp_for;
 /// The samplers.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum SamplerKind {
-    /// Independent uniform values from a PCG32 stream per pixel and sample (the default).
+    /// Independent uniform values from a PCG32 stream per pixel and sample (the default of a
+    /// core scene built in code; a file that names no sampler loads as `ZSobol`).
     #[default]
     Independent,
     /// Owen-scrambled Sobol points in Morton order; `log2_spp` is the pixel block size `K`

@@ -18,7 +18,7 @@ pub use kind::{SamplerKind, SAMPLER_NAMES};
 pub use layout::{
     dimension_of, paired_dimension, Stage, BOUNCE_DIMENSIONS, CAMERA_DIMENSIONS, LENS_DIMENSION,
 };
-pub use zsobol::{ZSobolSampler, CACHED_DIMENSIONS};
+pub use zsobol::{ZSobolSampler, CACHED_DIMENSIONS, MAX_LOG2_SPP};
 pub use zsobol_pixel::{CachedZSobol, ZSobolPixel};
 
 use glam::Vec2;
