@@ -6,7 +6,7 @@ side on this machine, with each scene file's own settings.
 Usage:
     scripts/protocol_bench.py [--scenes cbox,veach_mis,materials] [--sizes 256,512]
         [--threads 2] [--min-seconds 5] [--min-spp 64] [--ref-spp 2048]
-        [--variant llvm_ad_rgb] [--tessera target/release/tessera] [--refs DIR]
+        [--variant llvm_ad_rgb] [--tessera target/dist/tessera] [--refs DIR]
         [--csv OUT.csv] [--tessera-args "--sampler zsobol ..."] [--label NAME]
         [--plots DIR [--doubling]] [--refs-only]
 
@@ -237,7 +237,7 @@ def main():
     ap.add_argument("--min-spp", type=int, default=64)
     ap.add_argument("--ref-spp", type=int, default=2048)
     ap.add_argument("--variant", default="llvm_ad_rgb")
-    ap.add_argument("--tessera", default=os.path.join(ROOT, "target", "release", "tessera"))
+    ap.add_argument("--tessera", default=os.path.join(ROOT, "target", "dist", "tessera"))
     ap.add_argument("--tessera-args", default="")
     ap.add_argument("--refs", default=os.path.join(ROOT, "target", "protocol-refs"))
     ap.add_argument("--csv", default=None)
