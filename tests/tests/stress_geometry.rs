@@ -93,7 +93,9 @@ fn camera_inside_a_messy_closed_mesh() {
     let mut l = load_xml(&xml, &[]);
     l.set_integrator(Some("path_mis"), Some(-1))
         .expect("integrator");
-    let fb = render_loaded(&l, 20_000, 5);
+    // 400k samples: enough to see the 0.16-0.55% the image lost when rays leaving a wall near
+    // the corner it looks into went through the next wall (t = -12 and worse).
+    let fb = render_loaded(&l, 400_000, 5);
     assert_pixel_within(
         "inside a messy box",
         fb.at(0, 0),
