@@ -152,14 +152,17 @@ impl TriRay {
         let delta_t =
             3.0 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * inv_det.abs();
         if t <= delta_t {
-            return self.near_hit::<KX, KY, KZ>(t_max, p0, p1, p2);
+            return self.near_hit::<KX, KY, KZ>(t_max, delta_t, p0, p1, p2);
         }
         Some((t, e0 * inv_det, e1 * inv_det, e2 * inv_det))
     }
 
-    /// A hit the f32 test found inside the triangle but no farther than its own error bound:
-    /// the distance recomputed in f64 from the same corners, origin and shear, and accepted
-    /// beyond the f64 bound (about 2^-29 of the f32 one). The f32 bound is loose when the
+    /// A hit the f32 test found inside the triangle but no farther than its own error bound
+    /// `delta_t`: the distance recomputed in f64 from the same corners, origin and shear, and
+    /// accepted beyond the same bound in f64 arithmetic. Each of the bound's terms is linear in
+    /// one `gamma(n)`, and f64's are at most 4/3 x 2^-29 of f32's (one more rounding, for the
+    /// subtraction from the origin), so `2^-28 delta_t` bounds the f64 distance's error with
+    /// room for the rounding of the bound itself. The f32 bound is loose when the
     /// corners lie far along the ray's main axis, so a surface a ray leaves within ~1e-6 of
     /// another (at a concave edge or corner) would otherwise let the ray through the neighbour;
     /// a ray leaving its own surface, whose offset origin lies strictly on the departing side,
@@ -168,6 +171,7 @@ impl TriRay {
     fn near_hit<const KX: usize, const KY: usize, const KZ: usize>(
         &self,
         t_max: f32,
+        delta_t: f32,
         p0: Vec3,
         p1: Vec3,
         p2: Vec3,
@@ -187,26 +191,10 @@ impl TriRay {
         if det == 0.0 || !det.is_finite() {
             return None;
         }
-        let max_z_len = DVec3::new(a.z, b.z, c.z).abs().max_element();
-        let (az, bz, cz) = (a.z * sz, b.z * sz, c.z * sz);
         let inv_det = 1.0 / det;
-        let t = (e0 * az + e1 * bz + e2 * cz) * inv_det;
-        // The f32 test's bound with f64 rounding (and one more rounding for the subtraction
-        // from the origin, exact in f32 but counted here all the same).
-        let max_zt = DVec3::new(az, bz, cz).abs().max_element();
-        let delta_z = gamma64(4) * max_zt;
-        let max_xt = DVec3::new(a.x, b.x, c.x).abs().max_element();
-        let max_yt = DVec3::new(a.y, b.y, c.y).abs().max_element();
-        let delta_x = gamma64(6) * (max_xt + max_z_len);
-        let delta_y = gamma64(6) * (max_yt + max_z_len);
-        let delta_e =
-            2.0 * (gamma64(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
-        let max_e = DVec3::new(e0, e1, e2).abs().max_element();
-        let delta_t = 3.0
-            * (gamma64(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e)
-            * inv_det.abs();
+        let t = (e0 * a.z + e1 * b.z + e2 * c.z) * sz * inv_det;
         let t32 = t as f32;
-        if !(t > delta_t && t32 > 0.0 && t32 < t_max) {
+        if !(t > delta_t as f64 * F64_BOUND_SCALE && t32 > 0.0 && t32 < t_max) {
             return None;
         }
         // The f32 edge functions decided the ray is inside; f64 ones of a ray along an edge
@@ -216,12 +204,9 @@ impl TriRay {
     }
 }
 
-/// [`gamma`] for f64 arithmetic.
-#[inline]
-fn gamma64(n: i32) -> f64 {
-    let e = f64::EPSILON * 0.5 * n as f64;
-    e / (1.0 - e)
-}
+/// 2^-28: the f64 distance's error bound as a fraction of the f32 test's (see
+/// `TriRay::near_hit`).
+const F64_BOUND_SCALE: f64 = 1.0 / (1u64 << 28) as f64;
 
 /// Intersects `ray` (within `[0, t_max)`) with the triangle; returns `(t, b0, b1, b2)`.
 /// Same as [`TriRay::intersect`] after [`TriRay::new`]; prefer those when testing many
