@@ -112,7 +112,13 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         (None, Some((n, s, k))) => (n, s, k),
         // A file that names no sampler renders with Tessera's best: zsobol, set up once for
         // any count (see `LoadedScene::sampler_named`).
-        (None, None) => (4, 0, SamplerKind::ZSobol { log2_spp: MAX_LOG2_SPP }),
+        (None, None) => (
+            4,
+            0,
+            SamplerKind::ZSobol {
+                log2_spp: MAX_LOG2_SPP,
+            },
+        ),
     };
     root.check_unused()?;
     warn_ignored(root, &families(), &mut warnings, &mut HashSet::new());

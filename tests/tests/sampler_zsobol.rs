@@ -546,7 +546,10 @@ fn scene_files_choose_the_sampler() {
     let none = r#"<scene version="3.0.0"><sensor type="perspective"/></scene>"#;
     let mut l = load_xml(none, &[]);
     let largest = SamplerKind::ZSobol { log2_spp: 32 };
-    assert_eq!((l.scene.sampler, l.spp, l.sampler_named), (largest, 4, false));
+    assert_eq!(
+        (l.scene.sampler, l.spp, l.sampler_named),
+        (largest, 4, false)
+    );
     l.set_sampler(None, 64).expect("keep the default");
     assert_eq!(l.scene.sampler, largest);
     l.set_sampler(Some("zsobol"), 64).expect("zsobol by name");

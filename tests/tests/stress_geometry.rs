@@ -293,7 +293,11 @@ fn corner_escapes(obj: &std::path::Path, n: usize) -> usize {
             escaped += 1;
             continue;
         };
-        let inward = if si.ng.dot(ray.d) < 0.0 { si.ng } else { -si.ng };
+        let inward = if si.ng.dot(ray.d) < 0.0 {
+            si.ng
+        } else {
+            -si.ng
+        };
         let d = loop {
             let v = Vec3::new(2.0 * u() - 1.0, 2.0 * u() - 1.0, 2.0 * u() - 1.0);
             if v.length_squared() <= 1.0 && v.dot(inward) > 1e-3 {
@@ -330,7 +334,8 @@ fn rays_near_a_concave_corner_stay_inside() {
 /// The cube [-1,1]^3 with its side x = 1 moved out to x = 1.0001 (same winding as
 /// [`messy_cube`], shared corners).
 fn cube_with_a_crack() -> std::path::PathBuf {
-    let text = "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n\
+    let text =
+        "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n\
         v 1.0001 -1 -1\nv 1.0001 1 -1\nv 1.0001 1 1\nv 1.0001 -1 1\n\
         f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 9 10 11 12\n";
     write("cracked_cube.obj", text)
