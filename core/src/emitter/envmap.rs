@@ -30,21 +30,21 @@ use crate::math::{acos, safe_sqrt, sqrt, Norm, INV_PI, INV_TWO_PI, PI};
 use crate::sampling::Distribution2D;
 use crate::Color;
 use alloc::vec::Vec;
-use glam::{Mat3, Vec2, Vec3};
+use glam::{Mat3, Vec2, Vec3, Vec4};
 
 /// A latitude-longitude environment map.
 #[derive(Clone, Debug)]
 pub struct EnvMap {
-    /// Radiance per pixel (`scale` applied), row-major, top row first.
-    pixels: Vec<Color>,
+    /// Per pixel, row-major, top row first: the radiance (`scale` applied) in `xyz` and the
+    /// sampling weight at the cell corners, luminance x sin(theta of its row), in `w`. One array
+    /// so that a lookup, which needs both, reads one cache line per row, not two.
+    texels: Vec<Vec4>,
     width: usize,
     height: usize,
     /// Local to world directions: a rotation.
     to_world: Mat3,
     /// World to local: the transpose of `to_world`.
     to_local: Mat3,
-    /// Per pixel, luminance x sin(theta of its row): the sampling weights at the cell corners.
-    weights: Vec<f32>,
     /// Cell choice (`None` when the map is black).
     dist: Option<Distribution2D>,
     /// `width * (height - 1)` over the integral of the bilinear weights in cell units: turns the
@@ -118,13 +118,16 @@ impl EnvMap {
         let pdf_scale = ((nx * ny) as f64 / total) as f32;
         Some(EnvMap {
             dist: Distribution2D::new(&cells, nx, ny),
-            weights,
             pdf_scale: if pdf_scale.is_finite() {
                 pdf_scale
             } else {
                 0.0
             },
-            pixels,
+            texels: pixels
+                .iter()
+                .zip(&weights)
+                .map(|(c, &w)| c.extend(w))
+                .collect(),
             width,
             height,
             to_world,
@@ -135,8 +138,7 @@ impl EnvMap {
 
     /// Bytes of the image and its sampling tables.
     pub fn memory_bytes(&self) -> usize {
-        core::mem::size_of_val(&*self.pixels)
-            + core::mem::size_of_val(&*self.weights)
+        core::mem::size_of_val(&*self.texels)
             + self.dist.as_ref().map_or(0, Distribution2D::memory_bytes)
     }
 
@@ -197,13 +199,13 @@ impl EnvMap {
     /// Radiance at image coordinates `(s, v)`.
     #[inline]
     fn lookup(&self, s: f32, v: f32) -> Color {
-        self.bilinear(s, v, |i| self.pixels[i])
+        self.bilinear(s, v, |i| self.texels[i].truncate())
     }
 
     /// Density on the `(u, v)` square at image coordinates `(s, v)`.
     #[inline]
     fn pdf_uv(&self, s: f32, v: f32) -> f32 {
-        self.bilinear(s, v, |i| self.weights[i]) * self.pdf_scale
+        self.bilinear(s, v, |i| self.texels[i].w) * self.pdf_scale
     }
 
     /// Radiance arriving along the escaping unit direction `d`.
@@ -254,7 +256,7 @@ impl EnvMap {
     /// interpolation computes it.
     #[inline]
     fn lookup_and_pdf_uv(&self, s: f32, v: f32) -> (Color, f32) {
-        let both = self.bilinear(s, v, |i| self.pixels[i].extend(self.weights[i]));
+        let both = self.bilinear(s, v, |i| self.texels[i]);
         (both.truncate(), both.w * self.pdf_scale)
     }
 
@@ -263,8 +265,10 @@ impl EnvMap {
     pub fn sample(&self, _it: &Interaction, u: Vec2) -> Option<EmitterSample> {
         let (i, j, r, _) = self.dist.as_ref()?.sample_cell(u)?;
         let w = self.width;
-        let c = |x: usize, y: usize| self.weights[y * w + x % w];
-        let (c00, c10, c01, c11) = (c(i, j), c(i + 1, j), c(i, j + 1), c(i + 1, j + 1));
+        // The cell's right corners wrap around to column 0 (a test, not a division).
+        let i1 = if i + 1 == w { 0 } else { i + 1 };
+        let c = |x: usize, y: usize| self.texels[y * w + x].w;
+        let (c00, c10, c01, c11) = (c(i, j), c(i1, j), c(i, j + 1), c(i1, j + 1));
         let fy = sample_linear(r.y, c00 + c10, c01 + c11);
         let fx = sample_linear(r.x, c00 + (c01 - c00) * fy, c10 + (c11 - c10) * fy);
         let s = i as f32 + fx;

@@ -1,4 +1,10 @@
 //! A discrete distribution over `n` items by weight (e.g. triangles by area).
+//!
+//! The lookup is a search of the cumulative sums. A binary search makes each load wait for the
+//! one before, and with the tables of an environment map or a large mesh light out of the nearer
+//! caches, that chain of misses was most of its time; [`count_at_most`] narrows the range by a
+//! sixteenth per round instead, from fifteen loads that do not depend on each other, so the
+//! misses of one round overlap. It finds the same index as the binary search for every `u`.
 use alloc::vec::Vec;
 
 /// Sampling of an index with probability proportional to its weight, by binary search in the
@@ -57,7 +63,7 @@ impl Discrete1D {
         let n = self.len();
         // The first item whose upper end is above `u` (zero-weight items, whose ends equal their
         // predecessors', are passed over).
-        let i = self.cdf[1..].partition_point(|&c| c <= u).min(n - 1);
+        let i = count_at_most(&self.cdf[1..], u).min(n - 1);
         let lo = self.cdf[i];
         let p = self.cdf[i + 1] - lo;
         let ur = if p > 0.0 {
@@ -66,5 +72,79 @@ impl Discrete1D {
             0.0
         };
         (i, ur)
+    }
+}
+
+/// Probes per round of [`count_at_most`], plus one.
+const WAYS: usize = 16;
+
+/// The number of entries of the non-decreasing `sorted` that are `<= x` (what
+/// `sorted.partition_point(|&c| c <= x)` returns), found in rounds of `WAYS - 1` independent
+/// probes, each round keeping the one of `WAYS` slices the count falls in, then a count over the
+/// last slice.
+#[inline]
+fn count_at_most(sorted: &[f32], x: f32) -> usize {
+    // The count lies in `base..=base + size`.
+    let (mut base, mut size) = (0usize, sorted.len());
+    while size > WAYS {
+        let step = size / WAYS;
+        // Probes at the ends of the first `WAYS - 1` slices of `step` entries; those `<= x`
+        // come first, so their number says which slice the count falls in.
+        let mut m = 0;
+        for t in 1..WAYS {
+            m += usize::from(sorted[base + t * step - 1] <= x);
+        }
+        let last = m == WAYS - 1;
+        base += m * step;
+        size = if last { size - (WAYS - 1) * step } else { step };
+    }
+    base + sorted[base..base + size]
+        .iter()
+        .map(|&c| usize::from(c <= x))
+        .sum::<usize>()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every length up to a few rounds, ties (zero weights) and values on the ends: the same
+    /// count as the binary search.
+    #[test]
+    fn wide_search_counts_as_the_binary_search() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 40) as f32 / (1u64 << 24) as f32
+        };
+        for n in (0..300).chain([511, 512, 513, 1024, 4097]) {
+            let mut v: alloc::vec::Vec<f32> = (0..n)
+                .map(|_| {
+                    let r = next();
+                    if r < 0.3 {
+                        0.0
+                    } else {
+                        r
+                    }
+                })
+                .collect();
+            let mut acc = 0.0;
+            for w in v.iter_mut() {
+                acc += *w;
+                *w = acc;
+            }
+            let mut xs: alloc::vec::Vec<f32> = (0..200).map(|_| next() * (acc + 1.0)).collect();
+            xs.extend(v.iter().copied());
+            xs.extend([-1.0, 0.0, f32::INFINITY]);
+            for x in xs {
+                assert_eq!(
+                    count_at_most(&v, x),
+                    v.partition_point(|&c| c <= x),
+                    "n {n}, x {x}"
+                );
+            }
+        }
     }
 }
