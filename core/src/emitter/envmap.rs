@@ -275,11 +275,12 @@ impl EnvMap {
         let v = (j as f32 + fy) / (self.height - 1) as f32;
         let phi = 2.0 * PI * (s + 0.5) / w as f32;
         let theta = PI * v;
-        let (sin_t, cos_t) = (libm::sinf(theta), libm::cosf(theta));
+        // One range reduction for both (the same bits as `sinf` and `cosf` apart).
+        let (sin_t, cos_t) = libm::sincosf(theta);
         if !(sin_t > 0.0) {
             return None;
         }
-        let (sin_p, cos_p) = (libm::sinf(phi), libm::cosf(phi));
+        let (sin_p, cos_p) = libm::sincosf(phi);
         let local = Vec3::new(sin_p * sin_t, cos_t, -cos_p * sin_t);
         let wo = (self.to_world * local).unit_or_zero();
         let (le, pdf_uv) = self.lookup_and_pdf_uv(s, v);
