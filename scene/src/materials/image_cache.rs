@@ -42,7 +42,7 @@ pub(crate) fn shared_pixels(
     raw: bool,
     unit: bool,
     scale: Vec3,
-    decode: impl FnOnce() -> Result<(usize, usize, Vec<Vec3>), String>,
+    decode: impl FnOnce() -> Result<Decoded, String>,
 ) -> Result<Decoded, String> {
     let key = std::fs::canonicalize(path).ok().and_then(|path| {
         let meta = std::fs::metadata(&path).ok()?;
@@ -56,8 +56,7 @@ pub(crate) fn shared_pixels(
         })
     });
     let Some(key) = key else {
-        let (w, h, pixels) = decode()?;
-        return Ok((w, h, pixels.into()));
+        return decode();
     };
     let held = CACHE.with(|c| {
         let c = c.borrow();
@@ -68,7 +67,6 @@ pub(crate) fn shared_pixels(
         return Ok(d);
     }
     let (w, h, pixels) = decode()?;
-    let pixels: Arc<[Vec3]> = pixels.into();
     CACHE.with(|c| {
         let mut c = c.borrow_mut();
         c.retain(|_, (_, _, weak)| weak.strong_count() > 0);
