@@ -85,6 +85,52 @@ fn read_decoded(path: &Path) -> Result<RgbImage, String> {
     to_rgb_image(reader.decode().map_err(|e| e.to_string())?)
 }
 
+/// An image as a texture reads it: the 8-bit codes themselves where the file holds 8 bits per
+/// channel (greyscale spread to RGB, alpha dropped), else linear floats as [`read_image`] gives.
+#[derive(Clone, Debug, PartialEq)]
+pub enum TextureImage {
+    /// 8-bit codes, row-major, top row first; code `k` is the value `k / 255` of [`read_image`].
+    Codes {
+        /// Width in pixels.
+        width: u32,
+        /// Height in pixels.
+        height: u32,
+        /// Pixels.
+        data: Vec<[u8; 3]>,
+    },
+    /// Anything else (float formats, 16-bit PNGs).
+    Float(RgbImage),
+}
+
+/// Reads an image for a texture: as [`read_image`] does, but an 8-bit file keeps its codes, so
+/// that the texture turns each of 256 codes into its value once instead of every channel of
+/// every pixel, and no float copy of the image is made.
+pub fn read_texture_image(path: &Path) -> Result<TextureImage, String> {
+    if !is_srgb_coded(path) {
+        return read_image(path).map(TextureImage::Float);
+    }
+    let err = |e: String| format!("{}: cannot read image: {e}", path.display());
+    let img = image::ImageReader::open(path)
+        .and_then(|r| r.with_guessed_format())
+        .map_err(|e| err(e.to_string()))?
+        .decode()
+        .map_err(|e| err(e.to_string()))?;
+    use image::DynamicImage::{ImageLuma8, ImageLumaA8, ImageRgb8, ImageRgba8};
+    match img {
+        ImageLuma8(_) | ImageLumaA8(_) | ImageRgb8(_) | ImageRgba8(_) => {
+            let img = img.into_rgb8();
+            let (width, height) = img.dimensions();
+            let data = img.pixels().map(|p| p.0).collect();
+            Ok(TextureImage::Codes {
+                width,
+                height,
+                data,
+            })
+        }
+        other => to_rgb_image(other).map(TextureImage::Float).map_err(err),
+    }
+}
+
 /// Reads an RGBE (Radiance) image. Both signatures of the format are accepted: `#?RADIANCE`
 /// (what the `image` crate's decoder expects) and `#?RGBE` (what Mitsuba and others write);
 /// the rest of the file is the same.
@@ -226,6 +272,49 @@ mod tests {
         ] {
             assert_eq!(is_srgb_coded(Path::new(name)), srgb, "{name}");
         }
+    }
+
+    #[test]
+    fn texture_codes_are_the_float_reading_times_255() {
+        for name in [
+            "tess_rgb.png",
+            "tess_grey.png",
+            "tess_rgb.jpg",
+            "tess_rgb.bmp",
+            "tess_rgb.tga",
+            "tiles.png",
+            "bumps.png",
+        ] {
+            let float = read_image(&texture(name)).unwrap();
+            let TextureImage::Codes {
+                width,
+                height,
+                data,
+            } = read_texture_image(&texture(name)).unwrap()
+            else {
+                panic!("{name}: not read as 8-bit codes");
+            };
+            assert_eq!((width, height), (float.width, float.height), "{name}");
+            // The float reading of an RGB image is `k / 255` bit for bit; of a greyscale one
+            // (the image crate converts those by another route) within one unit in the last
+            // place, and the texture then takes the correctly rounded `k / 255` as for RGB.
+            let ulps = if name.contains("grey") || name == "bumps.png" {
+                1
+            } else {
+                0
+            };
+            for (c, f) in data.iter().zip(&float.data) {
+                for ch in 0..3 {
+                    let want = (f32::from(c[ch]) / 255.0).to_bits();
+                    assert!(
+                        want.abs_diff(f[ch].to_bits()) <= ulps,
+                        "{name}: {c:?} {f:?}"
+                    );
+                }
+            }
+        }
+        let exr = read_texture_image(&texture("tess_linear.exr")).unwrap();
+        assert!(matches!(exr, TextureImage::Float(_)));
     }
 
     #[test]

@@ -9,7 +9,7 @@ use super::mesh_attribute::MESH_ATTRIBUTE;
 use super::raw_constant::RAW_CONSTANT;
 use super::storage_format::{round_to_half, Storage, FORMAT};
 use super::texture_plugin::TexturePlugin;
-use crate::image::{is_srgb_coded, read_image};
+use crate::image::{is_srgb_coded, read_texture_image, TextureImage};
 use crate::plugin::{self, Default, Param, Plugin, Range};
 use crate::xml::{Kind, Object};
 use glam::{DMat4, Vec3};
@@ -179,37 +179,6 @@ fn srgb_to_linear(v: f32) -> f32 {
     l as f32
 }
 
-/// [`srgb_to_linear`] of the 256 values an 8-bit image decodes to, worked out once: a 2k
-/// texture has twelve million channels, and the power function was a quarter of its load
-/// time. Any other value (a 16-bit image's) is decoded directly.
-struct SrgbTable {
-    /// `k / 255`, the value of code `k`.
-    codes: [f32; 256],
-    /// Its decoding.
-    linear: [f32; 256],
-}
-
-impl SrgbTable {
-    fn new() -> Self {
-        let codes: [f32; 256] = std::array::from_fn(|k| k as f32 / 255.0);
-        SrgbTable {
-            codes,
-            linear: codes.map(srgb_to_linear),
-        }
-    }
-
-    /// `srgb_to_linear(v)`, from the table when `v` is one of its codes (bit for bit).
-    #[inline]
-    fn decode(&self, v: f32) -> f32 {
-        let k = (v * 255.0 + 0.5).clamp(0.0, 255.0) as usize;
-        if self.codes[k].to_bits() == v.to_bits() {
-            self.linear[k]
-        } else {
-            srgb_to_linear(v)
-        }
-    }
-}
-
 fn bitmap(obj: &Object, unit: bool) -> Result<Bitmap> {
     let name = FILENAME.read_string(obj)?;
     let raw = RAW.read_bool(obj)?;
@@ -292,31 +261,74 @@ fn decode(
     name: &str,
     s: &BitmapSettings,
 ) -> std::result::Result<(usize, usize, Arc<[Vec3]>), String> {
-    let img = read_image(path)?;
-    let srgb = (is_srgb_coded(path) && !s.raw).then(SrgbTable::new);
-    let pixel = |p: &[f32; 3]| {
-        let c = Vec3::from(*p);
-        let c = match &srgb {
-            Some(t) => Vec3::new(t.decode(c.x), t.decode(c.y), t.decode(c.z)),
-            None => c,
-        };
-        c * s.scale
-    };
-    // Checked first, then made in place: the pixels are the largest thing a scene loads, and
-    // building them in a `Vec` to move into shared storage wrote them twice.
-    for (i, p) in img.data.iter().enumerate() {
+    let srgb = is_srgb_coded(path) && !s.raw;
+    match read_texture_image(path)? {
+        TextureImage::Codes {
+            width,
+            height,
+            data,
+        } => {
+            // Each channel's 256 codes decoded and scaled once (a 2k image has twelve million
+            // channels, and the power function was a quarter of its load time); the values are
+            // those of decoding `code / 255` as a float image is.
+            let value = |ch: usize, k: usize| {
+                let v = k as f32 / 255.0;
+                (if srgb { srgb_to_linear(v) } else { v }) * s.scale[ch]
+            };
+            let table: [[f32; 256]; 3] =
+                std::array::from_fn(|ch| std::array::from_fn(|k| value(ch, k)));
+            let pixel = |c: &[u8; 3]| {
+                Vec3::new(
+                    table[0][usize::from(c[0])],
+                    table[1][usize::from(c[1])],
+                    table[2][usize::from(c[2])],
+                )
+            };
+            checked_pixels(name, s.unit, width, height, &data, pixel)
+        }
+        TextureImage::Float(img) => {
+            let pixel = |p: &[f32; 3]| {
+                let c = Vec3::from(*p);
+                let c = if srgb {
+                    Vec3::new(
+                        srgb_to_linear(c.x),
+                        srgb_to_linear(c.y),
+                        srgb_to_linear(c.z),
+                    )
+                } else {
+                    c
+                };
+                c * s.scale
+            };
+            checked_pixels(name, s.unit, img.width, img.height, &img.data, pixel)
+        }
+    }
+}
+
+/// The pixels `pixel` makes of `data` (`width x height`, row-major), checked first (finite, not
+/// negative, and at most 1 when `unit`), then made in place in their shared storage: they are
+/// the largest thing a scene loads, and building them in a `Vec` to move there wrote them twice.
+fn checked_pixels<T>(
+    name: &str,
+    unit: bool,
+    width: u32,
+    height: u32,
+    data: &[T],
+    pixel: impl Fn(&T) -> Vec3,
+) -> std::result::Result<(usize, usize, Arc<[Vec3]>), String> {
+    for (i, p) in data.iter().enumerate() {
         let c = pixel(p);
-        if !(c.is_finite() && c.min_element() >= 0.0 && (!s.unit || c.max_element() <= 1.0)) {
-            let (x, y) = (i % img.width as usize, i / img.width as usize);
+        if !(c.is_finite() && c.min_element() >= 0.0 && (!unit || c.max_element() <= 1.0)) {
+            let (x, y) = (i % width as usize, i / width as usize);
             return Err(format!(
                 "\"{name}\": pixel ({x}, {y}) is {:?}; values of this parameter must be {}",
                 c.to_array(),
-                range(s.unit)
+                range(unit)
             ));
         }
     }
-    let pixels: Arc<[Vec3]> = img.data.iter().map(pixel).collect();
-    Ok((img.width as usize, img.height as usize, pixels))
+    let pixels: Arc<[Vec3]> = data.iter().map(pixel).collect();
+    Ok((width as usize, height as usize, pixels))
 }
 
 #[cfg(test)]
@@ -341,23 +353,6 @@ mod declaration_tests {
                 },
                 &[],
             );
-        }
-    }
-}
-
-#[cfg(test)]
-mod srgb_tests {
-    use super::{srgb_to_linear, SrgbTable};
-
-    /// The table gives the direct decoding's bits for every 8-bit code and every 16-bit one
-    /// (most of which it does not hold).
-    #[test]
-    fn table_decodes_as_the_formula() {
-        let t = SrgbTable::new();
-        for k in 0..=65535u32 {
-            for v in [k as f32 / 65535.0, (k % 256) as f32 / 255.0] {
-                assert_eq!(t.decode(v).to_bits(), srgb_to_linear(v).to_bits(), "{v}");
-            }
         }
     }
 }
