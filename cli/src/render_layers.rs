@@ -1,6 +1,7 @@
 //! `tessera render` of a scene whose integrator adds image channels (`aov`, `moment`): after
 //! the colour render, each layer of channels is rendered with the same seed, sampler and sample
-//! count (see `tessera::layers`), and EXR outputs get every channel under Mitsuba 3's names.
+//! count, or taken from the colour where its integrator is the colour's (see
+//! `tessera::layers`), and EXR outputs get every channel under Mitsuba 3's names.
 //! PNG and PFM outputs hold the colour only (one warning says so). Renders that stop on a time
 //! budget, an error target or a signal, resume, adapt or split do not know the final sample
 //! count of every pixel in advance, so they are refused with these integrators.
@@ -53,14 +54,15 @@ pub(super) fn write(
         .outputs
         .iter()
         .any(|o| Format::from_path(o) == Some(Format::Exr));
+    let rgb = fb.rgb();
     let extra = match wants_exr {
-        true => render_layers(&loaded.scene, layers, seed, 0..spp, opts)?,
+        true => render_layers(&loaded.scene, layers, seed, 0..spp, opts, &rgb)?,
         false => Vec::new(),
     };
     let mut warned = false;
     for o in &args.outputs {
         if Format::from_path(o) == Some(Format::Exr) {
-            let mut channels = rgb_channels(&fb.rgb());
+            let mut channels = rgb_channels(&rgb);
             channels.extend(extra.iter().cloned());
             write_channels_exr(o, fb.width, fb.height, &channels)?;
         } else {

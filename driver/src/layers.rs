@@ -8,17 +8,20 @@
 //! offsets, plus the signed weight of filters with negative lobes), and pixel means are taken
 //! the same way. So a channel is the filter-weighted average of its variable over the pixel's
 //! samples, which is what Mitsuba 3's film computes, and the bits do not depend on the thread
-//! count or the tile size.
+//! count or the tile size. A layer whose integrator is the colour's own is not rendered again
+//! but taken from the colour ([`render_layers`]). Mitsuba computes every channel in the colour's
+//! pass; doing the same would need a framebuffer of more than three channels.
 use crate::image_io::write_atomic;
 use crate::render::{render, Framebuffer, RenderOptions};
 use exr::prelude::{AnyChannel, AnyChannels, Encoding, FlatSamples, Layer as ExrLayer};
 use exr::prelude::{LayerAttributes, ReadChannels, ReadLayers, SmallVec, Vec2, WritableImage};
 use std::ops::Range;
 use std::path::Path;
-use tessera_core::integrator::Integrator;
+use tessera_core::glam::Vec3;
+use tessera_core::integrator::{Integrator, SRGB_TO_XYZ};
 use tessera_core::render::RenderJob;
 use tessera_core::scene::Scene;
-use tessera_scene::Layer;
+use tessera_scene::{Layer, LayerSource};
 
 /// One image channel: its name and its values, row-major.
 #[derive(Clone, Debug, PartialEq)]
@@ -30,17 +33,34 @@ pub struct Channel {
 }
 
 /// Renders every layer with samples `samples` of each pixel from `seed`; the channels in the
-/// layers' order.
+/// layers' order. `colour` is the colour image's pixel means from the same samples: a layer
+/// whose integrator is the colour's ([`Layer::colour`]) is taken from it rather than rendered
+/// again, as it is (`aov`: the same bits a render would give) or converted to XYZ (a first
+/// moment: the mean of the converted samples up to rounding, as the conversion is linear).
 pub fn render_layers(
     scene: &Scene,
     layers: &[Layer],
     seed: u64,
     samples: Range<u64>,
     opts: &RenderOptions,
+    colour: &[[f32; 3]],
 ) -> Result<Vec<Channel>, String> {
     let mut out = Vec::new();
     for layer in layers {
-        let means = render_layer(scene, layer, seed, samples.clone(), opts)?.rgb();
+        let from_colour = match (&layer.source, layer.colour) {
+            (LayerSource::Nested(_), true) => Some(colour.to_vec()),
+            (LayerSource::Moment { square: false, .. }, true) => Some(
+                colour
+                    .iter()
+                    .map(|c| (SRGB_TO_XYZ * Vec3::from(*c)).to_array())
+                    .collect(),
+            ),
+            _ => None,
+        };
+        let means = match from_colour {
+            Some(m) => m,
+            None => render_layer(scene, layer, seed, samples.clone(), opts)?.rgb(),
+        };
         for (c, name) in layer.names.iter().enumerate().take(3) {
             out.push(Channel {
                 name: name.clone(),

@@ -120,6 +120,12 @@ impl LoadedScene {
                 return Err(msg);
             }
         }
+        if name.is_some() || max_depth.is_some() {
+            // The colour may no longer be what the layers' nested integrators render.
+            for layer in &mut spec.layers {
+                layer.colour = false;
+            }
+        }
         self.integrator_spec = spec;
         Ok(())
     }

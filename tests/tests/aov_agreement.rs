@@ -28,8 +28,8 @@
 //! Determinism: a layer renders the same bits on 1 and 2 threads with different tiles.
 use std::path::{Path, PathBuf};
 use tessera::image_io::RgbImage;
-use tessera::layers::{read_channels_exr, render_layer};
-use tessera::render::{Framebuffer, RenderOptions};
+use tessera::layers::{read_channels_exr, render_layer, render_layers};
+use tessera::render::{render, Framebuffer, RenderOptions};
 use tessera_core::glam::DVec3;
 use tessera_core::render::RenderJob;
 use tessera_lab::stats::sidak_alpha;
@@ -377,4 +377,89 @@ fn layers_are_the_same_bits_on_any_thread_count() {
             layer.names
         );
     }
+}
+
+/// The colour image of `l` at `spp` samples a pixel, as pixel means.
+fn colour(l: &LoadedScene, spp: u64) -> Vec<[f32; 3]> {
+    let job = RenderJob::new(&l.scene, &l.integrator, SEED);
+    render(&job, 0..spp, &opts(2, 8), &mut |_, _| {}).rgb()
+}
+
+/// A layer whose integrator is the colour's is taken from the colour's samples instead of
+/// rendered again: the first nested integrator's colour of `aov` bit for bit, the first moment
+/// of `moment` up to rounding (XYZ of the mean against the mean of XYZ). Control: once the
+/// command line changes the colour's integrator, the layer is rendered, and differs from the
+/// new colour converted.
+#[test]
+fn layers_of_the_colours_integrator_come_from_the_colour() {
+    let spp = 8;
+    let l = load_scene(&scene_path(), &[]).unwrap_or_else(|e| panic!("{e}"));
+    let first = &l.integrator_spec.layers[..1];
+    assert!(first[0].colour, "{:?}", first[0].names);
+    let got = render_layers(&l.scene, first, SEED, 0..spp, &opts(2, 8), &colour(&l, spp)).unwrap();
+    let want = render_layer(&l.scene, &first[0], SEED, 0..spp, &opts(1, 16))
+        .unwrap()
+        .rgb();
+    for (c, ch) in got.iter().enumerate() {
+        assert!(
+            ch.values
+                .iter()
+                .zip(&want)
+                .all(|(a, b)| a.to_bits() == b[c].to_bits()),
+            "aov {} differs from its render",
+            ch.name
+        );
+    }
+
+    let mut l = moment_scene();
+    let first = l.integrator_spec.layers[..1].to_vec();
+    assert!(first[0].colour && !l.integrator_spec.layers[2].colour);
+    let derived = |l: &LoadedScene| {
+        render_layers(&l.scene, &first, SEED, 0..spp, &opts(2, 8), &colour(l, spp)).unwrap()
+    };
+    let rendered = render_layer(&l.scene, &first[0], SEED, 0..spp, &opts(2, 8))
+        .unwrap()
+        .rgb();
+    let close = |chs: &[tessera::layers::Channel]| {
+        chs.iter().enumerate().all(|(c, ch)| {
+            ch.values
+                .iter()
+                .zip(&rendered)
+                .all(|(a, b)| (a - b[c]).abs() <= 1e-5 * b[c].abs() + 1e-7)
+        })
+    };
+    assert!(
+        close(&derived(&l)),
+        "first moment from the colour is not the rendered one"
+    );
+    l.set_integrator(Some("direct"), None).unwrap();
+    assert!(!l.integrator_spec.layers[0].colour);
+    let first = l.integrator_spec.layers[..1].to_vec();
+    let after = render_layers(
+        &l.scene,
+        &first,
+        SEED,
+        0..spp,
+        &opts(2, 8),
+        &colour(&l, spp),
+    );
+    assert!(
+        close(&after.unwrap()),
+        "rendered again, the layer is the path tracer's"
+    );
+    let converted: Vec<_> = colour(&l, spp)
+        .iter()
+        .map(|c| {
+            (tessera_core::integrator::SRGB_TO_XYZ * tessera_core::glam::Vec3::from(*c)).to_array()
+        })
+        .collect();
+    let differ = converted
+        .iter()
+        .zip(&rendered)
+        .filter(|(a, b)| (0..3).any(|k| (a[k] - b[k]).abs() > 1e-5 * b[k].abs() + 1e-7))
+        .count();
+    assert!(
+        differ > 100,
+        "control: the direct colour converted matches the path's moment ({differ})"
+    );
 }

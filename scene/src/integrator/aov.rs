@@ -135,15 +135,18 @@ fn read_aov(obj: &Object, spec: &mut IntegratorSpec, nest: Nest) -> Result<()> {
         .map_or(obj.loc.clone(), |p| p.loc.clone());
     let nested = nested_specs(obj, nest)?;
     let mut layers = Vec::new();
-    for (name, nested) in &nested {
+    for (k, (name, nested)) in nested.iter().enumerate() {
         let escaped_count = nested.name.starts_with("path") && !nested.hide_emitters;
         layers.push(Layer {
             names: names(name, &["R", "G", "B"]),
             source: LayerSource::Nested(Box::new(nested.clone())),
+            // The first nested integrator renders the colour image.
+            colour: k == 0,
         });
         layers.push(Layer {
             names: names(name, &["A"]),
             source: LayerSource::Aov(Aov::Alpha { escaped_count }),
+            colour: false,
         });
     }
     for item in text.split(',').map(str::trim).filter(|s| !s.is_empty()) {
@@ -167,6 +170,7 @@ fn read_aov(obj: &Object, spec: &mut IntegratorSpec, nest: Nest) -> Result<()> {
         layers.push(Layer {
             names: names(name, suffixes),
             source: LayerSource::Aov(aov),
+            colour: false,
         });
     }
     if layers.is_empty() {
@@ -190,7 +194,7 @@ fn read_moment(obj: &Object, spec: &mut IntegratorSpec, nest: Nest) -> Result<()
     };
     let mut layers = Vec::new();
     for square in [false, true] {
-        for (name, n) in &nested {
+        for (k, (name, n)) in nested.iter().enumerate() {
             let prefix = match square {
                 true => format!("m2_{name}"),
                 false => name.clone(),
@@ -201,6 +205,9 @@ fn read_moment(obj: &Object, spec: &mut IntegratorSpec, nest: Nest) -> Result<()
                     nested: Box::new(n.clone()),
                     square,
                 },
+                // The first nested integrator renders the colour image, whose XYZ is its first
+                // moment.
+                colour: k == 0 && !square,
             });
         }
     }
