@@ -79,10 +79,16 @@ pub fn read_image(path: &Path) -> Result<RgbImage, String> {
 /// is recognised by the file's first bytes where it has a signature, as Mitsuba 3 does (a JPEG
 /// named `.png` still loads), and by the extension otherwise (TGA has none).
 fn read_decoded(path: &Path) -> Result<RgbImage, String> {
-    let reader = image::ImageReader::open(path)
+    to_rgb_image(decode_file(path)?)
+}
+
+/// The image at `path` as the `image` crate decodes it (see [`read_decoded`]).
+fn decode_file(path: &Path) -> Result<image::DynamicImage, String> {
+    image::ImageReader::open(path)
         .and_then(|r| r.with_guessed_format())
-        .map_err(|e| e.to_string())?;
-    to_rgb_image(reader.decode().map_err(|e| e.to_string())?)
+        .map_err(|e| e.to_string())?
+        .decode()
+        .map_err(|e| e.to_string())
 }
 
 /// An image as a texture reads it: the 8-bit codes themselves where the file holds 8 bits per
@@ -110,11 +116,7 @@ pub fn read_texture_image(path: &Path) -> Result<TextureImage, String> {
         return read_image(path).map(TextureImage::Float);
     }
     let err = |e: String| format!("{}: cannot read image: {e}", path.display());
-    let img = image::ImageReader::open(path)
-        .and_then(|r| r.with_guessed_format())
-        .map_err(|e| err(e.to_string()))?
-        .decode()
-        .map_err(|e| err(e.to_string()))?;
+    let img = decode_file(path).map_err(err)?;
     use image::DynamicImage::{ImageLuma8, ImageLumaA8, ImageRgb8, ImageRgba8};
     match img {
         ImageLuma8(_) | ImageLumaA8(_) | ImageRgb8(_) | ImageRgba8(_) => {

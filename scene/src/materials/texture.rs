@@ -305,9 +305,9 @@ fn decode(
     }
 }
 
-/// The pixels `pixel` makes of `data` (`width x height`, row-major), checked first (finite, not
-/// negative, and at most 1 when `unit`), then made in place in their shared storage: they are
-/// the largest thing a scene loads, and building them in a `Vec` to move there wrote them twice.
+/// The pixels `pixel` makes of `data` (`width x height`, row-major), made once, in place in
+/// their shared storage (they are the largest thing a scene loads), then checked: finite, not
+/// negative, and at most 1 when `unit`.
 fn checked_pixels<T>(
     name: &str,
     unit: bool,
@@ -316,18 +316,17 @@ fn checked_pixels<T>(
     data: &[T],
     pixel: impl Fn(&T) -> Vec3,
 ) -> std::result::Result<(usize, usize, Arc<[Vec3]>), String> {
-    for (i, p) in data.iter().enumerate() {
-        let c = pixel(p);
-        if !(c.is_finite() && c.min_element() >= 0.0 && (!unit || c.max_element() <= 1.0)) {
-            let (x, y) = (i % width as usize, i / width as usize);
-            return Err(format!(
-                "\"{name}\": pixel ({x}, {y}) is {:?}; values of this parameter must be {}",
-                c.to_array(),
-                range(unit)
-            ));
-        }
-    }
     let pixels: Arc<[Vec3]> = data.iter().map(pixel).collect();
+    let bad =
+        |c: &Vec3| !(c.is_finite() && c.min_element() >= 0.0 && (!unit || c.max_element() <= 1.0));
+    if let Some(i) = pixels.iter().position(bad) {
+        let (x, y) = (i % width as usize, i / width as usize);
+        return Err(format!(
+            "\"{name}\": pixel ({x}, {y}) is {:?}; values of this parameter must be {}",
+            pixels[i].to_array(),
+            range(unit)
+        ));
+    }
     Ok((width as usize, height as usize, pixels))
 }
 
