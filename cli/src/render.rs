@@ -149,6 +149,9 @@ pub fn run(args: &RenderArgs) -> i32 {
         ),
     };
     let mut fb = Framebuffer::with_footprint(w, h, loaded.scene.splat.as_ref());
+    if super::render_layers::wants_squares(args, &loaded) {
+        fb = fb.with_squares();
+    }
     let mut resumed_target = None;
     let mut pending = None;
     let mut resumed_check = None;

@@ -1,7 +1,8 @@
 //! `tessera render` of a scene whose integrator adds image channels (`aov`, `moment`): after
 //! the colour render, each layer of channels is rendered with the same seed, sampler and sample
-//! count, or taken from the colour where its integrator is the colour's (see
-//! `tessera::layers`), and EXR outputs get every channel under Mitsuba 3's names.
+//! count, or taken from the colour where its integrator is the colour's (a second moment is
+//! gathered by the colour's own pass; see `tessera::layers`), and EXR outputs get every channel
+//! under Mitsuba 3's names.
 //! PNG and PFM outputs hold the colour only (one warning says so). Renders that stop on a time
 //! budget, an error target or a signal, resume, adapt or split do not know the final sample
 //! count of every pixel in advance, so they are refused with these integrators.
@@ -9,7 +10,7 @@ use super::decor::Decor;
 use super::render_args::RenderArgs;
 use super::render_once::progressive_flag;
 use tessera::image_io::Format;
-use tessera::layers::{render_layers, rgb_channels, write_channels_exr};
+use tessera::layers::{self, render_layers, rgb_channels, write_channels_exr};
 use tessera::render::{Framebuffer, RenderOptions};
 use tessera_scene::LoadedScene;
 
@@ -37,6 +38,15 @@ pub(crate) fn check_args(args: &RenderArgs, loaded: &LoadedScene) -> Result<(), 
     }
 }
 
+/// Whether the colour render of `args` gathers its samples' XYZ squares: a second moment of the
+/// colour's integrator is among the layers and an EXR output will hold it.
+pub(crate) fn wants_squares(args: &RenderArgs, loaded: &LoadedScene) -> bool {
+    args.outputs
+        .iter()
+        .any(|o| Format::from_path(o) == Some(Format::Exr))
+        && layers::wants_squares(&loaded.integrator_spec.layers)
+}
+
 /// Renders the extra channels for the samples `fb` holds (every pixel the same count) and
 /// writes every output.
 pub(super) fn write(
@@ -56,7 +66,7 @@ pub(super) fn write(
         .any(|o| Format::from_path(o) == Some(Format::Exr));
     let rgb = fb.rgb();
     let extra = match wants_exr {
-        true => render_layers(&loaded.scene, layers, seed, 0..spp, opts, &rgb)?,
+        true => render_layers(&loaded.scene, layers, seed, 0..spp, opts, fb)?,
         false => Vec::new(),
     };
     let mut warned = false;

@@ -9,8 +9,10 @@
 //! the same way. So a channel is the filter-weighted average of its variable over the pixel's
 //! samples, which is what Mitsuba 3's film computes, and the bits do not depend on the thread
 //! count or the tile size. A layer whose integrator is the colour's own is not rendered again
-//! but taken from the colour ([`render_layers`]). Mitsuba computes every channel in the colour's
-//! pass; doing the same would need a framebuffer of more than three channels.
+//! but taken from the colour ([`render_layers`]): the colour itself, its XYZ, or the XYZ
+//! squares its pass gathered beside it ([`Framebuffer::squares`]). Mitsuba computes every
+//! channel in the colour's pass; here the other surface variables and nested integrators still
+//! take a render each.
 use crate::image_io::write_atomic;
 use crate::render::{render, Framebuffer, RenderOptions};
 use exr::prelude::{AnyChannel, AnyChannels, Encoding, FlatSamples, Layer as ExrLayer};
@@ -33,28 +35,31 @@ pub struct Channel {
 }
 
 /// Renders every layer with samples `samples` of each pixel from `seed`; the channels in the
-/// layers' order. `colour` is the colour image's pixel means from the same samples: a layer
-/// whose integrator is the colour's ([`Layer::colour`]) is taken from it rather than rendered
-/// again, as it is (`aov`: the same bits a render would give) or converted to XYZ (a first
-/// moment: the mean of the converted samples up to rounding, as the conversion is linear).
+/// layers' order. `colour` is the colour render of the same samples: a layer whose integrator is
+/// the colour's ([`Layer::colour`]) is taken from it rather than rendered again, as it is
+/// (`aov`: the same bits a render would give), converted to XYZ (a first moment: the mean of
+/// the converted samples up to rounding, as the conversion is linear), or from the squares the
+/// colour's pass gathered (a second moment, when `colour` has them: [`Framebuffer::squares`],
+/// the bits a render would give).
 pub fn render_layers(
     scene: &Scene,
     layers: &[Layer],
     seed: u64,
     samples: Range<u64>,
     opts: &RenderOptions,
-    colour: &[[f32; 3]],
+    colour: &Framebuffer,
 ) -> Result<Vec<Channel>, String> {
+    let rgb = colour.rgb();
     let mut out = Vec::new();
     for layer in layers {
-        let from_colour = match (&layer.source, layer.colour) {
-            (LayerSource::Nested(_), true) => Some(colour.to_vec()),
-            (LayerSource::Moment { square: false, .. }, true) => Some(
-                colour
-                    .iter()
+        let from_colour = match (&layer.source, layer.colour, &colour.squares) {
+            (LayerSource::Nested(_), true, _) => Some(rgb.clone()),
+            (LayerSource::Moment { square: false, .. }, true, _) => Some(
+                rgb.iter()
                     .map(|c| (SRGB_TO_XYZ * Vec3::from(*c)).to_array())
                     .collect(),
             ),
+            (LayerSource::Moment { square: true, .. }, true, Some(q)) => Some(q.rgb()),
             _ => None,
         };
         let means = match from_colour {
@@ -69,6 +74,15 @@ pub fn render_layers(
         }
     }
     Ok(out)
+}
+
+/// Whether a colour render for `layers` should gather its samples' XYZ squares
+/// ([`Framebuffer::with_squares`]): a second moment of the colour's own integrator is among
+/// them.
+pub fn wants_squares(layers: &[Layer]) -> bool {
+    layers
+        .iter()
+        .any(|l| l.colour && matches!(l.source, LayerSource::Moment { square: true, .. }))
 }
 
 /// Renders one layer (its channels are the first of each pixel's colour sums).

@@ -27,6 +27,7 @@
 #![warn(missing_docs)]
 mod api;
 pub mod checkpoint;
+pub mod framebuffer;
 pub mod image_io;
 pub mod layers;
 pub mod overlay;
@@ -38,6 +39,7 @@ pub mod splats;
 pub mod split;
 pub mod text;
 pub mod tile;
+mod tile_sums;
 
 pub use api::{load, load_str, render, Image, Options};
 pub use tessera_scene::error::InputError;

@@ -8,11 +8,12 @@
 //! [`RenderOptions::pixels`] restricts the render to a crop window or a tile set (see
 //! [`PixelSelection`]); the selected pixels get exactly the bits the whole render gives them and
 //! the others stay empty.
+pub use crate::framebuffer::Framebuffer;
 use crate::render_groups::{render_tile_groups, Sharing};
 pub use crate::splats::Splats;
-use crate::splats::TileSums;
 pub use crate::split::selection::PixelSelection;
 pub use crate::tile::{tiles, Tile, TileProbe};
+use crate::tile_sums::TileSums;
 use crossbeam_channel::unbounded;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -80,65 +81,6 @@ pub struct Rendered<P> {
     pub complete: bool,
     /// The workers' probes, combined.
     pub probe: P,
-}
-
-/// Accumulated samples of every pixel, row-major.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Framebuffer {
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// Each pixel's own samples: their sums and counts (what error estimates, adaptive
-    /// sampling and statistical tests read).
-    pub pixels: Vec<PixelAccum>,
-    /// When the scene splats its samples, each pixel's sums for the pixels its samples reach
-    /// (see `core/src/splat.rs`): the image is made from these.
-    pub splats: Option<Splats>,
-}
-
-impl Framebuffer {
-    /// An empty buffer whose image is its pixels' means (samples that do not splat).
-    pub fn new(width: u32, height: u32) -> Self {
-        Framebuffer::with_footprint(width, height, None)
-    }
-    /// An empty buffer whose samples splat over `footprint` (or, without one, count in their
-    /// own pixel only).
-    pub fn with_footprint(width: u32, height: u32, footprint: Option<&Footprint>) -> Self {
-        Framebuffer::with_reach(width, height, footprint.map(Footprint::reach))
-    }
-    /// An empty buffer whose samples splat with reach `reach` (or, without one, count in their
-    /// own pixel only).
-    pub fn with_reach(width: u32, height: u32, reach: Option<u32>) -> Self {
-        let n = width as usize * height as usize;
-        Framebuffer {
-            width,
-            height,
-            pixels: vec![PixelAccum::default(); n],
-            splats: reach.map(|r| Splats::new(r, n)),
-        }
-    }
-    /// An empty buffer for `job`: its image size, splatting as its scene does.
-    pub fn for_job(job: &RenderJob) -> Self {
-        let (w, h) = job.size();
-        Framebuffer::with_footprint(w, h, job.scene.splat.as_ref())
-    }
-    /// The image: each pixel's splatted sums over their weights when the scene splats, else each
-    /// pixel's mean.
-    pub fn rgb(&self) -> Vec<[f32; 3]> {
-        match &self.splats {
-            Some(s) => s.resolve(self.width, self.height),
-            None => self.pixels.iter().map(|p| p.mean()).collect(),
-        }
-    }
-    /// Samples dropped because they were not finite.
-    pub fn dropped(&self) -> u64 {
-        self.pixels.iter().map(|p| p.dropped).sum()
-    }
-    /// Accumulator of pixel `(x, y)`.
-    pub fn at(&self, x: u32, y: u32) -> &PixelAccum {
-        &self.pixels[y as usize * self.width as usize + x as usize]
-    }
 }
 
 /// Renders samples `samples` of the selected pixels into a new framebuffer; `progress(tiles_done,
@@ -213,7 +155,14 @@ pub fn render_span<P: TileProbe>(
     // when it ends it, under this lock (held only for the copies). Tiles are disjoint, so a tile
     // reads exactly the sums it would have read had the tiles been rendered one after another;
     // only a worker's own tile copy exists beside `fb`.
-    let shared = Mutex::new((&mut fb.pixels, fb.splats.as_mut()));
+    assert!(
+        fb.squares
+            .as_ref()
+            .is_none_or(|q| q.pixels.len() == fb.pixels.len()
+                && q.splats.as_ref().map(|s| s.reach) == fb.splats.as_ref().map(|s| s.reach)),
+        "render_span: the squares are not shaped as the framebuffer"
+    );
+    let shared = Mutex::new(&mut *fb);
     let cursor = AtomicUsize::new(0);
     let (tx, rx) = unbounded::<usize>();
     let threads = opts.threads.max(1).min(list.len().max(1));
@@ -234,10 +183,7 @@ pub fn render_span<P: TileProbe>(
                     }
                     let i = cursor.fetch_add(1, Ordering::Relaxed);
                     let Some(t) = list.get(i) else { break };
-                    {
-                        let g = lock(shared);
-                        acc.load(t, w, g.0, g.1.as_deref());
-                    }
+                    acc.load(t, &lock(shared));
                     let range = |a: &PixelAccum, x: u32, y: u32| span.of(a, x, y, w);
                     if reuse {
                         render_tile_groups(
@@ -260,11 +206,7 @@ pub fn render_span<P: TileProbe>(
                             }
                         }
                     }
-                    {
-                        let mut g = lock(shared);
-                        let (pixels, splats) = &mut *g;
-                        acc.write(t, w, pixels, splats.as_deref_mut());
-                    }
+                    acc.write(t, &mut lock(shared));
                     if tx.send(i).is_err() {
                         break;
                     }

@@ -1,7 +1,7 @@
 //! The tile loop's body when the integrator shares light among groups of pixels (4x2,
 //! `core/src/integrator/reuse.rs`).
-use crate::splats::TileSums;
 use crate::tile::{Tile, TileProbe};
+use crate::tile_sums::TileSums;
 use std::ops::Range;
 use tessera_core::film::PixelAccum;
 use tessera_core::integrator::{GROUP, GROUP_H, GROUP_W};

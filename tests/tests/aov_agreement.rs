@@ -29,8 +29,9 @@
 use std::path::{Path, PathBuf};
 use tessera::image_io::RgbImage;
 use tessera::layers::{read_channels_exr, render_layer, render_layers};
-use tessera::render::{render, Framebuffer, RenderOptions};
+use tessera::render::{render_span, Framebuffer, RenderOptions, Span};
 use tessera_core::glam::DVec3;
+use tessera_core::integrator::NoProbe;
 use tessera_core::render::RenderJob;
 use tessera_lab::stats::sidak_alpha;
 use tessera_scene::{load_scene, load_scene_str, LoadedScene};
@@ -379,10 +380,19 @@ fn layers_are_the_same_bits_on_any_thread_count() {
     }
 }
 
-/// The colour image of `l` at `spp` samples a pixel, as pixel means.
-fn colour(l: &LoadedScene, spp: u64) -> Vec<[f32; 3]> {
+/// The colour render of `l` at `spp` samples a pixel, gathering its samples' XYZ squares.
+fn colour(l: &LoadedScene, spp: u64) -> Framebuffer {
     let job = RenderJob::new(&l.scene, &l.integrator, SEED);
-    render(&job, 0..spp, &opts(2, 8), &mut |_, _| {}).rgb()
+    let mut fb = Framebuffer::for_job(&job).with_squares();
+    render_span::<NoProbe>(
+        &job,
+        &opts(2, 8),
+        &mut fb,
+        Span::Fixed(0..spp),
+        None,
+        &mut |_, _| {},
+    );
+    fb
 }
 
 /// A layer whose integrator is the colour's is taken from the colour's samples instead of
@@ -413,7 +423,8 @@ fn layers_of_the_colours_integrator_come_from_the_colour() {
 
     let mut l = moment_scene();
     let first = l.integrator_spec.layers[..1].to_vec();
-    assert!(first[0].colour && !l.integrator_spec.layers[2].colour);
+    let marked: Vec<bool> = l.integrator_spec.layers.iter().map(|l| l.colour).collect();
+    assert_eq!(marked, [true, false, true, false]);
     let derived = |l: &LoadedScene| {
         render_layers(&l.scene, &first, SEED, 0..spp, &opts(2, 8), &colour(l, spp)).unwrap()
     };
@@ -448,6 +459,7 @@ fn layers_of_the_colours_integrator_come_from_the_colour() {
         "rendered again, the layer is the path tracer's"
     );
     let converted: Vec<_> = colour(&l, spp)
+        .rgb()
         .iter()
         .map(|c| {
             (tessera_core::integrator::SRGB_TO_XYZ * tessera_core::glam::Vec3::from(*c)).to_array()
@@ -461,5 +473,80 @@ fn layers_of_the_colours_integrator_come_from_the_colour() {
     assert!(
         differ > 100,
         "control: the direct colour converted matches the path's moment ({differ})"
+    );
+}
+
+/// The second moment of the colour's own integrator is gathered by the colour's pass: the same
+/// bits as a render of the `moment` integrator's square, on any thread count and tile size, and
+/// with the pass split in two. Control: after the command line changes the colour's integrator,
+/// the squares the colour's pass gathers are another integrator's and differ from the layer
+/// (which is then rendered, and is still the path tracer's).
+#[test]
+fn second_moment_comes_from_the_colours_pass() {
+    let spp = 8;
+    let mut l = moment_scene();
+    let second = l.integrator_spec.layers[2].clone();
+    assert!(second.colour && second.names[0] == "m2_p.X");
+    let want = render_layer(&l.scene, &second, SEED, 0..spp, &opts(1, 16)).unwrap();
+    let fb = colour(&l, spp);
+    let squares = fb.squares.as_deref().expect("squares gathered");
+    assert!(
+        squares.rgb() == want.rgb(),
+        "gathered squares differ from the render"
+    );
+    let got = render_layers(
+        &l.scene,
+        std::slice::from_ref(&second),
+        SEED,
+        0..spp,
+        &opts(2, 8),
+        &fb,
+    )
+    .unwrap();
+    let bits = |chs: &[tessera::layers::Channel], want: &[[f32; 3]]| {
+        chs.iter().enumerate().all(|(c, ch)| {
+            ch.values
+                .iter()
+                .zip(want)
+                .all(|(a, b)| a.to_bits() == b[c].to_bits())
+        })
+    };
+    assert!(
+        bits(&got, &want.rgb()),
+        "the layer is not the gathered squares"
+    );
+    // One thread, other tiles, two spans: the same bits.
+    let job = RenderJob::new(&l.scene, &l.integrator, SEED);
+    let mut split = Framebuffer::for_job(&job).with_squares();
+    for span in [0..3, 3..spp] {
+        render_span::<NoProbe>(
+            &job,
+            &opts(1, 5),
+            &mut split,
+            Span::Fixed(span),
+            None,
+            &mut |_, _| {},
+        );
+    }
+    assert!(split == fb, "squares depend on threads, tiles or spans");
+
+    l.set_integrator(Some("direct"), None).unwrap();
+    let second = l.integrator_spec.layers[2].clone();
+    assert!(!second.colour);
+    let fb = colour(&l, spp);
+    let got = render_layers(&l.scene, &[second], SEED, 0..spp, &opts(2, 8), &fb).unwrap();
+    assert!(
+        bits(&got, &want.rgb()),
+        "rendered again, the layer is the path tracer's"
+    );
+    let gathered = fb.squares.as_deref().unwrap().rgb();
+    let differ = gathered
+        .iter()
+        .zip(want.rgb())
+        .filter(|(a, b)| (0..3).any(|k| a[k].to_bits() != b[k].to_bits()))
+        .count();
+    assert!(
+        differ > 100,
+        "control: the direct colour's squares match the path's second moment ({differ})"
     );
 }

@@ -23,7 +23,7 @@ mod whitted;
 pub use aov::{albedo, Aov, AovIntegrator};
 pub use direct::DirectIntegrator;
 pub use mis::Heuristic;
-pub use moment::{MomentIntegrator, SRGB_TO_XYZ};
+pub use moment::{xyz_squared, MomentIntegrator, SRGB_TO_XYZ};
 pub use normals::NormalsIntegrator;
 pub use path::{PathIntegrator, Strategy};
 pub use probe::{Counters, MediumEvent, NoProbe, PathEnd, Probe, RayKind};

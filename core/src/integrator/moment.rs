@@ -39,10 +39,19 @@ impl<I: Radiance> MomentIntegrator<I> {
         sampler: &mut S,
         probe: &mut P,
     ) -> Color {
-        let xyz = SRGB_TO_XYZ * self.inner.li_probed(scene, ray, sampler, probe);
+        let c = self.inner.li_probed(scene, ray, sampler, probe);
         match self.square {
-            true => xyz * xyz,
-            false => xyz,
+            true => xyz_squared(c),
+            false => SRGB_TO_XYZ * c,
         }
     }
+}
+
+/// The square of each XYZ value of a linear sRGB colour: a second moment's sample. Renders that
+/// take the second moment in the colour's own pass square each colour sample with this, so the
+/// bits are those of a render of the `moment` integrator.
+#[inline]
+pub fn xyz_squared(c: Color) -> Color {
+    let xyz = SRGB_TO_XYZ * c;
+    xyz * xyz
 }

@@ -4,7 +4,8 @@
 //! image (`aov` without one renders black, as Mitsuba 3 does); the spec read is that
 //! integrator's, so the command line changes it as usual, and the extra channels are listed in
 //! `IntegratorSpec::layers`, each rendered by an integrator of its own with the same seed and
-//! sampler (so the same camera samples) and written into a multichannel EXR.
+//! sampler (so the same camera samples), or taken from the colour's own samples where its
+//! integrator is the colour's, and written into a multichannel EXR.
 //!
 //! Channel names are Mitsuba 3.9.1's: a nested integrator is named by its `name` attribute or
 //! `_arg_N` (N counting the wrapper's unnamed nested objects from 0); `aov` gives it
@@ -205,9 +206,9 @@ fn read_moment(obj: &Object, spec: &mut IntegratorSpec, nest: Nest) -> Result<()
                     nested: Box::new(n.clone()),
                     square,
                 },
-                // The first nested integrator renders the colour image, whose XYZ is its first
-                // moment.
-                colour: k == 0 && !square,
+                // The first nested integrator renders the colour image: its XYZ is the first
+                // moment, and the colour's pass can square it for the second.
+                colour: k == 0,
             });
         }
     }

@@ -75,7 +75,8 @@ pub struct Layer {
     pub source: LayerSource,
     /// Whether the colour image's integrator is this layer's (the first one nested in `aov` or
     /// `moment`), so that its values follow from the colour's own samples: the colour as it is
-    /// (`aov`) or converted to XYZ (a first moment), instead of rendering the same samples again.
+    /// (`aov`), converted to XYZ (a first moment), or each sample's XYZ squared as the colour's
+    /// pass gathers it (a second moment), instead of rendering the same samples again.
     /// Cleared when the command line changes the colour's integrator; whoever replaces
     /// [`crate::LoadedScene::integrator`] otherwise must clear it too.
     pub colour: bool,

@@ -1,0 +1,96 @@
+//! A worker's copy of one tile's sums: what the tile loop adds samples to, loaded from the
+//! framebuffer when the tile starts and written back when it ends, so that the framebuffer
+//! itself is only touched under its lock, by copies.
+use crate::framebuffer::Framebuffer;
+use crate::tile::Tile;
+use tessera_core::film::PixelAccum;
+use tessera_core::glam::Vec2;
+use tessera_core::integrator::xyz_squared;
+use tessera_core::splat::Footprint;
+use tessera_core::Color;
+
+/// What a worker adds a tile's samples to: a copy of the tile's accumulators, of their splatted
+/// sums when the scene splats, and of the XYZ squares' sums when the framebuffer gathers them
+/// ([`Framebuffer::squares`]). A worker keeps one and reloads it for each tile, so its buffers
+/// are allocated once.
+#[derive(Debug)]
+pub(crate) struct TileSums<'a> {
+    /// The tile's pixels' accumulators, row-major within the tile.
+    pub(crate) pixels: Vec<PixelAccum>,
+    /// Their splatted sums (empty when the scene does not splat).
+    sums: Vec<f32>,
+    footprint: Option<&'a Footprint>,
+    /// The same for the samples' XYZ squares, when gathered.
+    squares: Option<Box<TileSums<'a>>>,
+}
+
+impl<'a> TileSums<'a> {
+    /// Empty sums, to which samples splat over `footprint`.
+    pub(crate) fn new(footprint: Option<&'a Footprint>) -> Self {
+        TileSums {
+            pixels: Vec::new(),
+            sums: Vec::new(),
+            footprint,
+            squares: None,
+        }
+    }
+
+    /// Replaces the contents with the sums of tile `t` of `fb` (whose splats' reach must be
+    /// that of the footprint).
+    pub(crate) fn load(&mut self, t: &Tile, fb: &Framebuffer) {
+        self.pixels.clear();
+        self.sums.clear();
+        let width = fb.width as usize;
+        for y in t.y0..t.y1 {
+            let row = y as usize * width;
+            let (a, b) = (row + t.x0 as usize, row + t.x1 as usize);
+            self.pixels.extend_from_slice(&fb.pixels[a..b]);
+            if let Some(s) = &fb.splats {
+                self.sums
+                    .extend_from_slice(&s.sums[a * s.stride()..b * s.stride()]);
+            }
+        }
+        match &fb.squares {
+            Some(q) => self
+                .squares
+                .get_or_insert_with(|| Box::new(TileSums::new(self.footprint)))
+                .load(t, q),
+            None => self.squares = None,
+        }
+    }
+
+    /// Adds a sample of value `c`, `offset` from its pixel's centre, to the tile's pixel `k`
+    /// (and its XYZ square to the squares, when gathered); a non-finite value is counted as
+    /// dropped and splats nothing.
+    #[inline]
+    pub(crate) fn add(&mut self, k: usize, c: Color, offset: Vec2) {
+        self.pixels[k].add(c);
+        if let Some(f) = self.footprint {
+            if c.is_finite() {
+                let s = f.stride();
+                f.add(&mut self.sums[k * s..(k + 1) * s], offset, c);
+            }
+        }
+        if let Some(q) = &mut self.squares {
+            q.add(k, xyz_squared(c), offset);
+        }
+    }
+
+    /// Writes the tile's sums back into place in `fb`.
+    pub(crate) fn write(&self, t: &Tile, fb: &mut Framebuffer) {
+        let tw = (t.x1 - t.x0) as usize;
+        let width = fb.width as usize;
+        let stride = self.footprint.map_or(0, Footprint::stride);
+        for (row, y) in (t.y0..t.y1).enumerate() {
+            let dst = y as usize * width + t.x0 as usize;
+            fb.pixels[dst..dst + tw].copy_from_slice(&self.pixels[row * tw..(row + 1) * tw]);
+            if let Some(s) = &mut fb.splats {
+                let src = &self.sums[row * tw * stride..(row + 1) * tw * stride];
+                s.sums[dst * stride..(dst + tw) * stride].copy_from_slice(src);
+            }
+        }
+        if let (Some(q), Some(to)) = (&self.squares, &mut fb.squares) {
+            q.write(t, to);
+        }
+    }
+}
