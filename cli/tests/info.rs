@@ -32,10 +32,11 @@ fn info_counts_what_the_material_scene_holds() {
         "{out}"
     );
     assert!(row(&out, "emitters").starts_with("2: "), "{out}");
-    // The floor's 16x16 tiles (12 bytes a pixel) and the checkerboard of the blend.
+    // The floor's 16x16 tiles (8-bit: 3 bytes a pixel and the codes' 3 KiB table) and the
+    // checkerboard of the blend.
     assert_eq!(
         row(&out, "textures"),
-        "1 image uses (1 distinct images, 3.0 KiB), 1 procedural"
+        "1 image uses (1 distinct images, 3.8 KiB), 1 procedural"
     );
     assert_eq!(row(&out, "warnings"), "0");
 }
@@ -66,7 +67,7 @@ fn info_counts_a_shared_image_once_and_lists_warnings() {
     let out = String::from_utf8_lossy(&o.stdout).into_owned();
     assert_eq!(
         row(&out, "textures"),
-        "4 image uses (2 distinct images, 6.0 KiB), 0 procedural"
+        "4 image uses (2 distinct images, 7.5 KiB), 0 procedural"
     );
     assert_eq!(row(&out, "warnings"), "1");
     let located = format!("{}:2:", scene.display());

@@ -13,9 +13,9 @@
 //! the point falls in. The wrap mode applies to pixel indices: `repeat` tiles, `mirror`
 //! reflects at every edge (a period of `2W`), `clamp` repeats the edge pixels. A scalar lookup
 //! ([`Bitmap::eval_1`]) is the luminance of the colour, as in Mitsuba 3.
+use super::texels::Texels;
 use super::to_uv::UvTransform;
 use crate::Color;
-use alloc::sync::Arc;
 use glam::Vec2;
 
 /// How pixel values are reconstructed between pixel centres.
@@ -53,7 +53,7 @@ const LUMINANCE: Color = Color::new(0.212_671, 0.715_160, 0.072_169);
 pub struct Bitmap {
     width: usize,
     height: usize,
-    pixels: Arc<[Color]>,
+    pixels: Texels,
     filter: FilterType,
     wrap: WrapMode,
     to_uv: UvTransform,
@@ -61,22 +61,22 @@ pub struct Bitmap {
 }
 
 impl Bitmap {
-    /// A texture from `width * height` linear pixels, top row first (a `Vec`, or an `Arc`
-    /// shared with other textures of the same image); `None` when the size is zero or does not
-    /// match.
+    /// A texture from `width * height` pixels, top row first (a `Vec` of linear values, or
+    /// [`Texels`] shared with other textures of the same image); `None` when the size is zero
+    /// or does not match.
     pub fn new(
         width: usize,
         height: usize,
-        pixels: impl Into<Arc<[Color]>>,
+        pixels: impl Into<Texels>,
         filter: FilterType,
         wrap: WrapMode,
         to_uv: UvTransform,
     ) -> Option<Self> {
-        let pixels: Arc<[Color]> = pixels.into();
+        let pixels: Texels = pixels.into();
         if width == 0 || height == 0 || width.checked_mul(height)? != pixels.len() {
             return None;
         }
-        let max = pixels.iter().fold(0.0f32, |m, p| m.max(p.max_element()));
+        let max = pixels.max_value();
         Some(Bitmap {
             width,
             height,
@@ -95,12 +95,12 @@ impl Bitmap {
 
     /// Bytes of the pixels (shared with every texture made from the same image).
     pub fn memory_bytes(&self) -> usize {
-        core::mem::size_of_val(&*self.pixels)
+        self.pixels.memory_bytes()
     }
 
     /// Identifies the pixel storage: equal for textures that share one image.
     pub fn storage_id(&self) -> usize {
-        Arc::as_ptr(&self.pixels) as *const Color as usize
+        self.pixels.storage_id()
     }
 
     fn wrap_index(&self, i: i64, n: usize) -> usize {
@@ -143,7 +143,7 @@ impl Bitmap {
             self.wrap_index(x, self.width),
             self.wrap_index(y, self.height),
         );
-        self.pixels[y * self.width + x]
+        self.pixels.get(y * self.width + x)
     }
 
     /// The four texels `(x0, y0)`, `(x0 + 1, y0)`, `(x0, y0 + 1)`, `(x0 + 1, y0 + 1)`.
@@ -151,12 +151,7 @@ impl Bitmap {
         let (xa, xb) = self.wrap_pair(x0, self.width);
         let (ya, yb) = self.wrap_pair(y0, self.height);
         let (ra, rb) = (ya * self.width, yb * self.width);
-        [
-            self.pixels[ra + xa],
-            self.pixels[ra + xb],
-            self.pixels[rb + xa],
-            self.pixels[rb + xb],
-        ]
+        self.pixels.get4([ra + xa, ra + xb, rb + xa, rb + xb])
     }
 
     /// The colour at surface coordinates `uv` (a non-finite `uv` reads as `(0, 0)`, a huge one

@@ -9,12 +9,14 @@ mod bitmap;
 mod checkerboard;
 mod lookup;
 mod mesh_attribute;
+mod texels;
 mod to_uv;
 
 pub use bitmap::{Bitmap, FilterType, WrapMode};
 pub use checkerboard::Checkerboard;
 pub use lookup::Lookup;
 pub use mesh_attribute::MeshAttributeTexture;
+pub use texels::{CodeTable, Texels};
 pub use to_uv::UvTransform;
 
 use crate::geometry::ShadingPoint;

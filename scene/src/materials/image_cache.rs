@@ -13,6 +13,7 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Weak};
 use std::time::SystemTime;
 use tessera_core::glam::Vec3;
+use tessera_core::texture::{CodeTable, Texels};
 
 /// What a decoded image depends on.
 #[derive(Clone, PartialEq, Eq, Hash)]
@@ -26,10 +27,39 @@ struct Key {
 }
 
 /// A decoded image: width, height and pixels.
-type Decoded = (usize, usize, Arc<[Vec3]>);
+type Decoded = (usize, usize, Texels);
 
 /// A remembered image: width, height and its pixels while some texture holds them.
-type Entry = (usize, usize, Weak<[Vec3]>);
+type Entry = (usize, usize, Held);
+
+/// [`Texels`] held weakly.
+enum Held {
+    Float(Weak<[Vec3]>),
+    Codes(Weak<[[u8; 3]]>, Weak<CodeTable>),
+}
+
+impl Held {
+    fn of(t: &Texels) -> Held {
+        match t {
+            Texels::Float(p) => Held::Float(Arc::downgrade(p)),
+            Texels::Codes(c, t) => Held::Codes(Arc::downgrade(c), Arc::downgrade(t)),
+        }
+    }
+
+    fn upgrade(&self) -> Option<Texels> {
+        Some(match self {
+            Held::Float(p) => Texels::Float(p.upgrade()?),
+            Held::Codes(c, t) => Texels::Codes(c.upgrade()?, t.upgrade()?),
+        })
+    }
+
+    fn alive(&self) -> bool {
+        match self {
+            Held::Float(p) => p.strong_count() > 0,
+            Held::Codes(c, _) => c.strong_count() > 0,
+        }
+    }
+}
 
 thread_local! {
     static CACHE: RefCell<HashMap<Key, Entry>> = RefCell::new(HashMap::new());
@@ -69,8 +99,8 @@ pub(crate) fn shared_pixels(
     let (w, h, pixels) = decode()?;
     CACHE.with(|c| {
         let mut c = c.borrow_mut();
-        c.retain(|_, (_, _, weak)| weak.strong_count() > 0);
-        c.insert(key, (w, h, Arc::downgrade(&pixels)));
+        c.retain(|_, (_, _, held)| held.alive());
+        c.insert(key, (w, h, Held::of(&pixels)));
     });
     Ok((w, h, pixels))
 }

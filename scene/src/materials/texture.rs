@@ -15,7 +15,9 @@ use crate::xml::{Kind, Object};
 use glam::{DMat4, Vec3};
 use std::path::Path;
 use std::sync::Arc;
-use tessera_core::texture::{Bitmap, Checkerboard, FilterType, Texture, UvTransform, WrapMode};
+use tessera_core::texture::{
+    Bitmap, Checkerboard, CodeTable, FilterType, Texels, Texture, UvTransform, WrapMode,
+};
 
 /// The declared texture parameter `p` of `obj`: its default colour when absent; every value
 /// in `[0, 1]` when its range is [`Range::Unit`], else only non-negative.
@@ -246,45 +248,41 @@ pub(crate) fn load_bitmap(
     s: BitmapSettings,
 ) -> std::result::Result<Bitmap, String> {
     let (w, h, pixels) = shared_pixels(path, s.raw, s.unit, s.scale, || decode(path, name, &s))?;
-    let pixels: Arc<[Vec3]> = if s.half {
-        pixels.iter().map(|&c| round_to_half(c)).collect()
-    } else {
-        pixels
+    let pixels = match (s.half, pixels) {
+        (false, p) => p,
+        (true, Texels::Float(p)) => Texels::Float(p.iter().map(|&c| round_to_half(c)).collect()),
+        (true, Texels::Codes(c, t)) => {
+            let rounded: [Vec3; 256] =
+                std::array::from_fn(|k| round_to_half(Vec3::new(t[0][k], t[1][k], t[2][k])));
+            let t = std::array::from_fn(|ch| std::array::from_fn(|k| rounded[k][ch]));
+            Texels::Codes(c, Arc::new(t))
+        }
     };
     Bitmap::new(w, h, pixels, s.filter, s.wrap, s.to_uv)
         .ok_or_else(|| format!("\"{name}\": unusable image size {w}x{h}"))
 }
 
-/// The pixels of the image at `path`, decoded (sRGB unless raw, scaled) and checked.
+/// The pixels of the image at `path`, decoded (sRGB unless raw, scaled) and checked. An 8-bit
+/// image keeps its codes, each channel's 256 values worked out once (the values of decoding
+/// `code / 255` as a float image is).
 fn decode(
     path: &Path,
     name: &str,
     s: &BitmapSettings,
-) -> std::result::Result<(usize, usize, Arc<[Vec3]>), String> {
+) -> std::result::Result<(usize, usize, Texels), String> {
     let srgb = is_srgb_coded(path) && !s.raw;
-    match read_texture_image(path)? {
+    let (width, height, pixels) = match read_texture_image(path)? {
         TextureImage::Codes {
             width,
             height,
             data,
         } => {
-            // Each channel's 256 codes decoded and scaled once (a 2k image has twelve million
-            // channels, and the power function was a quarter of its load time); the values are
-            // those of decoding `code / 255` as a float image is.
             let value = |ch: usize, k: usize| {
                 let v = k as f32 / 255.0;
                 (if srgb { srgb_to_linear(v) } else { v }) * s.scale[ch]
             };
-            let table: [[f32; 256]; 3] =
-                std::array::from_fn(|ch| std::array::from_fn(|k| value(ch, k)));
-            let pixel = |c: &[u8; 3]| {
-                Vec3::new(
-                    table[0][usize::from(c[0])],
-                    table[1][usize::from(c[1])],
-                    table[2][usize::from(c[2])],
-                )
-            };
-            checked_pixels(name, s.unit, width, height, &data, pixel)
+            let table: CodeTable = std::array::from_fn(|ch| std::array::from_fn(|k| value(ch, k)));
+            (width, height, Texels::Codes(data.into(), Arc::new(table)))
         }
         TextureImage::Float(img) => {
             let pixel = |p: &[f32; 3]| {
@@ -300,34 +298,40 @@ fn decode(
                 };
                 c * s.scale
             };
-            checked_pixels(name, s.unit, img.width, img.height, &img.data, pixel)
+            let pixels: Arc<[Vec3]> = img.data.iter().map(pixel).collect();
+            (img.width, img.height, Texels::Float(pixels))
         }
-    }
+    };
+    check_pixels(name, s.unit, width, &pixels)?;
+    Ok((width as usize, height as usize, pixels))
 }
 
-/// The pixels `pixel` makes of `data` (`width x height`, row-major), made once, in place in
-/// their shared storage (they are the largest thing a scene loads), then checked: finite, not
-/// negative, and at most 1 when `unit`.
-fn checked_pixels<T>(
+/// Checks that every pixel is finite, not negative, and at most 1 when `unit`; the error names
+/// the first pixel that is not. For codes, only the table is checked unless one of its values
+/// is out of range.
+fn check_pixels(
     name: &str,
     unit: bool,
     width: u32,
-    height: u32,
-    data: &[T],
-    pixel: impl Fn(&T) -> Vec3,
-) -> std::result::Result<(usize, usize, Arc<[Vec3]>), String> {
-    let pixels: Arc<[Vec3]> = data.iter().map(pixel).collect();
+    pixels: &Texels,
+) -> std::result::Result<(), String> {
     let bad =
         |c: &Vec3| !(c.is_finite() && c.min_element() >= 0.0 && (!unit || c.max_element() <= 1.0));
-    if let Some(i) = pixels.iter().position(bad) {
+    if let Texels::Codes(_, t) = pixels {
+        // The check is per channel value: a table of good values makes only good pixels.
+        if t.iter().flatten().all(|&v| !bad(&Vec3::splat(v))) {
+            return Ok(());
+        }
+    }
+    if let Some(i) = pixels.iter().position(|c| bad(&c)) {
         let (x, y) = (i % width as usize, i / width as usize);
         return Err(format!(
             "\"{name}\": pixel ({x}, {y}) is {:?}; values of this parameter must be {}",
-            pixels[i].to_array(),
+            pixels.get(i).to_array(),
             range(unit)
         ));
     }
-    Ok((width as usize, height as usize, pixels))
+    Ok(())
 }
 
 #[cfg(test)]
