@@ -1,7 +1,7 @@
 //! The flat, read-only scene: shapes, primitives under a BVH, BSDFs, emitters, camera.
 use crate::accel::level::{Level, LevelError, LevelPrims, NOT_A_TRIANGLE};
 use crate::accel::tri_block::Ray4;
-use crate::accel::{AnyLeaves, BuildParams, Bvh8, TriBlocks};
+use crate::accel::{AnyLeaves, BuildParams, Bvh8, Fork, InTurn, TriBlocks};
 use crate::bsdf::{Bsdf, BsdfTraits};
 use crate::camera::{Camera, Filter};
 use crate::emitter::{Emitter, EmitterCtx};
@@ -141,7 +141,18 @@ impl Scene {
     }
 
     /// [`Scene::new`] with a chosen BVH leaf-size trade-off (for measuring it).
-    pub fn with_build_params(mut p: SceneParts, params: BuildParams) -> Result<Scene, BuildError> {
+    pub fn with_build_params(p: SceneParts, params: BuildParams) -> Result<Scene, BuildError> {
+        Scene::build(p, params, &InTurn)
+    }
+
+    /// [`Scene::new`], the BVH builds' large halves run through `fork` (a `std` caller's
+    /// threads): the same scene whatever the fork does.
+    pub fn new_forked(p: SceneParts, fork: &dyn Fork) -> Result<Scene, BuildError> {
+        Scene::build(p, Bvh8::PARAMS, fork)
+    }
+
+    /// [`Scene::new`] with both choices.
+    fn build(mut p: SceneParts, params: BuildParams, fork: &dyn Fork) -> Result<Scene, BuildError> {
         let mut grouped = alloc::vec![false; p.shapes.len()];
         for g in &p.groups {
             for &si in g {
@@ -176,7 +187,7 @@ impl Scene {
                 .zip(&lp.tris)
                 .map(|(pr, v)| pr.bounds(v, &p.disks, &p.shapes))
                 .collect();
-            groups.push(Level::build(lp, &bounds, params));
+            groups.push(Level::build(lp, &bounds, params, fork));
         }
         let mut instance_bounds = Vec::new();
         for (ii, inst) in p.instances.iter().enumerate() {
@@ -219,7 +230,7 @@ impl Scene {
                 _ => pr.bounds(v, &p.disks, &p.shapes),
             })
             .collect();
-        let Level { prims, blocks, bvh } = Level::build(top, &bounds, params);
+        let Level { prims, blocks, bvh } = Level::build(top, &bounds, params, fork);
         let world = bvh.bounds();
         let (center, radius) = if world.is_empty() {
             (glam::Vec3::ZERO, 1.0)

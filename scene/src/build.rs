@@ -10,6 +10,7 @@ use super::sensor::build_sensor;
 use super::shape_numbering::Numbering;
 use super::shapes::build_shape;
 use super::shapes::instancing::{Groups, INSTANCE, SHAPEGROUP};
+use super::threads::Threads;
 use super::util::Result;
 use crate::error::InputError;
 use crate::xml::{Kind, Object};
@@ -149,8 +150,8 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         light_selection: integrator_spec.light_selection,
     };
     let accel_start = std::time::Instant::now();
-    let mut scene =
-        Scene::new(parts).map_err(|e| root.error(format!("cannot build the scene: {e:?}")))?;
+    let mut scene = Scene::new_forked(parts, &Threads::of_machine())
+        .map_err(|e| root.error(format!("cannot build the scene: {e:?}")))?;
     let accel_seconds = accel_start.elapsed().as_secs_f64();
     scene.sampler = sampler;
     scene.shape_numbering = shape_numbering;

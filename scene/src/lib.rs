@@ -50,6 +50,7 @@ mod sampler;
 mod sensor;
 mod shape_numbering;
 mod shapes;
+mod threads;
 mod util;
 
 pub use integrator::{IntegratorSpec, INTEGRATORS};

@@ -2,7 +2,7 @@
 //! order, the triangle blocks and the 8-wide BVH over them. The scene's top level (every shape
 //! outside a shape group, then one primitive per instance) and each shape group's bottom level
 //! are built by the same steps, so a scene without instances builds exactly as before.
-use super::{BuildParams, Bvh8, TriBlocks};
+use super::{BuildParams, Bvh8, Collapse, Fork, TriBlocks};
 use crate::geometry::{Disk, Prim, Shape, ShapeKind};
 use crate::math::Aabb;
 use alloc::vec::Vec;
@@ -91,9 +91,10 @@ pub struct Level {
 }
 
 impl Level {
-    /// Orders `lp` by a BVH over `bounds` (one box per primitive) and packs the blocks.
-    pub fn build(lp: LevelPrims, bounds: &[Aabb], params: BuildParams) -> Level {
-        let (mut bvh, order) = Bvh8::build_with(bounds, params);
+    /// Orders `lp` by a BVH over `bounds` (one box per primitive) and packs the blocks; the
+    /// build's large halves go through `fork` (the same level whatever it does).
+    pub fn build(lp: LevelPrims, bounds: &[Aabb], params: BuildParams, fork: &dyn Fork) -> Level {
+        let (mut bvh, order) = Bvh8::build_forked(bounds, params, Collapse::DEFAULT, fork);
         let prims: Vec<Prim> = order.iter().map(|&i| lp.prims[i as usize]).collect();
         let tris: Vec<[Vec3; 3]> = order.iter().map(|&i| lp.tris[i as usize]).collect();
         let blocks = TriBlocks::build(&mut bvh, &tris);

@@ -4,6 +4,7 @@
 //!
 //! Files, each named for its role:
 //! - `binary`: the binary hierarchy built with the binned surface-area heuristic;
+//! - `fork`: how a caller lends threads to that build;
 //! - `collapse`: collapsing it into 8-wide nodes;
 //! - `wide_node`: the 8-wide node (eight child boxes and their children);
 //! - `wide`: the 8-wide hierarchy scenes cast rays with, and its walk (`entry`: the walk's stack
@@ -23,6 +24,7 @@ mod blocks;
 mod collapse;
 mod counts;
 mod entry;
+mod fork;
 mod leaves;
 pub mod level;
 mod root;
@@ -36,6 +38,7 @@ pub use binary::{BuildParams, Bvh, BvhNode};
 pub use blocks::{AnyLeaves, ClosestLeaves, LeafRanges, TriBlocks};
 pub use collapse::Collapse;
 pub use counts::TraversalCounts;
+pub use fork::{Fork, InTurn};
 pub use leaves::Leaves;
 pub use wide::Bvh8;
 pub use wide_node::Bvh8Node;

@@ -12,7 +12,7 @@ use super::leaves::FnLeaves;
 use super::slab::RayPre;
 use super::slab_simd::{prefetch_in, Avx2, Hit8, Portable, WithHit8};
 use super::wide_node::Bvh8Node;
-use super::{BuildParams, Bvh, Collapse, Leaves};
+use super::{BuildParams, Bvh, Collapse, Fork, InTurn, Leaves};
 use crate::math::{Aabb, Ray};
 use alloc::vec::Vec;
 
@@ -80,7 +80,18 @@ impl Bvh8 {
         params: BuildParams,
         how: Collapse,
     ) -> (Bvh8, Vec<u32>) {
-        let (bin, order) = Bvh::build_with(bounds, params);
+        Bvh8::build_forked(bounds, params, how, &InTurn)
+    }
+
+    /// [`Bvh8::build_collapsed`], the binary build's large halves run through `fork` (see
+    /// [`Bvh::build_forked`]): the same hierarchy whatever the fork does.
+    pub fn build_forked(
+        bounds: &[Aabb],
+        params: BuildParams,
+        how: Collapse,
+        fork: &dyn Fork,
+    ) -> (Bvh8, Vec<u32>) {
+        let (bin, order) = Bvh::build_forked(bounds, params, fork);
         (Bvh8::from_binary_with(&bin, how), order)
     }
 
