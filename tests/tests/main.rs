@@ -42,6 +42,7 @@ mod hetero_analytic;
 mod hetero_chi2;
 mod hetero_volumes;
 mod instances;
+mod layering;
 mod light_select;
 mod materials_agreement;
 mod media_agreement;

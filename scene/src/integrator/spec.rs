@@ -78,7 +78,7 @@ pub struct Layer {
     /// (`aov`), converted to XYZ (a first moment), or each sample's XYZ squared as the colour's
     /// pass gathers it (a second moment), instead of rendering the same samples again.
     /// Cleared when the command line changes the colour's integrator; whoever replaces
-    /// [`crate::LoadedScene::integrator`] otherwise must clear it too.
+    /// `LoadedScene::integrator` otherwise must clear it too.
     pub colour: bool,
 }
 
