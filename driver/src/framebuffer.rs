@@ -25,6 +25,7 @@ pub struct Framebuffer {
     /// ([`xyz_squared`]), summed and splatted exactly as the colour is: the second moment of
     /// Mitsuba 3's `moment` integrator, taken in the colour's own pass rather than by rendering
     /// every sample again. Its pixel means are the bits a render of that integrator gives.
+    /// Checkpoints and part files do not carry it (renders that write them do not gather it).
     pub squares: Option<Box<Framebuffer>>,
 }
 
