@@ -41,10 +41,14 @@ pub(crate) fn check_args(args: &RenderArgs, loaded: &LoadedScene) -> Result<(), 
 /// Whether the colour render of `args` gathers its samples' XYZ squares: a second moment of the
 /// colour's integrator is among the layers and an EXR output will hold it.
 pub(crate) fn wants_squares(args: &RenderArgs, loaded: &LoadedScene) -> bool {
+    wants_exr(args) && layers::wants_squares(&loaded.integrator_spec.layers)
+}
+
+/// Whether an output is an EXR file (the only format that holds the extra channels).
+fn wants_exr(args: &RenderArgs) -> bool {
     args.outputs
         .iter()
         .any(|o| Format::from_path(o) == Some(Format::Exr))
-        && layers::wants_squares(&loaded.integrator_spec.layers)
 }
 
 /// Renders the extra channels for the samples `fb` holds (every pixel the same count) and
@@ -60,13 +64,10 @@ pub(super) fn write(
 ) -> Result<(), String> {
     let spp = fb.pixels.first().map_or(0, |p| p.count + p.dropped);
     let layers = &loaded.integrator_spec.layers;
-    let wants_exr = args
-        .outputs
-        .iter()
-        .any(|o| Format::from_path(o) == Some(Format::Exr));
     let rgb = fb.rgb();
-    let extra = match wants_exr {
-        true => render_layers(&loaded.scene, layers, seed, 0..spp, opts, fb)?,
+    let squares = fb.squares.as_deref();
+    let extra = match wants_exr(args) {
+        true => render_layers(&loaded.scene, layers, seed, 0..spp, opts, &rgb, squares)?,
         false => Vec::new(),
     };
     let mut warned = false;

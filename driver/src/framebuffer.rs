@@ -3,8 +3,6 @@
 //! colour's pass).
 use crate::splats::Splats;
 use tessera_core::film::PixelAccum;
-#[allow(unused_imports)] // for the documentation's links
-use tessera_core::integrator::xyz_squared;
 use tessera_core::render::RenderJob;
 use tessera_core::splat::Footprint;
 
@@ -22,7 +20,7 @@ pub struct Framebuffer {
     /// (see `core/src/splat.rs`): the image is made from these.
     pub splats: Option<Splats>,
     /// When asked for ([`Framebuffer::with_squares`]), the same samples' XYZ squared
-    /// ([`xyz_squared`]), summed and splatted exactly as the colour is: the second moment of
+    /// ([`xyz_squared`](tessera_core::integrator::xyz_squared)), summed and splatted exactly as the colour is: the second moment of
     /// Mitsuba 3's `moment` integrator, taken in the colour's own pass rather than by rendering
     /// every sample again. Its pixel means are the bits a render of that integrator gives.
     /// Checkpoints and part files do not carry it (renders that write them do not gather it).

@@ -35,27 +35,28 @@ pub struct Channel {
 }
 
 /// Renders every layer with samples `samples` of each pixel from `seed`; the channels in the
-/// layers' order. `colour` is the colour render of the same samples: a layer whose integrator is
-/// the colour's ([`Layer::colour`]) is taken from it rather than rendered again, as it is
-/// (`aov`: the same bits a render would give), converted to XYZ (a first moment: the mean of
-/// the converted samples up to rounding, as the conversion is linear), or from the squares the
-/// colour's pass gathered (a second moment, when `colour` has them: [`Framebuffer::squares`],
-/// the bits a render would give).
+/// layers' order. `colour` is the colour image's pixel means from the same samples, and
+/// `squares` the XYZ squares its pass gathered, if it did ([`Framebuffer::squares`]): a layer
+/// whose integrator is the colour's ([`Layer::colour`]) is taken from them rather than rendered
+/// again, as it is (`aov`: the same bits a render would give), converted to XYZ (a first
+/// moment: the mean of the converted samples up to rounding, as the conversion is linear), or
+/// the squares' means (a second moment: the bits a render would give).
 pub fn render_layers(
     scene: &Scene,
     layers: &[Layer],
     seed: u64,
     samples: Range<u64>,
     opts: &RenderOptions,
-    colour: &Framebuffer,
+    colour: &[[f32; 3]],
+    squares: Option<&Framebuffer>,
 ) -> Result<Vec<Channel>, String> {
-    let rgb = colour.rgb();
     let mut out = Vec::new();
     for layer in layers {
-        let from_colour = match (&layer.source, layer.colour, &colour.squares) {
-            (LayerSource::Nested(_), true, _) => Some(rgb.clone()),
+        let from_colour = match (&layer.source, layer.colour, squares) {
+            (LayerSource::Nested(_), true, _) => Some(colour.to_vec()),
             (LayerSource::Moment { square: false, .. }, true, _) => Some(
-                rgb.iter()
+                colour
+                    .iter()
                     .map(|c| (SRGB_TO_XYZ * Vec3::from(*c)).to_array())
                     .collect(),
             ),

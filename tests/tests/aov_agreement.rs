@@ -406,7 +406,16 @@ fn layers_of_the_colours_integrator_come_from_the_colour() {
     let l = load_scene(&scene_path(), &[]).unwrap_or_else(|e| panic!("{e}"));
     let first = &l.integrator_spec.layers[..1];
     assert!(first[0].colour, "{:?}", first[0].names);
-    let got = render_layers(&l.scene, first, SEED, 0..spp, &opts(2, 8), &colour(&l, spp)).unwrap();
+    let got = render_layers(
+        &l.scene,
+        first,
+        SEED,
+        0..spp,
+        &opts(2, 8),
+        &colour(&l, spp).rgb(),
+        None,
+    )
+    .unwrap();
     let want = render_layer(&l.scene, &first[0], SEED, 0..spp, &opts(1, 16))
         .unwrap()
         .rgb();
@@ -426,7 +435,16 @@ fn layers_of_the_colours_integrator_come_from_the_colour() {
     let marked: Vec<bool> = l.integrator_spec.layers.iter().map(|l| l.colour).collect();
     assert_eq!(marked, [true, false, true, false]);
     let derived = |l: &LoadedScene| {
-        render_layers(&l.scene, &first, SEED, 0..spp, &opts(2, 8), &colour(l, spp)).unwrap()
+        render_layers(
+            &l.scene,
+            &first,
+            SEED,
+            0..spp,
+            &opts(2, 8),
+            &colour(l, spp).rgb(),
+            None,
+        )
+        .unwrap()
     };
     let rendered = render_layer(&l.scene, &first[0], SEED, 0..spp, &opts(2, 8))
         .unwrap()
@@ -452,7 +470,8 @@ fn layers_of_the_colours_integrator_come_from_the_colour() {
         SEED,
         0..spp,
         &opts(2, 8),
-        &colour(&l, spp),
+        &colour(&l, spp).rgb(),
+        None,
     );
     assert!(
         close(&after.unwrap()),
@@ -500,7 +519,8 @@ fn second_moment_comes_from_the_colours_pass() {
         SEED,
         0..spp,
         &opts(2, 8),
-        &fb,
+        &fb.rgb(),
+        fb.squares.as_deref(),
     )
     .unwrap();
     let bits = |chs: &[tessera::layers::Channel], want: &[[f32; 3]]| {
@@ -534,7 +554,17 @@ fn second_moment_comes_from_the_colours_pass() {
     let second = l.integrator_spec.layers[2].clone();
     assert!(!second.colour);
     let fb = colour(&l, spp);
-    let got = render_layers(&l.scene, &[second], SEED, 0..spp, &opts(2, 8), &fb).unwrap();
+    let squares = fb.squares.as_deref();
+    let got = render_layers(
+        &l.scene,
+        &[second],
+        SEED,
+        0..spp,
+        &opts(2, 8),
+        &fb.rgb(),
+        squares,
+    )
+    .unwrap();
     assert!(
         bits(&got, &want.rgb()),
         "rendered again, the layer is the path tracer's"
