@@ -26,7 +26,7 @@
 //! the map counts as `pi r^2` times its integral of luminance over the sphere.
 use super::sample::{luminance, EmitterSample};
 use crate::geometry::Interaction;
-use crate::math::{acos, safe_sqrt, sqrt, Norm, INV_PI, INV_TWO_PI, PI};
+use crate::math::{acos, atan2, safe_sqrt, sincos_turns, sqrt, Norm, INV_PI, INV_TWO_PI, PI};
 use crate::sampling::Distribution2D;
 use crate::Color;
 use alloc::vec::Vec;
@@ -162,7 +162,7 @@ impl EnvMap {
     #[inline]
     fn coords(&self, l: Vec3) -> (f32, f32) {
         let w = self.width as f32;
-        let mut s = libm::atan2f(l.x, -l.z) * INV_TWO_PI * w - 0.5;
+        let mut s = atan2(l.x, -l.z) * INV_TWO_PI * w - 0.5;
         if s < 0.0 {
             s += w;
         }
@@ -273,14 +273,12 @@ impl EnvMap {
         let fx = sample_linear(r.x, c00 + (c01 - c00) * fy, c10 + (c11 - c10) * fy);
         let s = i as f32 + fx;
         let v = (j as f32 + fy) / (self.height - 1) as f32;
-        let phi = 2.0 * PI * (s + 0.5) / w as f32;
-        let theta = PI * v;
-        // One range reduction for both (the same bits as `sinf` and `cosf` apart).
-        let (sin_t, cos_t) = libm::sincosf(theta);
+        // The polar angle is half a turn times `v`, the azimuth `(s + 1/2) / width` of a turn.
+        let (sin_t, cos_t) = sincos_turns(0.5 * v);
         if !(sin_t > 0.0) {
             return None;
         }
-        let (sin_p, cos_p) = libm::sincosf(phi);
+        let (sin_p, cos_p) = sincos_turns((s + 0.5) / w as f32);
         let local = Vec3::new(sin_p * sin_t, cos_t, -cos_p * sin_t);
         let wo = (self.to_world * local).unit_or_zero();
         let (le, pdf_uv) = self.lookup_and_pdf_uv(s, v);

@@ -4,7 +4,7 @@
 //! or referenced `<bsdf>` (default: `diffuse` with reflectance 0.5, as in Mitsuba 3), an optional
 //! nested `<emitter type="area">`.
 use super::{Curve, Cylinder, Disk, Hit, Interaction, Mesh, Prim, Sphere};
-use crate::math::{acos, sqrt, Frame, Norm, Ray};
+use crate::math::{acos, atan2_turns, sqrt, Frame, Norm, Ray};
 use glam::{Vec2, Vec3};
 
 /// The geometry of a shape.
@@ -314,7 +314,7 @@ pub(crate) fn area_to_solid_angle(r: Vec3, p: Vec3, n: Vec3, pdf_area: f32) -> f
 #[inline]
 fn sphere_uv(n: Vec3) -> Vec2 {
     Vec2::new(
-        (libm::atan2f(n.y, n.x) * crate::math::INV_TWO_PI + 1.0) % 1.0,
+        atan2_turns(n.y, n.x),
         acos(n.z.clamp(-1.0, 1.0)) * crate::math::INV_PI,
     )
 }
@@ -323,10 +323,7 @@ fn sphere_uv(n: Vec3) -> Vec2 {
 /// angle over `2 pi` in `[0, 1)`, as Mitsuba 3's disk.
 #[inline]
 fn disk_uv(local: Vec2) -> Vec2 {
-    Vec2::new(
-        local.norm(),
-        (libm::atan2f(local.y, local.x) * crate::math::INV_TWO_PI + 1.0) % 1.0,
-    )
+    Vec2::new(local.norm(), atan2_turns(local.y, local.x))
 }
 
 #[inline]

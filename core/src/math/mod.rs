@@ -1,5 +1,6 @@
 //! Small math building blocks: rays, frames, bounding boxes, transforms, floating-point bounds.
 mod aabb;
+mod arc;
 mod float;
 mod frame;
 mod ray;
@@ -8,10 +9,11 @@ mod transform;
 mod turns;
 
 pub use aabb::Aabb;
+pub use arc::{acos, atan2, atan2_turns};
 pub use float::{gamma, next_down, next_up, offset_ray_origin};
 pub use frame::Frame;
 pub use ray::Ray;
-pub use sqrt::{acos, acos_f64, sqrt, sqrt_f64, Norm};
+pub use sqrt::{acos_f64, sqrt, sqrt_f64, Norm};
 pub use transform::Transform;
 pub use turns::sincos_turns;
 

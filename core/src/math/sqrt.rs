@@ -15,9 +15,9 @@
 //! and sums in the same order) on top of these. Clippy (`clippy.toml`) refuses glam's own
 //! versions and libm's square roots in the workspace.
 //!
-//! libm's `acosf` and `acos` take libm's square root inside; [`acos`] and [`acos_f64`] clear the
-//! vector registers' upper halves (`vzeroupper`) before calling them in builds for AVX CPUs, so
-//! that square root finds nothing to merge.
+//! libm's `acos` takes libm's square root inside; [`acos_f64`] clears the vector registers'
+//! upper halves (`vzeroupper`) before calling it in builds for AVX CPUs, so that square root
+//! finds nothing to merge. (The `f32` arc cosine is a polynomial of its own, in `arc.rs`.)
 //!
 //! The `unsafe` blocks are the intrinsic calls: `sqrtss` and `sqrtsd` are part of SSE and SSE2,
 //! which every x86_64 CPU has, `vzeroupper` is compiled only for AVX CPUs, and none touches
@@ -63,17 +63,10 @@ pub fn sqrt_f64(x: f64) -> f64 {
     }
 }
 
-/// `libm::acosf`, which takes libm's legacy-SSE square root inside for `|x| > 1/2`, with the
+/// `libm::acos`, which takes libm's legacy-SSE square root inside for `|x| > 1/2`, with the
 /// vector registers' upper halves cleared first (`vzeroupper`) in builds for AVX CPUs, so that
-/// square root pays no transition penalty. Same bits as `libm::acosf`.
-#[inline]
-#[allow(clippy::disallowed_methods)] // the wrapper the lint points to
-pub fn acos(x: f32) -> f32 {
-    clear_upper_halves();
-    libm::acosf(x)
-}
-
-/// [`acos`] for `f64` (`libm::acos`).
+/// square root pays no transition penalty. Same bits as `libm::acos`. (The `f32` version is
+/// `acos` in `arc.rs`, a polynomial.)
 #[inline]
 #[allow(clippy::disallowed_methods)] // the wrapper the lint points to
 pub fn acos_f64(x: f64) -> f64 {
