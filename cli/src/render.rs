@@ -152,6 +152,7 @@ pub fn run(args: &RenderArgs) -> i32 {
     if super::render_layers::wants_squares(args, &loaded) {
         fb = fb.with_squares();
     }
+    fb = fb.with_aovs(super::render_layers::gathered_aovs(args, &loaded));
     let mut resumed_target = None;
     let mut pending = None;
     let mut resumed_check = None;

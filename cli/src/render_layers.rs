@@ -1,8 +1,8 @@
 //! `tessera render` of a scene whose integrator adds image channels (`aov`, `moment`): after
 //! the colour render, each layer of channels is rendered with the same seed, sampler and sample
-//! count, or taken from the colour where its integrator is the colour's (a second moment is
-//! gathered by the colour's own pass; see `tessera::layers`), and EXR outputs get every channel
-//! under Mitsuba 3's names.
+//! count, or taken from the colour where its integrator is the colour's or the colour's own pass
+//! gathered it (a second moment, surface variables; see `tessera::layers`), and EXR outputs get
+//! every channel under Mitsuba 3's names.
 //! PNG and PFM outputs hold the colour only (one warning says so). Renders that stop on a time
 //! budget, an error target or a signal, resume, adapt or split do not know the final sample
 //! count of every pixel in advance, so they are refused with these integrators.
@@ -44,6 +44,21 @@ pub(crate) fn wants_squares(args: &RenderArgs, loaded: &LoadedScene) -> bool {
     wants_exr(args) && layers::wants_squares(&loaded.integrator_spec.layers)
 }
 
+/// The surface variables the colour render of `args` gathers in its pass: those among the
+/// layers when an EXR output will hold them and the colour's integrator does not reuse paths
+/// (whose samples' values depend on their group; the variables are then rendered after).
+pub(crate) fn gathered_aovs(
+    args: &RenderArgs,
+    loaded: &LoadedScene,
+) -> Vec<tessera_core::integrator::AovIntegrator> {
+    if !wants_exr(args) || tessera_core::render::reuses(&loaded.integrator) {
+        return Vec::new();
+    }
+    // Renders with extra channels take a fixed count (`check_args`).
+    let spp = args.spp.unwrap_or(loaded.spp);
+    layers::gathered_aovs(&loaded.integrator_spec.layers, spp)
+}
+
 /// Whether an output is an EXR file (the only format that holds the extra channels).
 fn wants_exr(args: &RenderArgs) -> bool {
     args.outputs
@@ -65,9 +80,8 @@ pub(super) fn write(
     let spp = fb.pixels.first().map_or(0, |p| p.count + p.dropped);
     let layers = &loaded.integrator_spec.layers;
     let rgb = fb.rgb();
-    let squares = fb.squares.as_deref();
     let extra = match wants_exr(args) {
-        true => render_layers(&loaded.scene, layers, seed, 0..spp, opts, &rgb, squares)?,
+        true => render_layers(&loaded.scene, layers, seed, 0..spp, opts, &rgb, Some(fb))?,
         false => Vec::new(),
     };
     let mut warned = false;

@@ -8,6 +8,7 @@ use crate::film::PixelAccum;
 use crate::integrator::{
     Integrator, NoProbe, PathIntegrator, Probe, Radiance, GROUP, GROUP_H, GROUP_W,
 };
+use crate::math::Ray;
 use crate::sampling::{IndependentSampler, Sampler, SamplerKind, ZSobolPixel};
 use crate::scene::Scene;
 use crate::Color;
@@ -102,26 +103,33 @@ impl<'a> RenderJob<'a> {
             });
             return;
         }
-        self.pixel_alone(x, y, samples, cache, probe, add);
+        self.pixel_alone(x, y, samples, cache, probe, |c, o, _| add(c, o));
     }
 
-    /// [`RenderJob::pixel`] for an integrator that does not reuse.
+    /// [`RenderJob::pixel`] for an integrator that does not reuse, each value passed to `add`
+    /// with its offset and its [`CameraSample`] (what a caller gathering other variables of the
+    /// same camera rays needs: see `AovIntegrator::value`).
+    ///
+    /// # Panics
+    /// If the integrator reuses paths ([`RenderJob::reuses`]): a sample's value then depends on
+    /// its group, not only on its camera ray.
     #[inline]
-    fn pixel_alone<P: Probe>(
+    pub fn pixel_alone<P: Probe>(
         &self,
         x: u32,
         y: u32,
         samples: Range<u64>,
         cache: &mut PixelCache,
         probe: &mut P,
-        mut add: impl FnMut(Color, Vec2),
+        mut add: impl FnMut(Color, Vec2, &CameraSample),
     ) {
+        assert!(!self.reuses(), "pixel_alone: the integrator reuses paths");
         match self.scene.sampler {
             SamplerKind::Independent => {
                 for index in samples {
                     let s = IndependentSampler::new(self.seed, x, y, index);
-                    let (c, o) = self.trace(x, y, s, probe);
-                    add(c, o);
+                    let (c, o, cam) = self.trace(x, y, s, probe);
+                    add(c, o, &cam);
                 }
             }
             SamplerKind::ZSobol { log2_spp } => {
@@ -130,8 +138,8 @@ impl<'a> RenderJob<'a> {
                 }
                 let pixel = cache.zsobol_for(self.seed, x, y, log2_spp, samples.clone());
                 for index in samples {
-                    let (c, o) = self.trace(x, y, pixel.sampler(index), probe);
-                    add(c, o);
+                    let (c, o, cam) = self.trace(x, y, pixel.sampler(index), probe);
+                    add(c, o, &cam);
                 }
             }
         }
@@ -176,7 +184,7 @@ impl<'a> RenderJob<'a> {
             for (k, &(x, y)) in pixels[..n].iter().enumerate() {
                 let cache = &mut caches.pixels[k];
                 let mut index = samples[k].start;
-                self.pixel_alone(x, y, samples[k].clone(), cache, probe, |c, o| {
+                self.pixel_alone(x, y, samples[k].clone(), cache, probe, |c, o, _| {
                     add(k, index, c, o);
                     index += 1;
                 });
@@ -289,7 +297,7 @@ impl<'a> RenderJob<'a> {
         y: u32,
         mut sampler: S,
         probe: &mut P,
-    ) -> (Color, Vec2) {
+    ) -> (Color, Vec2, CameraSample) {
         let (offset, weight) = self.camera_offset(sampler.next_2d());
         let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
         let ray = self.scene.camera.sample_ray(pos, &mut sampler);
@@ -298,7 +306,26 @@ impl<'a> RenderJob<'a> {
             .integrator
             .li_probed(self.scene, ray, &mut sampler, probe);
         // Filters with negative lobes weight their samples; the others give no weight.
-        (weight.map_or(l, |w| l * w), offset)
+        let cam = CameraSample { ray, weight };
+        (cam.weigh(l), offset, cam)
+    }
+}
+
+/// A sample's camera ray and the weight its value is multiplied by (filters with negative
+/// lobes, importance-sampled: the sign and size of the filter there; `None` for the others).
+#[derive(Clone, Copy, Debug)]
+pub struct CameraSample {
+    /// The camera ray.
+    pub ray: Ray,
+    /// The filter's weight, if the value is weighted.
+    pub weight: Option<f32>,
+}
+
+impl CameraSample {
+    /// A value of this sample as the render loop records it: times the weight, if any.
+    #[inline]
+    pub fn weigh(&self, v: Color) -> Color {
+        self.weight.map_or(v, |w| v * w)
     }
 }
 

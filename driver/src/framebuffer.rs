@@ -1,8 +1,9 @@
 //! The framebuffer: every pixel's accumulated samples, their splatted sums when the scene
-//! splats, and, when asked, the same samples' XYZ squares (a second moment gathered in the
-//! colour's pass).
+//! splats, and, when asked, the same samples' XYZ squares (a second moment) and surface
+//! variables of their camera rays (`aov` outputs), gathered in the colour's pass.
 use crate::splats::Splats;
 use tessera_core::film::PixelAccum;
+use tessera_core::integrator::AovIntegrator;
 use tessera_core::render::RenderJob;
 use tessera_core::splat::Footprint;
 
@@ -25,6 +26,21 @@ pub struct Framebuffer {
     /// every sample again. Its pixel means are the bits a render of that integrator gives.
     /// Checkpoints and part files do not carry it (renders that write them do not gather it).
     pub squares: Option<Box<Framebuffer>>,
+    /// When asked for ([`Framebuffer::with_aovs`]), surface variables of the same samples'
+    /// camera rays, each summed and splatted exactly as the colour is (with the filter's
+    /// weight where samples carry one): the pixel means are the bits a render of each
+    /// variable's integrator gives, without rendering the samples again. Checkpoints and part
+    /// files do not carry them.
+    pub aovs: Vec<GatheredAov>,
+}
+
+/// A surface variable gathered beside the colour: its integrator and its sums.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GatheredAov {
+    /// The variable (with the render's sample count, which its differentials depend on).
+    pub aov: AovIntegrator,
+    /// Its sums, shaped as the colour's.
+    pub fb: Framebuffer,
 }
 
 impl Framebuffer {
@@ -47,6 +63,7 @@ impl Framebuffer {
             pixels: vec![PixelAccum::default(); n],
             splats: reach.map(|r| Splats::new(r, n)),
             squares: None,
+            aovs: Vec::new(),
         }
     }
     /// This buffer, set to also gather its samples' XYZ squares ([`Framebuffer::squares`]),
@@ -58,6 +75,20 @@ impl Framebuffer {
             self.height,
             reach,
         )));
+        self
+    }
+    /// This buffer, set to also gather the variables `aovs` of its samples' camera rays
+    /// ([`Framebuffer::aovs`]), from the next sample on. Renders of an integrator that reuses
+    /// paths cannot gather them (see `render_span`).
+    pub fn with_aovs(mut self, aovs: impl IntoIterator<Item = AovIntegrator>) -> Self {
+        let reach = self.splats.as_ref().map(|s| s.reach);
+        self.aovs = aovs
+            .into_iter()
+            .map(|aov| GatheredAov {
+                aov,
+                fb: Framebuffer::with_reach(self.width, self.height, reach),
+            })
+            .collect();
         self
     }
     /// An empty buffer for `job`: its image size, splatting as its scene does.

@@ -10,9 +10,11 @@
 //! samples, which is what Mitsuba 3's film computes, and the bits do not depend on the thread
 //! count or the tile size. A layer whose integrator is the colour's own is not rendered again
 //! but taken from the colour ([`render_layers`]): the colour itself, its XYZ, or the XYZ
-//! squares its pass gathered beside it ([`Framebuffer::squares`]). Mitsuba computes every
-//! channel in the colour's pass; here the other surface variables and nested integrators still
-//! take a render each.
+//! squares its pass gathered beside it ([`Framebuffer::squares`]). Surface variables are
+//! gathered in the colour's pass too when it was asked to ([`Framebuffer::aovs`]: one more
+//! cast of each camera ray for all of them), with the same bits. Only further nested
+//! integrators (and surface variables beside a colour that reuses paths) take a render each;
+//! Mitsuba computes every channel in the colour's pass.
 use crate::image_io::write_atomic;
 use crate::render::{render, Framebuffer, RenderOptions};
 use exr::prelude::{AnyChannel, AnyChannels, Encoding, FlatSamples, Layer as ExrLayer};
@@ -20,7 +22,7 @@ use exr::prelude::{LayerAttributes, ReadChannels, ReadLayers, SmallVec, Vec2, Wr
 use std::ops::Range;
 use std::path::Path;
 use tessera_core::glam::Vec3;
-use tessera_core::integrator::{Integrator, SRGB_TO_XYZ};
+use tessera_core::integrator::{AovIntegrator, Integrator, SRGB_TO_XYZ};
 use tessera_core::render::RenderJob;
 use tessera_core::scene::Scene;
 use tessera_scene::{Layer, LayerSource};
@@ -36,11 +38,13 @@ pub struct Channel {
 
 /// Renders every layer with samples `samples` of each pixel from `seed`; the channels in the
 /// layers' order. `colour` is the colour image's pixel means from the same samples, and
-/// `squares` the XYZ squares its pass gathered, if it did ([`Framebuffer::squares`]): a layer
-/// whose integrator is the colour's ([`Layer::colour`]) is taken from them rather than rendered
-/// again, as it is (`aov`: the same bits a render would give), converted to XYZ (a first
-/// moment: the mean of the converted samples up to rounding, as the conversion is linear), or
-/// the squares' means (a second moment: the bits a render would give).
+/// `gathered` the colour's framebuffer, if what its pass gathered beside the colour should be
+/// used ([`Framebuffer::squares`], [`Framebuffer::aovs`]): a layer whose integrator is the
+/// colour's ([`Layer::colour`]) is taken from them rather than rendered again, as it is (`aov`:
+/// the same bits a render would give), converted to XYZ (a first moment: the mean of the
+/// converted samples up to rounding, as the conversion is linear), or the squares' means (a
+/// second moment: the bits a render would give); a surface variable gathered with this sample
+/// count is its gathered sums' means (the bits its render would give).
 pub fn render_layers(
     scene: &Scene,
     layers: &[Layer],
@@ -48,11 +52,17 @@ pub fn render_layers(
     samples: Range<u64>,
     opts: &RenderOptions,
     colour: &[[f32; 3]],
-    squares: Option<&Framebuffer>,
+    gathered: Option<&Framebuffer>,
 ) -> Result<Vec<Channel>, String> {
     let mut out = Vec::new();
+    let squares = gathered.and_then(|g| g.squares.as_deref());
+    let aovs = gathered.map_or(&[][..], |g| &g.aovs[..]);
     for layer in layers {
         let from_colour = match (&layer.source, layer.colour, squares) {
+            (LayerSource::Aov(a), _, _) => aovs
+                .iter()
+                .find(|g| g.aov.aov == *a && g.aov.spp == samples.end)
+                .map(|g| g.fb.rgb()),
             (LayerSource::Nested(_), true, _) => Some(colour.to_vec()),
             (LayerSource::Moment { square: false, .. }, true, _) => Some(
                 colour
@@ -84,6 +94,18 @@ pub fn wants_squares(layers: &[Layer]) -> bool {
     layers
         .iter()
         .any(|l| l.colour && matches!(l.source, LayerSource::Moment { square: true, .. }))
+}
+
+/// The surface variables among `layers` ([`LayerSource::Aov`]) as a colour render of `spp`
+/// samples a pixel gathers them ([`Framebuffer::with_aovs`]).
+pub fn gathered_aovs(layers: &[Layer], spp: u64) -> Vec<AovIntegrator> {
+    layers
+        .iter()
+        .filter_map(|l| match l.source {
+            LayerSource::Aov(a) => Some(AovIntegrator::new(a, spp)),
+            _ => None,
+        })
+        .collect()
 }
 
 /// Renders one layer (its channels are the first of each pixel's colour sums).

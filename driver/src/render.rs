@@ -8,7 +8,7 @@
 //! [`RenderOptions::pixels`] restricts the render to a crop window or a tile set (see
 //! [`PixelSelection`]); the selected pixels get exactly the bits the whole render gives them and
 //! the others stay empty.
-pub use crate::framebuffer::Framebuffer;
+pub use crate::framebuffer::{Framebuffer, GatheredAov};
 use crate::render_groups::{render_tile_groups, Sharing};
 pub use crate::splats::Splats;
 pub use crate::split::selection::PixelSelection;
@@ -19,7 +19,7 @@ use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Mutex, MutexGuard};
 use tessera_core::film::PixelAccum;
-use tessera_core::integrator::NoProbe;
+use tessera_core::integrator::{AovIntegrator, NoProbe};
 use tessera_core::render::{GroupCache, PixelCache, RenderJob};
 use tessera_core::splat::Footprint;
 
@@ -162,6 +162,16 @@ pub fn render_span<P: TileProbe>(
                 && q.splats.as_ref().map(|s| s.reach) == fb.splats.as_ref().map(|s| s.reach)),
         "render_span: the squares are not shaped as the framebuffer"
     );
+    assert!(
+        fb.aovs.is_empty() || !reuse,
+        "render_span: an integrator that reuses paths cannot gather surface variables"
+    );
+    assert!(
+        fb.aovs.iter().all(|g| g.fb.pixels.len() == fb.pixels.len()
+            && g.fb.splats.as_ref().map(|s| s.reach) == fb.splats.as_ref().map(|s| s.reach)),
+        "render_span: the surface variables are not shaped as the framebuffer"
+    );
+    let aovs: Vec<AovIntegrator> = fb.aovs.iter().map(|g| g.aov).collect();
     let shared = Mutex::new(&mut *fb);
     let cursor = AtomicUsize::new(0);
     let (tx, rx) = unbounded::<usize>();
@@ -171,7 +181,7 @@ pub fn render_span<P: TileProbe>(
         let mut workers = Vec::with_capacity(threads);
         for _ in 0..threads {
             let tx = tx.clone();
-            let (list, cursor, span, shared) = (&list, &cursor, &span, &shared);
+            let (list, cursor, span, shared, aovs) = (&list, &cursor, &span, &shared, &aovs);
             workers.push(s.spawn(move || {
                 let mut probe = P::default();
                 let mut cache = PixelCache::default();
@@ -195,13 +205,26 @@ pub fn render_span<P: TileProbe>(
                             &mut groups,
                             &mut probe,
                         );
-                    } else {
+                    } else if aovs.is_empty() {
                         let mut k = 0;
                         for y in t.y0..t.y1 {
                             for x in t.x0..t.x1 {
                                 let samples = range(&acc.pixels[k], x, y);
                                 let add = |c, o| acc.add(k, c, o);
                                 job.pixel(x, y, samples, &mut cache, &mut probe, add);
+                                k += 1;
+                            }
+                        }
+                    } else {
+                        let mut k = 0;
+                        for y in t.y0..t.y1 {
+                            for x in t.x0..t.x1 {
+                                let samples = range(&acc.pixels[k], x, y);
+                                let add = |c, o, cam: &_| {
+                                    acc.add(k, c, o);
+                                    acc.add_aovs(k, o, job.scene, cam, aovs);
+                                };
+                                job.pixel_alone(x, y, samples, &mut cache, &mut probe, add);
                                 k += 1;
                             }
                         }

@@ -5,13 +5,15 @@ use crate::framebuffer::Framebuffer;
 use crate::tile::Tile;
 use tessera_core::film::PixelAccum;
 use tessera_core::glam::Vec2;
-use tessera_core::integrator::xyz_squared;
+use tessera_core::integrator::{xyz_squared, AovIntegrator};
+use tessera_core::render::CameraSample;
+use tessera_core::scene::Scene;
 use tessera_core::splat::Footprint;
 use tessera_core::Color;
 
 /// What a worker adds a tile's samples to: a copy of the tile's accumulators, of their splatted
-/// sums when the scene splats, and of the XYZ squares' sums when the framebuffer gathers them
-/// ([`Framebuffer::squares`]). A worker keeps one and reloads it for each tile, so its buffers
+/// sums when the scene splats, and of the XYZ squares' and surface variables' sums when the
+/// framebuffer gathers them ([`Framebuffer::squares`], [`Framebuffer::aovs`]). A worker keeps one and reloads it for each tile, so its buffers
 /// are allocated once.
 #[derive(Debug)]
 pub(crate) struct TileSums<'a> {
@@ -22,6 +24,8 @@ pub(crate) struct TileSums<'a> {
     footprint: Option<&'a Footprint>,
     /// The same for the samples' XYZ squares, when gathered.
     squares: Option<Box<TileSums<'a>>>,
+    /// The same for each gathered surface variable ([`Framebuffer::aovs`]).
+    aovs: Vec<TileSums<'a>>,
 }
 
 impl<'a> TileSums<'a> {
@@ -32,6 +36,7 @@ impl<'a> TileSums<'a> {
             sums: Vec::new(),
             footprint,
             squares: None,
+            aovs: Vec::new(),
         }
     }
 
@@ -56,6 +61,13 @@ impl<'a> TileSums<'a> {
                 .get_or_insert_with(|| Box::new(TileSums::new(self.footprint)))
                 .load(t, q),
             None => self.squares = None,
+        }
+        self.aovs.truncate(fb.aovs.len());
+        while self.aovs.len() < fb.aovs.len() {
+            self.aovs.push(TileSums::new(self.footprint));
+        }
+        for (sums, g) in self.aovs.iter_mut().zip(&fb.aovs) {
+            sums.load(t, &g.fb);
         }
     }
 
@@ -91,6 +103,28 @@ impl<'a> TileSums<'a> {
         }
         if let (Some(q), Some(to)) = (&self.squares, &mut fb.squares) {
             q.write(t, to);
+        }
+        for (sums, g) in self.aovs.iter().zip(&mut fb.aovs) {
+            sums.write(t, &mut g.fb);
+        }
+    }
+
+    /// Adds the variables `aovs` (those of the framebuffer this was loaded from, in order) of
+    /// the sample whose camera ray is `cam`, `offset` from the centre of the tile's pixel `k`:
+    /// one cast for all of them, each value weighted as the colour's was.
+    #[inline]
+    pub(crate) fn add_aovs(
+        &mut self,
+        k: usize,
+        offset: Vec2,
+        scene: &Scene,
+        cam: &CameraSample,
+        aovs: &[AovIntegrator],
+    ) {
+        let hit = scene.intersect(&cam.ray);
+        for (sums, a) in self.aovs.iter_mut().zip(aovs) {
+            let v = a.value(scene, &cam.ray, hit.as_ref());
+            sums.add(k, cam.weigh(v), offset);
         }
     }
 }

@@ -26,9 +26,10 @@
 //! and the square of the mean (the control) does not.
 //!
 //! Determinism: a layer renders the same bits on 1 and 2 threads with different tiles.
+use std::ops::Range;
 use std::path::{Path, PathBuf};
 use tessera::image_io::RgbImage;
-use tessera::layers::{read_channels_exr, render_layer, render_layers};
+use tessera::layers::{gathered_aovs, read_channels_exr, render_layer, render_layers};
 use tessera::render::{render_span, Framebuffer, RenderOptions, Span};
 use tessera_core::glam::DVec3;
 use tessera_core::integrator::NoProbe;
@@ -520,7 +521,7 @@ fn second_moment_comes_from_the_colours_pass() {
         0..spp,
         &opts(2, 8),
         &fb.rgb(),
-        fb.squares.as_deref(),
+        Some(&fb),
     )
     .unwrap();
     let bits = |chs: &[tessera::layers::Channel], want: &[[f32; 3]]| {
@@ -554,7 +555,6 @@ fn second_moment_comes_from_the_colours_pass() {
     let second = l.integrator_spec.layers[2].clone();
     assert!(!second.colour);
     let fb = colour(&l, spp);
-    let squares = fb.squares.as_deref();
     let got = render_layers(
         &l.scene,
         &[second],
@@ -562,7 +562,7 @@ fn second_moment_comes_from_the_colours_pass() {
         0..spp,
         &opts(2, 8),
         &fb.rgb(),
-        squares,
+        Some(&fb),
     )
     .unwrap();
     assert!(
@@ -579,4 +579,122 @@ fn second_moment_comes_from_the_colours_pass() {
         differ > 100,
         "control: the direct colour's squares match the path's second moment ({differ})"
     );
+}
+
+/// The test scene with its box filter replaced by `filter` (and, with `sampled`, the filter
+/// importance-sampled: samples of a filter with negative lobes then carry a signed weight).
+fn filtered_scene(filter: &str, sampled: bool) -> LoadedScene {
+    let text = std::fs::read_to_string(scene_path()).unwrap();
+    let text = text.replace(
+        "<rfilter type=\"box\"/>",
+        &format!("<rfilter type=\"{filter}\"/>"),
+    );
+    let mut l = load_scene_str(&text, &scene_path(), &[]).unwrap_or_else(|e| panic!("{e}"));
+    if sampled {
+        l.scene.splat = None;
+    }
+    l
+}
+
+/// The colour render of `l` from `seed` at `spp` samples a pixel, gathering its surface
+/// variables, on `o`'s threads and tiles, in the spans `spans`.
+fn colour_with_aovs(
+    l: &LoadedScene,
+    seed: u64,
+    spp: u64,
+    o: &RenderOptions,
+    spans: &[Range<u64>],
+) -> Framebuffer {
+    let job = RenderJob::new(&l.scene, &l.integrator, seed);
+    let aovs = gathered_aovs(&l.integrator_spec.layers, spp);
+    let mut fb = Framebuffer::for_job(&job).with_aovs(aovs);
+    for span in spans {
+        render_span::<NoProbe>(
+            &job,
+            o,
+            &mut fb,
+            Span::Fixed(span.clone()),
+            None,
+            &mut |_, _| {},
+        );
+    }
+    fb
+}
+
+/// Surface variables are gathered in the colour's pass: each layer the same bits as a render of
+/// its own integrator, with the filter splatted (Gaussian), in its own pixel (box) and
+/// importance-sampled with negative lobes (Lanczos: signed sample weights), on any thread count,
+/// tile size and split of the pass. Control: gathered from a colour pass with another seed, the
+/// layers differ from the renders in many pixels.
+#[test]
+fn surface_variables_come_from_the_colours_pass() {
+    let spp = 8;
+    for (filter, sampled) in [("gaussian", false), ("box", false), ("lanczos", true)] {
+        let l = filtered_scene(filter, sampled);
+        let layers: Vec<_> = l
+            .integrator_spec
+            .layers
+            .iter()
+            .filter(|x| matches!(x.source, tessera_scene::LayerSource::Aov(_)))
+            .cloned()
+            .collect();
+        // depth, normal, position, albedo, and the nested path tracer's alpha.
+        assert_eq!(layers.len(), 5, "{filter}");
+        let want: Vec<f32> = layers
+            .iter()
+            .flat_map(|x| {
+                let fb = render_layer(&l.scene, x, SEED, 0..spp, &opts(1, 16)).unwrap();
+                let rgb = fb.rgb();
+                (0..x.names.len())
+                    .flat_map(move |c| rgb.iter().map(move |p| p[c]).collect::<Vec<_>>())
+            })
+            .collect();
+        let gathered = |fb: &Framebuffer| -> Vec<f32> {
+            render_layers(
+                &l.scene,
+                &layers,
+                SEED,
+                0..spp,
+                &opts(2, 8),
+                &fb.rgb(),
+                Some(fb),
+            )
+            .unwrap()
+            .into_iter()
+            .flat_map(|c| c.values)
+            .collect()
+        };
+        let fb = colour_with_aovs(&l, SEED, spp, &opts(2, 8), std::slice::from_ref(&(0..spp)));
+        assert_eq!(fb.aovs.len(), 5);
+        let got = gathered(&fb);
+        assert_eq!(got.len(), want.len());
+        assert!(
+            got.iter()
+                .zip(&want)
+                .all(|(a, b)| a.to_bits() == b.to_bits()),
+            "{filter}: gathered variables differ from their renders"
+        );
+        let other = colour_with_aovs(&l, SEED, spp, &opts(1, 5), &[0..3, 3..spp]);
+        assert!(
+            other == fb,
+            "{filter}: gathering depends on threads, tiles or spans"
+        );
+
+        let control = gathered(&colour_with_aovs(
+            &l,
+            SEED + 1,
+            spp,
+            &opts(2, 8),
+            std::slice::from_ref(&(0..spp)),
+        ));
+        let differ = control
+            .iter()
+            .zip(&want)
+            .filter(|(a, b)| a.to_bits() != b.to_bits())
+            .count();
+        assert!(
+            differ > 200,
+            "{filter}: control: another seed's variables match ({differ})"
+        );
+    }
 }

@@ -83,6 +83,16 @@ impl AovIntegrator {
         probe.ray(RayKind::Camera);
         probe.hit(scene, hit.as_ref(), ray.d);
         probe.end(PathEnd::MaxDepth);
+        self.value(scene, &ray, hit.as_ref())
+    }
+
+    /// The variable for camera ray `ray`, whose first surface (`scene.intersect(ray)`) is `hit`:
+    /// what [`AovIntegrator::li_probed`] returns, for a caller that has already cast the ray
+    /// (one cast for every variable of a sample).
+    pub fn value(&self, scene: &Scene, ray: &Ray, hit: Option<&Interaction>) -> Color {
+        if self.aov == Aov::Black {
+            return Color::ZERO;
+        }
         let Some(si) = hit else {
             return match self.aov {
                 Aov::Alpha {
@@ -96,7 +106,7 @@ impl AovIntegrator {
         match self.aov {
             Aov::Albedo => albedo(
                 &scene.bsdfs[scene.shapes[si.shape as usize].bsdf as usize],
-                &si,
+                si,
             ),
             Aov::Depth => Color::new(si.t * length, 0.0, 0.0),
             Aov::Position => si.p,
@@ -106,7 +116,7 @@ impl AovIntegrator {
             Aov::Alpha { .. } => Color::X,
             Aov::Black => Color::ZERO,
             Aov::DpDu | Aov::DpDv | Aov::DuvDx | Aov::DuvDy | Aov::PrimIndex | Aov::ShapeIndex => {
-                let Some(d) = scene.surface_detail(&ray) else {
+                let Some(d) = scene.surface_detail(ray) else {
                     return Color::ZERO;
                 };
                 match self.aov {
@@ -116,8 +126,8 @@ impl AovIntegrator {
                     Aov::ShapeIndex => Color::new(d.shape_index as f32, 0.0, 0.0),
                     _ => {
                         let scale = 1.0 / crate::math::sqrt(self.spp.max(1) as f32);
-                        let (dx, dy) = match scene.camera.differentials(&ray, scale) {
-                            Some(r) => duv(&si, &d, r),
+                        let (dx, dy) = match scene.camera.differentials(ray, scale) {
+                            Some(r) => duv(si, &d, r),
                             None => (Vec2::ZERO, Vec2::ZERO),
                         };
                         let v = if self.aov == Aov::DuvDx { dx } else { dy };
