@@ -12,6 +12,7 @@ use super::render_once::progressive_flag;
 use tessera::image_io::Format;
 use tessera::layers::{self, render_layers, rgb_channels, write_channels_exr};
 use tessera::render::{Framebuffer, RenderOptions};
+use tessera_core::splat::Footprint;
 use tessera_scene::LoadedScene;
 
 /// Refuses the flags a render with extra channels does not support (one line).
@@ -56,8 +57,19 @@ pub(crate) fn gathered_aovs(
     }
     // Renders with extra channels take a fixed count (`check_args`).
     let spp = args.spp.unwrap_or(loaded.spp);
-    layers::gathered_aovs(&loaded.integrator_spec.layers, spp)
+    let mut list = layers::gathered_aovs(&loaded.integrator_spec.layers, spp);
+    let camera = &loaded.scene.camera;
+    let pixels = camera.width as usize * camera.height as usize;
+    let reach = loaded.scene.splat.as_ref().map(Footprint::reach);
+    let each = Framebuffer::bytes_for(pixels, reach).max(1);
+    list.truncate(GATHER_BUDGET_BYTES / each);
+    list
 }
+
+/// Memory the colour's pass may add to gather surface variables (each as large as the colour's
+/// own sums: 400 bytes a pixel with a Gaussian filter). The variables beyond it are rendered
+/// after the colour, one at a time, with the same bits.
+const GATHER_BUDGET_BYTES: usize = 1 << 30;
 
 /// Whether an output is an EXR file (the only format that holds the extra channels).
 fn wants_exr(args: &RenderArgs) -> bool {

@@ -5,7 +5,7 @@ use crate::splats::Splats;
 use tessera_core::film::PixelAccum;
 use tessera_core::integrator::AovIntegrator;
 use tessera_core::render::RenderJob;
-use tessera_core::splat::Footprint;
+use tessera_core::splat::{stride, Footprint};
 
 /// Accumulated samples of every pixel, row-major.
 #[derive(Clone, Debug, PartialEq)]
@@ -90,6 +90,12 @@ impl Framebuffer {
             })
             .collect();
         self
+    }
+    /// Bytes the accumulators and splatted sums of a buffer of `pixels` pixels take, splatting
+    /// with reach `reach` (or not at all).
+    pub fn bytes_for(pixels: usize, reach: Option<u32>) -> usize {
+        let sums = reach.map_or(0, |r| stride(r) * std::mem::size_of::<f32>());
+        pixels * (std::mem::size_of::<PixelAccum>() + sums)
     }
     /// An empty buffer for `job`: its image size, splatting as its scene does.
     pub fn for_job(job: &RenderJob) -> Self {
