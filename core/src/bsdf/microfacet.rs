@@ -228,8 +228,9 @@ fn beckmann_visible_slope(cos_t: f64, u1: f64, u2: f64) -> (f64, f64) {
     let cot_t = 1.0 / tan_t;
     // The CDF of the x slope is (1 + erf(x) + tan_t exp(-x^2) / sqrt(pi)) / norm on
     // (-inf, cot_t); solve cdf(x) = u1 in the variable b = erf(x) in (-1, erf(cot_t)).
-    let norm = 1.0 / (1.0 + libm::erf(cot_t) + INV_SQRT_PI * tan_t * libm::exp(-cot_t * cot_t));
-    let (mut lo, mut hi) = (-1.0f64, libm::erf(cot_t));
+    let erf_cot = libm::erf(cot_t);
+    let norm = 1.0 / (1.0 + erf_cot + INV_SQRT_PI * tan_t * libm::exp(-cot_t * cot_t));
+    let (mut lo, mut hi) = (-1.0f64, erf_cot);
     let theta = acos_f64(cos_t);
     let fit = 1.0 + theta * (-0.876 + theta * (0.4265 - 0.0594 * theta));
     let mut b = hi - (1.0 + hi) * libm::pow(1.0 - u1, fit);
