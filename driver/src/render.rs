@@ -205,16 +205,6 @@ pub fn render_span<P: TileProbe>(
                             &mut groups,
                             &mut probe,
                         );
-                    } else if aovs.is_empty() {
-                        let mut k = 0;
-                        for y in t.y0..t.y1 {
-                            for x in t.x0..t.x1 {
-                                let samples = range(&acc.pixels[k], x, y);
-                                let add = |c, o| acc.add(k, c, o);
-                                job.pixel(x, y, samples, &mut cache, &mut probe, add);
-                                k += 1;
-                            }
-                        }
                     } else {
                         let mut k = 0;
                         for y in t.y0..t.y1 {

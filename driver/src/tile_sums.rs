@@ -62,10 +62,9 @@ impl<'a> TileSums<'a> {
                 .load(t, q),
             None => self.squares = None,
         }
-        self.aovs.truncate(fb.aovs.len());
-        while self.aovs.len() < fb.aovs.len() {
-            self.aovs.push(TileSums::new(self.footprint));
-        }
+        let footprint = self.footprint;
+        self.aovs
+            .resize_with(fb.aovs.len(), || TileSums::new(footprint));
         for (sums, g) in self.aovs.iter_mut().zip(&fb.aovs) {
             sums.load(t, &g.fb);
         }
@@ -111,7 +110,8 @@ impl<'a> TileSums<'a> {
 
     /// Adds the variables `aovs` (those of the framebuffer this was loaded from, in order) of
     /// the sample whose camera ray is `cam`, `offset` from the centre of the tile's pixel `k`:
-    /// one cast for all of them, each value weighted as the colour's was.
+    /// one cast for all of them (none when there are none), each value weighted as the colour's
+    /// was.
     #[inline]
     pub(crate) fn add_aovs(
         &mut self,
@@ -121,6 +121,9 @@ impl<'a> TileSums<'a> {
         cam: &CameraSample,
         aovs: &[AovIntegrator],
     ) {
+        if aovs.is_empty() {
+            return;
+        }
         let hit = scene.intersect(&cam.ray);
         for (sums, a) in self.aovs.iter_mut().zip(aovs) {
             let v = a.value(scene, &cam.ray, hit.as_ref());

@@ -90,9 +90,6 @@ impl AovIntegrator {
     /// what [`AovIntegrator::li_probed`] returns, for a caller that has already cast the ray
     /// (one cast for every variable of a sample).
     pub fn value(&self, scene: &Scene, ray: &Ray, hit: Option<&Interaction>) -> Color {
-        if self.aov == Aov::Black {
-            return Color::ZERO;
-        }
         let Some(si) = hit else {
             return match self.aov {
                 Aov::Alpha {

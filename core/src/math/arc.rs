@@ -11,6 +11,7 @@
 //! Accuracy: within 2^-21 absolute of the exact value (two units in the last place of the
 //! largest results, `[2, pi]`; libm's are within one), measured in the tests below. Plain `f32`
 //! arithmetic, no fused multiply-add: the same bits on every target.
+use super::poly::horner;
 use super::{sqrt, PI};
 
 /// The part of pi that `PI` (rounded to `f32`) leaves out.
@@ -23,15 +24,19 @@ const ACOS_C0: f32 = f32::from_bits(0x3FC9_0FDA);
 /// `atan(a)` for `a` in `[0, 1]`.
 #[inline(always)]
 fn atan_unit(a: f32) -> f32 {
-    let t = a * a;
-    let p = -0.004_693_273_f32;
-    let p = p * t + 0.024_252_396;
-    let p = p * t - 0.059_486_39;
-    let p = p * t + 0.099_142_93;
-    let p = p * t - 0.140_194_82;
-    let p = p * t + 0.199_697_24;
-    let p = p * t - 0.333_319_9;
-    let p = p * t + 0.999_999_9;
+    let p = horner(
+        a * a,
+        [
+            -0.004_693_273,
+            0.024_252_396,
+            -0.059_486_39,
+            0.099_142_93,
+            -0.140_194_82,
+            0.199_697_24,
+            -0.333_319_9,
+            0.999_999_9,
+        ],
+    );
     a * p
 }
 
@@ -78,14 +83,19 @@ pub fn atan2_turns(y: f32, x: f32) -> f32 {
 #[inline]
 pub fn acos(x: f32) -> f32 {
     let ax = x.abs();
-    let p = -0.001_253_456_3_f32;
-    let p = p * ax + 0.006_638_617;
-    let p = p * ax - 0.017_045_101;
-    let p = p * ax + 0.030_862_752;
-    let p = p * ax - 0.050_164_19;
-    let p = p * ax + 0.088_977_315;
-    let p = p * ax - 0.214_598_7;
-    let p = p * ax + ACOS_C0;
+    let p = horner(
+        ax,
+        [
+            -0.001_253_456_3,
+            0.006_638_617,
+            -0.017_045_101,
+            0.030_862_752,
+            -0.050_164_19,
+            0.088_977_315,
+            -0.214_598_7,
+            ACOS_C0,
+        ],
+    );
     let r = sqrt(1.0 - ax) * p;
     if x < 0.0 {
         (PI - r) + PI_LO

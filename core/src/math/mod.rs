@@ -3,6 +3,7 @@ mod aabb;
 mod arc;
 mod float;
 mod frame;
+mod poly;
 mod ray;
 mod sqrt;
 mod transform;

@@ -11,6 +11,7 @@
 //! negating, which is exact. The result is at least as accurate as `sincosf(2 pi u)`, whose
 //! argument is rounded once at full magnitude (tests below). Plain `f32` arithmetic: the same
 //! bits on every target.
+use super::poly::horner;
 use super::PI;
 
 /// `(sin(2 pi u), cos(2 pi u))`.
@@ -34,16 +35,8 @@ pub fn sincos_turns(u: f32) -> (f32, f32) {
 #[inline(always)]
 fn sincos_eighth(f: f32) -> (f32, f32) {
     let t = f * f;
-    let s = 41.469_89_f32;
-    let s = s * t - 76.697_78;
-    let s = s * t + 81.605_2;
-    let s = s * t - 41.341_7;
-    let s = s * t + TWO_PI;
-    let c = 59.220_406_f32;
-    let c = c * t - 85.442_856;
-    let c = c * t + 64.939_316;
-    let c = c * t - 19.739_208;
-    let c = c * t + 1.0;
+    let s = horner(t, [41.469_89, -76.697_78, 81.605_2, -41.341_7, TWO_PI]);
+    let c = horner(t, [59.220_406, -85.442_856, 64.939_316, -19.739_208, 1.0]);
     (f * s, c)
 }
 
