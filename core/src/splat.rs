@@ -71,15 +71,23 @@ impl Footprint {
     /// finite (a non-finite sample is the caller's to drop).
     #[inline]
     pub fn add(&self, sums: &mut [f32], offset: Vec2, c: Color) {
-        let side = self.side();
-        let n = self.reach as f32;
-        let mut wx = [0.0f32; MAX_SIDE];
-        let mut wy = [0.0f32; MAX_SIDE];
-        for i in 0..side {
-            let d = i as f32 - n;
-            wx[i] = self.table.eval(d - offset.x);
-            wy[i] = self.table.eval(d - offset.y);
+        // One loop per reach, so that each is unrolled with its sizes known.
+        match self.reach {
+            0 => self.add_side::<1>(sums, offset, c),
+            1 => self.add_side::<3>(sums, offset, c),
+            2 => self.add_side::<5>(sums, offset, c),
+            3 => self.add_side::<7>(sums, offset, c),
+            _ => self.add_side::<MAX_SIDE>(sums, offset, c),
         }
+    }
+
+    /// [`Footprint::add`] for a footprint `SIDE` targets wide (`2 reach + 1`).
+    #[inline(always)]
+    fn add_side<const SIDE: usize>(&self, sums: &mut [f32], offset: Vec2, c: Color) {
+        let sums = &mut sums[..CHANNELS * SIDE * SIDE];
+        let n = (SIDE / 2) as f32;
+        let wx: [f32; SIDE] = core::array::from_fn(|i| self.table.eval(i as f32 - n - offset.x));
+        let wy: [f32; SIDE] = core::array::from_fn(|i| self.table.eval(i as f32 - n - offset.y));
         // The value and a weight of 1 in four lanes: each lane's product and sum are the
         // scalar ones, so the bits are those of adding channel by channel. Every target is
         // added to, those of weight zero too: with `c` finite (the caller's guarantee) that adds
@@ -87,9 +95,8 @@ impl Footprint {
         // +0 + -0 is +0), and the outer targets' zero weights depend on where the sample fell
         // in its pixel, so testing for them was a branch mispredicted about half the time.
         let c4 = Vec4::new(c.x, c.y, c.z, 1.0);
-        for (iy, &y) in wy[..side].iter().enumerate() {
-            let row = &mut sums[CHANNELS * iy * side..CHANNELS * (iy + 1) * side];
-            for (t, &x) in row.chunks_exact_mut(CHANNELS).zip(&wx[..side]) {
+        for (row, &y) in sums.chunks_exact_mut(CHANNELS * SIDE).zip(&wy) {
+            for (t, &x) in row.chunks_exact_mut(CHANNELS).zip(&wx) {
                 let sum = Vec4::from_slice(t) + c4 * (x * y);
                 sum.write_to_slice(t);
             }

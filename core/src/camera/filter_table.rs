@@ -34,7 +34,9 @@ impl FilterTable {
     #[inline]
     pub fn eval(&self, x: f32) -> f32 {
         // `as usize` saturates: a NaN distance reads the first value, never out of bounds.
-        let i = (libm::fabsf(x) * self.scale) as usize;
+        // Clamped as a float first, so that the conversion is a plain truncation (`as usize`
+        // saturates through a longer sequence); NaN indexes the last entry, zero.
+        let i = (libm::fabsf(x) * self.scale).min(STEPS as f32) as u32 as usize;
         self.values[i.min(STEPS)]
     }
 }

@@ -184,11 +184,13 @@ impl EnvMap {
         T: core::ops::Mul<f32, Output = T> + core::ops::Add<Output = T>,
     {
         let (w, h) = (self.width, self.height);
-        let x0 = (s.max(0.0) as usize).min(w - 1);
+        // Each index clamped as a float first, so that its conversion is a plain truncation
+        // (`as usize` saturates through a longer sequence); the same index for every input.
+        let x0 = (s.max(0.0).min((w - 1) as f32) as u32 as usize).min(w - 1);
         let fx = (s - x0 as f32).clamp(0.0, 1.0);
         let x1 = if x0 + 1 == w { 0 } else { x0 + 1 };
         let t = v.clamp(0.0, 1.0) * (h - 1) as f32;
-        let y0 = (t as usize).min(h - 2);
+        let y0 = (t.max(0.0).min((h - 2) as f32) as u32 as usize).min(h - 2);
         let fy = (t - y0 as f32).clamp(0.0, 1.0);
         let (r0, r1) = (y0 * w, (y0 + 1) * w);
         let top = at(r0 + x0) * (1.0 - fx) + at(r0 + x1) * fx;
@@ -199,7 +201,8 @@ impl EnvMap {
     /// Radiance at image coordinates `(s, v)`.
     #[inline]
     fn lookup(&self, s: f32, v: f32) -> Color {
-        self.bilinear(s, v, |i| self.texels[i].truncate())
+        // In four lanes, each computed as the three-lane interpolation computes it.
+        self.bilinear(s, v, |i| self.texels[i]).truncate()
     }
 
     /// Density on the `(u, v)` square at image coordinates `(s, v)`.
