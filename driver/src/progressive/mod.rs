@@ -9,7 +9,8 @@
 //!
 //! Pass sizes: 1 spp first, then as many spp as fit in [`PASS_SECONDS`] at the measured speed
 //! (at most double the previous pass; at most half the write interval and at most the time left),
-//! never past the target. Pass sizes change nothing in the bits.
+//! never past the target; with a target and no budget, writes or error check, the second pass
+//! goes straight to the target. Pass sizes change nothing in the bits.
 //!
 //! Adaptive sampling ([`Plan::adaptive`]): the target and the pass ends count the *mean* samples
 //! per pixel. Every pixel first takes `warmup` samples; then each pass doubles the image's mean
@@ -200,6 +201,14 @@ fn passes(
         );
     }
     let target = plan.target.unwrap_or(u64::MAX);
+    // With a target and nothing to pace (no time budget, no writes, no error check), the pass
+    // after the first takes every pixel to the target: a pass's only other cost is copying
+    // every tile's sums out of the framebuffer and back, and the first pass (1 spp) already
+    // gives every pixel a value should the render be stopped.
+    let unpaced = plan.target.is_some()
+        && plan.write_every.is_none()
+        && deadline.is_none()
+        && check.is_none();
     let mut last_write = start;
     let mut next = 1u64;
     let mut rate = None::<f64>; // spp of the whole image per second
@@ -231,7 +240,11 @@ fn passes(
             }
         }
         if let Some(r) = rate {
-            next = ((r * budget) as u64).clamp(1, next.saturating_mul(2));
+            next = if unpaced {
+                u64::MAX
+            } else {
+                ((r * budget) as u64).clamp(1, next.saturating_mul(2))
+            };
         }
         let mut end = low.saturating_add(next).min(target);
         if check.is_some() {
