@@ -55,11 +55,6 @@ impl Footprint {
         self.reach
     }
 
-    /// Offsets per axis: `2n + 1`.
-    fn side(&self) -> usize {
-        2 * self.reach as usize + 1
-    }
-
     /// Floats kept per source pixel ([`stride`] of the reach).
     pub fn stride(&self) -> usize {
         stride(self.reach)
