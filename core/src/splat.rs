@@ -66,35 +66,77 @@ impl Footprint {
     /// finite (a non-finite sample is the caller's to drop).
     #[inline]
     pub fn add(&self, sums: &mut [f32], offset: Vec2, c: Color) {
+        self.add_weighted(sums, &self.weights(offset), c);
+    }
+
+    /// The filter's weights, on each axis, for a sample placed `offset` from its pixel's
+    /// centre: what [`Footprint::add_weighted`] takes, computed once for every value of the
+    /// same sample (its colour, its square, its surface variables).
+    #[inline]
+    pub fn weights(&self, offset: Vec2) -> SplatWeights {
         // One loop per reach, so that each is unrolled with its sizes known.
         match self.reach {
-            0 => self.add_side::<1>(sums, offset, c),
-            1 => self.add_side::<3>(sums, offset, c),
-            2 => self.add_side::<5>(sums, offset, c),
-            3 => self.add_side::<7>(sums, offset, c),
-            _ => self.add_side::<MAX_SIDE>(sums, offset, c),
+            0 => self.weights_side::<1>(offset),
+            1 => self.weights_side::<3>(offset),
+            2 => self.weights_side::<5>(offset),
+            3 => self.weights_side::<7>(offset),
+            _ => self.weights_side::<MAX_SIDE>(offset),
         }
     }
 
-    /// [`Footprint::add`] for a footprint `SIDE` targets wide (`2 reach + 1`).
+    /// [`Footprint::weights`] for a footprint `SIDE` targets wide (`2 reach + 1`).
     #[inline(always)]
-    fn add_side<const SIDE: usize>(&self, sums: &mut [f32], offset: Vec2, c: Color) {
-        let sums = &mut sums[..CHANNELS * SIDE * SIDE];
+    fn weights_side<const SIDE: usize>(&self, offset: Vec2) -> SplatWeights {
         let n = (SIDE / 2) as f32;
-        let wx: [f32; SIDE] = core::array::from_fn(|i| self.table.eval(i as f32 - n - offset.x));
-        let wy: [f32; SIDE] = core::array::from_fn(|i| self.table.eval(i as f32 - n - offset.y));
-        // The value and a weight of 1 in four lanes: each lane's product and sum are the
-        // scalar ones, so the bits are those of adding channel by channel. Every target is
-        // added to, those of weight zero too: with `c` finite (the caller's guarantee) that adds
-        // a zero, which leaves every sum's bits as they were (a sum starts at +0 and
-        // +0 + -0 is +0), and the outer targets' zero weights depend on where the sample fell
-        // in its pixel, so testing for them was a branch mispredicted about half the time.
-        let c4 = Vec4::new(c.x, c.y, c.z, 1.0);
-        for (row, &y) in sums.chunks_exact_mut(CHANNELS * SIDE).zip(&wy) {
-            for (t, &x) in row.chunks_exact_mut(CHANNELS).zip(&wx) {
-                let sum = Vec4::from_slice(t) + c4 * (x * y);
-                sum.write_to_slice(t);
-            }
+        let mut w = SplatWeights {
+            x: [0.0; MAX_SIDE],
+            y: [0.0; MAX_SIDE],
+        };
+        for i in 0..SIDE {
+            w.x[i] = self.table.eval(i as f32 - n - offset.x);
+            w.y[i] = self.table.eval(i as f32 - n - offset.y);
+        }
+        w
+    }
+
+    /// [`Footprint::add`] with the sample's weights already found ([`Footprint::weights`] of
+    /// this footprint): the same sums.
+    #[inline]
+    pub fn add_weighted(&self, sums: &mut [f32], w: &SplatWeights, c: Color) {
+        match self.reach {
+            0 => add_side::<1>(sums, w, c),
+            1 => add_side::<3>(sums, w, c),
+            2 => add_side::<5>(sums, w, c),
+            3 => add_side::<7>(sums, w, c),
+            _ => add_side::<MAX_SIDE>(sums, w, c),
+        }
+    }
+}
+
+/// One sample's filter weights on each axis, for the targets at offsets `-n..=n` (the first
+/// `2n + 1` entries; see [`Footprint::weights`]).
+#[derive(Clone, Copy, Debug)]
+pub struct SplatWeights {
+    x: [f32; MAX_SIDE],
+    y: [f32; MAX_SIDE],
+}
+
+/// [`Footprint::add_weighted`] for a footprint `SIDE` targets wide (`2 reach + 1`).
+#[inline(always)]
+fn add_side<const SIDE: usize>(sums: &mut [f32], w: &SplatWeights, c: Color) {
+    let sums = &mut sums[..CHANNELS * SIDE * SIDE];
+    let (wx, wy) = (&w.x[..SIDE], &w.y[..SIDE]);
+    // The value and a weight of 1 in four lanes: each lane's product and sum are the scalar
+    // ones, so the bits are those of adding channel by channel. Every target is added to, those
+    // of weight zero too: with `c` finite (the caller's guarantee) that adds a zero, which
+    // leaves every sum's bits as they were (a sum starts at +0 and +0 + -0 is +0), and the
+    // outer targets' zero weights depend on where the sample fell in its pixel, so testing for
+    // them was a branch mispredicted about half the time.
+    let c4 = Vec4::new(c.x, c.y, c.z, 1.0);
+    for (row, &y) in sums.chunks_exact_mut(CHANNELS * SIDE).zip(wy) {
+        for (t, &x) in row.chunks_exact_mut(CHANNELS).zip(wx) {
+            let sum = Vec4::from_slice(t) + c4 * (x * y);
+            sum.write_to_slice(t);
         }
     }
 }

@@ -8,7 +8,7 @@ use tessera_core::glam::Vec2;
 use tessera_core::integrator::{xyz_squared, AovIntegrator};
 use tessera_core::render::CameraSample;
 use tessera_core::scene::Scene;
-use tessera_core::splat::Footprint;
+use tessera_core::splat::{Footprint, SplatWeights};
 use tessera_core::Color;
 
 /// What a worker adds a tile's samples to: a copy of the tile's accumulators, of their splatted
@@ -75,15 +75,23 @@ impl<'a> TileSums<'a> {
     /// dropped and splats nothing.
     #[inline]
     pub(crate) fn add(&mut self, k: usize, c: Color, offset: Vec2) {
+        let w = self.footprint.map(|f| f.weights(offset));
+        self.add_weighted(k, c, w.as_ref());
+    }
+
+    /// [`TileSums::add`] with the sample's splat weights found (`None` when nothing splats):
+    /// the colour and its square splat with the same weights.
+    #[inline]
+    fn add_weighted(&mut self, k: usize, c: Color, w: Option<&SplatWeights>) {
         self.pixels[k].add(c);
-        if let Some(f) = self.footprint {
+        if let (Some(f), Some(w)) = (self.footprint, w) {
             if c.is_finite() {
                 let s = f.stride();
-                f.add(&mut self.sums[k * s..(k + 1) * s], offset, c);
+                f.add_weighted(&mut self.sums[k * s..(k + 1) * s], w, c);
             }
         }
         if let Some(q) = &mut self.squares {
-            q.add(k, xyz_squared(c), offset);
+            q.add_weighted(k, xyz_squared(c), w);
         }
     }
 
@@ -125,9 +133,10 @@ impl<'a> TileSums<'a> {
             return;
         }
         let hit = scene.intersect(&cam.ray);
+        let w = self.footprint.map(|f| f.weights(offset));
         for (sums, a) in self.aovs.iter_mut().zip(aovs) {
             let v = a.value(scene, &cam.ray, hit.as_ref());
-            sums.add(k, cam.weigh(v), offset);
+            sums.add_weighted(k, cam.weigh(v), w.as_ref());
         }
     }
 }
