@@ -33,9 +33,9 @@ impl FilterTable {
     /// radius.
     #[inline]
     pub fn eval(&self, x: f32) -> f32 {
-        // `as usize` saturates: a NaN distance reads the first value, never out of bounds.
         // Clamped as a float first, so that the conversion is a plain truncation (`as usize`
-        // saturates through a longer sequence); NaN indexes the last entry, zero.
+        // saturates through a longer sequence); NaN indexes the last entry, zero. The integer
+        // clamp only lets the compiler drop the bounds check.
         let i = (libm::fabsf(x) * self.scale).min(STEPS as f32) as u32 as usize;
         self.values[i.min(STEPS)]
     }
