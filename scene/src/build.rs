@@ -8,8 +8,8 @@ use super::media::interfaces::Media;
 use super::sampler::build_sampler;
 use super::sensor::build_sensor;
 use super::shape_numbering::Numbering;
-use super::shapes::build_shape;
 use super::shapes::instancing::{Groups, INSTANCE, SHAPEGROUP};
+use super::shapes::{build_shape, plan_mesh_reads};
 use super::threads::Threads;
 use super::util::Result;
 use crate::error::InputError;
@@ -30,6 +30,8 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
     if root.kind != Kind::Scene {
         return Err(root.error("the root element must be <scene>"));
     }
+    // A mesh file several shapes name is parsed once (`mesh/file_cache.rs`).
+    let _mesh_reads = plan_mesh_reads(root).enter();
     let mut warnings = root.load_warnings.clone();
     let mut acc = Acc::default();
     let mut groups = Groups::default();

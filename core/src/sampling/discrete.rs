@@ -50,9 +50,7 @@ impl Discrete1D {
         // Past 2^20 items, `u` times the count no longer places `u` within a step of its own in
         // f32; such tables are searched whole.
         let guide = match steps <= GUIDED_MAX {
-            true => (0..=steps)
-                .map(|k| count_at_most(&cdf[1..], k as f32 / steps as f32) as u32)
-                .collect(),
+            true => guide(&cdf[1..]),
             false => Vec::new(),
         };
         Some(Discrete1D {
@@ -111,6 +109,20 @@ impl Discrete1D {
         let hi = self.guide[(k + 2).min(steps)] as usize;
         lo + count_at_most(&sums[lo..hi], u)
     }
+}
+
+/// The guide of the non-decreasing `sums` of `n` items: for each `k` from 0 to `n`, how many
+/// sums are `<= k / n` (what [`count_at_most`] counts), in one sweep, as the thresholds rise.
+fn guide(sums: &[f32]) -> Vec<u32> {
+    let steps = sums.len();
+    let mut below = 0;
+    (0..=steps)
+        .map(|k| {
+            let t = k as f32 / steps as f32;
+            below += sums[below..].iter().take_while(|&&c| c <= t).count();
+            below as u32
+        })
+        .collect()
 }
 
 /// The most items a table keeps a guide for.
@@ -192,6 +204,8 @@ mod tests {
                 let mut us: alloc::vec::Vec<f32> = (0..400).map(|_| next()).collect();
                 for k in 0..=n {
                     let t = k as f32 / n as f32;
+                    // The guide, built in one sweep, holds each step's full count.
+                    assert_eq!(d.guide[k] as usize, sums.partition_point(|&c| c <= t));
                     us.extend([t, crate::math::next_down(t), crate::math::next_up(t)]);
                 }
                 for &c in sums {

@@ -3,6 +3,7 @@
 mod builtin;
 pub mod curve_file;
 mod data;
+mod file_cache;
 pub mod mtl;
 mod mtl_material;
 mod obj;
@@ -14,6 +15,7 @@ mod serialized;
 
 pub use builtin::{cube, rectangle};
 pub use data::{MeshData, MAX_MESH_BYTES};
+pub(crate) use file_cache::{read_shared, Plan, ReadKey};
 pub(crate) use mtl_material::{mtl_bsdf, MtlBsdf};
 pub use obj::{load_obj, load_obj_with_materials, ObjParts};
 pub use ply::load_ply;

@@ -76,13 +76,20 @@ fn build_mesh_file(obj: &Object) -> Result<Geometry> {
     let face_normals = FACE_NORMALS.read_bool(obj)?;
     let tf = TO_WORLD.read_transform(obj)?;
     if !use_mtl {
-        let data = if obj.plugin == OBJ.name {
-            mesh::load_obj(&path)
-        } else if obj.plugin == SERIALIZED.name {
-            mesh::load_serialized(&path, SHAPE_INDEX.read_i64(obj)? as u64)
-        } else {
-            mesh::load_ply(&path)
-        }
+        let index = match obj.plugin == SERIALIZED.name {
+            true => SHAPE_INDEX.read_i64(obj)? as u64,
+            false => 0,
+        };
+        let key = read_key(obj, &path, index);
+        let data = mesh::read_shared(key, || {
+            if obj.plugin == OBJ.name {
+                mesh::load_obj(&path)
+            } else if obj.plugin == SERIALIZED.name {
+                mesh::load_serialized(&path, index)
+            } else {
+                mesh::load_ply(&path)
+            }
+        })
         .map_err(|e| at_filename(obj, e))?;
         let mesh_attributes = !data.attributes.is_empty();
         let mut g = Geometry::of(ShapeKind::Mesh(to_world_mesh(
@@ -117,6 +124,50 @@ fn build_mesh_file(obj: &Object) -> Result<Geometry> {
         mtl_parts,
         mesh_attributes: false,
     })
+}
+
+/// The reader of a mesh-file shape's plugin, as a [`mesh::ReadKey`] names it.
+fn reader(plugin: &str) -> Option<&'static str> {
+    [OBJ.name, PLY.name, SERIALIZED.name]
+        .into_iter()
+        .find(|&n| n == plugin)
+}
+
+/// What reading the mesh of `obj` (at `path`, mesh `index` of the file) depends on.
+fn read_key(obj: &Object, path: &std::path::Path, index: u64) -> Option<mesh::ReadKey> {
+    mesh::ReadKey::new(path, reader(&obj.plugin)?, index)
+}
+
+/// The mesh files the shapes under `root` will read, each counted once per shape that names
+/// it (a shape reached twice through `<ref>`s counts once), so that a file named by several
+/// shapes is parsed once (see `mesh/file_cache.rs`). A shape whose parameters are wrong is not
+/// counted: building it reports them.
+pub(crate) fn plan_mesh_reads(root: &Object) -> mesh::Plan {
+    let mut plan = mesh::Plan::default();
+    let mut seen = std::collections::HashSet::new();
+    let mut stack = vec![root];
+    while let Some(obj) = stack.pop() {
+        if !seen.insert(obj as *const Object) {
+            continue;
+        }
+        stack.extend(obj.children.iter().map(|c| &*c.obj));
+        if obj.kind != crate::xml::Kind::Shape || reader(&obj.plugin).is_none() {
+            continue;
+        }
+        let key = (|| {
+            let name = obj.string_opt(FILENAME.name).ok()??;
+            let use_mtl = obj.plugin == OBJ.name && USE_MTL.read_bool(obj).ok()?;
+            let index = match obj.plugin == SERIALIZED.name {
+                true => u64::try_from(SHAPE_INDEX.read_i64(obj).ok()?).ok()?,
+                false => 0,
+            };
+            (!use_mtl).then(|| read_key(obj, &obj.resolve_file(&name), index))?
+        })();
+        if let Some(key) = key {
+            plan.count(key);
+        }
+    }
+    plan
 }
 
 /// A mesh error with no line in the mesh file (unreadable, too large, bad header...) is

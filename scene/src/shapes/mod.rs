@@ -10,6 +10,7 @@ mod mesh_file;
 mod simple;
 mod table;
 
+pub(crate) use mesh_file::plan_mesh_reads;
 pub(crate) use table::build_shape;
 pub use table::SHAPES;
 
