@@ -101,7 +101,7 @@ pub(super) fn write(
         if Format::from_path(o) == Some(Format::Exr) {
             let mut channels = rgb_channels(&rgb);
             channels.extend(extra.iter().cloned());
-            write_channels_exr(o, fb.width, fb.height, &channels)?;
+            write_channels_exr(o, fb.width, fb.height, &channels, opts.threads)?;
         } else {
             if !warned {
                 eprintln!(

@@ -18,7 +18,7 @@
 use crate::image_io::write_atomic;
 use crate::render::{render, Framebuffer, RenderOptions};
 use exr::prelude::{AnyChannel, AnyChannels, Encoding, FlatSamples, Layer as ExrLayer};
-use exr::prelude::{LayerAttributes, ReadChannels, ReadLayers, SmallVec, Vec2, WritableImage};
+use exr::prelude::{LayerAttributes, ReadChannels, ReadLayers, SmallVec, Vec2};
 use std::ops::Range;
 use std::path::Path;
 use tessera_core::glam::Vec3;
@@ -139,13 +139,15 @@ pub fn rgb_channels(rgb: &[[f32; 3]]) -> Vec<Channel> {
         .collect()
 }
 
-/// Writes `channels` (each `width * height` values) as one float EXR layer, atomically; the
+/// Writes `channels` (each `width * height` values) as one float EXR layer, atomically, its
+/// blocks compressed on up to `threads` threads (the bytes do not depend on how many); the
 /// channels are stored sorted by name, as EXR requires.
 pub fn write_channels_exr(
     path: &Path,
     width: u32,
     height: u32,
     channels: &[Channel],
+    threads: usize,
 ) -> Result<(), String> {
     let err = |e: String| format!("{}: cannot write image: {e}", path.display());
     let n = width as usize * height as usize;
@@ -166,7 +168,7 @@ pub fn write_channels_exr(
     );
     let image = exr::image::Image::from_layer(layer);
     write_atomic(path, |tmp| {
-        image.write().to_file(tmp).map_err(|e| e.to_string())
+        crate::exr_blocks::write_parallel(&image, tmp, threads)
     })
     .map_err(err)
 }

@@ -27,6 +27,7 @@
 #![warn(missing_docs)]
 mod api;
 pub mod checkpoint;
+mod exr_blocks;
 pub mod framebuffer;
 pub mod image_io;
 pub mod layers;

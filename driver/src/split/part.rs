@@ -20,7 +20,7 @@ use crate::render::{Framebuffer, Tile};
 use crate::splats::Splats;
 use exr::prelude::{
     AnyChannel, AnyChannels, AttributeValue, Encoding, FlatSamples, Layer, LayerAttributes,
-    ReadChannels, ReadLayers, SampleType, SmallVec, Text, Vec2, WritableImage,
+    ReadChannels, ReadLayers, SampleType, SmallVec, Text, Vec2,
 };
 use std::ops::Range;
 use std::path::Path;
@@ -190,8 +190,10 @@ pub fn write_part(path: &Path, info: &PartInfo, fb: &Framebuffer) -> Result<(), 
         Vec2(0, 0),
         Vec2(info.width as usize, info.height as usize),
     );
+    // Compressed on every core: a part holds a float channel per splat sum.
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     write_atomic(path, |tmp| {
-        image.write().to_file(tmp).map_err(|e| e.to_string())
+        crate::exr_blocks::write_parallel(&image, tmp, threads)
     })
     .map_err(err)
 }
