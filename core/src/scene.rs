@@ -164,7 +164,13 @@ impl Scene {
                 grouped[si as usize] = true;
             }
         }
-        let mut top = LevelPrims::default();
+        let mut top = LevelPrims::with_room_for(
+            p.shapes
+                .iter()
+                .zip(&grouped)
+                .filter(|(_, &g)| !g)
+                .map(|(s, _)| s),
+        );
         for (si, s) in p.shapes.iter().enumerate() {
             if s.bsdf as usize >= p.bsdfs.len()
                 || s.emitter.is_some_and(|e| e as usize >= p.emitters.len())
@@ -177,7 +183,7 @@ impl Scene {
         }
         let mut groups = Vec::with_capacity(p.groups.len());
         for g in &p.groups {
-            let mut lp = LevelPrims::default();
+            let mut lp = LevelPrims::with_room_for(g.iter().map(|&si| &p.shapes[si as usize]));
             for &si in g {
                 lp.push_shape(si as usize, &p.shapes[si as usize], &p.disks)?;
             }

@@ -32,6 +32,22 @@ pub struct LevelPrims {
 }
 
 impl LevelPrims {
+    /// Empty, with room for the primitives of `shapes` (so that appending them copies nothing:
+    /// a scene of 325k triangles spent a tenth of its load growing these arrays).
+    pub(crate) fn with_room_for<'a>(shapes: impl Iterator<Item = &'a Shape>) -> Self {
+        let n = shapes
+            .map(|s| match &s.kind {
+                ShapeKind::Mesh(m) => m.indices.len(),
+                ShapeKind::Curve(c) => c.segment_count(),
+                _ => 1,
+            })
+            .sum();
+        LevelPrims {
+            prims: Vec::with_capacity(n),
+            tris: Vec::with_capacity(n),
+        }
+    }
+
     /// Appends the primitives of shape `si`.
     pub(crate) fn push_shape(
         &mut self,
