@@ -126,8 +126,7 @@ impl<'a> RenderJob<'a> {
         assert!(!self.reuses(), "pixel_alone: the integrator reuses paths");
         match self.scene.sampler {
             SamplerKind::Independent => {
-                for index in samples {
-                    let s = IndependentSampler::new(self.seed, x, y, index);
+                for s in IndependentSampler::pixel_run(self.seed, x, y, samples) {
                     let (c, o, cam) = self.trace(x, y, s, probe);
                     add(c, o, &cam);
                 }
