@@ -9,9 +9,7 @@ use crate::integrator::{
     Integrator, NoProbe, PathIntegrator, Probe, Radiance, GROUP, GROUP_H, GROUP_W,
 };
 use crate::math::Ray;
-use crate::sampling::{
-    CachedZSobol, IndependentSampler, ParkedZSobol, Sampler, SamplerKind, ZSobolPixel,
-};
+use crate::sampling::{IndependentSampler, Sampler, SamplerKind, ZSobolPixel};
 use crate::scene::Scene;
 use crate::Color;
 use core::ops::Range;
@@ -149,24 +147,9 @@ impl<'a> RenderJob<'a> {
                     return;
                 }
                 let pixel = cache.zsobol_for(self.seed, x, y, log2_spp, samples.clone());
-                // As above; the pixel's cache lends one sampler at a time, so each is set aside
-                // after its camera draw and taken up again for its path.
-                let mut indices = samples;
-                loop {
-                    let batch: [Option<CameraDraw<ParkedZSobol>>; CAMERA_BATCH] =
-                        core::array::from_fn(|_| {
-                            let index = indices.next()?;
-                            let draw = self.camera_draw(x, y, pixel.sampler(index));
-                            Some(draw.with_sampler(CachedZSobol::park))
-                        });
-                    if batch[0].is_none() {
-                        break;
-                    }
-                    for draw in batch.into_iter().flatten() {
-                        let draw = draw.with_sampler(|p| pixel.resume(p));
-                        let (c, o, cam) = self.finish(draw, probe);
-                        add(c, o, &cam);
-                    }
+                for index in samples {
+                    let (c, o, cam) = self.trace(x, y, pixel.sampler(index), probe);
+                    add(c, o, &cam);
                 }
             }
         }
@@ -315,6 +298,20 @@ impl<'a> RenderJob<'a> {
         }
     }
 
+    /// One camera sample of pixel `(x, y)` drawn from `sampler`, and its offset from the pixel's
+    /// centre.
+    #[inline]
+    fn trace<S: Sampler, P: Probe>(
+        &self,
+        x: u32,
+        y: u32,
+        sampler: S,
+        probe: &mut P,
+    ) -> (Color, Vec2, CameraSample) {
+        let draw = self.camera_draw(x, y, sampler);
+        self.finish(draw, probe)
+    }
+
     /// The camera part of a sample of pixel `(x, y)`: its film position and camera ray, drawn
     /// from the first dimensions of `sampler`, which the path goes on drawing from.
     #[inline(always)]
@@ -363,19 +360,6 @@ struct CameraDraw<S> {
     pos: Vec2,
     offset: Vec2,
     cam: CameraSample,
-}
-
-impl<S> CameraDraw<S> {
-    /// The same draw with its sampler passed through `f` (set aside or taken up again).
-    #[inline(always)]
-    fn with_sampler<T>(self, f: impl FnOnce(S) -> T) -> CameraDraw<T> {
-        CameraDraw {
-            sampler: f(self.sampler),
-            pos: self.pos,
-            offset: self.offset,
-            cam: self.cam,
-        }
-    }
 }
 
 /// A sample's camera ray and the weight its value is multiplied by (filters with negative

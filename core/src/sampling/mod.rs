@@ -19,7 +19,7 @@ pub use layout::{
     dimension_of, paired_dimension, Stage, BOUNCE_DIMENSIONS, CAMERA_DIMENSIONS, LENS_DIMENSION,
 };
 pub use zsobol::{ZSobolSampler, CACHED_DIMENSIONS, MAX_LOG2_SPP};
-pub use zsobol_pixel::{CachedZSobol, ParkedZSobol, ZSobolPixel};
+pub use zsobol_pixel::{CachedZSobol, ZSobolPixel};
 
 use glam::Vec2;
 

@@ -103,7 +103,15 @@ impl ZSobolPixel {
             Some(s) => s,
             None => {
                 let s = ZSobolSampler::new(self.seed, self.x, self.y, index, self.log2_spp);
-                self.adopt(&s);
+                if !self.block.as_ref().is_some_and(|b| b.same_block(&s)) {
+                    self.block = Some(s.clone());
+                    self.filled = 0;
+                    self.group.clear();
+                }
+                if !self.hash_block.as_ref().is_some_and(|b| b.same_key(&s)) {
+                    self.hash_block = Some(s.clone());
+                    self.hashed = 0;
+                }
                 s
             }
         };
@@ -113,38 +121,6 @@ impl ZSobolPixel {
             pixel: self,
             last_2d: NO_DRAW,
             lane,
-            index,
-        }
-    }
-
-    /// Sample `parked`, set aside by [`CachedZSobol::park`], drawing from this pixel again
-    /// where it left off: the same values it would have drawn had it never been set aside (the
-    /// table and the group are caches, brought back to its block and group here).
-    #[inline]
-    pub fn resume(&mut self, parked: ParkedZSobol) -> CachedZSobol<'_> {
-        self.adopt(&parked.sample);
-        let lane = self.lane_of(parked.index);
-        CachedZSobol {
-            sample: parked.sample,
-            pixel: self,
-            last_2d: parked.last_2d,
-            lane,
-            index: parked.index,
-        }
-    }
-
-    /// Makes the table and the hashes belong to the block and key of sample `s`, emptying them
-    /// when they belonged to others.
-    #[inline]
-    fn adopt(&mut self, s: &ZSobolSampler) {
-        if !self.block.as_ref().is_some_and(|b| b.same_block(s)) {
-            self.block = Some(s.clone());
-            self.filled = 0;
-            self.group.clear();
-        }
-        if !self.hash_block.as_ref().is_some_and(|b| b.same_key(s)) {
-            self.hash_block = Some(s.clone());
-            self.hashed = 0;
         }
     }
 
@@ -178,34 +154,12 @@ pub struct CachedZSobol<'a> {
     last_2d: (u32, u32),
     /// This sample's lane in the pixel's eight-sample group, when it draws from the group.
     lane: Option<usize>,
-    /// The sample's index in the pixel.
-    index: u64,
-}
-
-/// A [`CachedZSobol`] set aside ([`CachedZSobol::park`]): the sample's own state without the
-/// pixel it draws from, so that several samples of a pixel can draw their first dimensions
-/// (their camera rays) before any goes on ([`ZSobolPixel::resume`]).
-#[derive(Clone, Debug)]
-pub struct ParkedZSobol {
-    sample: ZSobolSampler,
-    last_2d: (u32, u32),
-    index: u64,
 }
 
 /// `last_2d` before any 2D draw: dimension `u32::MAX` is never a partner.
 const NO_DRAW: (u32, u32) = (u32::MAX, 0);
 
 impl CachedZSobol<'_> {
-    /// The sample set aside, to go on with [`ZSobolPixel::resume`].
-    #[inline]
-    pub fn park(self) -> ParkedZSobol {
-        ParkedZSobol {
-            sample: self.sample,
-            last_2d: self.last_2d,
-            index: self.index,
-        }
-    }
-
     /// This sample's lane in its eight-sample group, if it draws from one (for tests).
     #[cfg(test)]
     pub(super) fn lane(&self) -> Option<usize> {
@@ -355,54 +309,6 @@ mod tests {
             }
         }
         assert!(draws > 100_000, "{draws}");
-    }
-
-    /// Samples set aside after their first draws and taken up again later, in batches of up
-    /// to eight whose runs cross group and epoch boundaries (with lanes drawn from the group
-    /// and without), draw the plain sampler's values. Control: a parked sample resumed as
-    /// another index would draw other values, so the comparison can fail.
-    #[test]
-    fn parked_samples_draw_the_plain_values() {
-        let mut draws = 0;
-        let mut control_caught = false;
-        for t in 0..200u64 {
-            let r = mix64(t ^ 0xba7c);
-            let (seed, x, y) = (r & 3, (r >> 8) as u32 & 0x3ff, (r >> 24) as u32 & 0x3ff);
-            let k = (r >> 40) as u32 % 7;
-            let start = (r >> 48) % 11;
-            let run = start..start + (2u64 << k) + 3;
-            let mut px = ZSobolPixel::new(seed, x, y, k);
-            px.set_run(run.clone());
-            let indices: alloc::vec::Vec<u64> = run.collect();
-            for batch in indices.chunks(1 + (r >> 56) as usize % 8) {
-                let parked: alloc::vec::Vec<(u64, ZSobolSampler, ParkedZSobol)> = batch
-                    .iter()
-                    .map(|&i| {
-                        let mut a = ZSobolSampler::new(seed, x, y, i, k);
-                        let mut b = px.sampler(i);
-                        same_draw(&mut a, &mut b, false);
-                        (i, a, b.park())
-                    })
-                    .collect();
-                for (i, mut a, p) in parked {
-                    let mut b = px.resume(p.clone());
-                    for step in 0..12u32 {
-                        same_draw(&mut a, &mut b, (mix64(r ^ i ^ u64::from(step)) & 1) == 0);
-                        draws += 1;
-                    }
-                    let w = px
-                        .resume(ParkedZSobol {
-                            index: i + 1,
-                            ..p.clone()
-                        })
-                        .next_2d();
-                    let v = px.resume(p).next_2d();
-                    control_caught |= w != v;
-                }
-            }
-        }
-        assert!(draws > 10_000, "{draws}");
-        assert!(control_caught, "control: a wrong index changed nothing");
     }
 
     /// One cache moved from pixel to pixel (and across seeds, epochs and `K`, as a worker's
