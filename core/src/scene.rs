@@ -164,29 +164,19 @@ impl Scene {
                 grouped[si as usize] = true;
             }
         }
-        let mut top = LevelPrims::with_room_for(
-            p.shapes
-                .iter()
-                .zip(&grouped)
-                .filter(|(_, &g)| !g)
-                .map(|(s, _)| s),
-        );
-        for (si, s) in p.shapes.iter().enumerate() {
+        for s in &p.shapes {
             if s.bsdf as usize >= p.bsdfs.len()
                 || s.emitter.is_some_and(|e| e as usize >= p.emitters.len())
             {
                 return Err(BuildError::BadIndex);
             }
-            if !grouped[si] {
-                top.push_shape(si, s, &p.disks)?;
-            }
         }
+        let top = (0..p.shapes.len()).filter(|&si| !grouped[si]);
+        let mut top = LevelPrims::of_shapes(&p.shapes, top, &p.disks)?;
         let mut groups = Vec::with_capacity(p.groups.len());
         for g in &p.groups {
-            let mut lp = LevelPrims::with_room_for(g.iter().map(|&si| &p.shapes[si as usize]));
-            for &si in g {
-                lp.push_shape(si as usize, &p.shapes[si as usize], &p.disks)?;
-            }
+            let which = g.iter().map(|&si| si as usize);
+            let lp = LevelPrims::of_shapes(&p.shapes, which, &p.disks)?;
             let bounds: Vec<Aabb> = lp
                 .prims
                 .iter()
@@ -196,6 +186,8 @@ impl Scene {
             groups.push(Level::build(lp, &bounds, params, fork));
         }
         let mut instance_bounds = Vec::new();
+        top.prims.reserve_exact(p.instances.len());
+        top.tris.reserve_exact(p.instances.len());
         for (ii, inst) in p.instances.iter().enumerate() {
             let g = groups
                 .get(inst.group as usize)

@@ -32,29 +32,30 @@ pub struct LevelPrims {
 }
 
 impl LevelPrims {
-    /// Empty, with room for the primitives of `shapes` (so that appending them copies nothing:
-    /// a scene of 325k triangles spent a tenth of its load growing these arrays).
-    pub(crate) fn with_room_for<'a>(shapes: impl Iterator<Item = &'a Shape>) -> Self {
-        let n = shapes
-            .map(|s| match &s.kind {
-                ShapeKind::Mesh(m) => m.indices.len(),
-                ShapeKind::Curve(c) => c.segment_count(),
-                _ => 1,
-            })
+    /// The primitives of shapes `which` of `shapes`, in that order, in arrays sized for them
+    /// first (growing them push by push copied a 325k-triangle scene's several times).
+    pub(crate) fn of_shapes(
+        shapes: &[Shape],
+        which: impl Iterator<Item = usize> + Clone,
+        disks: &[Disk],
+    ) -> Result<Self, LevelError> {
+        let n = which
+            .clone()
+            .filter_map(|si| shapes.get(si))
+            .map(prim_count)
             .sum();
-        LevelPrims {
+        let mut level = LevelPrims {
             prims: Vec::with_capacity(n),
             tris: Vec::with_capacity(n),
+        };
+        for si in which {
+            level.push_shape(si, shapes.get(si).ok_or(LevelError::BadIndex)?, disks)?;
         }
+        Ok(level)
     }
 
-    /// Appends the primitives of shape `si`.
-    pub(crate) fn push_shape(
-        &mut self,
-        si: usize,
-        s: &Shape,
-        disks: &[Disk],
-    ) -> Result<(), LevelError> {
+    /// Appends the primitives of shape `si` (as many as [`prim_count`] says).
+    fn push_shape(&mut self, si: usize, s: &Shape, disks: &[Disk]) -> Result<(), LevelError> {
         let shape = u32::try_from(si).map_err(|_| LevelError::TooLarge)?;
         match &s.kind {
             ShapeKind::Mesh(m) => {
@@ -92,6 +93,16 @@ impl LevelPrims {
             }
         }
         Ok(())
+    }
+}
+
+/// How many primitives shape `s` adds to a level: a triangle per mesh face, a segment per
+/// curve segment, one for any other shape.
+fn prim_count(s: &Shape) -> usize {
+    match &s.kind {
+        ShapeKind::Mesh(m) => m.indices.len(),
+        ShapeKind::Curve(c) => c.segment_count(),
+        _ => 1,
     }
 }
 

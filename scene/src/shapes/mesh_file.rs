@@ -67,19 +67,37 @@ pub(crate) const SERIALIZED: ShapePlugin = Plugin {
     build: build_mesh_file,
 };
 
-fn build_mesh_file(obj: &Object) -> Result<Geometry> {
+/// What a mesh-file shape reads: the file, whether its MTL materials split it (`obj` only) and
+/// which mesh of the file (`serialized` only; 0 for the others).
+struct MeshRead {
+    path: std::path::PathBuf,
+    use_mtl: bool,
+    index: u64,
+}
+
+fn mesh_read(obj: &Object) -> Result<MeshRead> {
     let name = obj
         .string_opt(FILENAME.name)?
         .ok_or_else(|| obj.error(format!("{} needs \"filename\"", obj.describe())))?;
-    let path = obj.resolve_file(&name);
-    let use_mtl = obj.plugin == OBJ.name && USE_MTL.read_bool(obj)?;
+    Ok(MeshRead {
+        path: obj.resolve_file(&name),
+        use_mtl: obj.plugin == OBJ.name && USE_MTL.read_bool(obj)?,
+        index: match obj.plugin == SERIALIZED.name {
+            true => SHAPE_INDEX.read_i64(obj)? as u64,
+            false => 0,
+        },
+    })
+}
+
+fn build_mesh_file(obj: &Object) -> Result<Geometry> {
+    let MeshRead {
+        path,
+        use_mtl,
+        index,
+    } = mesh_read(obj)?;
     let face_normals = FACE_NORMALS.read_bool(obj)?;
     let tf = TO_WORLD.read_transform(obj)?;
     if !use_mtl {
-        let index = match obj.plugin == SERIALIZED.name {
-            true => SHAPE_INDEX.read_i64(obj)? as u64,
-            false => 0,
-        };
         let key = read_key(obj, &path, index);
         let data = mesh::read_shared(key, || {
             if obj.plugin == OBJ.name {
@@ -154,16 +172,8 @@ pub(crate) fn plan_mesh_reads(root: &Object) -> mesh::Plan {
         if obj.kind != crate::xml::Kind::Shape || reader(&obj.plugin).is_none() {
             continue;
         }
-        let key = (|| {
-            let name = obj.string_opt(FILENAME.name).ok()??;
-            let use_mtl = obj.plugin == OBJ.name && USE_MTL.read_bool(obj).ok()?;
-            let index = match obj.plugin == SERIALIZED.name {
-                true => u64::try_from(SHAPE_INDEX.read_i64(obj).ok()?).ok()?,
-                false => 0,
-            };
-            (!use_mtl).then(|| read_key(obj, &obj.resolve_file(&name), index))?
-        })();
-        if let Some(key) = key {
+        let r = mesh_read(obj).ok().filter(|r| !r.use_mtl);
+        if let Some(key) = r.and_then(|r| read_key(obj, &r.path, r.index)) {
             plan.count(key);
         }
     }
