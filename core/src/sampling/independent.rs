@@ -36,10 +36,8 @@ pub struct IndependentSampler {
 impl IndependentSampler {
     /// The stream of sample `index` of pixel `(x, y)` under `seed`.
     pub fn new(seed: u64, x: u32, y: u32, index: u64) -> Self {
-        let key = pixel_key(seed, x, y);
-        let start = Pcg32::new(key, mix64(key ^ 0xda94_2042_e4dd_58b5));
-        let stream = start.stream();
-        let state = skip_windows(start.state(), (stream << 1) | 1, index);
+        let (start, stream) = pixel_stream(seed, x, y);
+        let state = skip_windows(start, (stream << 1) | 1, index);
         IndependentSampler {
             rng: Pcg32::from_state(state, stream),
         }
@@ -56,11 +54,9 @@ impl IndependentSampler {
         y: u32,
         indices: core::ops::Range<u64>,
     ) -> impl Iterator<Item = IndependentSampler> {
-        let key = pixel_key(seed, x, y);
-        let start = Pcg32::new(key, mix64(key ^ 0xda94_2042_e4dd_58b5));
-        let stream = start.stream();
+        let (start, stream) = pixel_stream(seed, x, y);
         let inc = (stream << 1) | 1;
-        let mut state = skip_windows(start.state(), inc, indices.start);
+        let mut state = skip_windows(start, inc, indices.start);
         let (a, h) = WINDOW_JUMP;
         let step = inc.wrapping_mul(h);
         indices.map(move |_| {
@@ -71,6 +67,14 @@ impl IndependentSampler {
             sampler
         })
     }
+}
+
+/// The state sample 0 of pixel `(x, y)` under `seed` starts from, and the pixel's stream.
+#[inline]
+fn pixel_stream(seed: u64, x: u32, y: u32) -> (u64, u64) {
+    let key = pixel_key(seed, x, y);
+    let start = Pcg32::new(key, mix64(key ^ 0xda94_2042_e4dd_58b5));
+    (start.state(), start.stream())
 }
 
 /// PCG32's multiplier (the LCG under `rand_pcg::Pcg32`).
