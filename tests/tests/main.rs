@@ -51,6 +51,7 @@ mod media_inputs;
 mod medium_chi2;
 mod mesh_attributes;
 mod mtl;
+mod path_batch;
 mod phase_chi2;
 mod phase_mitsuba_eval;
 mod projector_agreement;

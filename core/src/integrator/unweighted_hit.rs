@@ -33,6 +33,7 @@ pub(super) fn cast_unweighted<P: Probe>(
             hit.as_ref(),
             false,
             None,
+            None,
             probe,
             |probe, le, _| {
                 *result += throughput * le;
