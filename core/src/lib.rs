@@ -59,8 +59,8 @@
 //! ```
 #![no_std]
 // `unsafe` only in `accel::slab_simd`, `accel::tri_block`, `accel::tri_block_pair` (SSE/AVX2
-// intrinsics, CPU feature detection), `math::sqrt` (the SSE square-root intrinsics) and
-// `math::prefetch` (the SSE prefetch hint), which allow it and justify each block.
+// intrinsics, CPU feature detection) and `math::sqrt` (the SSE square-root intrinsics), which
+// allow it and justify each block.
 #![deny(unsafe_code)]
 // `!(x > 0.0)` is this crate's way of rejecting NaN along with the values it names; clippy's
 // suggestion (`partial_cmp`) would hide that intent.

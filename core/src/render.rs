@@ -125,7 +125,23 @@ impl<'a> RenderJob<'a> {
     ) {
         assert!(!self.reuses(), "pixel_alone: the integrator reuses paths");
         match self.scene.sampler {
-            SamplerKind::Independent => self.pixel_independent(x, y, samples, probe, add),
+            SamplerKind::Independent => {
+                // The camera rays of a few samples first, then their paths: the rays' chains of
+                // divisions and square roots, each waiting on the one before, overlap when they
+                // sit together (each sample keeps its own sampler, so no value moves).
+                let mut run = IndependentSampler::pixel_run(self.seed, x, y, samples);
+                loop {
+                    let batch: [Option<CameraDraw<IndependentSampler>>; CAMERA_BATCH] =
+                        core::array::from_fn(|_| run.next().map(|s| self.camera_draw(x, y, s)));
+                    if batch[0].is_none() {
+                        break;
+                    }
+                    for draw in batch.into_iter().flatten() {
+                        let (c, o, cam) = self.finish(draw, probe);
+                        add(c, o, &cam);
+                    }
+                }
+            }
             SamplerKind::ZSobol { log2_spp } => {
                 if samples.is_empty() {
                     return;
@@ -292,55 +308,59 @@ impl<'a> RenderJob<'a> {
         sampler: S,
         probe: &mut P,
     ) -> (Color, Vec2, CameraSample) {
-        let mut sampler = sampler;
-        let draw = self.camera_draw(x, y, &mut sampler);
-        self.finish(&draw, &mut sampler, probe)
+        let draw = self.camera_draw(x, y, sampler);
+        self.finish(draw, probe)
     }
 
     /// The camera part of a sample of pixel `(x, y)`: its film position and camera ray, drawn
     /// from the first dimensions of `sampler`, which the path goes on drawing from.
     #[inline(always)]
-    fn camera_draw<S: Sampler>(&self, x: u32, y: u32, sampler: &mut S) -> CameraDraw {
+    fn camera_draw<S: Sampler>(&self, x: u32, y: u32, mut sampler: S) -> CameraDraw<S> {
         let (offset, weight) = self.camera_offset(sampler.next_2d());
         let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
-        let ray = self.scene.camera.sample_ray(pos, sampler);
+        let ray = self.scene.camera.sample_ray(pos, &mut sampler);
         CameraDraw {
+            sampler,
             pos,
             offset,
             cam: CameraSample { ray, weight },
         }
     }
 
-    /// The sample whose camera part is `draw`, its path drawing from `sampler`: its value
-    /// (weighted for filters with negative lobes), its offset from the pixel's centre and its
-    /// camera sample.
+    /// The sample whose camera part is `draw`: its value (weighted for filters with negative
+    /// lobes), its offset from the pixel's centre and its camera sample.
     #[inline(always)]
     fn finish<S: Sampler, P: Probe>(
         &self,
-        draw: &CameraDraw,
-        sampler: &mut S,
+        draw: CameraDraw<S>,
         probe: &mut P,
     ) -> (Color, Vec2, CameraSample) {
-        let CameraDraw { pos, offset, cam } = *draw;
+        let CameraDraw {
+            mut sampler,
+            pos,
+            offset,
+            cam,
+        } = draw;
         probe.camera(pos, &cam.ray);
         let l = self
             .integrator
-            .li_probed(self.scene, cam.ray, sampler, probe);
+            .li_probed(self.scene, cam.ray, &mut sampler, probe);
         // Filters with negative lobes weight their samples; the others give no weight.
         (cam.weigh(l), offset, cam)
     }
 }
 
-/// A sample's camera part: the film position, the offset from the pixel's centre and the
-/// camera sample.
-#[derive(Clone, Copy)]
-struct CameraDraw {
+/// How many samples of a pixel have their camera rays made together ([`RenderJob::pixel_alone`]).
+const CAMERA_BATCH: usize = 8;
+
+/// A sample's camera part: the sampler (to go on drawing from), the film position, the offset
+/// from the pixel's centre and the camera sample.
+struct CameraDraw<S> {
+    sampler: S,
     pos: Vec2,
     offset: Vec2,
     cam: CameraSample,
 }
-
-mod independent;
 
 /// A sample's camera ray and the weight its value is multiplied by (filters with negative
 /// lobes, importance-sampled: the sign and size of the filter there; `None` for the others).

@@ -51,7 +51,6 @@ mod media_inputs;
 mod medium_chi2;
 mod mesh_attributes;
 mod mtl;
-mod path_batch;
 mod phase_chi2;
 mod phase_mitsuba_eval;
 mod projector_agreement;

@@ -183,28 +183,19 @@ impl EnvMap {
     where
         T: core::ops::Mul<f32, Output = T> + core::ops::Add<Output = T>,
     {
-        let w = self.width;
-        let (x0, y0) = self.corner(s, v);
+        let (w, h) = (self.width, self.height);
+        // Each index clamped as a float first, so that its conversion is a plain truncation
+        // (`as usize` saturates through a longer sequence); the same index for every input.
+        let x0 = (s.max(0.0).min((w - 1) as f32) as u32 as usize).min(w - 1);
         let fx = (s - x0 as f32).clamp(0.0, 1.0);
         let x1 = if x0 + 1 == w { 0 } else { x0 + 1 };
-        let t = v.clamp(0.0, 1.0) * (self.height - 1) as f32;
+        let t = v.clamp(0.0, 1.0) * (h - 1) as f32;
+        let y0 = (t.max(0.0).min((h - 2) as f32) as u32 as usize).min(h - 2);
         let fy = (t - y0 as f32).clamp(0.0, 1.0);
         let (r0, r1) = (y0 * w, (y0 + 1) * w);
         let top = at(r0 + x0) * (1.0 - fx) + at(r0 + x1) * fx;
         let bottom = at(r1 + x0) * (1.0 - fx) + at(r1 + x1) * fx;
         top * (1.0 - fy) + bottom * fy
-    }
-
-    /// The upper-left pixel `(x0, y0)` of the bilinear footprint at image coordinates `(s, v)`.
-    #[inline(always)]
-    fn corner(&self, s: f32, v: f32) -> (usize, usize) {
-        let (w, h) = (self.width, self.height);
-        // Each index clamped as a float first, so that its conversion is a plain truncation
-        // (`as usize` saturates through a longer sequence); the same index for every input.
-        let x0 = (s.max(0.0).min((w - 1) as f32) as u32 as usize).min(w - 1);
-        let t = v.clamp(0.0, 1.0) * (h - 1) as f32;
-        let y0 = (t.max(0.0).min((h - 2) as f32) as u32 as usize).min(h - 2);
-        (x0, y0)
     }
 
     /// Radiance at image coordinates `(s, v)`.
@@ -250,51 +241,17 @@ impl EnvMap {
     /// bilinear weights of its four pixels found once (same values as the two calls).
     #[inline]
     pub fn eval_pdf(&self, d: Vec3) -> (Color, f32) {
-        match self.locate(d) {
-            Some(at) => self.eval_pdf_at(&at),
-            None => (Color::ZERO, 0.0),
-        }
-    }
-
-    /// Where the world direction `d` falls on the map (`None` for a zero direction): what
-    /// [`EnvMap::eval_pdf`] computes before it reads the texels.
-    #[inline]
-    pub fn locate(&self, d: Vec3) -> Option<MapPoint> {
         let l = (self.to_local * d).unit_or_zero();
         if l == Vec3::ZERO {
-            return None;
+            return (Color::ZERO, 0.0);
         }
         let (s, v) = self.coords(l);
         let sin_t = sqrt(l.x * l.x + l.z * l.z);
-        Some(MapPoint { s, v, sin_t })
-    }
-
-    /// [`EnvMap::eval`] of the direction `at` was located from.
-    #[inline]
-    pub fn eval_at(&self, at: &MapPoint) -> Color {
-        self.lookup(at.s, at.v)
-    }
-
-    /// [`EnvMap::eval_pdf`] of the direction `at` was located from.
-    #[inline]
-    pub fn eval_pdf_at(&self, at: &MapPoint) -> (Color, f32) {
-        let MapPoint { s, v, sin_t } = *at;
         if self.dist.is_none() || !(sin_t > 0.0) {
             return (self.lookup(s, v), 0.0);
         }
         let (le, pdf_uv) = self.lookup_and_pdf_uv(s, v);
         (le, pdf_uv / (2.0 * PI * PI * sin_t))
-    }
-
-    /// Asks the cache for the texels [`EnvMap::eval_pdf_at`] reads for `at` (the first of
-    /// each of its two rows; the second texel of a row shares the line three times in four),
-    /// so that a batch of paths can ask for all of theirs before any of them is read.
-    #[inline]
-    pub fn prefetch(&self, at: &MapPoint) {
-        let (x0, y0) = self.corner(at.s, at.v);
-        let w = self.width;
-        crate::math::prefetch(&self.texels[y0 * w + x0]);
-        crate::math::prefetch(&self.texels[(y0 + 1) * w + x0]);
     }
 
     /// [`EnvMap::lookup`] and [`EnvMap::pdf_uv`] in one interpolation: the radiance in three
@@ -354,13 +311,4 @@ fn sample_linear(u: f32, a: f32, b: f32) -> f32 {
         return 0.0;
     }
     (u * (a + b) / den).clamp(0.0, 1.0)
-}
-
-/// Where a direction falls on an environment map ([`EnvMap::locate`]): image coordinates
-/// (`s` in pixels from column 0's centre, `v` in `[0, 1]` from the top) and the sine of the polar angle, which the density divides by.
-#[derive(Clone, Copy, Debug)]
-pub struct MapPoint {
-    s: f32,
-    v: f32,
-    sin_t: f32,
 }

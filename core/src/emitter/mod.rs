@@ -14,7 +14,7 @@ pub use area::AreaLight;
 pub use constant::ConstantEnv;
 pub use directional::DirectionalLight;
 pub use distant_disk::DistantDisk;
-pub use envmap::{EnvMap, MapPoint};
+pub use envmap::EnvMap;
 pub use point::PointLight;
 pub use projector::Projector;
 pub use sample::{luminance, EmitterCtx, EmitterSample};

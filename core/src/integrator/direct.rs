@@ -133,7 +133,6 @@ impl DirectIntegrator {
                 next.as_ref(),
                 mis,
                 sel.as_ref(),
-                None,
                 probe,
                 |probe, le, light_pdf| {
                     let w = if mis {

@@ -5,7 +5,6 @@ mod mis;
 mod moment;
 mod normals;
 mod path;
-mod path_batch;
 mod path_state;
 mod probe;
 mod radiance;
@@ -27,7 +26,6 @@ pub use mis::Heuristic;
 pub use moment::{xyz_squared, MomentIntegrator, SRGB_TO_XYZ};
 pub use normals::NormalsIntegrator;
 pub use path::{PathIntegrator, Strategy};
-pub use path_batch::PATH_BATCH;
 pub use probe::{Counters, MediumEvent, NoProbe, PathEnd, Probe, RayKind};
 pub use radiance::Radiance;
 pub use record::{Event, PathRecord};
@@ -77,22 +75,6 @@ impl Integrator {
             Integrator::Direct(d) => d.li(scene, ray, sampler),
             _ => self.li_probed(scene, ray, sampler, &mut NoProbe),
         }
-    }
-}
-
-impl Integrator {
-    /// The path tracer this integrator runs on `scene` where a batch of its paths is stepped
-    /// together ([`PathIntegrator::li_batch`]): `path` without path reuse, and `volpath` on a
-    /// scene without media or `null` surfaces (where it runs the path tracer), when the scene
-    /// has an environment map (what the batch gains from; elsewhere it would only cost the
-    /// moves between paths).
-    pub fn batched_path(&self, scene: &Scene) -> Option<PathIntegrator> {
-        let path = match self {
-            Integrator::Path(p) if !p.reuses() => Some(*p),
-            Integrator::VolPath(v) => surfaces_only::as_surface_path(v, scene),
-            _ => None,
-        };
-        path.filter(|_| path_batch::first_map(scene).is_some())
     }
 }
 

@@ -26,7 +26,7 @@ use super::mis::Heuristic;
 use super::path_state::{PathState, Prev};
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
 use crate::geometry::{Interaction, ShadingPoint};
-use crate::light::{emission_along, sample_light, EscapeHint, VertexSelection};
+use crate::light::{emission_along, sample_light, VertexSelection};
 use crate::math::{Norm, Ray};
 use crate::sampling::{Sampler, Stage};
 use crate::scene::Scene;
@@ -217,41 +217,26 @@ impl PathIntegrator {
         result: &mut Color,
         probe: &mut P,
     ) -> Option<Interaction> {
-        let hit = probe.intersect(scene, &path.ray);
-        match self.arrive_at::<ST, P>(scene, path, hit.as_ref(), None, result, probe) {
-            true => hit,
-            false => None,
-        }
-    }
-
-    /// [`PathIntegrator::arrive`] once the path's ray was cast and met `hit` (`hint`: where
-    /// an escaped ray falls on the environment map, if already located): whether the path
-    /// goes on from the vertex `hit`.
-    #[inline(always)]
-    pub(super) fn arrive_at<const ST: u8, P: Probe>(
-        &self,
-        scene: &Scene,
-        path: &PathState,
-        hit: Option<&Interaction>,
-        hint: Option<&EscapeHint>,
-        result: &mut Color,
-        probe: &mut P,
-    ) -> bool {
         let strategy = Strategy::of(ST);
         let features = &scene.features;
         let (ray, throughput, depth) = (&path.ray, path.throughput, path.depth);
         let prev = path.prev.as_ref();
         let visible = !(depth == 0 && self.hide_emitters);
+        let hit = probe.intersect(scene, ray);
         probe.ray(if depth == 0 {
             RayKind::Camera
         } else {
             RayKind::Continuation
         });
-        probe.hit(scene, hit, ray.d);
+        probe.hit(scene, hit.as_ref(), ray.d);
         // Mitsuba 3's hide_emitters: a camera ray that meets an emitter sees nothing at all.
-        if !visible && hit.is_some_and(|si| scene.shapes[si.shape as usize].emitter.is_some()) {
+        if !visible
+            && hit
+                .as_ref()
+                .is_some_and(|si| scene.shapes[si.shape as usize].emitter.is_some())
+        {
             probe.end(PathEnd::HiddenEmitter);
-            return false;
+            return None;
         }
         // path_ems gives light found after a vertex that sampled emitters weight zero.
         let weighted = !(strategy == Strategy::Emitter && prev.is_some_and(|p| p.nee));
@@ -263,10 +248,9 @@ impl PathIntegrator {
                 scene,
                 from,
                 d,
-                hit,
+                hit.as_ref(),
                 with_pdf,
                 prev.and_then(|p| p.sel.as_ref()),
-                hint,
                 probe,
                 |probe, le, light_pdf| {
                     let w = self.hit_weight(strategy, prev, light_pdf, probe);
@@ -279,7 +263,7 @@ impl PathIntegrator {
         if hit.is_none() {
             probe.end(PathEnd::Escaped);
         }
-        hit.is_some()
+        hit
     }
 
     /// At vertex `si`, which the path's ray reached: emitter sampling (adding its light to

@@ -69,10 +69,6 @@ pub enum MediumEvent {
 /// Receives the events of one sample's path. Every method defaults to doing nothing.
 #[allow(unused_variables)]
 pub trait Probe {
-    /// Whether the probe needs each path's events in order, one path after another. Every
-    /// probe that observes does; the ordinary render's [`NoProbe`] does not, and the render
-    /// loop then steps the paths of a pixel's camera batch together (the same values).
-    const IN_ORDER: bool = true;
     /// Casts a camera or continuation ray: the scene's closest hit. A probe may count the
     /// traversal's work; the result must be the scene's.
     #[inline(always)]
@@ -135,9 +131,7 @@ pub trait Probe {
 #[derive(Clone, Copy, Debug, Default)]
 pub struct NoProbe;
 
-impl Probe for NoProbe {
-    const IN_ORDER: bool = false;
-}
+impl Probe for NoProbe {}
 
 /// How much work paths did, by kind. Counts are sums over samples, so they are the same for any
 /// thread count or tile order.

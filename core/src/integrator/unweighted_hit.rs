@@ -33,7 +33,6 @@ pub(super) fn cast_unweighted<P: Probe>(
             hit.as_ref(),
             false,
             None,
-            None,
             probe,
             |probe, le, _| {
                 *result += throughput * le;

@@ -287,7 +287,6 @@ impl VolPathIntegrator {
                     hit.as_ref(),
                     !counts_fully,
                     None,
-                    None,
                     probe,
                     |probe, le, light_pdf| {
                         // The MIS weight, and the factor on the throughput it makes.

@@ -22,6 +22,6 @@ pub use behind::Behind;
 pub use bound::{LightBound, LightEstimate};
 pub use sample::LightSample;
 pub use sampler::{LightSampler, LightSelection};
+pub(crate) use strategies::emission_along;
 pub use strategies::sample_light;
-pub(crate) use strategies::{emission_along, EscapeHint};
 pub use vertex::{VertexSelection, MAX_VERTEX_LIGHTS, UNIFORM_SHARE};

@@ -5,7 +5,7 @@
 use super::sample::LightSample;
 use super::vertex::VertexSelection;
 use crate::bsdf::Bsdf;
-use crate::emitter::{Emitter, MapPoint};
+use crate::emitter::Emitter;
 use crate::geometry::{Interaction, ShadingPoint};
 use crate::integrator::{Probe, RayKind};
 use crate::sampling::Sampler;
@@ -14,7 +14,7 @@ use crate::Color;
 use glam::Vec3;
 
 /// Picks a light (by `sel`, the vertex's own selection, else by the scene's), samples it from
-/// `si`, evaluates the BSDF (at `at`, [`Scene::partials`](crate::scene::Scene::partials)) and traces the shadow ray. `None` when
+/// `si`, evaluates the BSDF (at `at`, [`crate::bsdf::BsdfTraits::shading_point`]) and traces the shadow ray. `None` when
 /// nothing arrives (no light, back side, blocked, zero BSDF). The BSDF density is evaluated only
 /// when `want_bsdf_pdf` (callers that do not weigh strategies by density skip its cost; it
 /// feeds no other value, so skipping it changes nothing else).
@@ -77,8 +77,7 @@ pub fn sample_light<S: Sampler, P: Probe>(
 }
 
 /// Calls `add(probe, le, light_pdf)` for each emitter a ray from `from` along unit direction `d` sees:
-/// the area emitter of the surface it hit, or every environment when it escaped (`hint`: where
-/// `d` falls on one of them, located ahead; the same values as without it). `light_pdf` is
+/// the area emitter of the surface it hit, or every environment when it escaped. `light_pdf` is
 /// the density emitter sampling from `from` has for that direction (selection included), or 0
 /// when `with_pdf` is false (callers that do not weigh strategies skip its cost). The selection
 /// probability is `sel`'s, the selection of the vertex at `from`, else the scene's.
@@ -91,7 +90,6 @@ pub(crate) fn emission_along<P: Probe>(
     hit: Option<&Interaction>,
     with_pdf: bool,
     sel: Option<&VertexSelection>,
-    hint: Option<&EscapeHint>,
     probe: &mut P,
     mut add: impl FnMut(&mut P, Color, f32),
 ) {
@@ -118,13 +116,10 @@ pub(crate) fn emission_along<P: Probe>(
                 let e = &scene.emitters[env as usize];
                 // The radiance and, for weighing, the density: one lookup each in the
                 // counters, found together.
-                let (le, pdf) = match (hint, e) {
-                    (Some(h), Emitter::EnvMap(map)) if h.env == env => match with_pdf {
-                        true => map.eval_pdf_at(&h.at),
-                        false => (map.eval_at(&h.at), 0.0),
-                    },
-                    _ if with_pdf => e.eval_pdf_environment(from, d),
-                    _ => (e.eval_environment(d), 0.0),
+                let (le, pdf) = if with_pdf {
+                    e.eval_pdf_environment(from, d)
+                } else {
+                    (e.eval_environment(d), 0.0)
                 };
                 probe.env_lookup();
                 if le != Color::ZERO {
@@ -146,15 +141,4 @@ pub(crate) fn emission_along<P: Probe>(
 #[inline]
 fn selection_pdf(scene: &Scene, sel: Option<&VertexSelection>, i: usize) -> f32 {
     sel.map_or_else(|| scene.lights().pdf(i), |s| s.pdf(i))
-}
-
-/// Where an escaped ray's direction falls on the environment map `env` (an index into the
-/// scene's emitters), found before [`emission_along`] reads the map: a batch of paths locates
-/// its escaped rays and asks the cache for their texels before it evaluates any of them.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct EscapeHint {
-    /// The environment map's emitter index.
-    pub env: u32,
-    /// Where the ray's unit direction falls on it.
-    pub at: MapPoint,
 }
