@@ -9,7 +9,7 @@
 //! into by the samples of two pixels. Each pixel (a source) keeps one running sum for each pixel
 //! its samples can reach (its targets, at offsets `-n..=n` on each axis), added in sample-index
 //! order exactly like its own [`PixelAccum`](crate::film::PixelAccum); a target adds up its
-//! sources' sums in a fixed order when the image is made ([`Footprint::resolve`]). The price is
+//! sources' sums in a fixed order when the image is made ([`resolve`]). The price is
 //! memory: `4 (2n + 1)^2` floats per pixel, 400 bytes for the default Gaussian (`n = 2`).
 use crate::camera::{Filter, FilterTable};
 use crate::Color;

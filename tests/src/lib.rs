@@ -51,7 +51,7 @@ pub fn load_file_edited(
 }
 
 /// Renders a loaded scene with `spp` samples on 2 threads, its filter applied by importance
-/// sampling (see [`render_two_threads`]).
+/// sampling (see `render_two_threads`).
 pub fn render_loaded(l: &LoadedScene, spp: u64, seed: u64) -> Framebuffer {
     render_two_threads(&l.scene, &l.integrator, spp, seed)
 }

@@ -14,7 +14,7 @@ use crate::Color;
 use glam::Vec3;
 
 /// Picks a light (by `sel`, the vertex's own selection, else by the scene's), samples it from
-/// `si`, evaluates the BSDF (at `at`, [`crate::bsdf::BsdfTraits::shading_point`]) and traces the shadow ray. `None` when
+/// `si`, evaluates the BSDF (at `at`, [`Scene::partials`](crate::scene::Scene::partials)) and traces the shadow ray. `None` when
 /// nothing arrives (no light, back side, blocked, zero BSDF). The BSDF density is evaluated only
 /// when `want_bsdf_pdf` (callers that do not weigh strategies by density skip its cost; it
 /// feeds no other value, so skipping it changes nothing else).

@@ -1,7 +1,7 @@
 //! Textures: spatially varying parameters looked up at a shading point (its `uv`, and for
 //! `mesh_attribute` the mesh triangle hit). A closed enum; constant values are the common case
 //! and cost one branch. Lookups take anything that converts to a
-//! [`ShadingPoint`](crate::geometry::ShadingPoint), so callers that know only `uv` pass a `Vec2`.
+//! [`ShadingPoint`], so callers that know only `uv` pass a `Vec2`.
 //!
 //! Scalar lookups ([`Texture::eval_1`]) follow Mitsuba 3: the mean of the channels for a
 //! constant, the luminance for a bitmap.
