@@ -16,6 +16,7 @@ use glam::Vec3;
 
 mod casts;
 mod detail;
+mod environment_sampling;
 mod numbering;
 mod shading_point;
 mod surface_detail;

@@ -168,7 +168,7 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
             .map_err(|e| root.error(format!("cannot build the scene's media: {e:?}")))?;
     }
     names.bsdfs = bsdfs.names;
-    Ok(LoadedScene {
+    let mut loaded = LoadedScene {
         scene,
         integrator,
         integrator_spec,
@@ -181,7 +181,9 @@ pub fn build(root: &Object) -> Result<LoadedScene> {
         accel_seconds,
         frame_origin: root.frame_origin.to_array(),
         dialect: root.dialect,
-    })
+    };
+    loaded.sync_environment_sampling();
+    Ok(loaded)
 }
 
 /// What the scene walk has built so far.

@@ -1,6 +1,6 @@
 //! A loaded scene: the core scene with the settings its file asks for (integrator, sample count,
 //! seed), which the command line may change before rendering.
-use crate::integrator::{integrator_names, IntegratorSpec};
+use crate::integrator::{integrator_names, IntegratorSpec, LayerSource};
 use tessera_core::integrator::Integrator;
 use tessera_core::sampling::{SamplerKind, SAMPLER_NAMES};
 use tessera_core::scene::Scene;
@@ -127,7 +127,28 @@ impl LoadedScene {
             }
         }
         self.integrator_spec = spec;
+        self.sync_environment_sampling();
         Ok(())
+    }
+
+    /// Makes the environment maps sample by MIS-compensated tables where every integrator the
+    /// scene renders with (the colour's and its layers') weighs each emitter sample by MIS
+    /// ([`Integrator::weighs_light_samples_by_mis`]), by the plain tables otherwise. Called
+    /// after loading and after [`LoadedScene::set_integrator`]; whoever replaces the integrator
+    /// otherwise must call it too (a render job refuses a compensated scene with an integrator
+    /// that cannot use it).
+    pub fn sync_environment_sampling(&mut self) {
+        let scene = &self.scene;
+        let suits = |spec: &IntegratorSpec| {
+            spec.build()
+                .is_some_and(|i| i.weighs_light_samples_by_mis(scene))
+        };
+        let on = self.integrator.weighs_light_samples_by_mis(scene)
+            && self.integrator_spec.layers.iter().all(|l| match &l.source {
+                LayerSource::Aov(_) => true,
+                LayerSource::Nested(spec) | LayerSource::Moment { nested: spec, .. } => suits(spec),
+            });
+        self.scene.set_environment_compensation(on);
     }
 }
 

@@ -25,8 +25,9 @@ use tessera_tests::cap::{cap_coords, cap_dir, frame_around};
 ///  2 distantdisk thetaA = 0.01 deg (rotated, cap square), 3 thetaA = 5 deg (cap square),
 ///  4 thetaA = 30 deg (sphere), 5 thetaA = 90 deg (rotated, sphere), 6 thetaA = 180 deg (sphere),
 ///  7 envmap with a bright patch and gradients (latitude-longitude square),
-///  8 the same map rotated (latitude-longitude square), 9 a small rotated envmap (sphere).
-const N_TESTS: usize = 9;
+///  8 the same map rotated (latitude-longitude square), 9 a small rotated envmap (sphere),
+/// 10 the map of 8 with MIS-compensated tables (latitude-longitude square).
+const N_TESTS: usize = 10;
 
 /// Samples per test.
 const SAMPLES: usize = 1_000_000;
@@ -315,8 +316,12 @@ fn latlong_dir(p: Vec2, rot: &DMat3) -> DVec3 {
 /// of its distribution (cells join pixel centres: `u` edges at `(i + 1/2) / w`, `v` edges at
 /// `j / (h - 1)`), so the density is constant in every bin. On the square the solid-angle
 /// density becomes `pdf · 2π² sin θ`.
-fn envmap_latlong_test(name: &str, w: usize, h: usize, rot: DMat3, seed: u64) {
-    let env = EnvMap::new(structured_image(w, h), w, h, 1.5, rot.as_mat3()).expect("a valid map");
+/// With `compensated`, the map samples by its MIS-compensated tables (zero density wherever
+/// the four pixels of a cell are dimmer than the map's mean).
+fn envmap_latlong_test(name: &str, w: usize, h: usize, rot: DMat3, seed: u64, compensated: bool) {
+    let mut env =
+        EnvMap::new(structured_image(w, h), w, h, 1.5, rot.as_mat3()).expect("a valid map");
+    assert_eq!(env.set_compensated(compensated), compensated, "{name}");
     let e = Emitter::EnvMap(env);
     let mut s = Sampler::new(&e);
     let r = PlaneChi2 {
@@ -345,13 +350,52 @@ fn t07_envmap_latlong() {
         25,
         DMat3::IDENTITY,
         7,
+        false,
     );
 }
 
 #[test]
 fn t08_envmap_latlong_rotated() {
     let rot = rotation(DVec3::new(0.2, 1.0, 0.7), 113.0);
-    envmap_latlong_test("envmap 30x17 rotated (latitude-longitude)", 30, 17, rot, 8);
+    envmap_latlong_test(
+        "envmap 30x17 rotated (latitude-longitude)",
+        30,
+        17,
+        rot,
+        8,
+        false,
+    );
+}
+
+#[test]
+fn t10_envmap_latlong_compensated() {
+    let rot = rotation(DVec3::new(0.2, 1.0, 0.7), 113.0);
+    let name = "envmap 30x17 rotated, compensated (latitude-longitude)";
+    envmap_latlong_test(name, 30, 17, rot, 10, true);
+    // The compensated density is zero where the map is dim and larger where it is bright: a
+    // direction towards the darkest pixel has density zero with it and not without it.
+    let img = structured_image(30, 17);
+    let lum = |p: &[f32; 3]| 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+    let k = (0..img.len())
+        .filter(|k| (2..15).contains(&(k / 30)))
+        .min_by(|&a, &b| lum(&img[a]).total_cmp(&lum(&img[b])))
+        .expect("pixels");
+    let d = latlong_dir(
+        Vec2::new(((k % 30) as f32 + 0.5) / 30.0, (k / 30) as f32 / 16.0),
+        &rot,
+    )
+    .as_vec3();
+    let mut env = EnvMap::new(img, 30, 17, 1.5, rot.as_mat3()).expect("a valid map");
+    let plain = Emitter::EnvMap(env.clone()).pdf_environment(Vec3::ZERO, d);
+    assert!(env.set_compensated(true));
+    let comp = Emitter::EnvMap(env.clone()).pdf_environment(Vec3::ZERO, d);
+    assert!(
+        plain > 0.0 && comp == 0.0,
+        "plain {plain}, compensated {comp}"
+    );
+    // Turned off again, the plain tables come back exactly.
+    assert!(!env.set_compensated(false));
+    assert_eq!(Emitter::EnvMap(env).pdf_environment(Vec3::ZERO, d), plain);
 }
 
 #[test]

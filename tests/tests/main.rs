@@ -33,6 +33,7 @@ mod dialects;
 mod docs;
 mod emitters_analytic;
 mod emitters_chi2;
+mod env_compensation;
 mod envmap_agreement;
 mod film_crop;
 mod filter_agreement;

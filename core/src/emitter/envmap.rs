@@ -3,8 +3,9 @@
 //! Scene parameters (`<emitter type="envmap">`): `filename` (string, required: an EXR, PFM or
 //! RGBE `.hdr` image, relative to the scene file; at least 2x3 pixels, as in Mitsuba 3), `scale`
 //! (float, default 1: multiplies the image), `to_world` (transform, default identity; a
-//! rotation, optionally uniformly scaled), `mis_compensation` (boolean; accepted for Mitsuba 3
-//! files and ignored). The driver loads the image; the core receives linear RGB pixels.
+//! rotation, optionally uniformly scaled), `mis_compensation` (boolean, default true: whether the
+//! sampling tables may be MIS-compensated, see [`EnvMap::set_compensated`]; Mitsuba 3's
+//! default is false). The driver loads the image; the core receives linear RGB pixels.
 //!
 //! Mapping (Mitsuba 3's, checked against Mitsuba 3.9.1 by evaluating its envmap at known
 //! directions): +y is up. A local unit direction `d` has `u = atan2(d.x, -d.z) / 2 pi` (wrapped
@@ -24,6 +25,7 @@
 //! sin(theta), positive wherever the radiance is (so emitter sampling alone covers the map), and
 //! `pdf_uv / (2 pi^2 sin theta)` is its exact solid-angle density. For light selection by power
 //! the map counts as `pi r^2` times its integral of luminance over the sphere.
+use super::envmap_tables::{tables, Tables};
 use super::sample::{luminance, EmitterSample};
 use crate::geometry::Interaction;
 use crate::math::{acos, atan2, safe_sqrt, sincos_turns, sqrt, Norm, INV_PI, INV_TWO_PI, PI};
@@ -52,6 +54,10 @@ pub struct EnvMap {
     pdf_scale: f32,
     /// Integral of luminance over the sphere (W/m^2 up to the luminance weights).
     integral: f32,
+    /// Whether the sampling tables are compensated ([`EnvMap::set_compensated`]).
+    compensated: bool,
+    /// Whether they may be (the scene file's `mis_compensation`, default true).
+    may_compensate: bool,
 }
 
 impl EnvMap {
@@ -86,48 +92,34 @@ impl EnvMap {
             })
             .collect();
         let (nx, ny) = (width, height - 1);
-        let mut weights = Vec::with_capacity(width * height);
-        // The pole rows (sin theta = 0) get the sine of a quarter row instead, so that the density
-        // stays positive wherever the radiance is, even when only a pole row is bright.
-        let sin_floor = libm::sin(core::f64::consts::PI / (4 * ny) as f64);
-        for y in 0..height {
-            let sin_t = libm::sin(core::f64::consts::PI * y as f64 / ny as f64).max(sin_floor);
-            for x in 0..width {
-                weights.push((f64::from(luminance(pixels[y * width + x])) * sin_t) as f32);
-            }
-        }
-        let corner = |x: usize, y: usize| f64::from(weights[y * width + x % width]);
         let lum = |x: usize, y: usize| f64::from(luminance(pixels[y * width + x % width]));
-        let mut cells = Vec::with_capacity(nx * ny);
-        let (mut total, mut integral) = (0.0f64, 0.0f64);
+        let mut integral = 0.0f64;
         for j in 0..ny {
             // Solid angle of a cell: (cos theta0 - cos theta1) * 2 pi / width.
             let theta0 = core::f64::consts::PI * j as f64 / ny as f64;
             let theta1 = core::f64::consts::PI * (j + 1) as f64 / ny as f64;
             let band = libm::cos(theta0) - libm::cos(theta1);
             for i in 0..nx {
-                let mean = 0.25
-                    * (corner(i, j) + corner(i + 1, j) + corner(i, j + 1) + corner(i + 1, j + 1));
-                total += mean;
-                cells.push(mean as f32);
                 integral +=
                     0.25 * (lum(i, j) + lum(i + 1, j) + lum(i, j + 1) + lum(i + 1, j + 1)) * band;
             }
         }
         let integral = (integral * core::f64::consts::TAU / nx as f64) as f32;
-        let pdf_scale = ((nx * ny) as f64 / total) as f32;
+        let Tables {
+            weights,
+            dist,
+            pdf_scale,
+        } = tables(pixels.iter(), width, height, 0.0);
         Some(EnvMap {
-            dist: Distribution2D::new(&cells, nx, ny),
-            pdf_scale: if pdf_scale.is_finite() {
-                pdf_scale
-            } else {
-                0.0
-            },
+            dist,
+            pdf_scale,
             texels: pixels
                 .iter()
                 .zip(&weights)
                 .map(|(c, &w)| c.extend(w))
                 .collect(),
+            compensated: false,
+            may_compensate: true,
             width,
             height,
             to_world,
@@ -150,6 +142,49 @@ impl EnvMap {
     /// Height in pixels.
     pub fn height(&self) -> usize {
         self.height
+    }
+
+    /// Samples by MIS-compensated tables (`on`: each pixel's luminance lowered by the map's
+    /// mean over the sphere, see `envmap_tables.rs`) or by the plain ones, rebuilding the tables
+    /// if that changes. Only for renders whose every emitter sample is weighed by MIS against a
+    /// strategy that reaches every direction (the compensated density is zero where the map is
+    /// dimmer than its mean). A map whose compensated tables would be empty (one of uniform
+    /// brightness) keeps the plain ones. Whether the tables are compensated afterwards.
+    pub fn set_compensated(&mut self, on: bool) -> bool {
+        let on = on && self.may_compensate;
+        if on == self.compensated {
+            return on;
+        }
+        let floor = match on {
+            true => f64::from(self.integral) / (4.0 * core::f64::consts::PI),
+            false => 0.0,
+        };
+        let radiance: Vec<Color> = self.texels.iter().map(|t| t.truncate()).collect();
+        let t = tables(radiance.iter(), self.width, self.height, floor);
+        if on && (t.dist.is_none() || !(t.pdf_scale > 0.0)) {
+            return false;
+        }
+        for (texel, w) in self.texels.iter_mut().zip(t.weights) {
+            texel.w = w;
+        }
+        self.dist = t.dist;
+        self.pdf_scale = t.pdf_scale;
+        self.compensated = on;
+        on
+    }
+
+    /// Whether [`EnvMap::set_compensated`] may turn compensation on (the scene file's
+    /// `mis_compensation`); disallowing it brings back the plain tables.
+    pub fn allow_compensation(&mut self, allow: bool) {
+        self.may_compensate = allow;
+        if !allow {
+            self.set_compensated(false);
+        }
+    }
+
+    /// Whether the sampling tables are compensated ([`EnvMap::set_compensated`]).
+    pub fn is_compensated(&self) -> bool {
+        self.compensated
     }
 
     /// Integral of the radiance's luminance over the sphere of directions.

@@ -78,6 +78,25 @@ impl Integrator {
     }
 }
 
+impl Integrator {
+    /// Whether every emitter sample this integrator takes on `scene` is weighed by multiple
+    /// importance sampling against BSDF sampling, which reaches every direction light can come
+    /// from: then emitter sampling may leave out directions, and the scene's environment maps
+    /// may sample by MIS-compensated tables ([`Scene::set_environment_compensation`]). `path`
+    /// (the MIS strategy, without path reuse), `volpath` where it runs the path tracer (no media
+    /// or `null` surfaces), `direct` with both kinds of samples, and `moment` around one of
+    /// those.
+    pub fn weighs_light_samples_by_mis(&self, scene: &Scene) -> bool {
+        match self {
+            Integrator::Path(p) => p.strategy == Strategy::Mis && !p.reuses(),
+            Integrator::VolPath(v) => surfaces_only::as_surface_path(v, scene).is_some(),
+            Integrator::Direct(d) => d.emitter_samples > 0 && d.bsdf_samples > 0,
+            Integrator::Moment(m) => m.inner.weighs_light_samples_by_mis(scene),
+            _ => false,
+        }
+    }
+}
+
 /// [`Integrator::li`], telling `probe` about the work done; the same value for any probe.
 impl Radiance for Integrator {
     #[inline]

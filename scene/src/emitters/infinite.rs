@@ -83,10 +83,12 @@ const FILENAME: Param = Param::file(
 const SCALE: Param = Param::float("scale", 1.0, Range::NonNegative, "factor on the radiance");
 const MIS_COMPENSATION: Param = Param::boolean(
     "mis_compensation",
-    false,
-    "Mitsuba 3's sampling option; has no effect (Tessera samples its own way)",
-)
-.ignored();
+    true,
+    "sample by the luminance less the map's mean (MIS compensation) where the integrator \
+     weighs every emitter sample by MIS (path, volpath without media, direct with both \
+     strategies); false keeps the plain tables. Other integrators always sample by the plain \
+     tables (Mitsuba 3's default: false)",
+);
 
 /// `envmap`.
 pub(crate) const ENVMAP: EmitterPlugin = Plugin {
@@ -138,11 +140,11 @@ fn build_envmap(obj: &Object, _: Option<u32>) -> Result<Emitter> {
     }
     let scale = SCALE.read_f32(obj)?;
     let to_world = rotation(obj, TO_WORLD.name)?;
-    // Mitsuba 3's sampling option: Tessera samples its own way, so it has no effect here.
-    MIS_COMPENSATION.read_bool(obj)?;
+    let compensation = MIS_COMPENSATION.read_bool(obj)?;
     let (w, h) = (img.width as usize, img.height as usize);
-    let env = EnvMap::new(img.data, w, h, scale, to_world)
+    let mut env = EnvMap::new(img.data, w, h, scale, to_world)
         .ok_or_else(|| file_error(format!("\"{name}\": unusable image size {w}x{h}")))?;
+    env.allow_compensation(compensation);
     Ok(Emitter::EnvMap(env))
 }
 

@@ -1,0 +1,87 @@
+//! MIS compensation of environment maps: the scene loader makes the maps sample by compensated
+//! tables exactly where every integrator the scene renders with weighs each emitter sample by
+//! MIS, and a render job refuses a compensated scene with any other integrator. (That the
+//! compensated tables sample their own density is `emitters_chi2.rs`; that renders with them
+//! agree with Mitsuba 3 and with the emitter-only strategy, which keeps the plain tables, is
+//! `envmap_agreement.rs`.)
+use tessera_core::render::RenderJob;
+use tessera_tests::{load_file, load_file_edited};
+
+#[test]
+fn the_loader_compensates_only_for_integrators_that_weigh_by_mis() {
+    let mut l = load_file("envmap.xml", &[("res", "32")]);
+    assert!(l.scene.environment_compensated(), "the file's path tracer");
+    for (name, on) in [
+        ("path_ems", false),
+        ("path_mats", false),
+        ("path_half", false),
+        ("path+reuse", false),
+        ("direct_ems", false),
+        ("direct_mats", false),
+        ("ao", false),
+        ("direct", true),
+        ("direct_mis", true),
+        ("volpath", true),
+        ("path", true),
+    ] {
+        l.set_integrator(Some(name), None)
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(l.scene.environment_compensated(), on, "{name}");
+        assert_eq!(
+            l.integrator.weighs_light_samples_by_mis(&l.scene),
+            on,
+            "{name}"
+        );
+    }
+    // Control: a scene without an environment map has nothing to compensate.
+    let cbox = load_file("cbox.xml", &[("res", "32")]);
+    assert!(cbox.integrator.weighs_light_samples_by_mis(&cbox.scene));
+    assert!(!cbox.scene.environment_compensated());
+}
+
+#[test]
+#[should_panic(expected = "MIS-compensated")]
+fn a_render_job_refuses_compensated_tables_with_an_emitter_only_integrator() {
+    let l = load_file("envmap.xml", &[("res", "32")]);
+    let mut ems = load_file("envmap.xml", &[("res", "32")]);
+    ems.set_integrator(Some("path_ems"), None)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(l.scene.environment_compensated());
+    let _ = RenderJob::new(&l.scene, &ems.integrator, 1);
+}
+
+#[test]
+fn a_render_job_takes_plain_tables_with_any_integrator() {
+    let mut l = load_file("envmap.xml", &[("res", "32")]);
+    let mut ems = load_file("envmap.xml", &[("res", "32")]);
+    ems.set_integrator(Some("path_ems"), None)
+        .unwrap_or_else(|e| panic!("{e}"));
+    l.scene.set_environment_compensation(false);
+    assert!(!l.scene.environment_compensated());
+    let _ = RenderJob::new(&l.scene, &ems.integrator, 1);
+}
+
+#[test]
+fn a_file_can_keep_the_plain_tables() {
+    let edit = |t: &str| {
+        t.replace(
+            r#"<emitter type="envmap">"#,
+            r#"<emitter type="envmap"><boolean name="mis_compensation" value="false"/>"#,
+        )
+    };
+    let mut l = load_file_edited("envmap.xml", edit, &[("res", "32")]);
+    assert!(l.integrator.weighs_light_samples_by_mis(&l.scene));
+    assert!(!l.scene.environment_compensated());
+    l.set_integrator(Some("volpath"), None)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(!l.scene.environment_compensated());
+    // Control: said true (Tessera's default), the tables are compensated.
+    let edit = |t: &str| {
+        t.replace(
+            r#"<emitter type="envmap">"#,
+            r#"<emitter type="envmap"><boolean name="mis_compensation" value="true"/>"#,
+        )
+    };
+    let l = load_file_edited("envmap.xml", edit, &[("res", "32")]);
+    assert!(l.scene.environment_compensated());
+}
