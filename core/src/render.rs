@@ -31,12 +31,12 @@ impl<'a> RenderJob<'a> {
     /// A job rendering `scene` with `integrator` from `seed`.
     ///
     /// # Panics
-    /// If the scene's environment maps sample by MIS-compensated tables and `integrator` does
-    /// not weigh every emitter sample by MIS
-    /// ([`Integrator::weighs_light_samples_by_mis`]): its estimate would be biased.
+    /// If the scene's environment maps sample by MIS-compensated tables and `integrator` takes
+    /// emitter samples it does not weigh by MIS
+    /// ([`Integrator::may_use_compensated_environment`]): its estimate would be biased.
     pub fn new(scene: &'a Scene, integrator: &'a Integrator, seed: u64) -> Self {
         assert!(
-            !scene.environment_compensated() || integrator.weighs_light_samples_by_mis(scene),
+            !scene.environment_compensated() || integrator.may_use_compensated_environment(scene),
             "RenderJob::new: the scene's environment maps sample by MIS-compensated tables, which \
              only an integrator weighing every emitter sample by MIS may use \
              (Scene::set_environment_compensation(false) first)"

@@ -141,7 +141,7 @@ impl LoadedScene {
         let scene = &self.scene;
         let suits = |spec: &IntegratorSpec| {
             spec.build()
-                .is_some_and(|i| i.weighs_light_samples_by_mis(scene))
+                .is_some_and(|i| i.may_use_compensated_environment(scene))
         };
         let on = self.integrator.weighs_light_samples_by_mis(scene)
             && self.integrator_spec.layers.iter().all(|l| match &l.source {

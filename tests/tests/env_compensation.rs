@@ -51,6 +51,24 @@ fn a_render_job_refuses_compensated_tables_with_an_emitter_only_integrator() {
 }
 
 #[test]
+fn a_render_job_takes_compensated_tables_with_integrators_that_sample_no_light() {
+    let l = load_file("envmap.xml", &[("res", "32")]);
+    assert!(l.scene.environment_compensated());
+    for name in ["ao", "normals"] {
+        let mut other = load_file("envmap.xml", &[("res", "32")]);
+        other
+            .set_integrator(Some(name), None)
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert!(!other.integrator.weighs_light_samples_by_mis(&other.scene));
+        assert!(
+            other.integrator.may_use_compensated_environment(&l.scene),
+            "{name}"
+        );
+        let _ = RenderJob::new(&l.scene, &other.integrator, 1);
+    }
+}
+
+#[test]
 fn a_render_job_takes_plain_tables_with_any_integrator() {
     let mut l = load_file("envmap.xml", &[("res", "32")]);
     let mut ems = load_file("envmap.xml", &[("res", "32")]);

@@ -95,6 +95,18 @@ impl Integrator {
             _ => false,
         }
     }
+
+    /// Whether this integrator may render `scene` with its environment maps sampling by
+    /// MIS-compensated tables: it weighs every emitter sample by MIS
+    /// ([`Integrator::weighs_light_samples_by_mis`]), or it takes none (surface variables,
+    /// normals, ambient occlusion).
+    pub fn may_use_compensated_environment(&self, scene: &Scene) -> bool {
+        self.weighs_light_samples_by_mis(scene)
+            || matches!(
+                self,
+                Integrator::Aov(_) | Integrator::Normals(_) | Integrator::Visibility(_)
+            )
+    }
 }
 
 /// [`Integrator::li`], telling `probe` about the work done; the same value for any probe.
