@@ -109,7 +109,7 @@ impl EnvMap {
             weights,
             dist,
             pdf_scale,
-        } = tables(pixels.iter(), width, height, 0.0);
+        } = tables(pixels.iter().copied(), width, height, 0.0);
         Some(EnvMap {
             dist,
             pdf_scale,
@@ -159,8 +159,8 @@ impl EnvMap {
             true => f64::from(self.integral) / (4.0 * core::f64::consts::PI),
             false => 0.0,
         };
-        let radiance: Vec<Color> = self.texels.iter().map(|t| t.truncate()).collect();
-        let t = tables(radiance.iter(), self.width, self.height, floor);
+        let radiance = self.texels.iter().map(|t| t.truncate());
+        let t = tables(radiance, self.width, self.height, floor);
         if on && (t.dist.is_none() || !(t.pdf_scale > 0.0)) {
             return false;
         }

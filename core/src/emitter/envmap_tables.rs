@@ -29,8 +29,8 @@ pub(super) struct Tables {
 
 /// The tables of the `width x height` radiance `pixels` (row-major, top row first), each
 /// luminance lowered by `floor` (0 for the plain tables) and clamped at zero.
-pub(super) fn tables<'a>(
-    pixels: impl ExactSizeIterator<Item = &'a Color>,
+pub(super) fn tables(
+    pixels: impl ExactSizeIterator<Item = Color>,
     width: usize,
     height: usize,
     floor: f64,
@@ -40,7 +40,7 @@ pub(super) fn tables<'a>(
     // The pole rows (sin theta = 0) get the sine of a quarter row instead, so that the density
     // stays positive wherever the radiance is, even when only a pole row is bright.
     let sin_floor = libm::sin(core::f64::consts::PI / (4 * ny) as f64);
-    for (k, &p) in pixels.enumerate() {
+    for (k, p) in pixels.enumerate() {
         let y = k / width;
         let sin_t = libm::sin(core::f64::consts::PI * y as f64 / ny as f64).max(sin_floor);
         let lum = f64::from(luminance(p));

@@ -76,9 +76,7 @@ impl Integrator {
             _ => self.li_probed(scene, ray, sampler, &mut NoProbe),
         }
     }
-}
 
-impl Integrator {
     /// Whether every emitter sample this integrator takes on `scene` is weighed by multiple
     /// importance sampling against BSDF sampling, which reaches every direction light can come
     /// from: then emitter sampling may leave out directions, and the scene's environment maps
