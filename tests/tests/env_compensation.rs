@@ -15,7 +15,6 @@ fn the_loader_compensates_only_for_integrators_that_weigh_by_mis() {
         ("path_ems", false),
         ("path_mats", false),
         ("path_half", false),
-        ("path+reuse", false),
         ("direct_ems", false),
         ("direct_mats", false),
         ("ao", false),
@@ -23,6 +22,7 @@ fn the_loader_compensates_only_for_integrators_that_weigh_by_mis() {
         ("direct_mis", true),
         ("volpath", true),
         ("path", true),
+        ("path+reuse", true),
     ] {
         l.set_integrator(Some(name), None)
             .unwrap_or_else(|e| panic!("{e}"));

@@ -121,6 +121,19 @@ fn reuse_agrees_with_plain_paths_on_materials() {
     agrees("materials.xml", 16);
 }
 
+/// Diffuse spheres and floor under a sky with a sun, nothing else: every second vertex shares
+/// light that the map's compensated tables and BSDF sampling found together.
+#[test]
+fn reuse_agrees_with_plain_paths_under_an_environment_map() {
+    for integrator in ["path", "path+reuse"] {
+        let mut l = load_file("envmap.xml", &[("res", "8")]);
+        l.set_integrator(Some(integrator), None)
+            .expect("path tracer");
+        assert!(l.scene.environment_compensated(), "{integrator}");
+    }
+    agrees("envmap.xml", 16);
+}
+
 /// Targets that differ inside every group (8 to 40 samples, fixed in advance): at each
 /// sample index only the pixels that take it share, weighted over those pixels' densities.
 #[test]

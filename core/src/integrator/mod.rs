@@ -81,12 +81,15 @@ impl Integrator {
     /// importance sampling against BSDF sampling, which reaches every direction light can come
     /// from: then emitter sampling may leave out directions, and the scene's environment maps
     /// may sample by MIS-compensated tables ([`Scene::set_environment_compensation`]). `path`
-    /// (the MIS strategy, without path reuse), `volpath` where it runs the path tracer (no media
-    /// or `null` surfaces), `direct` with both kinds of samples, and `moment` around one of
-    /// those.
+    /// with the MIS strategy (with or without path reuse: the group estimator shares only the
+    /// light reflected at second vertices, each estimated by the path tracer's own MIS-weighted
+    /// steps, and light reaching a first vertex from a map is found by that vertex's own
+    /// emitter sample and BSDF sample, weighed against each other as without reuse), `volpath`
+    /// where it runs the path tracer (no media or `null` surfaces), `direct` with both kinds of
+    /// samples, and `moment` around one of those.
     pub fn weighs_light_samples_by_mis(&self, scene: &Scene) -> bool {
         match self {
-            Integrator::Path(p) => p.strategy == Strategy::Mis && !p.reuses(),
+            Integrator::Path(p) => p.strategy == Strategy::Mis,
             Integrator::VolPath(v) => surfaces_only::as_surface_path(v, scene).is_some(),
             Integrator::Direct(d) => d.emitter_samples > 0 && d.bsdf_samples > 0,
             Integrator::Moment(m) => m.inner.weighs_light_samples_by_mis(scene),

@@ -85,8 +85,8 @@ const MIS_COMPENSATION: Param = Param::boolean(
     "mis_compensation",
     true,
     "sample by the luminance less the map's mean (MIS compensation) where the integrator \
-     weighs every emitter sample by MIS (path, volpath without media, direct with both \
-     strategies); false keeps the plain tables. Other integrators always sample by the plain \
+     weighs every emitter sample by MIS (path, with or without reuse; volpath without media; \
+     direct with both strategies); false keeps the plain tables. Other integrators always sample by the plain \
      tables (Mitsuba 3's default: false)",
 );
 
