@@ -4,6 +4,7 @@
 //! compensated tables sample their own density is `emitters_chi2.rs`; that renders with them
 //! agree with Mitsuba 3 and with the emitter-only strategy, which keeps the plain tables, is
 //! `envmap_agreement.rs`.)
+use tessera_core::light::LightBound;
 use tessera_core::render::RenderJob;
 use tessera_tests::{load_file, load_file_edited};
 
@@ -102,4 +103,39 @@ fn a_file_can_keep_the_plain_tables() {
     };
     let l = load_file_edited("envmap.xml", edit, &[("res", "32")]);
     assert!(l.scene.environment_compensated());
+}
+
+/// The environment's weight in light selection (material scene: a soft sky and an area light).
+fn environment_weight(l: &tessera_scene::LoadedScene) -> f32 {
+    let bounds = l.scene.lights().bounds();
+    assert_eq!(bounds.len(), 2, "the material scene's sky and area light");
+    bounds
+        .iter()
+        .find_map(|b| match b {
+            LightBound::Environment { lum } => Some(*lum),
+            _ => None,
+        })
+        .expect("an environment bound")
+}
+
+/// Light selection weighs a map by the light its tables sample: with compensated tables only
+/// what lies above the mean (BSDF sampling finds the rest), so a soft sky beside an area light
+/// takes fewer light samples; with the plain tables again, all of its light.
+#[test]
+fn light_selection_weighs_a_map_by_what_its_tables_sample() {
+    let mut l = load_file("materials.xml", &[("res", "32")]);
+    assert!(l.scene.environment_compensated());
+    let compensated = environment_weight(&l);
+    l.set_integrator(Some("path_ems"), None)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(!l.scene.environment_compensated());
+    let plain = environment_weight(&l);
+    eprintln!("environment weight: compensated {compensated}, plain {plain}");
+    assert!(
+        compensated > 0.0 && compensated < 0.5 * plain,
+        "compensated {compensated}, plain {plain}"
+    );
+    l.set_integrator(Some("path"), None)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(environment_weight(&l), compensated);
 }

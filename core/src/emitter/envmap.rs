@@ -54,6 +54,9 @@ pub struct EnvMap {
     pdf_scale: f32,
     /// Integral of luminance over the sphere (W/m^2 up to the luminance weights).
     integral: f32,
+    /// The part of `integral` the tables sample: all of it with the plain tables, what lies
+    /// above the mean with the compensated ones.
+    sampled: f32,
     /// Whether the sampling tables are compensated ([`EnvMap::set_compensated`]).
     compensated: bool,
     /// Whether they may be (the scene file's `mis_compensation`, default true).
@@ -125,6 +128,7 @@ impl EnvMap {
             to_world,
             to_local: to_world.transpose(),
             integral,
+            sampled: integral,
         })
     }
 
@@ -167,6 +171,12 @@ impl EnvMap {
         for (texel, w) in self.texels.iter_mut().zip(t.weights) {
             texel.w = w;
         }
+        // The tables' totals are in proportion to the integrals they sample, and each
+        // `pdf_scale` is inversely proportional to its table's total.
+        self.sampled = match on {
+            true => self.integral * (self.pdf_scale / t.pdf_scale),
+            false => self.integral,
+        };
         self.dist = t.dist;
         self.pdf_scale = t.pdf_scale;
         self.compensated = on;
@@ -188,8 +198,15 @@ impl EnvMap {
     }
 
     /// Integral of the radiance's luminance over the sphere of directions.
-    pub(crate) fn luminance_integral(&self) -> f32 {
+    pub fn luminance_integral(&self) -> f32 {
         self.integral
+    }
+
+    /// The part of [`EnvMap::luminance_integral`] that emitter sampling is left to find: all
+    /// of it with the plain tables; with the compensated ones, the integral of the luminance
+    /// less the mean, clamped at zero (the rest is BSDF sampling's).
+    pub fn sampled_luminance_integral(&self) -> f32 {
+        self.sampled
     }
 
     /// Image coordinates `(s, v)` of a local unit direction: `s` in `[0, width)` counts pixel
@@ -346,4 +363,69 @@ fn sample_linear(u: f32, a: f32, b: f32) -> f32 {
         return 0.0;
     }
     (u * (a + b) / den).clamp(0.0, 1.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use alloc::vec;
+
+    /// The integral over the sphere of `f(luminance)` for a `w x h` map, by the quadrature
+    /// [`EnvMap::new`] uses for the whole luminance (cell corners averaged, times each row's
+    /// band of solid angle).
+    fn integrate(pixels: &[[f32; 3]], w: usize, h: usize, f: impl Fn(f64) -> f64) -> f64 {
+        let lum = |x: usize, y: usize| f(f64::from(luminance(Color::from(pixels[y * w + x % w]))));
+        let ny = h - 1;
+        let mut sum = 0.0;
+        for j in 0..ny {
+            let band = libm::cos(core::f64::consts::PI * j as f64 / ny as f64)
+                - libm::cos(core::f64::consts::PI * (j + 1) as f64 / ny as f64);
+            for i in 0..w {
+                sum +=
+                    0.25 * (lum(i, j) + lum(i + 1, j) + lum(i, j + 1) + lum(i + 1, j + 1)) * band;
+            }
+        }
+        sum * core::f64::consts::TAU / w as f64
+    }
+
+    /// With compensated tables, emitter sampling is left the luminance above the mean: its
+    /// integral, within the difference between the tables' quadrature and the exact bands; with
+    /// the plain tables, and for a map that cannot be compensated, all of it.
+    #[test]
+    fn sampled_integral_is_what_the_tables_sample() {
+        let (w, h) = (64, 33);
+        // A dim sky, brighter towards the zenith, and a small bright sun.
+        let pixels: Vec<[f32; 3]> = (0..w * h)
+            .map(|k| {
+                let (x, y) = (k % w, k / w);
+                let sun = (20..23).contains(&x) && (8..11).contains(&y);
+                let v = if sun {
+                    200.0
+                } else {
+                    1.0 + (h - y) as f32 / h as f32
+                };
+                [v, v * 0.9, v * 0.8]
+            })
+            .collect();
+        let mut env = EnvMap::new(pixels.clone(), w, h, 1.0, Mat3::IDENTITY).expect("a map");
+        let all = env.luminance_integral();
+        assert_eq!(env.sampled_luminance_integral(), all);
+        let mean = f64::from(all) / (4.0 * core::f64::consts::PI);
+        let above = integrate(&pixels, w, h, |l| (l - mean).max(0.0));
+        assert!(env.set_compensated(true));
+        let sampled = f64::from(env.sampled_luminance_integral());
+        assert!(
+            (sampled / above - 1.0).abs() < 0.005,
+            "sampled {sampled}, above the mean {above}, all {all}"
+        );
+        // Control: the part is a clear fraction of the whole, which the check above tells apart.
+        assert!(above < 0.8 * f64::from(all), "{above} of {all}");
+        assert!(!env.set_compensated(false));
+        assert_eq!(env.sampled_luminance_integral(), all);
+        // A uniform map keeps the plain tables, and all of its light to sample.
+        let mut flat =
+            EnvMap::new(vec![[0.5; 3]; w * h], w, h, 1.0, Mat3::IDENTITY).expect("a map");
+        assert!(!flat.set_compensated(true));
+        assert_eq!(flat.sampled_luminance_integral(), flat.luminance_integral());
+    }
 }

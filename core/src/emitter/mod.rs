@@ -80,7 +80,10 @@ impl Emitter {
             Emitter::DistantDisk(e) => {
                 PI * ctx.scene_radius * ctx.scene_radius * e.solid_angle() * luminance(e.radiance)
             }
-            Emitter::EnvMap(e) => PI * ctx.scene_radius * ctx.scene_radius * e.luminance_integral(),
+            // What its tables sample: with MIS-compensated tables, BSDF sampling finds the rest.
+            Emitter::EnvMap(e) => {
+                PI * ctx.scene_radius * ctx.scene_radius * e.sampled_luminance_integral()
+            }
         };
         if p.is_finite() && p > 0.0 {
             p

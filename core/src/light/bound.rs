@@ -61,7 +61,8 @@ pub enum LightBound {
     },
     /// An environment: light from everywhere.
     Environment {
-        /// Luminance of the irradiance a uniform environment of its mean radiance gives.
+        /// Luminance of the irradiance a uniform environment gives whose radiance is the mean of
+        /// the luminance its sampling tables sample.
         lum: f32,
     },
 }
@@ -168,8 +169,10 @@ impl LightBound {
                 lum: PI * luminance(c.radiance).max(0.0),
             },
             Emitter::EnvMap(e) => LightBound::Environment {
-                // The integral of luminance over the sphere, spread evenly: the mean times 4 pi.
-                lum: PI * e.luminance_integral().max(0.0) / (4.0 * PI),
+                // The part of its light its tables sample (all of it, or with MIS-compensated
+                // tables what lies above the mean, BSDF sampling finding the rest), spread
+                // evenly over the sphere: that integral over 4 pi, times pi.
+                lum: PI * e.sampled_luminance_integral().max(0.0) / (4.0 * PI),
             },
         }
     }

@@ -27,6 +27,8 @@ pub enum LightSelection {
 /// The scene-wide light choice and the per-light bounds of vertex selection.
 #[derive(Clone, Debug)]
 pub struct LightSampler {
+    /// How it chooses.
+    how: LightSelection,
     /// Number of lights.
     count: usize,
     /// Light choice by power (None: uniform), where no vertex selection applies.
@@ -55,10 +57,16 @@ impl LightSampler {
             LightSelection::Uniform => (None, Vec::new()),
         };
         LightSampler {
+            how,
             count: emitters.len(),
             selection,
             bounds,
         }
+    }
+
+    /// How it chooses.
+    pub fn how(&self) -> LightSelection {
+        self.how
     }
 
     /// Each light as vertex selection sees it; empty where the scene-wide choice applies.

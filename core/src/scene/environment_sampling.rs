@@ -10,10 +10,16 @@ impl Scene {
     /// Makes every environment map sample by compensated tables (`on`) or by the plain ones
     /// (see [`EnvMap::set_compensated`](crate::emitter::EnvMap::set_compensated)).
     pub fn set_environment_compensation(&mut self, on: bool) {
+        let mut changed = false;
         for e in &mut self.emitters {
             if let Emitter::EnvMap(m) = e {
-                m.set_compensated(on);
+                let was = m.is_compensated();
+                changed |= m.set_compensated(on) != was;
             }
+        }
+        // Light selection weighs a map by the part of its light its tables sample.
+        if changed {
+            self.set_light_selection(self.lights.how());
         }
     }
 
