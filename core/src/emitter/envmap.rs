@@ -23,8 +23,9 @@
 //! density in `(u, v)` is therefore the bilinear interpolant of luminance x sin(theta) divided by
 //! its integral: proportional to the radiance's luminance up to the interpolation of
 //! sin(theta), positive wherever the radiance is (so emitter sampling alone covers the map), and
-//! `pdf_uv / (2 pi^2 sin theta)` is its exact solid-angle density. For light selection by power
-//! the map counts as `pi r^2` times its integral of luminance over the sphere.
+//! `pdf_uv / (2 pi^2 sin theta)` is its exact solid-angle density (with MIS-compensated tables,
+//! `envmap_tables.rs`, the luminance less the map's mean). For light selection the map counts
+//! by the integral of luminance over the sphere its tables sample (by power: `pi r^2` times it).
 use super::envmap_tables::{tables, Tables};
 use super::sample::{luminance, EmitterSample};
 use crate::geometry::Interaction;
