@@ -191,16 +191,9 @@ def measure(a, run, name, size, ref):
                 # The same run again, the faster kept: the first run at a sample count may
                 # include one-off costs (Dr.Jit compiles a kernel per launch size), and on a
                 # shared machine the faster of two identical runs is the better estimate.
-                again = run(spp, out)
-                if again["seconds"] < r["seconds"]:
-                    again["spp"] = spp
-                    again["pixels"] = r["pixels"]
-                    again["errors"] = errors(load(out), ref)
-                    again["relmse"] = again["errors"][1]
-                    r = again
                 curve.append(r)
                 r["curve"] = curve
-                return r
+                return faster_again(r, run, ref)
             curve.append(r)
             # Jump straight to about the sample count that takes long enough (or, for a
             # curve to plot, double).
@@ -209,7 +202,8 @@ def measure(a, run, name, size, ref):
 
 
 def faster_again(r, run, ref):
-    """`r` (a final run of `measure`) or, if faster, the same run made once more."""
+    """`r` (a final run of `measure`, last in its "curve") or, if faster, the same run made once
+    more, which then takes its place in the curve."""
     with tempfile.TemporaryDirectory() as d:
         out = os.path.join(d, "x.exr")
         again = run(r["spp"], out)

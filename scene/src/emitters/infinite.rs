@@ -86,8 +86,8 @@ const MIS_COMPENSATION: Param = Param::boolean(
     true,
     "sample by the luminance less the map's mean (MIS compensation) where the integrator \
      weighs every emitter sample by MIS (path, with or without reuse; volpath without media; \
-     direct with both strategies); false keeps the plain tables. Other integrators always sample by the plain \
-     tables (Mitsuba 3's default: false)",
+     direct with both strategies); false keeps the plain tables. Other integrators always \
+     sample by the plain tables (Mitsuba 3's default: false)",
 );
 
 /// `envmap`.
