@@ -59,8 +59,8 @@
 //! ```
 #![no_std]
 // `unsafe` only in `accel::slab_simd`, `accel::tri_block`, `accel::tri_block_pair` (SSE/AVX2
-// intrinsics, CPU feature detection) and `math::sqrt` (the SSE square-root intrinsics), which
-// allow it and justify each block.
+// intrinsics, CPU feature detection), `emitter::envmap_coords` (AVX2 intrinsics) and
+// `math::sqrt` (the SSE square-root intrinsics), which allow it and justify each block.
 #![deny(unsafe_code)]
 // `!(x > 0.0)` is this crate's way of rejecting NaN along with the values it names; clippy's
 // suggestion (`partial_cmp`) would hide that intent.
@@ -73,8 +73,10 @@ pub mod accel;
 pub mod adaptive;
 pub mod bsdf;
 pub mod camera;
+mod camera_draw;
 pub mod emitter;
 pub mod error_estimate;
+mod escapes;
 pub mod film;
 pub mod geometry;
 pub mod integrator;

@@ -4,11 +4,13 @@
 //! seed. Every value it gives is a pure function of the job, the pixel and the sample index
 //! (and, with path reuse, of which pixels of the pixel's group take that index), so any loop
 //! over pixels and sample ranges, in any order and on any thread, gives the same bits.
+pub use crate::camera_draw::CameraSample;
+use crate::camera_draw::{CameraDraw, CAMERA_BATCH};
+use crate::escapes::{Escapes, Pending};
 use crate::film::PixelAccum;
 use crate::integrator::{
     Integrator, NoProbe, PathIntegrator, Probe, Radiance, GROUP, GROUP_H, GROUP_W,
 };
-use crate::math::Ray;
 use crate::sampling::{IndependentSampler, Sampler, SamplerKind, ZSobolPixel};
 use crate::scene::Scene;
 use crate::Color;
@@ -140,6 +142,7 @@ impl<'a> RenderJob<'a> {
                 // The camera rays of a few samples first, then their paths: the rays' chains of
                 // divisions and square roots, each waiting on the one before, overlap when they
                 // sit together (each sample keeps its own sampler, so no value moves).
+                let escapes = Escapes::of::<P>(self.scene, self.integrator);
                 let mut run = IndependentSampler::pixel_run(self.seed, x, y, samples);
                 loop {
                     let batch: [Option<CameraDraw<IndependentSampler>>; CAMERA_BATCH] =
@@ -147,10 +150,8 @@ impl<'a> RenderJob<'a> {
                     if batch[0].is_none() {
                         break;
                     }
-                    for draw in batch.into_iter().flatten() {
-                        let (c, o, cam) = self.finish(draw, probe);
-                        add(c, o, &cam);
-                    }
+                    let draws = batch.into_iter().flatten();
+                    self.finish_draws(escapes.as_ref(), draws, probe, &mut add);
                 }
             }
             SamplerKind::ZSobol { log2_spp } => {
@@ -158,8 +159,48 @@ impl<'a> RenderJob<'a> {
                     return;
                 }
                 let pixel = cache.zsobol_for(self.seed, x, y, log2_spp, samples.clone());
+                let Some(esc) = Escapes::of::<P>(self.scene, self.integrator) else {
+                    for index in samples {
+                        let (c, o, cam) = self.trace(x, y, pixel.sampler(index), probe);
+                        add(c, o, &cam);
+                    }
+                    return;
+                };
+                let mut pending = Pending::default();
                 for index in samples {
-                    let (c, o, cam) = self.trace(x, y, pixel.sampler(index), probe);
+                    let draw = self.camera_draw(x, y, pixel.sampler(index));
+                    esc.push(self.scene, &mut pending, draw, probe);
+                    if pending.is_full() {
+                        esc.flush(&mut pending, &mut add);
+                    }
+                }
+                esc.flush(&mut pending, &mut add);
+            }
+        }
+    }
+
+    /// The samples whose camera parts are `draws` (at most [`CAMERA_BATCH`]): each value,
+    /// offset and camera sample passed to `add` in order, through `escapes` when it applies,
+    /// else by [`RenderJob::finish`] one by one (the same bits either way).
+    #[inline(always)]
+    pub(crate) fn finish_draws<S: Sampler, P: Probe>(
+        &self,
+        escapes: Option<&Escapes>,
+        draws: impl Iterator<Item = CameraDraw<S>>,
+        probe: &mut P,
+        add: &mut impl FnMut(Color, Vec2, &CameraSample),
+    ) {
+        match escapes {
+            Some(esc) => {
+                let mut pending = Pending::default();
+                for draw in draws {
+                    esc.push(self.scene, &mut pending, draw, probe);
+                }
+                esc.flush(&mut pending, add);
+            }
+            None => {
+                for draw in draws {
+                    let (c, o, cam) = self.finish(draw, probe);
                     add(c, o, &cam);
                 }
             }
@@ -326,7 +367,7 @@ impl<'a> RenderJob<'a> {
     /// The camera part of a sample of pixel `(x, y)`: its film position and camera ray, drawn
     /// from the first dimensions of `sampler`, which the path goes on drawing from.
     #[inline(always)]
-    fn camera_draw<S: Sampler>(&self, x: u32, y: u32, mut sampler: S) -> CameraDraw<S> {
+    pub(crate) fn camera_draw<S: Sampler>(&self, x: u32, y: u32, mut sampler: S) -> CameraDraw<S> {
         let (offset, weight) = self.camera_offset(sampler.next_2d());
         let pos = Vec2::new(x as f32 + 0.5 + offset.x, y as f32 + 0.5 + offset.y);
         let ray = self.scene.camera.sample_ray(pos, &mut sampler);
@@ -341,7 +382,7 @@ impl<'a> RenderJob<'a> {
     /// The sample whose camera part is `draw`: its value (weighted for filters with negative
     /// lobes), its offset from the pixel's centre and its camera sample.
     #[inline(always)]
-    fn finish<S: Sampler, P: Probe>(
+    pub(crate) fn finish<S: Sampler, P: Probe>(
         &self,
         draw: CameraDraw<S>,
         probe: &mut P,
@@ -358,36 +399,6 @@ impl<'a> RenderJob<'a> {
             .li_probed(self.scene, cam.ray, &mut sampler, probe);
         // Filters with negative lobes weight their samples; the others give no weight.
         (cam.weigh(l), offset, cam)
-    }
-}
-
-/// How many samples of a pixel have their camera rays made together ([`RenderJob::pixel_alone`]).
-const CAMERA_BATCH: usize = 8;
-
-/// A sample's camera part: the sampler (to go on drawing from), the film position, the offset
-/// from the pixel's centre and the camera sample.
-struct CameraDraw<S> {
-    sampler: S,
-    pos: Vec2,
-    offset: Vec2,
-    cam: CameraSample,
-}
-
-/// A sample's camera ray and the weight its value is multiplied by (filters with negative
-/// lobes, importance-sampled: the sign and size of the filter there; `None` for the others).
-#[derive(Clone, Copy, Debug)]
-pub struct CameraSample {
-    /// The camera ray.
-    pub ray: Ray,
-    /// The filter's weight, if the value is weighted.
-    pub weight: Option<f32>,
-}
-
-impl CameraSample {
-    /// A value of this sample as the render loop records it: times the weight, if any.
-    #[inline]
-    pub fn weigh(&self, v: Color) -> Color {
-        self.weight.map_or(v, |w| v * w)
     }
 }
 

@@ -35,6 +35,7 @@ mod emitters_analytic;
 mod emitters_chi2;
 mod env_compensation;
 mod envmap_agreement;
+mod escapes;
 mod film_crop;
 mod filter_agreement;
 mod filter_weights;

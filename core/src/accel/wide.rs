@@ -117,6 +117,12 @@ impl Bvh8 {
         self.avx2.is_some()
     }
 
+    /// The AVX2 token traversal uses, if any (other SIMD code of a render follows its choice,
+    /// so that [`Bvh8::use_portable`] makes the whole render portable).
+    pub fn avx2(&self) -> Option<Avx2> {
+        self.avx2
+    }
+
     /// Makes traversal use the portable box test (for tests and measurements).
     pub fn use_portable(&mut self) {
         self.avx2 = None;

@@ -26,10 +26,12 @@
 //! `pdf_uv / (2 pi^2 sin theta)` is its exact solid-angle density (with MIS-compensated tables,
 //! `envmap_tables.rs`, the luminance less the map's mean). For light selection the map counts
 //! by the integral of luminance over the sphere its tables sample (by power: `pi r^2` times it).
+use super::envmap_coords::{coords8, map_coords};
 use super::envmap_tables::{tables, Tables};
 use super::sample::{luminance, EmitterSample};
+use crate::accel::slab_simd::Avx2;
 use crate::geometry::Interaction;
-use crate::math::{acos, atan2, safe_sqrt, sincos_turns, sqrt, Norm, INV_PI, INV_TWO_PI, PI};
+use crate::math::{safe_sqrt, sincos_turns, sqrt, Norm, PI};
 use crate::sampling::Distribution2D;
 use crate::Color;
 use alloc::vec::Vec;
@@ -210,23 +212,11 @@ impl EnvMap {
         self.sampled
     }
 
-    /// Image coordinates `(s, v)` of a local unit direction: `s` in `[0, width)` counts pixel
-    /// centres from column 0 (the `u` of Mitsuba shifted by half a pixel), `v` in `[0, 1]`.
+    /// Image coordinates `(s, v)` of a local unit direction ([`map_coords`] for this map's
+    /// width).
     #[inline]
     fn coords(&self, l: Vec3) -> (f32, f32) {
-        let w = self.width as f32;
-        let mut s = atan2(l.x, -l.z) * INV_TWO_PI * w - 0.5;
-        if s < 0.0 {
-            s += w;
-        }
-        if s < 0.0 {
-            s += w;
-        }
-        if s >= w {
-            s -= w;
-        }
-        let v = acos(l.y.clamp(-1.0, 1.0)) * INV_PI;
-        (s, v)
+        map_coords(l, self.width)
     }
 
     /// Bilinear interpolation of per-pixel values `at(x, y)` at image coordinates `(s, v)` (see
@@ -273,6 +263,21 @@ impl EnvMap {
         }
         let (s, v) = self.coords(l);
         self.lookup(s, v)
+    }
+
+    /// [`EnvMap::eval`] of eight escaping unit directions, the same bits, their map
+    /// coordinates computed side by side (`envmap_coords`; in AVX2 registers when `avx2` is
+    /// given).
+    #[inline]
+    pub fn eval8(&self, avx2: Option<Avx2>, d: &[Vec3; 8]) -> [Color; 8] {
+        let c = coords8(avx2, &self.to_local, self.width, d);
+        core::array::from_fn(|k| {
+            if c.valid >> k & 1 != 0 {
+                self.lookup(c.s[k], c.v[k])
+            } else {
+                Color::ZERO
+            }
+        })
     }
 
     /// Solid-angle density of `sample` for the world direction `d`.

@@ -5,6 +5,7 @@ mod constant;
 mod directional;
 mod distant_disk;
 mod envmap;
+mod envmap_coords;
 mod envmap_tables;
 mod point;
 mod projector;

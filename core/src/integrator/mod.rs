@@ -5,6 +5,7 @@ mod mis;
 mod moment;
 mod normals;
 mod path;
+mod path_from_hit;
 mod path_state;
 mod probe;
 mod radiance;

@@ -217,12 +217,25 @@ impl PathIntegrator {
         result: &mut Color,
         probe: &mut P,
     ) -> Option<Interaction> {
+        let hit = probe.intersect(scene, &path.ray);
+        self.arrive_at::<ST, P>(scene, path, hit, result, probe)
+    }
+
+    /// [`PathIntegrator::arrive`] for the path's ray, already cast: `hit` is what it met.
+    #[inline(always)]
+    pub(super) fn arrive_at<const ST: u8, P: Probe>(
+        &self,
+        scene: &Scene,
+        path: &PathState,
+        hit: Option<Interaction>,
+        result: &mut Color,
+        probe: &mut P,
+    ) -> Option<Interaction> {
         let strategy = Strategy::of(ST);
         let features = &scene.features;
         let (ray, throughput, depth) = (&path.ray, path.throughput, path.depth);
         let prev = path.prev.as_ref();
         let visible = !(depth == 0 && self.hide_emitters);
-        let hit = probe.intersect(scene, ray);
         probe.ray(if depth == 0 {
             RayKind::Camera
         } else {

@@ -69,6 +69,10 @@ pub enum MediumEvent {
 /// Receives the events of one sample's path. Every method defaults to doing nothing.
 #[allow(unused_variables)]
 pub trait Probe {
+    /// Whether the probe observes anything: false only for one whose every method is the
+    /// default (no counting, no recording), so that a render loop may skip calls it would
+    /// ignore (see `RenderJob::pixel_alone`'s batches of escaping camera rays).
+    const OBSERVES: bool = true;
     /// Casts a camera or continuation ray: the scene's closest hit. A probe may count the
     /// traversal's work; the result must be the scene's.
     #[inline(always)]
@@ -131,7 +135,9 @@ pub trait Probe {
 #[derive(Clone, Copy, Debug, Default)]
 pub struct NoProbe;
 
-impl Probe for NoProbe {}
+impl Probe for NoProbe {
+    const OBSERVES: bool = false;
+}
 
 /// How much work paths did, by kind. Counts are sums over samples, so they are the same for any
 /// thread count or tile order.

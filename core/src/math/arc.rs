@@ -15,29 +15,40 @@ use super::poly::horner;
 use super::{sqrt, PI};
 
 /// The part of pi that `PI` (rounded to `f32`) leaves out.
-const PI_LO: f32 = (core::f64::consts::PI - PI as f64) as f32;
+pub(crate) const PI_LO: f32 = (core::f64::consts::PI - PI as f64) as f32;
 
 /// The fit's constant term for `acos`: 1.5707963, one `f32` step below pi / 2 (what the fit
 /// chose; written by its bits, as a decimal it reads as an approximation of pi / 2).
 const ACOS_C0: f32 = f32::from_bits(0x3FC9_0FDA);
 
+/// `atan(a) / a` as a polynomial in `a^2`, highest degree first (for [`horner`]).
+pub(crate) const ATAN_COEFFS: [f32; 8] = [
+    -0.004_693_273,
+    0.024_252_396,
+    -0.059_486_39,
+    0.099_142_93,
+    -0.140_194_82,
+    0.199_697_24,
+    -0.333_319_9,
+    0.999_999_9,
+];
+
+/// `acos(x) / sqrt(1 - x)` as a polynomial in `x`, highest degree first.
+pub(crate) const ACOS_COEFFS: [f32; 8] = [
+    -0.001_253_456_3,
+    0.006_638_617,
+    -0.017_045_101,
+    0.030_862_752,
+    -0.050_164_19,
+    0.088_977_315,
+    -0.214_598_7,
+    ACOS_C0,
+];
+
 /// `atan(a)` for `a` in `[0, 1]`.
 #[inline(always)]
 fn atan_unit(a: f32) -> f32 {
-    let p = horner(
-        a * a,
-        [
-            -0.004_693_273,
-            0.024_252_396,
-            -0.059_486_39,
-            0.099_142_93,
-            -0.140_194_82,
-            0.199_697_24,
-            -0.333_319_9,
-            0.999_999_9,
-        ],
-    );
-    a * p
+    a * horner(a * a, ATAN_COEFFS)
 }
 
 /// The angle of the point `(x, y)` from the positive x axis, in `[-pi, pi]` (the sign of `y`,
@@ -83,19 +94,7 @@ pub fn atan2_turns(y: f32, x: f32) -> f32 {
 #[inline]
 pub fn acos(x: f32) -> f32 {
     let ax = x.abs();
-    let p = horner(
-        ax,
-        [
-            -0.001_253_456_3,
-            0.006_638_617,
-            -0.017_045_101,
-            0.030_862_752,
-            -0.050_164_19,
-            0.088_977_315,
-            -0.214_598_7,
-            ACOS_C0,
-        ],
-    );
+    let p = horner(ax, ACOS_COEFFS);
     let r = sqrt(1.0 - ax) * p;
     if x < 0.0 {
         (PI - r) + PI_LO

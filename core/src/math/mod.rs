@@ -11,6 +11,7 @@ mod turns;
 
 pub use aabb::Aabb;
 pub use arc::{acos, atan2, atan2_turns};
+pub(crate) use arc::{ACOS_COEFFS, ATAN_COEFFS, PI_LO};
 pub use float::{gamma, next_down, next_up, offset_ray_origin};
 pub use frame::Frame;
 pub use ray::Ray;
