@@ -25,6 +25,7 @@
 use super::mis::Heuristic;
 use super::path_state::{PathState, Prev};
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
+use super::strategy::{Strategy, BSDF, EMITTER, HALF, MIS};
 use crate::geometry::{Interaction, ShadingPoint};
 use crate::light::{emission_along, sample_light, VertexSelection};
 use crate::math::{Norm, Ray};
@@ -32,41 +33,6 @@ use crate::sampling::{Sampler, Stage};
 use crate::scene::Scene;
 use crate::Color;
 use glam::Vec3;
-
-/// How a path finds light.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Strategy {
-    /// BSDF sampling only.
-    Bsdf,
-    /// Emitter sampling only (implicit hits only where it could not reach).
-    Emitter,
-    /// Emitter and BSDF sampling, each weighted 1/2.
-    Half,
-    /// Emitter and BSDF sampling combined by the power heuristic.
-    Mis,
-}
-
-/// [`Strategy::Bsdf`]'s number, the loop's const parameter `ST` (see [`Strategy::of`]).
-pub(super) const BSDF: u8 = 0;
-/// [`Strategy::Emitter`]'s number.
-pub(super) const EMITTER: u8 = 1;
-/// [`Strategy::Half`]'s number.
-pub(super) const HALF: u8 = 2;
-/// [`Strategy::Mis`]'s number.
-pub(super) const MIS: u8 = 3;
-
-impl Strategy {
-    /// The strategy numbered `n` (a const parameter of the path loop).
-    #[inline(always)]
-    const fn of(n: u8) -> Strategy {
-        match n {
-            BSDF => Strategy::Bsdf,
-            EMITTER => Strategy::Emitter,
-            HALF => Strategy::Half,
-            _ => Strategy::Mis,
-        }
-    }
-}
 
 /// A path tracer with Mitsuba 3's depth conventions.
 #[derive(Clone, Copy, Debug)]
@@ -152,22 +118,52 @@ impl PathIntegrator {
         sampler: &mut S,
         probe: &mut P,
     ) -> Color {
+        self.li_from(scene, ray, None, sampler, probe)
+    }
+
+    /// Radiance along the camera ray `ray`, whose closest hit is `hit` (what
+    /// `scene.intersect(&ray)` gives): [`PathIntegrator::li_probed`]'s value, bit for bit, for a
+    /// render loop that casts its camera rays before following their paths (`escapes.rs`).
+    /// `probe` is not told about the camera ray's cast.
+    #[inline]
+    pub fn li_from_camera_hit<S: Sampler, P: Probe>(
+        &self,
+        scene: &Scene,
+        ray: Ray,
+        hit: Option<Interaction>,
+        sampler: &mut S,
+        probe: &mut P,
+    ) -> Color {
+        self.li_from(scene, ray, Some(hit), sampler, probe)
+    }
+
+    /// The path from the camera ray `ray`, cast here unless `first` holds its hit.
+    #[inline(always)]
+    fn li_from<S: Sampler, P: Probe>(
+        &self,
+        scene: &Scene,
+        ray: Ray,
+        first: Option<Option<Interaction>>,
+        sampler: &mut S,
+        probe: &mut P,
+    ) -> Color {
         // One loop per strategy, so that the strategy's tests fold away in each.
         match self.strategy {
-            Strategy::Bsdf => self.trace::<BSDF, S, P>(scene, ray, sampler, probe),
-            Strategy::Emitter => self.trace::<EMITTER, S, P>(scene, ray, sampler, probe),
-            Strategy::Half => self.trace::<HALF, S, P>(scene, ray, sampler, probe),
-            Strategy::Mis => self.trace::<MIS, S, P>(scene, ray, sampler, probe),
+            Strategy::Bsdf => self.trace::<BSDF, S, P>(scene, ray, first, sampler, probe),
+            Strategy::Emitter => self.trace::<EMITTER, S, P>(scene, ray, first, sampler, probe),
+            Strategy::Half => self.trace::<HALF, S, P>(scene, ray, first, sampler, probe),
+            Strategy::Mis => self.trace::<MIS, S, P>(scene, ray, first, sampler, probe),
         }
     }
 
-    /// [`PathIntegrator::li_probed`] for the strategy numbered `ST` (see [`Strategy::of`]): a
+    /// [`PathIntegrator::li_from`] for the strategy numbered `ST` (see [`Strategy::of`]): a
     /// path from the camera ray, followed until it ends.
     #[inline(always)]
     fn trace<const ST: u8, S: Sampler, P: Probe>(
         &self,
         scene: &Scene,
         ray: Ray,
+        first: Option<Option<Interaction>>,
         sampler: &mut S,
         probe: &mut P,
     ) -> Color {
@@ -177,7 +173,20 @@ impl PathIntegrator {
             return result;
         }
         let mut path = PathState::start(ray);
-        self.follow::<ST, S, P, _>(scene, &mut path, &mut result, sampler, probe, |t| t);
+        let whole = |t| t;
+        // A camera ray cast by the caller: its step here, the loop from the next ray on.
+        if let Some(hit) = first {
+            let Some(si) = self.arrive_at::<ST, P>(scene, &path, hit, &mut result, probe) else {
+                return result;
+            };
+            if !self.scatter::<ST, S, P>(scene, &si, &mut path, &mut result, sampler, probe)
+                || !self.roulette(&mut path, sampler, probe, whole)
+                || !alive(&path, probe)
+            {
+                return result;
+            }
+        }
+        self.follow::<ST, S, P, _>(scene, &mut path, &mut result, sampler, probe, whole);
         result
     }
 

@@ -27,10 +27,11 @@
 //! The cost: up to 56 shadow rays per group of eight (each pair of first and second vertices,
 //! seven per pixel), eight BSDF densities and evaluations per second vertex. Neighbouring pixels' noise becomes
 //! correlated; each pixel's error does not grow.
-use super::path::{PathIntegrator, Strategy, BSDF, EMITTER, HALF, MIS};
+use super::path::PathIntegrator;
 use super::path_state::PathState;
 use super::probe::{Probe, RayKind};
 use super::reuse_halves::Prefix;
+use super::strategy::{Strategy, BSDF, EMITTER, HALF, MIS};
 use crate::geometry::{Interaction, ShadingPoint};
 use crate::math::{offset_ray_origin, Ray};
 use crate::sampling::Sampler;

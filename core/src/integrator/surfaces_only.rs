@@ -3,7 +3,8 @@
 //! instead of paying for medium bookkeeping that never triggers. Mitsuba 3's two integrators
 //! agree in expectation on such scenes; this makes them agree sample for sample.
 use super::mis::Heuristic;
-use super::path::{PathIntegrator, Strategy};
+use super::path::PathIntegrator;
+use super::strategy::Strategy;
 use super::volpath::VolPathIntegrator;
 use crate::scene::Scene;
 
