@@ -300,6 +300,12 @@ def main():
                 r["clean"] = max(r["relmse"] - noise, 1e-30)
                 r["eff"] = r["clean"] * r["seconds"]
             ratio = t["eff"] / m["eff"]
+            if 2 * max(t["spp"], m["spp"]) > a.ref_spp:
+                # The reference's noise is then a third or more of what a run measures, and the
+                # ratio rests on the subtraction: a larger --ref-spp settles it.
+                print(f"warning: {name} at {size}: a run took {max(t['spp'], m['spp'])} spp, "
+                      f"over half the reference's {a.ref_spp}; the ratio is uncertain "
+                      f"(render with a larger --ref-spp)", file=sys.stderr, flush=True)
             h = t["pixels"] // size
             print(f"| {os.path.basename(scene_path(name))} | {size}x{h} "
                   f"| {t['spp']}, {t['seconds']:.2f} ({t['load']:.3f}), {t['relmse']:.3e}, "
