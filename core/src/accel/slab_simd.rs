@@ -273,12 +273,20 @@ impl Avx2 {
     /// reorder IEEE operations.
     #[inline(always)]
     pub fn run<W: WithHit8>(self, work: W) -> W::Output {
-        #[cfg(target_arch = "x86_64")]
+        #[cfg(all(
+            target_arch = "x86_64",
+            not(all(target_feature = "avx2", target_feature = "popcnt"))
+        ))]
         {
             // SAFETY: `self` exists only when `detect` found AVX2 and POPCNT usable on this CPU.
             unsafe { run_avx2(self, work) }
         }
-        #[cfg(not(target_arch = "x86_64"))]
+        // A build for CPUs that have AVX2 (`-C target-cpu=native` on one) compiles every
+        // function with it: the traversal then inlines into its caller like any other code.
+        #[cfg(any(
+            not(target_arch = "x86_64"),
+            all(target_feature = "avx2", target_feature = "popcnt")
+        ))]
         {
             work.call(self)
         }
@@ -297,7 +305,10 @@ pub trait WithHit8 {
 
 /// `work.call(token)`, compiled with AVX2 and POPCNT (`call` is inlined into this function,
 /// monomorphised per use).
-#[cfg(target_arch = "x86_64")]
+#[cfg(all(
+    target_arch = "x86_64",
+    not(all(target_feature = "avx2", target_feature = "popcnt"))
+))]
 #[target_feature(enable = "avx2,popcnt")]
 #[inline]
 fn run_avx2<W: WithHit8>(token: Avx2, work: W) -> W::Output {
