@@ -179,10 +179,7 @@ impl PathIntegrator {
             let Some(si) = self.arrive_at::<ST, P>(scene, &path, hit, &mut result, probe) else {
                 return result;
             };
-            if !self.scatter::<ST, S, P>(scene, &si, &mut path, &mut result, sampler, probe)
-                || !self.roulette(&mut path, sampler, probe, whole)
-                || !alive(&path, probe)
-            {
+            if !self.leave::<ST, S, P>(scene, &si, &mut path, &mut result, sampler, probe, whole) {
                 return result;
             }
         }
@@ -206,13 +203,29 @@ impl PathIntegrator {
         roulette_sees: R,
     ) {
         while let Some(si) = self.arrive::<ST, P>(scene, path, result, probe) {
-            if !self.scatter::<ST, S, P>(scene, &si, path, result, sampler, probe)
-                || !self.roulette(path, sampler, probe, &roulette_sees)
-                || !alive(path, probe)
-            {
+            if !self.leave::<ST, S, P>(scene, &si, path, result, sampler, probe, &roulette_sees) {
                 break;
             }
         }
+    }
+
+    /// Leaves the vertex `si`: emitter sampling and the BSDF-sampled next ray, then Russian
+    /// roulette; whether the path goes on.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn leave<const ST: u8, S: Sampler, P: Probe>(
+        &self,
+        scene: &Scene,
+        si: &Interaction,
+        path: &mut PathState,
+        result: &mut Color,
+        sampler: &mut S,
+        probe: &mut P,
+        roulette_sees: impl Fn(Color) -> Color,
+    ) -> bool {
+        self.scatter::<ST, S, P>(scene, si, path, result, sampler, probe)
+            && self.roulette(path, sampler, probe, roulette_sees)
+            && alive(path, probe)
     }
 
     /// Casts the path's ray and adds the light it hits to `result`, weighted against emitter
