@@ -15,11 +15,9 @@
 # FRESH=1 renders each of Tessera's waves afresh (`--fresh`: the sampler set up for that wave's
 # samples, the wave timed alone), as Mitsuba's script does.
 # INTEGRATORS=a,b (default path_mis) names Tessera's curves, e.g. INTEGRATORS=path_mis,path_mis+reuse.
-# For a build tuned to this CPU, as Mitsuba's LLVM variant's kernels are (same image bits):
-#   RUSTFLAGS="-C target-cpu=native" cargo build --profile dist -p tessera-cli --target-dir target/native
-#   TESSERA=target/native/dist/tessera scripts/bench_scenes.sh 2 30
-# and, profile-guided on top (about 10% faster, same bits; see scripts/build_pgo.sh):
-#   TARGET_CPU=native scripts/build_pgo.sh && TESSERA=target/pgo/dist/tessera scripts/bench_scenes.sh 2 30
+# The default build is tuned to this CPU, as Mitsuba's LLVM variant's kernels are (same image
+# bits as a portable one); profile-guided on top (same bits; see scripts/build_pgo.sh):
+#   scripts/build_pgo.sh && TESSERA=target/pgo/dist/tessera scripts/bench_scenes.sh 2 30
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"

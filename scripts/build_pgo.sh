@@ -2,8 +2,9 @@
 # Profile-guided build of the `tessera` binary: target/pgo/dist/tessera (the `dist` profile,
 # release plus fat LTO, optimised with a profile of the renderer's own hot paths).
 #
-#   scripts/build_pgo.sh                    portable x86-64 build
-#   TARGET_CPU=native scripts/build_pgo.sh  tuned for this CPU (as the benchmark table uses)
+#   scripts/build_pgo.sh                    for this CPU, as every build is by default
+#                                           (`.cargo/config.toml`; the benchmark table's column)
+#   TARGET_CPU=x86-64 scripts/build_pgo.sh  a portable x86-64 binary
 #
 # Steps: (1) an instrumented `dist` build in target/pgo-gen; (2) training renders with it: the
 # benchmark scenes at the benchmark's settings (128x128, box filter, both samplers, adaptive) and
@@ -17,10 +18,8 @@
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
-FLAGS=""
-if [ -n "${TARGET_CPU:-}" ]; then
-    FLAGS="-C target-cpu=$TARGET_CPU"
-fi
+# RUSTFLAGS (set below) replaces the config's flags, so the target CPU is named here again.
+FLAGS="-C target-cpu=${TARGET_CPU:-native}"
 HOST="$(rustc -vV | sed -n 's/^host: //p')"
 PROFDATA="$(rustc --print sysroot)/lib/rustlib/$HOST/bin/llvm-profdata"
 if [ ! -x "$PROFDATA" ]; then
