@@ -31,8 +31,9 @@ use tessera_tests::filter_reference::{lanczos, mitchell};
 ///  9 sphere cone far, 10 sphere cone near, 11 mesh directions, 12 mesh triangle choice,
 ///  13 mesh barycentrics in one triangle, 14 ellipse (disk) directions,
 ///  15 Discrete1D indices, 16 Discrete1D rescaled u, 17 box filter, 18 Gaussian filter,
-///  19 tent filter, 20 Mitchell filter, 21 Lanczos filter.
-const N_TESTS: usize = 21;
+///  19 tent filter, 20 Mitchell filter, 21 Lanczos filter, 22 rectangle (parallelogram)
+///  directions.
+const N_TESTS: usize = 22;
 
 /// Samples per test.
 const SAMPLES: usize = 1_000_000;
@@ -927,4 +928,89 @@ fn t21_lanczos_filter() {
         !dropped.passes(alpha()),
         "negative lobes dropped passed: {dropped}"
     );
+}
+
+/// A rectangle as the `rectangle` shape builds it (corners (-1,-1), (1,-1), (1,1), (-1,1),
+/// triangles (0,1,2) and (2,3,0), texture coordinates), stretched, sheared a little into a
+/// parallelogram, turned and moved: a mesh that light sampling maps the unit square onto.
+fn parallelogram_mesh() -> Mesh {
+    let m = glam::Mat3::from_cols(
+        Vec3::new(0.9, 0.1, 0.2),
+        Vec3::new(0.35, 0.6, -0.3),
+        Vec3::new(0.1, -0.2, 0.8),
+    );
+    let shift = Vec3::new(0.4, 0.9, 1.3);
+    let positions = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+        .iter()
+        .map(|&(x, y)| m * Vec3::new(x, y, 0.0) + shift)
+        .collect();
+    let uvs = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
+        .iter()
+        .map(|&(u, v)| Vec2::new(u, v))
+        .collect();
+    Mesh::new(positions, Vec::new(), uvs, vec![[0, 1, 2], [2, 3, 0]])
+}
+
+/// Directions of light samples on a parallelogram mesh (one affine map, not a triangle chosen
+/// by area) from a point in front of it, against the density of its two triangles cast in
+/// f64: uniform by area, as the mesh's pdf says. Control: the same samples against a density
+/// that gives the first triangle 60% of the samples must be rejected.
+#[test]
+fn t22_parallelogram_directions() {
+    let mesh = parallelogram_mesh();
+    assert!(
+        mesh.parallelogram().is_some(),
+        "not taken for a parallelogram"
+    );
+    let tris: Vec<[Vec3; 3]> = (0..2).map(|i| mesh.vertices(i)).collect();
+    let r = MESH_REF;
+    let r64 = r.as_dvec3();
+    let casts: Vec<(TriangleFromPoint, Vec3)> = tris
+        .iter()
+        .enumerate()
+        .map(|(i, t)| (TriangleFromPoint::new(r64, t), mesh.face_normal(i)))
+        .collect();
+    let area: Vec<f64> = tris.iter().map(tri_area64).collect();
+    let shape = Shape {
+        kind: ShapeKind::Mesh(mesh),
+        bsdf: 0,
+        emitter: None,
+        flip_normals: false,
+    };
+    let run = |share: [f64; 2]| {
+        SphereChi2 {
+            theta_bins: MESH_GRID.0,
+            phi_bins: MESH_GRID.1,
+            samples: SAMPLES,
+        }
+        .run(
+            |u| {
+                let (ps, pdf) = shape.sample_from(r, u, &[])?;
+                let want = shape.pdf_from(r, ps.p, ps.ng, &[]);
+                assert!((pdf - want).abs() <= 1e-5 * want, "pdf {pdf} vs {want}");
+                Some((ps.p - r).as_dvec3().unit().as_vec3())
+            },
+            |w| {
+                // The solid-angle density of a point uniform on triangle k with probability
+                // share[k]: share[k] / area[k] converted by distance and cosine.
+                let d = w.as_dvec3();
+                let mut pdf = 0.0;
+                for (k, (tri, ng)) in casts.iter().enumerate() {
+                    if let Some(q) = tri.hit(d) {
+                        let cos = ng.as_dvec3().dot(q.unit()).abs();
+                        pdf += share[k] / area[k] * q.length_squared() / cos;
+                    }
+                }
+                pdf
+            },
+            22,
+        )
+    };
+    let total = area[0] + area[1];
+    check(
+        "parallelogram directions",
+        &run([area[0] / total, area[1] / total]),
+    );
+    let wrong = run([0.6, 0.4]);
+    assert!(!wrong.passes(alpha()), "a 60/40 split passed: {wrong}");
 }

@@ -2,9 +2,10 @@
 //!
 //! Built by the driver from `obj`, `ply`, `rectangle` and `cube` shapes (see the driver's loaders
 //! for their scene parameters). Positions and normals are already transformed to world space.
-use super::MeshAttribute;
+use super::{MeshAttribute, Parallelogram};
 use crate::math::{gamma, Frame, Norm};
 use crate::sampling::{warp::square_to_uniform_triangle, Discrete1D};
+use alloc::boxed::Box;
 use alloc::vec::Vec;
 use glam::{Vec2, Vec3};
 
@@ -33,6 +34,9 @@ pub struct Mesh {
     /// the frame's first tangent per triangle (`Frame::tangent(face normal, dpdu)`, zero where
     /// that is degenerate), computed once. Empty otherwise.
     flat_tangents: Vec<Vec3>,
+    /// The parallelogram the mesh is, when it is one (a `rectangle`): area sampling then maps
+    /// the unit square onto it directly.
+    parallelogram: Option<Box<Parallelogram>>,
 }
 
 /// What shading needs of a point on a triangle (see [`Mesh::hit`]).
@@ -73,6 +77,7 @@ impl Mesh {
             face_normals: Vec::new(),
             inv_area: 0.0,
             flat_tangents: Vec::new(),
+            parallelogram: None,
         };
         m.area_dist = Discrete1D::new((0..m.indices.len()).map(|i| m.triangle_area(i)));
         m.face_normals = (0..m.indices.len())
@@ -90,7 +95,14 @@ impl Mesh {
                 })
                 .collect();
         }
+        m.parallelogram =
+            Parallelogram::of(&m.positions, &m.normals, &m.indices, &m.face_normals).map(Box::new);
         m
+    }
+    /// The parallelogram this mesh is, if it is one (see [`Parallelogram`]).
+    #[inline]
+    pub fn parallelogram(&self) -> Option<&Parallelogram> {
+        self.parallelogram.as_deref()
     }
     /// The three corners of triangle `i`.
     #[inline]
@@ -304,5 +316,97 @@ mod tests {
         let normals = vec![Vec3::Z; 4];
         let m = Mesh::new(positions, normals, Vec::new(), indices);
         assert!(m.hit(0, 0.2, 0.3).tangent.is_none());
+    }
+
+    /// A rectangle (a parallelogram, `core/src/geometry/parallelogram.rs`) as the `rectangle`
+    /// shape builds it, turned and moved: corners
+    /// (-1,-1), (1,-1), (1,1), (-1,1) in the plane, triangles (0,1,2) and (2,3,0).
+    fn rectangle(normals: bool, uvs: bool) -> Mesh {
+        let m = glam::Mat3::from_rotation_x(0.7) * 1.6;
+        let shift = Vec3::new(0.3, 4.0, -2.0);
+        let positions = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+            .iter()
+            .map(|&(x, y)| m * Vec3::new(x, y, 0.0) + shift)
+            .collect();
+        let n = (m * Vec3::Z).unit();
+        Mesh::new(
+            positions,
+            if normals { vec![n; 4] } else { vec![] },
+            if uvs {
+                vec![
+                    Vec2::new(0.0, 0.0),
+                    Vec2::new(1.0, 0.0),
+                    Vec2::new(1.0, 1.0),
+                    Vec2::new(0.0, 1.0),
+                ]
+            } else {
+                vec![]
+            },
+            vec![[0, 1, 2], [2, 3, 0]],
+        )
+    }
+
+    /// Every sampled point lies on one of the two triangles, and is reported on that triangle
+    /// at its barycentrics there (found here independently, by projection), so that its
+    /// texture coordinates are the mesh's; the normals are the triangle's. Its corners are the
+    /// rectangle's four. With and without vertex normals and texture coordinates.
+    #[test]
+    fn points_lie_on_the_triangles_with_their_uv() {
+        for (normals, uvs) in [(true, true), (false, true), (false, false)] {
+            let mesh = rectangle(normals, uvs);
+            let pg = *mesh
+                .parallelogram()
+                .expect("a rectangle is a parallelogram");
+            let corners: vec::Vec<Vec3> = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)]
+                .iter()
+                .map(|&(s, t)| pg.point(Vec2::new(s, t)).p)
+                .collect();
+            for c in &corners {
+                assert!(
+                    mesh.positions.iter().any(|p| (*p - *c).norm() < 1e-5),
+                    "{c}"
+                );
+            }
+            for i in 0..64 {
+                let u = Vec2::new((i % 8) as f32 / 7.0, (i / 8) as f32 / 7.0);
+                let q = pg.point(u);
+                let on = (0..2).find_map(|tri| {
+                    let [a, b, c] = mesh.vertices(tri);
+                    let (n, area) = ((b - a).cross(c - a), (b - a).cross(c - a).norm());
+                    let b1 = (q.p - a).cross(c - a).dot(n) / (area * area);
+                    let b2 = (b - a).cross(q.p - a).dot(n) / (area * area);
+                    let inside = b1 >= -1e-5 && b2 >= -1e-5 && b1 + b2 <= 1.0 + 1e-5;
+                    inside.then_some((tri, b1, b2))
+                });
+                let (tri, b1, b2) = on.unwrap_or_else(|| panic!("{u} -> {} off the mesh", q.p));
+                let (p, _, ng, ns, uv) = mesh.surface(tri, b1, b2);
+                let (.., uv_q) = mesh.surface(q.triangle, q.b1, q.b2);
+                assert!((p - q.p).norm() < 1e-5);
+                assert!((uv - uv_q).norm() < 1e-5, "{uv} against {uv_q} at {u}");
+                assert!((ng - q.ng).norm() < 1e-6 && (ns - q.ns).norm() < 1e-6);
+                assert!(q.p_err.min_element() > 0.0);
+            }
+        }
+    }
+
+    /// Not parallelograms: a corner moved off (control: the same mesh unmoved is one), vertex
+    /// normals that differ, one triangle, three.
+    #[test]
+    fn other_meshes_are_not_parallelograms() {
+        let good = rectangle(true, true);
+        assert!(good.parallelogram().is_some());
+        let rebuilt = |change: &dyn Fn(&mut Mesh)| {
+            let mut m = good.clone();
+            change(&mut m);
+            Mesh::new(m.positions, m.normals, m.uvs, m.indices)
+        };
+        let off = rebuilt(&|m| m.positions[3] += Vec3::new(0.0, 0.01, 0.0));
+        assert!(off.parallelogram().is_none());
+        let normals = rebuilt(&|m| m.normals[3] = Vec3::X);
+        assert!(normals.parallelogram().is_none());
+        let one = rebuilt(&|m| m.indices.truncate(1));
+        assert!(one.parallelogram().is_none());
+        let three = rebuilt(&|m| m.indices.push([0, 1, 3]));
+        assert!(three.parallelogram().is_none());
     }
 }

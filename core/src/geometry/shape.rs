@@ -201,9 +201,14 @@ impl Shape {
     pub(crate) fn sample_position(&self, u: Vec2, disks: &[Disk]) -> Option<PositionSample> {
         let (p, p_err, ng, ns, uv) = match &self.kind {
             ShapeKind::Mesh(m) => {
-                let (i, b1, b2) = m.sample(u)?;
-                let (p, err, ng, ns) = m.point(i, b1, b2);
-                (p, err, ng, ns, m.uv_at(i, b1, b2))
+                if let Some(pg) = m.parallelogram() {
+                    let q = pg.point(u);
+                    (q.p, q.p_err, q.ng, q.ns, m.uv_at(q.triangle, q.b1, q.b2))
+                } else {
+                    let (i, b1, b2) = m.sample(u)?;
+                    let (p, err, ng, ns) = m.point(i, b1, b2);
+                    (p, err, ng, ns, m.uv_at(i, b1, b2))
+                }
             }
             ShapeKind::Sphere(s) => {
                 let d = crate::sampling::warp::square_to_uniform_sphere(u);
