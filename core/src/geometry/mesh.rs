@@ -390,7 +390,7 @@ mod tests {
     }
 
     /// Not parallelograms: a corner moved off (control: the same mesh unmoved is one), vertex
-    /// normals that differ, one triangle, three.
+    /// normals that differ, one triangle, three, the second triangle wound the other way.
     #[test]
     fn other_meshes_are_not_parallelograms() {
         let good = rectangle(true, true);
@@ -408,5 +408,7 @@ mod tests {
         assert!(one.parallelogram().is_none());
         let three = rebuilt(&|m| m.indices.push([0, 1, 3]));
         assert!(three.parallelogram().is_none());
+        let flipped = rebuilt(&|m| m.indices[1] = [2, 0, 3]);
+        assert!(flipped.parallelogram().is_none());
     }
 }

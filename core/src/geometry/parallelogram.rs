@@ -58,14 +58,15 @@ pub struct ParallelogramPoint {
     pub b2: f32,
 }
 
-/// Relative tolerance of the fourth corner against the parallelogram's.
+/// Relative tolerance of the fourth corner against the parallelogram's, and of the two faces'
+/// normals against each other.
 const TOLERANCE: f32 = 1.0e-5;
 
 impl Parallelogram {
     /// The parallelogram a mesh is (its vertex `positions`, vertex `normals` or none, triangle
     /// `indices`, and the unit normals of its faces), or `None`: not exactly two triangles
-    /// sharing an edge, vertex normals that differ, a degenerate face, or a fourth corner off
-    /// the parallelogram by more than a small relative tolerance.
+    /// sharing an edge, vertex normals that differ, a degenerate face, faces wound opposite
+    /// ways, or a fourth corner off the parallelogram by more than a small relative tolerance.
     pub fn of(
         positions: &[Vec3],
         normals: &[Vec3],
@@ -104,7 +105,9 @@ impl Parallelogram {
         let [ng, ng1] = face_normals[..] else {
             return None;
         };
-        if ng == Vec3::ZERO || ng1 == Vec3::ZERO {
+        // Both faces must face the same way (a quad whose triangles are wound oppositely emits
+        // from each half to its own side, which one normal cannot say).
+        if ng == Vec3::ZERO || ng1 == Vec3::ZERO || !(ng.dot(ng1) > 1.0 - TOLERANCE) {
             return None;
         }
         let ns = match normals.first() {
