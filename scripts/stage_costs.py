@@ -9,11 +9,9 @@ Usage:
         [--strategies]
 
 The scene (`scenes/NAME.xml`, or a path) must declare the parameters `res` and `max_depth` (as
-the scenes of `scenes/` do): each run passes `-D res=SIZE -D max_depth=D`. Depth 0 passes no
-depth (the file's own integrator as it stands: for comparing integrators that have none, such
-as `direct` with one strategy). For each depth D,
-both renderers render SIZE x SIZE at --spp, --runs times each (alternating), and the fastest
-run counts:
+the scenes of `scenes/` do): each run passes `-D res=SIZE -D max_depth=D` (depth 0 passes no
+depth: the file's integrator as it stands). For each depth D, both renderers render SIZE x SIZE
+at --spp, --runs times each (alternating), and the fastest run counts:
 - Tessera: the whole `tessera render` process (load, render, writing the image);
 - Mitsuba: loading the scene and `mi.render` up to the image in NumPy, in a process whose
   Dr.Jit kernel cache was filled by an untimed run of the same depth and size at 1 spp.
@@ -40,13 +38,15 @@ import argparse
 import atexit
 import json
 import os
+import re
 import subprocess
 import sys
-import re
 import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from protocol_bench import scene_path  # noqa: E402
 
 MITSUBA_RUN = r"""
 import sys, time, json
@@ -65,10 +65,6 @@ print(json.dumps({"seconds": time.perf_counter() - t1}))
 """
 
 
-def scene_path(name):
-    return name if name.endswith(".xml") else os.path.join(ROOT, "scenes", name + ".xml")
-
-
 def tessera(a, path, depth):
     with tempfile.TemporaryDirectory() as d:
         depth_arg = [] if depth == 0 else ["-D", f"max_depth={depth}"]
@@ -85,6 +81,17 @@ def mitsuba(a, path, depth, spp=None):
            str(spp or a.spp), str(a.size), str(depth)]
     p = subprocess.run(cmd, check=True, capture_output=True, text=True)
     return json.loads(p.stdout.strip().splitlines()[-1])["seconds"]
+
+
+def fastest(a, path, depth):
+    """Both renderers' fastest of --runs alternated runs of `path` at `depth` (Mitsuba's
+    kernel cache filled first by an untimed 1 spp run)."""
+    mitsuba(a, path, depth, spp=1)
+    t, m = [], []
+    for _ in range(a.runs):
+        t.append(tessera(a, path, depth))
+        m.append(mitsuba(a, path, depth))
+    return min(t), min(m)
 
 
 STRATEGIES = [
@@ -119,14 +126,9 @@ def strategy_copy(path, k, integrator):
 def strategies(a, path):
     rows = []
     for k, (name, integrator) in enumerate(STRATEGIES):
-        copy = strategy_copy(path, k, integrator)
-        mitsuba(a, copy, 0, spp=1)
-        t, m = [], []
-        for _ in range(a.runs):
-            t.append(tessera(a, copy, 0))
-            m.append(mitsuba(a, copy, 0))
-        rows.append((name, min(t), min(m)))
-        print(f"{name}: tessera {min(t):.3f} s, mitsuba {min(m):.3f} s", file=sys.stderr)
+        t, m = fastest(a, strategy_copy(path, k, integrator), 0)
+        rows.append((name, t, m))
+        print(f"{name}: tessera {t:.3f} s, mitsuba {m:.3f} s", file=sys.stderr)
     print()
     print("| first vertex, by strategy | Tessera s | Mitsuba s | ratio |")
     print("|---|---|---|---|")
@@ -154,13 +156,9 @@ def main():
     depths = [int(d) for d in a.depths.split(",")]
     rows = []
     for depth in depths:
-        mitsuba(a, path, depth, spp=1)
-        t, m = [], []
-        for _ in range(a.runs):
-            t.append(tessera(a, path, depth))
-            m.append(mitsuba(a, path, depth))
-        rows.append((depth, min(t), min(m)))
-        print(f"depth {depth}: tessera {min(t):.3f} s, mitsuba {min(m):.3f} s", file=sys.stderr)
+        t, m = fastest(a, path, depth)
+        rows.append((depth, t, m))
+        print(f"depth {depth}: tessera {t:.3f} s, mitsuba {m:.3f} s", file=sys.stderr)
     print(f"{os.path.basename(path)}, {a.size}x{a.size}, {a.spp} spp, {a.threads} threads, "
           f"fastest of {a.runs} (Mitsuba: {a.variant})")
     print("| stage | Tessera s | Mitsuba s | ratio |")

@@ -455,25 +455,23 @@ impl TriangleFromPoint {
     }
 }
 
-#[test]
-fn t11_mesh_directions() {
-    let mesh = test_mesh();
-    let tris = test_triangles();
-    let r = MESH_REF;
-    let r64 = r.as_dvec3();
-    let casts: Vec<(TriangleFromPoint, Vec3)> = tris
-        .iter()
+/// Each triangle of `tris` prepared for f64 casts from `r`, with the mesh's normal of it.
+fn casts_from(r: Vec3, tris: &[[Vec3; 3]], mesh: &Mesh) -> Vec<(TriangleFromPoint, Vec3)> {
+    tris.iter()
         .enumerate()
-        .map(|(i, t)| (TriangleFromPoint::new(r64, t), mesh.face_normal(i)))
-        .collect();
-    let shape = Shape {
-        kind: ShapeKind::Mesh(mesh),
-        bsdf: 0,
-        emitter: None,
-        flip_normals: false,
-    };
-    let overlaps = std::cell::Cell::new(0usize);
-    let result = SphereChi2 {
+        .map(|(i, t)| (TriangleFromPoint::new(r.as_dvec3(), t), mesh.face_normal(i)))
+        .collect()
+}
+
+/// Chi-square of the directions from `r` of light samples on `mesh` (each sample's density
+/// checked against `pdf_from` on the way) against the solid-angle density `density`.
+fn mesh_directions_chi2(
+    shape: &Shape,
+    r: Vec3,
+    density: impl Fn(Vec3) -> f64,
+    seed: u64,
+) -> Chi2Result {
+    SphereChi2 {
         theta_bins: MESH_GRID.0,
         phi_bins: MESH_GRID.1,
         samples: SAMPLES,
@@ -489,6 +487,33 @@ fn t11_mesh_directions() {
             );
             Some((ps.p - r).as_dvec3().unit().as_vec3())
         },
+        density,
+        seed,
+    )
+}
+
+/// `mesh` as a shape of its own.
+fn mesh_shape(mesh: Mesh) -> Shape {
+    Shape {
+        kind: ShapeKind::Mesh(mesh),
+        bsdf: 0,
+        emitter: None,
+        flip_normals: false,
+    }
+}
+
+#[test]
+fn t11_mesh_directions() {
+    let mesh = test_mesh();
+    let tris = test_triangles();
+    let r = MESH_REF;
+    let r64 = r.as_dvec3();
+    let casts = casts_from(r, &tris, &mesh);
+    let shape = mesh_shape(mesh);
+    let overlaps = std::cell::Cell::new(0usize);
+    let result = mesh_directions_chi2(
+        &shape,
+        r,
         |w| {
             // Sum over the triangles the ray meets (all of them: that is the density of the
             // sampler's directions; no two overlap as seen from r, which is checked, so this
@@ -964,32 +989,13 @@ fn t22_parallelogram_directions() {
     );
     let tris: Vec<[Vec3; 3]> = (0..2).map(|i| mesh.vertices(i)).collect();
     let r = MESH_REF;
-    let r64 = r.as_dvec3();
-    let casts: Vec<(TriangleFromPoint, Vec3)> = tris
-        .iter()
-        .enumerate()
-        .map(|(i, t)| (TriangleFromPoint::new(r64, t), mesh.face_normal(i)))
-        .collect();
+    let casts = casts_from(r, &tris, &mesh);
     let area: Vec<f64> = tris.iter().map(tri_area64).collect();
-    let shape = Shape {
-        kind: ShapeKind::Mesh(mesh),
-        bsdf: 0,
-        emitter: None,
-        flip_normals: false,
-    };
+    let shape = mesh_shape(mesh);
     let run = |share: [f64; 2]| {
-        SphereChi2 {
-            theta_bins: MESH_GRID.0,
-            phi_bins: MESH_GRID.1,
-            samples: SAMPLES,
-        }
-        .run(
-            |u| {
-                let (ps, pdf) = shape.sample_from(r, u, &[])?;
-                let want = shape.pdf_from(r, ps.p, ps.ng, &[]);
-                assert!((pdf - want).abs() <= 1e-5 * want, "pdf {pdf} vs {want}");
-                Some((ps.p - r).as_dvec3().unit().as_vec3())
-            },
+        mesh_directions_chi2(
+            &shape,
+            r,
             |w| {
                 // The solid-angle density of a point uniform on triangle k with probability
                 // share[k]: share[k] / area[k] converted by distance and cosine.

@@ -26,10 +26,10 @@ pub struct Parallelogram {
     o: Vec3,
     e1: Vec3,
     e2: Vec3,
-    /// Bound on the positions' magnitude that the rounding of a point grows with.
-    scale: Vec3,
-    /// How far the affine map may be from the two triangles (per component).
-    mismatch: Vec3,
+    /// Absolute error bound of every point (per component): the rounding of the affine map,
+    /// a few roundings of values no larger than the corners' magnitudes, plus how far the map
+    /// may be from the two triangles (the fourth corner's distance from the parallelogram's).
+    p_err: Vec3,
     /// Per triangle, which of the point's three weights (see [`Parallelogram::point`]) belongs
     /// to its second and third corner: its barycentrics `(b1, b2)`.
     corners: [[u8; 2]; 2],
@@ -117,13 +117,12 @@ impl Parallelogram {
             },
             None => ng,
         };
-        let scale = o.abs() + p(s).abs() + p(t).abs();
+        let p_err = (o.abs() + p(s).abs() + p(t).abs()) * gamma(7) + mismatch;
         Some(Parallelogram {
             o,
             e1,
             e2,
-            scale,
-            mismatch,
+            p_err,
             corners,
             ng,
             ns,
@@ -135,9 +134,6 @@ impl Parallelogram {
     #[inline]
     pub fn point(&self, u: Vec2) -> ParallelogramPoint {
         let p = self.o + self.e1 * u.x + self.e2 * u.y;
-        // The edges' own rounding, their scaling and the two sums: a few roundings of values
-        // no larger than the corners' magnitudes.
-        let p_err = self.scale * gamma(7) + self.mismatch;
         // The weights of `q0`, `s`, `t` on the first triangle, of `q1`, `s`, `t` on the second.
         let (triangle, w) = if u.x + u.y <= 1.0 {
             (0, [1.0 - u.x - u.y, u.x, u.y])
@@ -147,7 +143,7 @@ impl Parallelogram {
         let [c1, c2] = self.corners[triangle];
         ParallelogramPoint {
             p,
-            p_err,
+            p_err: self.p_err,
             ng: self.ng,
             ns: self.ns,
             triangle,
