@@ -217,6 +217,7 @@ fn degenerate_partials_give_no_nan() {
     let at = tessera_core::geometry::ShadingPoint {
         uv: UV,
         partials: Some(&zero),
+        memo: None,
     };
     let (wi, wo) = (dir(30.0, 0.2), dir(50.0, 2.0));
     let (v, p) = (b.eval(wi, wo, at), b.pdf(wi, wo, at));

@@ -62,6 +62,7 @@ fn check(case: &Path) -> Vec<String> {
     let at = ShadingPoint {
         uv: UV,
         partials: g.as_ref(),
+        memo: None,
     };
     let mut bad = Vec::new();
     let mut rows = 0;

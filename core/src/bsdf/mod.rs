@@ -81,6 +81,7 @@ impl BsdfTraits {
             has_smooth: bsdf.has_smooth(),
             lambertian: bsdf.is_lambertian(),
             reads_geometry: bsdf.reads_geometry(),
+            reads_images: bsdf.reads_images(),
         }
     }
 }
@@ -233,6 +234,13 @@ impl Bsdf {
         let mut reads_mesh = false;
         self.for_each_texture(&mut |t| reads_mesh |= t.reads_mesh());
         reads_mesh || self.bumps()
+    }
+    /// Whether some texture the model reads directly is an image (what a shading point's
+    /// [`LookupMemo`](crate::geometry::LookupMemo) remembers).
+    pub fn reads_images(&self) -> bool {
+        let mut images = false;
+        self.for_each_texture(&mut |t| images |= t.bitmap().is_some());
+        images
     }
     /// Whether some part of the model is a bump map.
     fn bumps(&self) -> bool {

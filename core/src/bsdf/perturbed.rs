@@ -123,6 +123,7 @@ impl Tilted {
         let at = ShadingPoint {
             uv: at.uv,
             partials: g.as_ref(),
+            memo: at.memo,
         };
         nested.eval(self.frame.to_local(wi), two, at) * self.shadow(wo)
     }
@@ -137,6 +138,7 @@ impl Tilted {
         let at = ShadingPoint {
             uv: at.uv,
             partials: g.as_ref(),
+            memo: at.memo,
         };
         nested.pdf(self.frame.to_local(wi), two, at)
     }
@@ -154,6 +156,7 @@ impl Tilted {
         let at = ShadingPoint {
             uv: at.uv,
             partials: g.as_ref(),
+            memo: at.memo,
         };
         let s = nested.sample(self.frame.to_local(wi), u1, u2, at)?;
         let wo = self.frame.to_world(s.wo);

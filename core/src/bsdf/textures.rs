@@ -81,3 +81,44 @@ fn roughness_textures(r: &Option<RoughnessTexture>, f: &mut dyn FnMut(&Texture))
         f(&r.alpha_v);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Diffuse, TwoSided};
+    use super::*;
+    use crate::texture::{Bitmap, FilterType, UvTransform, WrapMode};
+    use crate::Color;
+    use alloc::boxed::Box;
+    use alloc::vec;
+
+    fn diffuse(reflectance: Texture) -> Bsdf {
+        Bsdf::Diffuse(Diffuse { reflectance })
+    }
+
+    /// A model reads images when one of its textures, nested models' included, is an image;
+    /// constant ones do not count.
+    #[test]
+    fn reads_images_finds_nested_images() {
+        let image = Bitmap::new(
+            1,
+            1,
+            vec![Color::ONE],
+            FilterType::Bilinear,
+            WrapMode::Repeat,
+            UvTransform::default(),
+        )
+        .unwrap();
+        let plain = diffuse(Texture::constant(0.5));
+        let textured = diffuse(Texture::Bitmap(image));
+        assert!(!plain.reads_images());
+        assert!(textured.reads_images());
+        let sides = |front: &Bsdf, back: &Bsdf| {
+            Bsdf::TwoSided(TwoSided {
+                front: Box::new(front.clone()),
+                back: Box::new(back.clone()),
+            })
+        };
+        assert!(!sides(&plain, &plain).reads_images());
+        assert!(sides(&plain, &textured).reads_images());
+    }
+}

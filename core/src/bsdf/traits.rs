@@ -18,6 +18,9 @@ pub struct BsdfTraits {
     pub lambertian: bool,
     /// Some part of the model reads the shading point's partials (`bumpmap`).
     pub reads_geometry: bool,
+    /// Some texture of the model is an image (`Bsdf::reads_images`): its vertices keep a
+    /// `LookupMemo`.
+    pub reads_images: bool,
 }
 
 impl BsdfTraits {

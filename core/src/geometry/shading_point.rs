@@ -2,12 +2,13 @@
 //! frame by a height field (`bumpmap`) or reads a mesh's attributes (`mesh_attribute`), the
 //! surface's local differential geometry and the triangle hit.
 //!
-//! Every BSDF call takes one by value: sixteen bytes (the coordinates and a reference to the
-//! partials, present only where the model reads them), so that the calls of ordinary models
+//! Every BSDF call takes one by value: twenty-four bytes (the coordinates, a reference to the
+//! partials, present only where the model reads them, and one to the vertex's
+//! [`LookupMemo`], which spares repeated image lookups), so that the calls of ordinary models
 //! cost what they cost with bare coordinates. Tests and tools that know only texture
 //! coordinates convert a `Vec2` (`From<Vec2>`); a bump map without partials uses the flat unit
 //! parametrisation `dp/du = x`, `dp/dv = y`, geometric normal `z` ([`Partials::FLAT`]).
-use super::MeshSite;
+use super::{LookupMemo, MeshSite};
 use glam::{Vec2, Vec3};
 
 /// The position's partials and the geometric normal, in the local shading frame (normal = +z),
@@ -41,6 +42,9 @@ pub struct ShadingPoint<'a> {
     pub uv: Vec2,
     /// The partials, when the caller found them (only for models that read them).
     pub partials: Option<&'a Partials<'a>>,
+    /// Where image lookups at this point are remembered (the path loop's vertices; `None`
+    /// elsewhere): see [`LookupMemo`].
+    pub memo: Option<&'a LookupMemo>,
 }
 
 impl<'a> ShadingPoint<'a> {
@@ -59,6 +63,10 @@ impl<'a> ShadingPoint<'a> {
 impl From<Vec2> for ShadingPoint<'_> {
     #[inline]
     fn from(uv: Vec2) -> Self {
-        ShadingPoint { uv, partials: None }
+        ShadingPoint {
+            uv,
+            partials: None,
+            memo: None,
+        }
     }
 }

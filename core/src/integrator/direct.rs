@@ -11,7 +11,7 @@
 use super::mis::Heuristic;
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
 use super::unweighted_hit::cast_unweighted;
-use crate::geometry::ShadingPoint;
+use crate::geometry::{LookupMemo, ShadingPoint};
 use crate::light::{emission_along, sample_light, VertexSelection};
 use crate::math::Ray;
 use crate::sampling::{Sampler, Stage};
@@ -68,9 +68,12 @@ impl DirectIntegrator {
         let bsdf = &scene.bsdfs[bsdf_index as usize];
         let traits = scene.bsdf_traits(bsdf_index);
         let g = scene.partials(bsdf_index, &si, &ray);
+        // Built only where the model reads an image (the memo costs a few stores).
+        let memo = traits.reads_images.then(LookupMemo::default);
         let at = ShadingPoint {
             uv: si.uv,
             partials: g.as_ref(),
+            memo: memo.as_ref(),
         };
         let wi = si.frame.to_local(si.wi);
         let (ne, nb) = (self.emitter_samples as f32, self.bsdf_samples as f32);

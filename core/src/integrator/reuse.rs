@@ -32,7 +32,7 @@ use super::path_state::PathState;
 use super::probe::{Probe, RayKind};
 use super::reuse_halves::Prefix;
 use super::strategy::{Strategy, BSDF, EMITTER, HALF, MIS};
-use crate::geometry::{Interaction, ShadingPoint};
+use crate::geometry::{Interaction, LookupMemo, ShadingPoint};
 use crate::math::{offset_ray_origin, Ray};
 use crate::sampling::Sampler;
 use crate::scene::Scene;
@@ -126,21 +126,25 @@ impl PathIntegrator {
                     self.suffix::<ST, S, P>(scene, state, &y, Color::ONE, &mut samplers[k], probe);
             }
         }
+        // Each first vertex's image lookups, made once for all the second vertices it gathers.
+        let memos: [LookupMemo; GROUP] = Default::default();
         for (j, s) in shared.iter().enumerate().take(n) {
             let Some((y, l)) = *s else { continue };
             if !l.is_finite() || l == Color::ZERO {
                 continue;
             }
-            gather(scene, &pre[..n], j, &y, l, probe, &mut out[..n]);
+            gather(scene, &pre[..n], &memos, j, &y, l, probe, &mut out[..n]);
         }
     }
 }
 
 /// Adds to each pixel's value its share of the light `l` reflected at `y`, pixel `j`'s second
-/// vertex.
+/// vertex; `memos[m]` holds the image lookups at pixel `m`'s first vertex.
+#[allow(clippy::too_many_arguments)]
 fn gather<P: Probe>(
     scene: &Scene,
     pre: &[Prefix],
+    memos: &[LookupMemo; GROUP],
     j: usize,
     y: &Interaction,
     l: Color,
@@ -160,6 +164,7 @@ fn gather<P: Probe>(
         let at = ShadingPoint {
             uv: xm.uv,
             partials: g.as_ref(),
+            memo: scene.bsdf_traits(bsdf).reads_images.then_some(&memos[m]),
         };
         if side(&xm) != own_side {
             continue;

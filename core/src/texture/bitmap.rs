@@ -15,6 +15,7 @@
 //! ([`Bitmap::eval_1`]) is the luminance of the colour, as in Mitsuba 3.
 use super::texels::Texels;
 use super::to_uv::UvTransform;
+use crate::geometry::LookupMemo;
 use crate::Color;
 use glam::Vec2;
 
@@ -186,7 +187,23 @@ impl Bitmap {
 
     /// The luminance at `uv` (what Mitsuba 3 uses for scalar parameters such as weights).
     pub fn eval_1(&self, uv: Vec2) -> f32 {
-        self.eval(uv).dot(LUMINANCE)
+        Self::luminance(self.eval(uv))
+    }
+
+    /// The luminance of a colour [`Bitmap::eval`] gave, as [`Bitmap::eval_1`] takes it.
+    #[inline]
+    pub fn luminance(c: Color) -> f32 {
+        c.dot(LUMINANCE)
+    }
+
+    /// [`Bitmap::eval`] at `uv`, remembered in `memo` (a shading point's, whose lookups all
+    /// have coordinates `uv`) under this image's address: read from there when it holds this
+    /// image's value already (an image does not move while a render reads it).
+    pub fn eval_remembered(&self, uv: Vec2, memo: Option<&LookupMemo>) -> Color {
+        match memo {
+            Some(memo) => memo.get_or(core::ptr::from_ref(self) as usize, || self.eval(uv)),
+            None => self.eval(uv),
+        }
     }
 
     /// The gradient of [`Bitmap::eval_1`] with respect to `(u, v)`, as Mitsuba 3.9.1's

@@ -53,13 +53,14 @@ impl Texture {
     pub fn reads_mesh(&self) -> bool {
         matches!(self, Texture::MeshAttribute(_))
     }
-    /// The value at `at`.
+    /// The value at `at`. An image's lookup is remembered in `at`'s memo, if it has one, and
+    /// read from there when repeated (the same bits).
     #[inline]
     pub fn eval<'a>(&self, at: impl Into<ShadingPoint<'a>>) -> Color {
         let at = at.into();
         match self {
             Texture::Constant(c) => *c,
-            Texture::Bitmap(b) => b.eval(at.uv),
+            Texture::Bitmap(b) => b.eval_remembered(at.uv, at.memo),
             Texture::Checkerboard(c) => c.eval(at.uv),
             Texture::MeshAttribute(m) => m.eval(at),
         }
@@ -71,7 +72,7 @@ impl Texture {
         let at = at.into();
         match self {
             Texture::Constant(c) => (c.x + c.y + c.z) * (1.0 / 3.0),
-            Texture::Bitmap(b) => b.eval_1(at.uv),
+            Texture::Bitmap(b) => Bitmap::luminance(b.eval_remembered(at.uv, at.memo)),
             Texture::Checkerboard(c) => c.eval_1(at.uv),
             Texture::MeshAttribute(m) => m.eval_1(at),
         }
@@ -121,5 +122,44 @@ impl Lookup for Texture {
     }
     fn max_value(&self) -> f32 {
         Texture::max_value(self)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::LookupMemo;
+    use alloc::vec;
+
+    /// Through a shading point with a memo, an image is read once: the first lookup gives the
+    /// image's value, a repeat gives the remembered one (shown by asking the repeat at other
+    /// coordinates, which a shading point never does), scalar lookups included. The control,
+    /// the same lookups without a memo, reads the image each time.
+    #[test]
+    fn a_memo_reads_each_image_once() {
+        let pixels = vec![Color::new(0.2, 0.4, 0.6), Color::new(1.0, 0.5, 0.0)];
+        let image = Bitmap::new(
+            2,
+            1,
+            pixels,
+            FilterType::Nearest,
+            WrapMode::Repeat,
+            UvTransform::default(),
+        )
+        .unwrap();
+        let t = Texture::Bitmap(image.clone());
+        let (left, right) = (Vec2::new(0.25, 0.5), Vec2::new(0.75, 0.5));
+        let memo = LookupMemo::default();
+        let with = |uv| ShadingPoint {
+            uv,
+            partials: None,
+            memo: Some(&memo),
+        };
+        assert_eq!(t.eval(with(left)), image.eval(left));
+        assert_eq!(t.eval(with(right)), image.eval(left));
+        assert_eq!(t.eval_1(with(right)), image.eval_1(left));
+        assert_ne!(t.eval(right), image.eval(left));
+        assert_eq!(t.eval(right), image.eval(right));
+        assert_eq!(t.eval_1(right), image.eval_1(right));
     }
 }
