@@ -55,7 +55,7 @@ impl Texture {
     }
     /// The value at `at`. An image's lookup is remembered in `at`'s memo, if it has one, and
     /// read from there when repeated (the same bits).
-    #[inline]
+    #[inline(always)]
     pub fn eval<'a>(&self, at: impl Into<ShadingPoint<'a>>) -> Color {
         let at = at.into();
         match self {
