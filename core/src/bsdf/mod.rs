@@ -235,8 +235,9 @@ impl Bsdf {
         self.for_each_texture(&mut |t| reads_mesh |= t.reads_mesh());
         reads_mesh || self.bumps()
     }
-    /// Whether some texture the model reads directly is an image (what a shading point's
-    /// [`LookupMemo`](crate::geometry::LookupMemo) remembers).
+    /// Whether some texture of the model, nested models' included, is an image (what a shading
+    /// point's [`LookupMemo`](crate::geometry::LookupMemo) remembers; an image inside a
+    /// checkerboard is read without it).
     pub fn reads_images(&self) -> bool {
         let mut images = false;
         self.for_each_texture(&mut |t| images |= t.bitmap().is_some());
