@@ -60,6 +60,6 @@ for bin in "$@"; do
         same="DIFFERENT bits"
     fi
     awk -v n="$n" -v f="$first" -v b="$bin" -v s="$same" \
-        'BEGIN { printf "%-40s %15d instructions  %.4f  %s\n", b, n, n / f, s }'
+        'BEGIN { printf "%-40s %15.0f instructions  %.4f  %s\n", b, n, n / f, s }'
     k=$((k + 1))
 done
