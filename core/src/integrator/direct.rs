@@ -11,7 +11,7 @@
 use super::mis::Heuristic;
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
 use super::unweighted_hit::cast_unweighted;
-use crate::geometry::{LookupMemo, ShadingPoint};
+use crate::geometry::ShadingPoint;
 use crate::light::{emission_along, sample_light, VertexSelection};
 use crate::math::Ray;
 use crate::sampling::{Sampler, Stage};
@@ -68,8 +68,7 @@ impl DirectIntegrator {
         let bsdf = &scene.bsdfs[bsdf_index as usize];
         let traits = scene.bsdf_traits(bsdf_index);
         let g = scene.partials(bsdf_index, &si, &ray);
-        // Built only where the model reads an image (the memo costs a few stores).
-        let memo = traits.reads_images.then(LookupMemo::default);
+        let memo = scene.lookup_memo(bsdf_index);
         let at = ShadingPoint {
             uv: si.uv,
             partials: g.as_ref(),

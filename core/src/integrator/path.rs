@@ -26,7 +26,7 @@ use super::mis::Heuristic;
 use super::path_state::{PathState, Prev};
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
 use super::strategy::{Strategy, BSDF, EMITTER, HALF, MIS};
-use crate::geometry::{Interaction, LookupMemo, ShadingPoint};
+use crate::geometry::{Interaction, ShadingPoint};
 use crate::light::{emission_along, sample_light, VertexSelection};
 use crate::math::{Norm, Ray};
 use crate::sampling::{Sampler, Stage};
@@ -327,8 +327,7 @@ impl PathIntegrator {
         let traits = scene.bsdf_traits(shape.bsdf);
         let wi = si.frame.to_local(si.wi);
         let g = scene.partials(shape.bsdf, si, &path.ray);
-        // Built only where the model reads an image (the memo costs a few stores).
-        let memo = traits.reads_images.then(LookupMemo::default);
+        let memo = scene.lookup_memo(shape.bsdf);
         let at = ShadingPoint {
             uv: si.uv,
             partials: g.as_ref(),

@@ -30,7 +30,7 @@ use super::probe::{MediumEvent, PathEnd, Probe, RayKind};
 use super::volpath_light::{sample_light_through, MediumLight};
 use super::volpath_mis::MediumMis;
 use crate::bsdf::Bsdf;
-use crate::geometry::{Interaction, LookupMemo, ShadingPoint};
+use crate::geometry::{Interaction, ShadingPoint};
 use crate::light::emission_along;
 use crate::math::{Frame, Norm, Ray};
 use crate::medium::{ChannelRatios, Medium};
@@ -332,8 +332,7 @@ impl VolPathIntegrator {
             let traits = scene.bsdf_traits(shape.bsdf);
             let wi = si.frame.to_local(si.wi);
             let g = scene.partials(shape.bsdf, &si, &ray);
-            // Built only where the model reads an image (the memo costs a few stores).
-            let memo = traits.reads_images.then(LookupMemo::default);
+            let memo = scene.lookup_memo(shape.bsdf);
             let at = ShadingPoint {
                 uv: si.uv,
                 partials: g.as_ref(),

@@ -9,7 +9,7 @@
 //! the recursion adds `Le` at each hit.
 use super::probe::{PathEnd, Probe, RayKind};
 use super::unweighted_hit::cast_unweighted;
-use crate::geometry::{LookupMemo, ShadingPoint};
+use crate::geometry::ShadingPoint;
 use crate::light::sample_light;
 use crate::math::Ray;
 use crate::sampling::{Sampler, Stage};
@@ -50,8 +50,7 @@ impl WhittedIntegrator {
             let bsdf = &scene.bsdfs[bsdf_index as usize];
             let traits = scene.bsdf_traits(bsdf_index);
             let g = scene.partials(bsdf_index, &si, &ray);
-            // Built only where the model reads an image (the memo costs a few stores).
-            let memo = traits.reads_images.then(LookupMemo::default);
+            let memo = scene.lookup_memo(bsdf_index);
             let at = ShadingPoint {
                 uv: si.uv,
                 partials: g.as_ref(),

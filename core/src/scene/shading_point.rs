@@ -7,8 +7,11 @@
 //! Instead a vertex whose BSDF reads them (`BsdfTraits::reads_geometry`) finds them again from
 //! the ray that reached it (`Scene::surface_detail`, the same cast as the `aov` outputs'), so
 //! only vertices of such models pay, one more cast each.
+//!
+//! Likewise a vertex keeps a memo of its image lookups (`LookupMemo`) only where its model reads
+//! an image (`BsdfTraits::reads_images`).
 use super::Scene;
-use crate::geometry::{Interaction, Partials};
+use crate::geometry::{Interaction, LookupMemo, Partials};
 use crate::math::Ray;
 use glam::Vec3;
 
@@ -22,6 +25,15 @@ impl Scene {
         } else {
             None
         }
+    }
+
+    /// An empty memo for the image lookups of BSDF number `bsdf` at one vertex (the shading
+    /// point's `memo`): `None` for a model that reads no image.
+    #[inline(always)]
+    pub fn lookup_memo(&self, bsdf: u32) -> Option<LookupMemo> {
+        self.bsdf_traits(bsdf)
+            .reads_images
+            .then(LookupMemo::default)
     }
 
     /// The partials at `si` (zero if the cast no longer finds the surface, which leaves a
