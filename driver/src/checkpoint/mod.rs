@@ -1,12 +1,12 @@
 //! Render checkpoints: the accumulated sums of every pixel plus what identifies the render, so
 //! that `tessera render --resume FILE` continues exactly where a render stopped.
 //!
-//! # File format (version 4, all integers and floats little-endian)
+//! # File format (version 5, all integers and floats little-endian)
 //!
 //! | offset | size | field |
 //! |---|---|---|
 //! | 0 | 8 | magic `TESSCKPT` |
-//! | 8 | 4 | format version, u32 = 4 (1 to 3 are still read) |
+//! | 8 | 4 | format version, u32 = 5 (1 to 4 are still read) |
 //! | 12 | 4 | image width, u32 >= 1 |
 //! | 16 | 4 | image height, u32 >= 1 |
 //! | 20 | 8 | seed, u64 |
@@ -16,13 +16,13 @@
 //! | 52 | 8 | render seconds so far, f64 (finite, >= 0) |
 //! | 60 | 4 | integrator description length `n`, u32 <= 4096 |
 //! | 64 | n | integrator description, UTF-8 (its name and every parameter) |
-//! | 64+n | 64 per pixel | row-major pixels: `sum` 3 x f64, `sum_sq` 3 x f64, `count` u64, `dropped` u64 |
-//! | 64+n+64p | 8 | `k`, u64: 0, or the pixel count `p` when a pass was interrupted (version 2) |
-//! | 72+n+64p | 8 per pixel if `k > 0` | the interrupted adaptive pass's target per pixel, u64 >= `count + dropped` (version 2) |
+//! | 64+n | 72 per pixel | row-major pixels: `sum` 3 x f64, `sum_sq` 3 x f64, `count` u64, `dropped` u64, `rays` u64 (version 5; 64 bytes without `rays` before) |
+//! | 64+n+72p | 8 | `k`, u64: 0, or the pixel count `p` when a pass was interrupted (version 2) |
+//! | 72+n+72p | 8 per pixel if `k > 0` | the interrupted adaptive pass's target per pixel, u64 >= `count + dropped` (version 2) |
 //! | t | 8 | `c`, u64: 0, or the pixel count `p` when a render with a target error has passed a check point (version 3) |
 //! | t+8 | 8 if `c > 0` | the check point's samples per pixel, u64 >= 1 |
 //! | t+16 | 8 if `c > 0` | the estimate made there, f64 (NaN: none) |
-//! | t+24 | 64 per pixel if `c > 0` | every pixel's accumulators at the check point, as above, each at most the pixel's current count |
+//! | t+24 | 72 per pixel if `c > 0` | every pixel's accumulators at the check point, as above, each at most the pixel's current count |
 //! | u | 8 | `s`, u64: 0, or the floats per pixel of the splatted sums when the render splats (version 4) |
 //! | u+8 | 4 s per pixel | row-major, every pixel's splatted sums, f32 (`driver/src/splats.rs`) |
 //! | end-8 | 8 | FNV-1a 64 of every byte before it |
@@ -35,8 +35,8 @@
 //! state at the previous one ([`crate::progressive::check`]), so that state is saved too, and the
 //! resumed render checks (and stops) where the uninterrupted one would. A render that splats its
 //! samples saves every pixel's splatted sums exactly, since its image is made from them. Version
-//! 1 files (no targets section), version 2 files (no check point section) and version 3 files
-//! (no splatted sums) are still read. The reader checks the total length against the header
+//! 1 files (no targets section), version 2 files (no check point section), version 3 files
+//! (no splatted sums) and version 4 files (no ray counts: read as 0) are still read. The reader checks the total length against the header
 //! before allocating anything,
 //! then the checksum, then every value (finite sums, no count overflow): a truncated, corrupted
 //! or hostile file gives an error, never a panic or a huge allocation.
@@ -56,12 +56,20 @@ use tessera_core::film::PixelAccum;
 
 /// The file's first 8 bytes.
 pub const MAGIC: [u8; 8] = *b"TESSCKPT";
-/// The format version this build writes (it also reads versions 1 to 3).
-pub(crate) const VERSION: u32 = 4;
+/// The format version this build writes (it also reads versions 1 to 4).
+pub(crate) const VERSION: u32 = 5;
 /// Longest integrator description accepted.
 pub(crate) const MAX_DESCRIPTION: usize = 4096;
 const HEADER: usize = 64;
-const PIXEL: usize = 64;
+const PIXEL: usize = 8 * PixelAccum::WORDS;
+
+/// Bytes of a pixel record in a file of format `version` (no ray count before version 5).
+fn pixel_bytes(version: u32) -> usize {
+    match version {
+        1..=4 => PIXEL - 8,
+        _ => PIXEL,
+    }
+}
 
 /// What identifies a render, plus how far it got.
 #[derive(Clone, Debug, PartialEq)]

@@ -1,5 +1,7 @@
 //! Reading a checkpoint back, checking everything (the format is in the parent module's notes).
-use super::{Checkpoint, CheckpointMeta, Fnv1a, HEADER, MAGIC, MAX_DESCRIPTION, PIXEL, VERSION};
+use super::{
+    pixel_bytes, Checkpoint, CheckpointMeta, Fnv1a, HEADER, MAGIC, MAX_DESCRIPTION, VERSION,
+};
 use crate::progressive::check::CheckState;
 use std::path::Path;
 use tessera_core::film::PixelAccum;
@@ -76,7 +78,8 @@ pub fn read_checkpoint(bytes: &[u8]) -> Result<Checkpoint, String> {
     let add = |a: Option<u64>, b: Option<u64>| a?.checked_add(b?);
     // The sections' lengths, walked through the counts they start with (each read bounds
     // checked; a count that is neither 0 nor the pixel count is refused after the checksum).
-    let pixels_end = add(Some((HEADER + n) as u64), records(count, PIXEL as u64));
+    let pixel = pixel_bytes(version);
+    let pixels_end = add(Some((HEADER + n) as u64), records(count, pixel as u64));
     let targets = match version {
         1 => 0,
         _ => u64_at(bytes, pixels_end).unwrap_or(0),
@@ -92,7 +95,7 @@ pub fn read_checkpoint(bytes: &[u8]) -> Result<Checkpoint, String> {
     let checks_end = match (version, checks) {
         (1 | 2, _) => targets_end,
         (_, 0) => add(targets_end, Some(8)),
-        (_, k) => add(add(targets_end, Some(24)), records(k, PIXEL as u64)),
+        (_, k) => add(add(targets_end, Some(24)), records(k, pixel as u64)),
     };
     let stride = match version {
         1..=3 => 0,
@@ -138,7 +141,7 @@ pub fn read_checkpoint(bytes: &[u8]) -> Result<Checkpoint, String> {
     }
     c.at = HEADER + n;
     let count = count as usize;
-    let pixels = read_pixels(&mut c, count, width as usize, "pixel", |_| u64::MAX)?;
+    let pixels = read_pixels(&mut c, pixel, count, width as usize, "pixel", |_| u64::MAX)?;
     let taken = |i: usize| pixels[i].count + pixels[i].dropped;
     let pending = if targets == 0 {
         None
@@ -167,7 +170,14 @@ pub fn read_checkpoint(bytes: &[u8]) -> Result<Checkpoint, String> {
                 "check point at {spp} spp with estimate {estimate} (corrupted)"
             ));
         }
-        let before = read_pixels(&mut c, count, width as usize, "check point pixel", taken)?;
+        let before = read_pixels(
+            &mut c,
+            pixel,
+            count,
+            width as usize,
+            "check point pixel",
+            taken,
+        )?;
         Some(CheckState {
             spp,
             estimate: (!estimate.is_nan()).then_some(estimate),
@@ -209,10 +219,12 @@ pub fn read_checkpoint(bytes: &[u8]) -> Result<Checkpoint, String> {
     })
 }
 
-/// `count` pixel records at the cursor, each checked: finite sums, no count overflow, and at
-/// most `most(i)` samples for pixel `i` (errors call a pixel `what`).
+/// `count` pixel records of `bytes` each at the cursor (without the ray count when shorter than
+/// [`PixelAccum::WORDS`] words), each checked: finite sums, no count overflow, and at most
+/// `most(i)` samples for pixel `i` (errors call a pixel `what`).
 fn read_pixels(
     c: &mut Cursor,
+    bytes: usize,
     count: usize,
     width: usize,
     what: &str,
@@ -220,7 +232,10 @@ fn read_pixels(
 ) -> Result<Vec<PixelAccum>, String> {
     let mut pixels = Vec::with_capacity(count);
     for i in 0..count {
-        let p = PixelAccum::from_words(std::array::from_fn(|_| c.u64()));
+        let p = PixelAccum::from_words(std::array::from_fn(|k| match k < bytes / 8 {
+            true => c.u64(),
+            false => 0,
+        }));
         let finite = p.sum.iter().chain(&p.sum_sq).all(|v| v.is_finite());
         let taken = p.count.checked_add(p.dropped);
         if !finite || p.sum_sq.iter().any(|v| *v < 0.0) || taken.is_none_or(|t| t > most(i)) {

@@ -42,6 +42,38 @@ fn resum(mut b: Vec<u8>) -> Vec<u8> {
     b
 }
 
+/// A version 5 checkpoint of `pixels` pixels in version 4's layout: every pixel record (and
+/// every check point record) without its last word, the ray count.
+fn without_rays(bytes: &[u8], pixels: usize) -> Vec<u8> {
+    let n = u32::from_le_bytes(bytes[60..64].try_into().unwrap()) as usize;
+    let word = |at: usize| u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap()) as usize;
+    let mut b = bytes[..64 + n].to_vec();
+    let records = |b: &mut Vec<u8>, at: usize| {
+        for i in 0..pixels {
+            b.extend_from_slice(&bytes[at + 72 * i..at + 72 * i + 64]);
+        }
+        at + 72 * pixels
+    };
+    let at = records(&mut b, 64 + n);
+    let targets = word(at);
+    let at = at + 8 + 8 * targets;
+    b.extend_from_slice(&bytes[at - 8 - 8 * targets..at]);
+    let checks = word(at);
+    let at = match checks {
+        0 => {
+            b.extend_from_slice(&bytes[at..at + 8]);
+            at + 8
+        }
+        _ => {
+            b.extend_from_slice(&bytes[at..at + 24]);
+            records(&mut b, at + 24)
+        }
+    };
+    b.extend_from_slice(&bytes[at..]);
+    b[8..12].copy_from_slice(&4u32.to_le_bytes());
+    resum(b)
+}
+
 /// `bytes` with the last `cut` bytes before the checksum removed, as version `version`.
 fn older(bytes: &[u8], cut: usize, version: u32) -> Vec<u8> {
     let mut b = bytes[..bytes.len() - 8 - cut].to_vec();
@@ -68,6 +100,7 @@ fn round_trip_and_every_damage_is_caught() {
             sum_sq: [1.0, 2.0, 3.0],
             count: i,
             dropped: 1,
+            rays: 3 * i + 2,
         })
         .collect();
     let targets: Vec<u64> = (0..6).map(|i| 2 * i + 1).collect();
@@ -136,16 +169,30 @@ fn round_trip_and_every_damage_is_caught() {
     let back = read_checkpoint(&with_splats).unwrap();
     assert_eq!(back.check.as_ref(), Some(&check));
     assert_eq!(back.splats.as_ref(), Some(&splats.sums));
-    // Versions 1 (no targets section), 2 (no check point section) and 3 (no splatted sums) are
-    // still read.
+    // Versions 1 (no targets section), 2 (no check point section), 3 (no splatted sums) and 4
+    // (no ray counts, read as 0) are still read.
+    let uncounted = |p: &[PixelAccum]| -> Vec<PixelAccum> {
+        p.iter().map(|p| PixelAccum { rays: 0, ..*p }).collect()
+    };
+    let v4 = read_checkpoint(&without_rays(&with_splats, 6)).unwrap();
+    assert_eq!(v4.pixels, uncounted(&pixels));
+    assert_eq!(v4.pending.as_deref(), Some(&targets[..]));
+    assert_eq!(v4.check.map(|c| c.pixels), Some(uncounted(&check.pixels)));
+    assert_eq!(v4.splats.as_ref(), Some(&splats.sums));
     assert_eq!(
-        read_checkpoint(&older(&bytes, 24, 1)).unwrap().pixels,
-        pixels
+        read_checkpoint(&older(&without_rays(&bytes, 6), 24, 1))
+            .unwrap()
+            .pixels,
+        uncounted(&pixels)
     );
-    let v2 = read_checkpoint(&older(&with_targets, 16, 2)).unwrap();
+    let v2 = read_checkpoint(&older(&without_rays(&with_targets, 6), 16, 2)).unwrap();
     assert_eq!(v2.pending.as_deref(), Some(&targets[..]));
-    let v3 = read_checkpoint(&older(&with_both, 8, 3)).unwrap();
-    assert_eq!(v3.check.as_ref(), Some(&check));
+    let v3 = read_checkpoint(&older(&without_rays(&with_both, 6), 8, 3)).unwrap();
+    assert_eq!(v3.check.map(|c| c.pixels), Some(uncounted(&check.pixels)));
+    // Control: a version 5 file's records read as version 4 are refused (wrong length).
+    let mut relabelled = with_both.clone();
+    relabelled[8..12].copy_from_slice(&4u32.to_le_bytes());
+    assert!(read_checkpoint(&resum(relabelled)).is_err());
     // Splatted sums that are not finite are refused.
     let mut inf = with_splats.clone();
     let last_sum = inf.len() - 8 - 4;
@@ -163,10 +210,10 @@ fn round_trip_and_every_damage_is_caught() {
     let err = |b: Vec<u8>| read_checkpoint(&resum(b)).unwrap_err();
     assert!(err(low).contains("below its sample count"));
     let mut more = with_both.clone();
-    let last_count = n - 8 - 8 - 16;
+    let last_count = n - 8 - 8 - 24;
     more[last_count..last_count + 8].copy_from_slice(&99u64.to_le_bytes());
     assert!(err(more).contains("check point pixel (2, 1)"));
-    let estimate_at = n - 8 - 8 - 64 * 6 - 8;
+    let estimate_at = n - 8 - 8 - 72 * 6 - 8;
     let mut negative = with_both.clone();
     negative[estimate_at..estimate_at + 8].copy_from_slice(&(-1.0f64).to_le_bytes());
     assert!(err(negative).contains("estimate -1"));

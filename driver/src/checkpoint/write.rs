@@ -111,7 +111,7 @@ fn write_to(
     inner.into_inner().map_err(|e| e.into_error())?.sync_all()
 }
 
-/// Every pixel's 64-byte record.
+/// Every pixel's record ([`PixelAccum::to_words`], little-endian).
 fn write_pixels(w: &mut impl Write, pixels: &[PixelAccum]) -> std::io::Result<()> {
     let mut rec = [0u8; PIXEL];
     for p in pixels {

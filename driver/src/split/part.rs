@@ -6,11 +6,13 @@
 //! - `R`, `G`, `B` (f32): each pixel's mean, for viewing;
 //! - `tessera.{sum,sumsq}.{R,G,B}.{hi,lo}` (u32): the high and low 32 bits of each f64 sum of
 //!   sample values and squared values, so the sums are stored exactly;
-//! - `tessera.{count,dropped}.{hi,lo}` (u32): the 64-bit counts of accepted and dropped samples;
+//! - `tessera.{count,dropped,rays}.{hi,lo}` (u32): the 64-bit counts of accepted and dropped
+//!   samples and of the rays they cast (what adaptive sampling prices a pixel's samples by);
 //! - when the render splats its samples, `tessera.splat.NNN` (f32, `NNN` from `000`): each
 //!   pixel's splatted sums (`driver/src/splats.rs`), one channel per float, stored exactly.
 //!
-//! Text attributes: `tessera.part` (format version, `1`), `tessera.size` (`WxH`),
+//! Text attributes: `tessera.part` (format version, `2`; version 1, without the ray counts, is
+//! still read), `tessera.size` (`WxH`),
 //! `tessera.pixels` (`all`, `crop X0,Y0,X1,Y1` or `tiles K/N`), `tessera.tileSize`,
 //! `tessera.samples` (`a..b`), `tessera.seed`, `tessera.integrator`, `tessera.sceneHash` (16 hex
 //! digits, [`tessera_scene::hash::scene_hash`]). A file without `tessera.part` is not a part.
@@ -83,11 +85,11 @@ fn splat_channel(i: usize) -> String {
     format!("tessera.splat.{i:03}")
 }
 
-const VERSION: &str = "1";
+const VERSION: &str = "2";
 
-/// The 16 exact-data channel names, in the order of [`words`] (high half first).
+/// The exact-data channel names (two per word of [`PixelAccum::to_words`], high half first).
 fn word_channels() -> Vec<String> {
-    let mut v = Vec::with_capacity(16);
+    let mut v = Vec::with_capacity(2 * PixelAccum::WORDS);
     for q in ["sum", "sumsq"] {
         for c in ["R", "G", "B"] {
             for h in ["hi", "lo"] {
@@ -95,7 +97,7 @@ fn word_channels() -> Vec<String> {
             }
         }
     }
-    for q in ["count", "dropped"] {
+    for q in ["count", "dropped", "rays"] {
         for h in ["hi", "lo"] {
             v.push(format!("tessera.{q}.{h}"));
         }
@@ -109,6 +111,18 @@ fn text(s: &str) -> Result<Text, String> {
 
 /// Writes the selected pixels of `fb` (the whole image's framebuffer) as a part, atomically.
 pub fn write_part(path: &Path, info: &PartInfo, fb: &Framebuffer) -> Result<(), String> {
+    write_version(path, info, fb, VERSION, PixelAccum::WORDS)
+}
+
+/// [`write_part`] as format `version`, whose pixels hold the first `words` words of
+/// [`PixelAccum::to_words`].
+fn write_version(
+    path: &Path,
+    info: &PartInfo,
+    fb: &Framebuffer,
+    version: &str,
+    words: usize,
+) -> Result<(), String> {
     let err = |e: String| format!("{}: cannot write part: {e}", path.display());
     if (fb.width, fb.height) != (info.width, info.height) {
         return Err(err(format!(
@@ -124,7 +138,9 @@ pub fn write_part(path: &Path, info: &PartInfo, fb: &Framebuffer) -> Result<(), 
     let image = fb.rgb();
     let stride = fb.splats.as_ref().map_or(0, Splats::stride);
     let mut rgb: [Vec<f32>; 3] = Default::default();
-    let mut halves: Vec<Vec<u32>> = (0..16).map(|_| Vec::with_capacity(n)).collect();
+    let mut halves: Vec<Vec<u32>> = (0..2 * PixelAccum::WORDS)
+        .map(|_| Vec::with_capacity(n))
+        .collect();
     let mut splat: Vec<Vec<f32>> = (0..stride).map(|_| Vec::with_capacity(n)).collect();
     for y in win.y0..win.y1 {
         for x in win.x0..win.x1 {
@@ -144,11 +160,11 @@ pub fn write_part(path: &Path, info: &PartInfo, fb: &Framebuffer) -> Result<(), 
             }
         }
     }
-    let mut list = Vec::with_capacity(19 + stride);
+    let mut list = Vec::with_capacity(3 + 2 * PixelAccum::WORDS + stride);
     for (name, data) in ["R", "G", "B"].into_iter().zip(rgb) {
         list.push(AnyChannel::new(name, FlatSamples::F32(data)));
     }
-    for (name, data) in word_channels().into_iter().zip(halves) {
+    for (name, data) in word_channels().into_iter().zip(halves).take(2 * words) {
         list.push(AnyChannel::new(text(&name)?, FlatSamples::U32(data)));
     }
     for (i, data) in splat.into_iter().enumerate() {
@@ -162,7 +178,7 @@ pub fn write_part(path: &Path, info: &PartInfo, fb: &Framebuffer) -> Result<(), 
         ..LayerAttributes::default()
     };
     let fields = [
-        ("tessera.part", VERSION.to_string()),
+        ("tessera.part", version.to_string()),
         ("tessera.size", format!("{}x{}", info.width, info.height)),
         ("tessera.pixels", info.selection.to_string()),
         ("tessera.tileSize", info.tile_size.to_string()),
@@ -226,9 +242,12 @@ pub fn read_part(path: &Path) -> Result<Part, String> {
     let version = attr(other, "tessera.part").map_err(|_| {
         err("not a Tessera part (no tessera.part attribute; render with --crop, --tiles or --sample-range to an .exr)".into())
     })?;
-    if version != VERSION {
-        return Err(err(format!("unsupported part version {version}")));
-    }
+    // Version 1 parts hold no ray counts (read as 0).
+    let words = match version.as_str() {
+        VERSION => PixelAccum::WORDS,
+        "1" => PixelAccum::WORDS - 1,
+        _ => return Err(err(format!("unsupported part version {version}"))),
+    };
     let info = part_info(other).map_err(err)?;
     let win = info
         .selection
@@ -252,7 +271,8 @@ pub fn read_part(path: &Path) -> Result<Part, String> {
             info.selection, info.width, info.height
         )));
     }
-    let names = word_channels();
+    let mut names = word_channels();
+    names.truncate(2 * words);
     for name in &names {
         let found = header
             .channels
@@ -267,7 +287,7 @@ pub fn read_part(path: &Path) -> Result<Part, String> {
     let image = read_pixels(path).map_err(err)?;
     let layer = &image.layer_data;
     let n = layer.size.0 * layer.size.1;
-    let mut cols: Vec<&[u32]> = Vec::with_capacity(16);
+    let mut cols: Vec<&[u32]> = Vec::with_capacity(2 * PixelAccum::WORDS);
     for name in &names {
         let ch = layer
             .channel_data
@@ -281,8 +301,9 @@ pub fn read_part(path: &Path) -> Result<Part, String> {
     }
     let pixels: Vec<PixelAccum> = (0..n)
         .map(|i| {
-            PixelAccum::from_words(std::array::from_fn(|k| {
-                (cols[2 * k][i] as u64) << 32 | cols[2 * k + 1][i] as u64
+            PixelAccum::from_words(std::array::from_fn(|k| match k < words {
+                true => (cols[2 * k][i] as u64) << 32 | cols[2 * k + 1][i] as u64,
+                false => 0,
             }))
         })
         .collect();
@@ -391,4 +412,50 @@ fn part_info(other: &std::collections::HashMap<Text, AttributeValue>) -> Result<
         return Err(format!("too many tiles: {w}x{h} in tiles of {ts} px"));
     }
     Ok(info)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A part keeps every word of its pixels, the ray counts among them; a version 1 part
+    /// (written without them) reads with counts of 0; another version is refused.
+    #[test]
+    fn parts_keep_the_ray_counts_and_old_parts_read_without_them() {
+        let mut fb = Framebuffer::new(3, 2);
+        for (i, p) in fb.pixels.iter_mut().enumerate() {
+            *p = PixelAccum {
+                sum: [i as f64 * 0.5, 1.0, 2.0],
+                sum_sq: [3.0, 4.0, i as f64],
+                count: i as u64 + 1,
+                dropped: 1,
+                rays: 7 * i as u64 + 3,
+            };
+        }
+        let info = PartInfo {
+            width: 3,
+            height: 2,
+            selection: PixelSelection::default(),
+            tile_size: 32,
+            samples: 0..4,
+            seed: 9,
+            integrator: "test".into(),
+            scene_hash: 0xabc,
+        };
+        let dir = std::env::temp_dir().join(format!("tessera-part-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("p.exr");
+        write_part(&path, &info, &fb).unwrap();
+        let back = read_part(&path).unwrap();
+        assert_eq!((back.info, back.pixels), (info.clone(), fb.pixels.clone()));
+        write_version(&path, &info, &fb, "1", PixelAccum::WORDS - 1).unwrap();
+        let old = read_part(&path).unwrap();
+        for (p, q) in old.pixels.iter().zip(&fb.pixels) {
+            assert_eq!(*p, PixelAccum { rays: 0, ..*q });
+        }
+        write_version(&path, &info, &fb, "3", PixelAccum::WORDS).unwrap();
+        let e = read_part(&path).err().unwrap();
+        assert!(e.contains("unsupported part version 3"), "{e}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }
