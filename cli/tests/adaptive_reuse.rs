@@ -17,7 +17,7 @@ use tessera_scene::LoadedScene;
 
 use crate::scenes;
 use crate::support;
-use support::{render_adaptive, render_plain, run, sample_counts, stderr};
+use support::{render_adaptive, render_plain, run, sample_counts, stderr, uncounted};
 
 /// cbox at `res` x `res`, box filter, zsobol for 64 samples per pixel, path reuse on.
 fn load(res: u32) -> LoadedScene {
@@ -123,9 +123,9 @@ fn a_uniform_share_of_one_is_the_plain_reuse_render() {
         uniform: 1.0,
         ..Default::default()
     };
-    assert!(adaptive_with(&l, 16, 2, 5, 3, p) == render_plain(&l, 16, 3));
+    assert!(uncounted(adaptive_with(&l, 16, 2, 5, 3, p)) == render_plain(&l, 16, 3));
     // Control: the default share does not give the plain render.
-    assert!(adaptive(&l, 16, 2, 5, 3) != render_plain(&l, 16, 3));
+    assert!(uncounted(adaptive(&l, 16, 2, 5, 3)) != render_plain(&l, 16, 3));
 }
 
 /// Stopped inside an adaptive pass (tiles of 7, rounded to 8, so a stop falls between whole

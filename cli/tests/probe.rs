@@ -3,9 +3,9 @@
 //! size; the debug trace prints exactly the values the render accumulates.
 use std::path::Path;
 use std::process::Command;
-use tessera::render::{render, Framebuffer, RenderOptions};
+use tessera::render::{render, render_span, Framebuffer, RenderOptions, Span};
 use tessera::render_stats::render_with_stats;
-use tessera_core::integrator::Counters;
+use tessera_core::integrator::{Counters, NoProbe};
 use tessera_core::render::RenderJob;
 use tessera_scene::LoadedScene;
 
@@ -194,4 +194,50 @@ fn stats_flag_prints_counts_and_writes_the_same_image() {
     assert_eq!(line("non-finite samples dropped"), 0);
     assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Each pixel's ray count (what adaptive sampling prices its samples by) is the rays its
+/// samples cast: summed over the image, the `--stats` counts of camera, continuation and shadow
+/// rays, also where the ordinary render finishes escaping camera rays in batches (the
+/// environment map of `envmap.xml`), which the counting render does not; every sample casts at
+/// least its camera ray, and a pixel whose samples all escape casts exactly that. Only per-pixel
+/// targets (adaptive passes) count; the same image otherwise.
+#[test]
+fn pixels_count_the_rays_their_samples_cast() {
+    for (name, integrator) in [
+        ("cbox.xml", None),
+        ("cbox.xml", Some("direct")),
+        ("veach_mis.xml", None),
+        ("envmap.xml", None),
+    ] {
+        let mut l = load(name, &[("res", "24"), ("spp", "3")]);
+        l.set_integrator(integrator, None).unwrap();
+        let job = RenderJob::new(&l.scene, &l.integrator, l.seed);
+        let mut fb = Framebuffer::for_job(&job);
+        let targets = vec![l.spp; fb.pixels.len()];
+        let span = Span::Targets(&targets);
+        render_span::<NoProbe>(&job, &opts(2, 7), &mut fb, span, None, &mut |_, _| {});
+        let (plain_fb, c) = stats(&l, 1, 32);
+        let rays: u64 = fb.pixels.iter().map(|p| p.rays).sum();
+        assert_eq!(
+            rays,
+            c.camera_rays + c.continuation_rays + c.shadow_rays,
+            "{name} {integrator:?}"
+        );
+        assert!(rays > 2 * c.camera_rays, "{name}: {rays}");
+        assert!(fb.pixels.iter().all(|p| p.rays >= p.count + p.dropped));
+        if name == "envmap.xml" {
+            let sky_only = fb.pixels.iter().filter(|p| p.rays == p.count).count();
+            assert!(sky_only > 24, "{name}: {sky_only} pixels see only the sky");
+        }
+        // The control: the plain render counts nothing, and its sums are the same.
+        assert!(plain_fb.pixels.iter().all(|p| p.rays == 0), "{name}");
+        for p in &mut fb.pixels {
+            p.rays = 0;
+        }
+        assert!(
+            fb.pixels == plain_fb.pixels,
+            "{name}: the counting render's sums"
+        );
+    }
 }

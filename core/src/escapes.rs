@@ -12,11 +12,12 @@
 //!
 //! It applies where the shortcut is exactly what the path integrator does with an escaping
 //! camera ray: the `path` integrator (any strategy) showing emitters to the camera, at least
-//! one segment long, one environment which is a map, and a probe that observes nothing.
+//! one segment long, one environment which is a map, and a probe that observes nothing but the
+//! rays cast.
 use crate::accel::slab_simd::Avx2;
 use crate::camera_draw::{CameraDraw, CameraSample, CAMERA_BATCH};
 use crate::emitter::{Emitter, EnvMap};
-use crate::integrator::{Integrator, PathIntegrator, Probe};
+use crate::integrator::{Integrator, PathIntegrator, Probe, RayKind};
 use crate::math::Norm;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
@@ -119,6 +120,8 @@ impl Escapes<'_> {
                 (cam.weigh(l), false, offset, cam)
             }
             None => {
+                // The path loop reports its camera ray; this one it never sees.
+                probe.ray(RayKind::Camera);
                 pending.dirs[k] = cam.ray.d.unit();
                 pending.escaped = true;
                 (Color::ZERO, true, offset, cam)

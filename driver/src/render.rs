@@ -15,11 +15,12 @@ pub use crate::split::selection::PixelSelection;
 pub use crate::tile::{tiles, Tile, TileProbe};
 use crate::tile_sums::TileSums;
 use crossbeam_channel::unbounded;
+use std::cell::Cell;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Mutex, MutexGuard};
 use tessera_core::film::PixelAccum;
-use tessera_core::integrator::{AovIntegrator, NoProbe};
+use tessera_core::integrator::{AovIntegrator, NoProbe, Probe, RayTally};
 use tessera_core::render::{GroupCache, PixelCache, RenderJob};
 use tessera_core::splat::Footprint;
 
@@ -58,7 +59,8 @@ pub enum Span<'a> {
     /// Each pixel continues from its own count up to its own target (row-major, one per pixel
     /// of the image): adaptive passes. With path reuse, a sample's value also depends on which
     /// pixels of its group take it in this call; tile edges are then rounded up so that tiles
-    /// hold whole groups (see `render_groups.rs`).
+    /// hold whole groups (see `render_groups.rs`). The only span whose pixels count the rays
+    /// their samples cast ([`PixelAccum::rays`], what adaptive sampling prices samples by).
     Targets(&'a [u64]),
 }
 
@@ -146,6 +148,9 @@ pub fn render_span<P: TileProbe>(
     };
     let reuse = job.reuses();
     let (sharing, tile_size) = Sharing::choose(reuse, targets.is_some(), opts.tile_size);
+    // Adaptive passes price each pixel's samples by the rays they cast; other renders leave
+    // the count as it is (counting costs about 0.7% of a render's instructions).
+    let count_rays = targets.is_some();
     let mut list = opts.pixels.rects(w, h, tile_size);
     if let Some(targets) = targets {
         largest_first(&mut list, targets, &fb.pixels, w);
@@ -184,42 +189,24 @@ pub fn render_span<P: TileProbe>(
             let (list, cursor, span, shared, aovs) = (&list, &cursor, &span, &shared, &aovs);
             workers.push(s.spawn(move || {
                 let mut probe = P::default();
-                let mut cache = PixelCache::default();
-                let mut groups = GroupCache::default();
-                let mut acc = TileSums::new(job.scene.splat.as_ref());
+                let mut work = TileWork::new(job);
                 loop {
                     if stop.is_some_and(|f| f.load(Ordering::Relaxed)) {
                         break;
                     }
                     let i = cursor.fetch_add(1, Ordering::Relaxed);
                     let Some(t) = list.get(i) else { break };
-                    acc.load(t, &lock(shared));
+                    work.acc.load(t, &lock(shared));
                     let range = |a: &PixelAccum, x: u32, y: u32| span.of(a, x, y, w);
-                    if reuse {
-                        render_tile_groups(
-                            job,
-                            t,
-                            &mut acc,
-                            &range,
-                            sharing,
-                            &mut groups,
-                            &mut probe,
-                        );
+                    if count_rays {
+                        let rays = Cell::new(0);
+                        let mut tally = RayTally::new(&mut probe, &rays);
+                        work.tile::<_, true>(t, &range, sharing, aovs, &mut tally, &rays);
                     } else {
-                        let mut k = 0;
-                        for y in t.y0..t.y1 {
-                            for x in t.x0..t.x1 {
-                                let samples = range(&acc.pixels[k], x, y);
-                                let add = |c, o, cam: &_| {
-                                    acc.add(k, c, o);
-                                    acc.add_aovs(k, o, job.scene, cam, aovs);
-                                };
-                                job.pixel_alone(x, y, samples, &mut cache, &mut probe, add);
-                                k += 1;
-                            }
-                        }
+                        let rays = &Cell::new(0);
+                        work.tile::<_, false>(t, &range, sharing, aovs, &mut probe, rays);
                     }
-                    acc.write(t, &mut lock(shared));
+                    work.acc.write(t, &mut lock(shared));
                     if tx.send(i).is_err() {
                         break;
                     }
@@ -243,6 +230,64 @@ pub fn render_span<P: TileProbe>(
     Rendered {
         complete,
         probe: total,
+    }
+}
+
+/// What a worker thread keeps from tile to tile: the tile's sums and the samplers' caches.
+struct TileWork<'a> {
+    job: &'a RenderJob<'a>,
+    acc: TileSums<'a>,
+    cache: PixelCache,
+    groups: GroupCache,
+}
+
+impl<'a> TileWork<'a> {
+    fn new(job: &'a RenderJob<'a>) -> Self {
+        TileWork {
+            job,
+            acc: TileSums::new(job.scene.splat.as_ref()),
+            cache: PixelCache::default(),
+            groups: GroupCache::default(),
+        }
+    }
+
+    /// Renders tile `t` (its sums loaded in `acc`): each pixel takes the samples `range` gives
+    /// it, observed by `probe`; with `COUNT`, each pixel's ray count grows by the rays `probe`
+    /// counts into `rays`.
+    fn tile<Q: Probe, const COUNT: bool>(
+        &mut self,
+        t: &Tile,
+        range: &dyn Fn(&PixelAccum, u32, u32) -> Range<u64>,
+        sharing: Sharing,
+        aovs: &[AovIntegrator],
+        probe: &mut Q,
+        rays: &Cell<u64>,
+    ) {
+        let job = self.job;
+        let acc = &mut self.acc;
+        if job.reuses() {
+            let groups = &mut self.groups;
+            let rays = COUNT.then_some(rays);
+            render_tile_groups(job, t, acc, range, sharing, groups, (probe, rays));
+            return;
+        }
+        let mut k = 0;
+        for y in t.y0..t.y1 {
+            for x in t.x0..t.x1 {
+                let samples = range(&acc.pixels[k], x, y);
+                // A sample's rays are all cast before its value arrives (a batch's before the
+                // batch's first value): each value takes those not yet counted.
+                let add = |c, o, cam: &_| {
+                    acc.add(k, c, o);
+                    if COUNT {
+                        acc.pixels[k].rays += rays.take();
+                    }
+                    acc.add_aovs(k, o, job.scene, cam, aovs);
+                };
+                job.pixel_alone(x, y, samples, &mut self.cache, probe, add);
+                k += 1;
+            }
+        }
     }
 }
 

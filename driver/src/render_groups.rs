@@ -1,10 +1,11 @@
 //! The tile loop's body when the integrator shares light among groups of pixels (4x2,
 //! `core/src/integrator/reuse.rs`).
-use crate::tile::{Tile, TileProbe};
+use crate::tile::Tile;
 use crate::tile_sums::TileSums;
+use std::cell::Cell;
 use std::ops::Range;
 use tessera_core::film::PixelAccum;
-use tessera_core::integrator::{GROUP, GROUP_H, GROUP_W};
+use tessera_core::integrator::{Probe, GROUP, GROUP_H, GROUP_W};
 use tessera_core::render::{GroupCache, RenderJob};
 
 /// Which of a group's pixels take part in each of the group's samples.
@@ -48,15 +49,16 @@ fn lcm(a: u32, b: u32) -> u32 {
 }
 
 /// A tile's pixels when the integrator shares light among groups, group by group (see
-/// [`Sharing`] for which pixels take part in each sample).
-pub(crate) fn render_tile_groups<P: TileProbe>(
+/// [`Sharing`] for which pixels take part in each sample). With `rays` (the cell `probe` counts
+/// rays into), each pixel's ray count grows by its group's rays at each index it takes.
+pub(crate) fn render_tile_groups<P: Probe>(
     job: &RenderJob,
     t: &Tile,
     acc: &mut TileSums,
     range: &dyn Fn(&PixelAccum, u32, u32) -> Range<u64>,
     sharing: Sharing,
     groups: &mut GroupCache,
-    probe: &mut P,
+    (probe, rays): (&mut P, Option<&Cell<u64>>),
 ) {
     let tw = (t.x1 - t.x0) as usize;
     for gy in (t.y0 - t.y0 % GROUP_H..t.y1).step_by(GROUP_H as usize) {
@@ -83,15 +85,23 @@ pub(crate) fn render_tile_groups<P: TileProbe>(
                 (Some((_, r)), Sharing::OwnRanges) => r.clone(),
                 _ => lo..hi,
             });
+            // The group's rays at a sample index are all cast before the index's first value
+            // arrives; every pixel taking the index is charged all of them (the cost of a sample
+            // of its group, the same whichever pixels of the group the tile holds).
+            let (mut at, mut cost) = (None, 0);
             job.group(
                 &pixels[..n],
                 &samples[..n],
                 groups,
                 probe,
                 |k, index, c, o| {
+                    if let Some(rays) = rays.filter(|_| at != Some(index)) {
+                        (at, cost) = (Some(index), rays.take());
+                    }
                     if let Some((i, r)) = &mine[k] {
                         if r.contains(&index) {
                             acc.add(*i, c, o);
+                            acc.pixels[*i].rays += cost;
                         }
                     }
                 },

@@ -98,6 +98,15 @@ pub fn render_plain(l: &LoadedScene, spp: u64, seed: u64) -> Framebuffer {
     render(&job, 0..spp, &opts, &mut |_, _| {})
 }
 
+/// `fb` with every pixel's ray count cleared: an adaptive render's sums, to compare with a
+/// plain render's (which counts no rays).
+pub fn uncounted(mut fb: Framebuffer) -> Framebuffer {
+    for p in &mut fb.pixels {
+        p.rays = 0;
+    }
+    fb
+}
+
 /// An adaptive render of `l` to a mean of `spp` samples per pixel, from a blank framebuffer,
 /// with how it ended.
 pub fn render_adaptive(job: Job, spp: u64, params: AdaptiveParams) -> (Framebuffer, Outcome) {

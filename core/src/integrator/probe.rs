@@ -69,9 +69,10 @@ pub enum MediumEvent {
 /// Receives the events of one sample's path. Every method defaults to doing nothing.
 #[allow(unused_variables)]
 pub trait Probe {
-    /// Whether the probe observes anything: false only for one whose every method is the
-    /// default (no counting, no recording), so that a render loop may skip calls it would
-    /// ignore (see `RenderJob::pixel_alone`'s batches of escaping camera rays).
+    /// Whether the probe observes more than the rays cast: false only for one whose every
+    /// method but [`Probe::ray`] is the default (no counting, no recording), so that a render
+    /// loop may skip the calls it would ignore (see `RenderJob::pixel_alone`'s batches of
+    /// escaping camera rays); such a loop still reports every ray.
     const OBSERVES: bool = true;
     /// Casts a camera or continuation ray: the scene's closest hit. A probe may count the
     /// traversal's work; the result must be the scene's.

@@ -350,7 +350,10 @@ fn adaptive_passes(
             })
         };
         let complete = if warming {
-            let span = Span::UpTo(first);
+            // Per-pixel targets, as the passes have, so that the warm-up's rays are counted too
+            // (the plans price samples by them).
+            let targets = vec![first; fb.pixels.len()];
+            let span = Span::Targets(&targets);
             render_span::<NoProbe>(job, opts, fb, span, Some(stop), &mut report).complete
         } else {
             let targets = match pending.take() {

@@ -127,7 +127,14 @@ pub fn run_waves(
                 let span = Span::Targets(&targets);
                 render_span::<NoProbe>(job, opts, &mut fb, span, None, &mut |_, _| {});
             }
-            _ => {
+            Some(_) => {
+                // The warm-up, with per-pixel targets as `render --adaptive` has: its rays are
+                // counted, and the passes price samples by them.
+                let targets = vec![next; fb.pixels.len()];
+                let span = Span::Targets(&targets);
+                render_span::<NoProbe>(job, opts, &mut fb, span, None, &mut |_, _| {});
+            }
+            None => {
                 let span = Span::Fixed(done..next);
                 render_span::<NoProbe>(job, opts, &mut fb, span, None, &mut |_, _| {});
             }
