@@ -9,17 +9,23 @@
 //! `floor` keeps dark pixels from claiming every sample; with the default 0.01 the measure is
 //! the relative MSE that `tessera bench` reports.
 //!
+//! Samples do not cost the same: a pixel seeing glass traces long paths, one seeing the sky a
+//! single ray. For a fixed *time*, with `c_i` the cost of a sample of pixel `i`, the sum is least
+//! when `n_i` is proportional to `sqrt(v_i / c_i)`. The cost is counted, not timed, so that the
+//! plan is the same on every machine: the rays a pixel's samples cast on average
+//! ([`PixelAccum::rays`]) plus [`AdaptiveParams::sample_cost`] rays' worth of fixed work.
+//!
 //! A pass ([`plan_pass`]):
 //! 1. estimates `v_i` of every pixel from its accumulator (the unbiased sample variance); a pixel
 //!    holding one accepted sample, which has no variance of its own, from the spread of the
 //!    values of the pixels around it ([`neighbourhood_variance`]), so that the first adaptive
 //!    pass can follow a single warm-up sample per pixel; a pixel with no estimate counts as the
 //!    noisiest pixel of the image;
-//! 2. averages it over the pixel's 3x3 neighbourhood: a few samples of one pixel can miss what
-//!    its neighbours saw (a small bright light's edge), and the mean of nine estimates is far
-//!    less noisy than one;
+//! 2. averages it, and the cost per sample, over the pixel's 3x3 neighbourhood: a few samples of
+//!    one pixel can miss what its neighbours saw (a small bright light's edge), and the mean of
+//!    nine estimates is far less noisy than one;
 //! 3. sets every pixel's wanted total after the pass to `(1 - uniform)` of all samples shared in
-//!    proportion to `sqrt(v_i)` plus `uniform` of them shared equally, so every pixel's count
+//!    proportion to `sqrt(v_i / c_i)` plus `uniform` of them shared equally, so every pixel's count
 //!    keeps growing with the total whatever its estimate says (the image converges everywhere);
 //! 4. gives the pass's samples to the pixels below their wanted total, in proportion to what
 //!    they lack, rounded by a running sum in pixel order so that the counts add up to the
@@ -34,14 +40,14 @@
 //! pixel whose first samples happened to be quiet gets fewer later samples. The uniform share,
 //! the smoothing and the growing totals keep that effect small; see `docs/design/adaptive-and-reuse.md` for the measurements.
 use crate::film::PixelAccum;
-use crate::math::sqrt_f64;
 
 mod blocks;
 mod params;
+mod scores;
 mod variance;
-use alloc::vec;
 use alloc::vec::Vec;
 pub use params::{AdaptiveParams, ZSOBOL_BLOCK_FACTOR};
+use scores::{costs, priced, smooth_sqrt};
 pub use variance::{neighbourhood_variance, relative_variance};
 
 /// How many samples each pixel of a `width x height` image (row-major `pixels`) takes in the
@@ -83,7 +89,10 @@ pub fn plan_pass(
     let worst = raw.iter().flatten().fold(0.0f64, |m, &v| m.max(v));
     let mut v: Vec<f64> = raw.iter().map(|r| r.unwrap_or(worst)).collect();
     drop(raw);
-    let mut score = smooth_sqrt(&v, w, h);
+    let mut score = match (params.sample_cost, costs(pixels)) {
+        (Some(fixed), Some(c)) => priced(&v, &c, fixed, w, h),
+        _ => smooth_sqrt(&v, w, h),
+    };
     let block = (
         params.block.0.max(1) as usize,
         params.block.1.max(1) as usize,
@@ -128,42 +137,6 @@ pub fn plan_pass(
     round_to_budget(lack, budget)
 }
 
-/// The square root of each value's 3x3 mean (clipped at the borders), summed row by row in
-/// reading order from 0; interior pixels take a straight-line sum in that same order.
-fn smooth_sqrt(v: &[f64], w: usize, h: usize) -> Vec<f64> {
-    let mut score = vec![0.0f64; v.len()];
-    for y in 0..h {
-        let interior_row = y > 0 && y + 1 < h;
-        for x in 0..w {
-            let mean = if interior_row && x > 0 && x + 1 < w {
-                let (a, b, c) = ((y - 1) * w + x, y * w + x, (y + 1) * w + x);
-                let s = 0.0
-                    + v[a - 1]
-                    + v[a]
-                    + v[a + 1]
-                    + v[b - 1]
-                    + v[b]
-                    + v[b + 1]
-                    + v[c - 1]
-                    + v[c]
-                    + v[c + 1];
-                s / 9.0
-            } else {
-                let (mut s, mut k) = (0.0, 0.0);
-                for yy in y.saturating_sub(1)..(y + 2).min(h) {
-                    for xx in x.saturating_sub(1)..(x + 2).min(w) {
-                        s += v[yy * w + xx];
-                        k += 1.0;
-                    }
-                }
-                s / k
-            };
-            score[y * w + x] = sqrt_f64(mean);
-        }
-    }
-    score
-}
-
 /// [`plan_pass`] as the sample count each pixel should hold after the pass (what it holds,
 /// `count + dropped`, plus its share), the form the renderer's per-pixel targets take.
 pub fn pass_targets(
@@ -204,7 +177,9 @@ fn round_to_budget(want: &[f64], budget: u64) -> Vec<u64> {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
+    use crate::math::sqrt_f64;
     use crate::Color;
+    use alloc::vec;
 
     /// An accumulator of grey samples `values`.
     pub(crate) fn pixel(values: &[f32]) -> PixelAccum {
@@ -308,6 +283,7 @@ pub(crate) mod tests {
                 uniform: [0.0, 0.25, 1.0][(t / 3) % 3],
                 warmup: 2,
                 block: (1, 1),
+                sample_cost: Some(1.0),
             };
             let budget = next() % 300;
             let got = plan_pass(&pixels, w as u32, h as u32, budget, &params);
@@ -387,6 +363,34 @@ pub(crate) mod tests {
         // The control: with a uniform share of 1 every pixel gets the same.
         let flat = plan_pass(&pixels, w, h, budget, &AdaptiveParams { uniform: 1.0, ..p });
         assert!(flat.iter().all(|&k| k == 6), "{flat:?}");
+    }
+
+    /// Pixels equally noisy share samples by what their samples cost: the left half's samples
+    /// cast one ray each, the right half's nine, so with one ray's worth of fixed work a left
+    /// sample costs a fifth of a right one and, away from the border, a left pixel takes about
+    /// sqrt(5) times the samples. Controls: unpriced (`sample_cost: None`), and with no ray
+    /// counted anywhere, the pixels share evenly, as with the unpriced plan.
+    #[test]
+    fn costly_pixels_get_fewer_samples() {
+        let (w, h) = (8u32, 8u32);
+        let mut pixels: Vec<PixelAccum> = (0..64).map(|_| pixel(&[0.0, 2.0])).collect();
+        let uncounted = pixels.clone();
+        for (i, p) in pixels.iter_mut().enumerate() {
+            p.rays = if i % 8 < 4 { 2 } else { 18 };
+        }
+        let p = AdaptiveParams::default();
+        let budget = 64 * 6;
+        let c = plan_pass(&pixels, w, h, budget, &p);
+        assert_eq!(c.iter().sum::<u64>(), budget);
+        let ratio = c[3 * 8] as f64 / c[3 * 8 + 7] as f64;
+        assert!((1.8..2.6).contains(&ratio), "{ratio}: {c:?}");
+        let unpriced = AdaptiveParams {
+            sample_cost: None,
+            ..p
+        };
+        let flat = plan_pass(&pixels, w, h, budget, &unpriced);
+        assert!(flat.iter().all(|&k| k == 6), "{flat:?}");
+        assert_eq!(plan_pass(&uncounted, w, h, budget, &p), flat);
     }
 
     /// A pixel with fewer than two samples counts as the noisiest, and an image with no noise at

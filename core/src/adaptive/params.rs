@@ -27,6 +27,11 @@ pub struct AdaptiveParams {
     /// finds every pixel of a group at each sample index instead of tracing the others' paths
     /// only to share them ([`AdaptiveParams::for_integrator`]).
     pub block: (u32, u32),
+    /// How samples are priced: `Some(k)`, a pixel's sample costs the rays its samples cast on
+    /// average ([`PixelAccum::rays`](crate::film::PixelAccum::rays)) plus `k` rays' worth of
+    /// fixed work (drawing the camera ray, adding the value), and the plan gives the most
+    /// error per unit of cost (default `Some(1.0)`); `None`, every sample costs the same.
+    pub sample_cost: Option<f64>,
 }
 
 impl Default for AdaptiveParams {
@@ -36,6 +41,7 @@ impl Default for AdaptiveParams {
             uniform: 0.25,
             warmup: 1,
             block: (1, 1),
+            sample_cost: Some(1.0),
         }
     }
 }
