@@ -167,7 +167,9 @@ fn interrupted_and_resumed_stops_at_the_same_check_point() {
     for adaptive in [false, true] {
         let (want, want_out) = render(&l, 4096, target, 2, 16, 5, adaptive);
         assert_eq!(want_out.ending, Ending::ErrorReached);
-        let job = support::job(&l, 5, 2, 16);
+        // Tiles of 4 (64 of them), so that the workers see a stop requested at a pass's first
+        // tile before they finish the pass, even on a loaded machine (tiles change no bit).
+        let job = support::job(&l, 5, 2, 4);
         let plan = Plan {
             target: Some(4096),
             target_error: Some(target),
