@@ -12,7 +12,8 @@
 # included, under `valgrind --tool=callgrind`; two builds run at a time (callgrind is single
 # threaded and about fifty times slower than the render). Prints each build's count, its ratio
 # to the first build's, and whether its image equals the first build's bit for bit. Builds to
-# compare should share a profile (`--profile dist`, say); line tables
+# compare should share a profile (`--profile dist`, say), and on a CPU with AVX-512 be built for
+# one without (`RUSTFLAGS="-C target-cpu=x86-64-v3"`: valgrind cannot run AVX-512); line tables
 # (`CARGO_PROFILE_DIST_DEBUG=line-tables-only`) make `callgrind_annotate` name the lines.
 # Installs valgrind from Debian when it is missing.
 set -euo pipefail
@@ -50,6 +51,15 @@ wait
 first=""
 k=0
 for bin in "$@"; do
+    if [ ! -s "$out/img.$k.pfm" ]; then
+        # Valgrind stops a program at an instruction it cannot decode (3.19: AVX-512) with
+        # SIGILL and no error from the program: a build for a CPU with AVX-512 must be made
+        # for an older one to be counted.
+        echo "$bin wrote no image under valgrind:" >&2
+        grep -m1 -E "unhandled instruction|SIGILL" "$out/log.$k" >&2 || tail -3 "$out/log.$k" >&2
+        echo "(on an AVX-512 CPU, build with RUSTFLAGS=\"-C target-cpu=x86-64-v3\")" >&2
+        exit 1
+    fi
     n=$(sed -n 's/.*Collected : \([0-9]*\)/\1/p' "$out/log.$k")
     if [ -z "$first" ]; then
         first=$n
