@@ -391,6 +391,13 @@ pub(crate) mod tests {
         let flat = plan_pass(&pixels, w, h, budget, &unpriced);
         assert!(flat.iter().all(|&k| k == 6), "{flat:?}");
         assert_eq!(plan_pass(&uncounted, w, h, budget, &p), flat);
+        // A cost below zero (outside the setting's range) gives scores that are not finite:
+        // the samples are shared evenly, with no panic.
+        let negative = AdaptiveParams {
+            sample_cost: Some(-5.0),
+            ..p
+        };
+        assert_eq!(plan_pass(&pixels, w, h, budget, &negative), flat);
     }
 
     /// A pixel with fewer than two samples counts as the noisiest, and an image with no noise at

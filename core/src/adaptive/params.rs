@@ -29,8 +29,9 @@ pub struct AdaptiveParams {
     pub block: (u32, u32),
     /// How samples are priced: `Some(k)`, a pixel's sample costs the rays its samples cast on
     /// average ([`PixelAccum::rays`](crate::film::PixelAccum::rays)) plus `k` rays' worth of
-    /// fixed work (drawing the camera ray, adding the value), and the plan gives the most
-    /// error per unit of cost (default `Some(1.0)`); `None`, every sample costs the same.
+    /// fixed work (drawing the camera ray, adding the value), `k` at least 0, and the plan
+    /// makes the most of a fixed cost (default `Some(1.0)`); `None`, every sample costs the
+    /// same. (A plan whose scores are not finite shares the samples evenly.)
     pub sample_cost: Option<f64>,
 }
 
