@@ -201,10 +201,9 @@ pub fn render_span<P: TileProbe>(
                     if count_rays {
                         let rays = Cell::new(0);
                         let mut tally = RayTally::new(&mut probe, &rays);
-                        work.tile::<_, true>(t, &range, sharing, aovs, &mut tally, &rays);
+                        work.tile(t, &range, sharing, aovs, &mut tally, Some(&rays));
                     } else {
-                        let rays = &Cell::new(0);
-                        work.tile::<_, false>(t, &range, sharing, aovs, &mut probe, rays);
+                        work.tile(t, &range, sharing, aovs, &mut probe, None);
                     }
                     work.acc.write(t, &mut lock(shared));
                     if tx.send(i).is_err() {
@@ -252,22 +251,21 @@ impl<'a> TileWork<'a> {
     }
 
     /// Renders tile `t` (its sums loaded in `acc`): each pixel takes the samples `range` gives
-    /// it, observed by `probe`; with `COUNT`, each pixel's ray count grows by the rays `probe`
-    /// counts into `rays`.
-    fn tile<Q: Probe, const COUNT: bool>(
+    /// it, observed by `probe`; with `rays` (the cell `probe` counts rays into), each pixel's
+    /// ray count grows by the rays its samples cast.
+    fn tile<Q: Probe>(
         &mut self,
         t: &Tile,
         range: &dyn Fn(&PixelAccum, u32, u32) -> Range<u64>,
         sharing: Sharing,
         aovs: &[AovIntegrator],
         probe: &mut Q,
-        rays: &Cell<u64>,
+        rays: Option<&Cell<u64>>,
     ) {
         let job = self.job;
         let acc = &mut self.acc;
         if job.reuses() {
             let groups = &mut self.groups;
-            let rays = COUNT.then_some(rays);
             render_tile_groups(job, t, acc, range, sharing, groups, (probe, rays));
             return;
         }
@@ -279,7 +277,7 @@ impl<'a> TileWork<'a> {
                 // batch's first value): each value takes those not yet counted.
                 let add = |c, o, cam: &_| {
                     acc.add(k, c, o);
-                    if COUNT {
+                    if let Some(rays) = rays {
                         acc.pixels[k].rays += rays.take();
                     }
                     acc.add_aovs(k, o, job.scene, cam, aovs);

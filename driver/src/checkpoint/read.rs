@@ -232,10 +232,16 @@ fn read_pixels(
 ) -> Result<Vec<PixelAccum>, String> {
     let mut pixels = Vec::with_capacity(count);
     for i in 0..count {
-        let p = PixelAccum::from_words(std::array::from_fn(|k| match k < bytes / 8 {
-            true => c.u64(),
-            false => 0,
-        }));
+        let p =
+            PixelAccum::from_words(std::array::from_fn(
+                |k| {
+                    if k < bytes / 8 {
+                        c.u64()
+                    } else {
+                        0
+                    }
+                },
+            ));
         let finite = p.sum.iter().chain(&p.sum_sq).all(|v| v.is_finite());
         let taken = p.count.checked_add(p.dropped);
         if !finite || p.sum_sq.iter().any(|v| *v < 0.0) || taken.is_none_or(|t| t > most(i)) {
