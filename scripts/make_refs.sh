@@ -33,6 +33,9 @@ PYTHON="${PYTHON:-python3}"
     --spp 8192 --seed 0 -D res=64 -D rfilter=lanczos --variant scalar_rgb
 "$PYTHON" scripts/mitsuba_ref.py scenes/cbox.xml -o scenes/refs/cbox_64x64_gaussian_mitsuba.exr \
     --spp 8192 --seed 0 -D res=64 -D rfilter=gaussian --variant scalar_rgb
+# Splatted samples of unequal density (adaptive sampling; cli/tests/adaptive.rs).
+"$PYTHON" scripts/mitsuba_ref.py scenes/veach_mis.xml -o scenes/refs/veach_mis_64x64_gaussian_mitsuba.exr \
+    --spp 16384 --seed 0 -D res=64 -D rfilter=gaussian --variant scalar_rgb
 # Participating media, rendered by volpath (tests/tests/media_agreement.rs).
 "$PYTHON" scripts/mitsuba_ref.py scenes/media/fog_cbox.xml -o scenes/refs/fog_cbox_64x64_mitsuba.exr \
     --spp 8192 --seed 0 -D res=64 -D rfilter=box --variant scalar_rgb

@@ -11,6 +11,9 @@
 //! order exactly like its own [`PixelAccum`](crate::film::PixelAccum); a target adds up its
 //! sources' sums in a fixed order when the image is made ([`resolve`]). The price is
 //! memory: `4 (2n + 1)^2` floats per pixel, 400 bytes for the default Gaussian (`n = 2`).
+//!
+//! Pixels may hold different numbers of samples (adaptive sampling): each source's sums then
+//! count by its mean, so that the filter, not the sample density, weighs the neighbours.
 use crate::camera::{Filter, FilterTable};
 use crate::Color;
 use alloc::vec::Vec;
@@ -152,11 +155,34 @@ pub fn stride(reach: u32) -> usize {
 /// (row-major, one [`stride`] per pixel): each pixel's weighted sum over the sources that reach
 /// it, in a fixed order, divided by their summed weight (black where no weight reached it or
 /// the quotient is not finite).
-pub fn resolve(reach: u32, width: u32, height: u32, sums: &[f32]) -> Vec<[f32; 3]> {
+///
+/// `samples` holds each source's samples attempted (row-major). Where the sources that hold
+/// samples do not all hold the same number (adaptive sampling, a render stopped part-way
+/// through a pass), each source's sums count divided by its number, so that every source
+/// weighs as the filter says whatever its density: otherwise a pixel holding many samples
+/// would pull its neighbours toward its own value, an error that more samples do not shrink.
+/// Where they all hold the same number the division would cancel, and is not made (the bits
+/// stay those of the plain sums).
+///
+/// # Panics
+/// If `samples` does not hold one count per pixel.
+pub fn resolve(
+    reach: u32,
+    width: u32,
+    height: u32,
+    sums: &[f32],
+    samples: &[u64],
+) -> Vec<[f32; 3]> {
     let (w, h) = (width as i64, height as i64);
+    assert_eq!(
+        samples.len(),
+        (w * h) as usize,
+        "resolve: one count per pixel"
+    );
     let n = reach as i64;
     let side = 2 * n + 1;
     let stride = stride(reach);
+    let scale = density_scale(samples);
     let mut out = Vec::with_capacity((w * h) as usize);
     for ty in 0..h {
         for tx in 0..w {
@@ -173,9 +199,20 @@ pub fn resolve(reach: u32, width: u32, height: u32, sums: &[f32]) -> Vec<[f32; 3
                         continue;
                     }
                     let entry = ((dy + n) * side + dx + n) as usize;
-                    let at = (sy * w + sx) as usize * stride + CHANNELS * entry;
-                    for (a, &v) in acc.iter_mut().zip(&sums[at..at + CHANNELS]) {
-                        *a += v as f64;
+                    let source = (sy * w + sx) as usize;
+                    let at = source * stride + CHANNELS * entry;
+                    let values = &sums[at..at + CHANNELS];
+                    match &scale {
+                        None => {
+                            for (a, &v) in acc.iter_mut().zip(values) {
+                                *a += v as f64;
+                            }
+                        }
+                        Some(k) => {
+                            for (a, &v) in acc.iter_mut().zip(values) {
+                                *a += v as f64 * k[source];
+                            }
+                        }
                     }
                 }
             }
@@ -192,6 +229,22 @@ pub fn resolve(reach: u32, width: u32, height: u32, sums: &[f32]) -> Vec<[f32; 3
         }
     }
     out
+}
+
+/// Each source's factor `1 / samples` when the sources that hold samples do not all hold the
+/// same number (0 for a source holding none: its sums are zero), else `None`.
+fn density_scale(samples: &[u64]) -> Option<Vec<f64>> {
+    let mut held = samples.iter().copied().filter(|&k| k > 0);
+    let first = held.next()?;
+    if held.all(|k| k == first) {
+        return None;
+    }
+    Some(
+        samples
+            .iter()
+            .map(|&k| if k > 0 { 1.0 / k as f64 } else { 0.0 })
+            .collect(),
+    )
 }
 
 #[cfg(test)]
@@ -269,7 +322,8 @@ mod tests {
                 fp.add(&mut sums[i * 100..(i + 1) * 100], o, c);
             }
         }
-        for p in resolve(2, w, h, &sums) {
+        let held: Vec<u64> = (0..(w * h) as u64).map(|i| 1 + i % 3).collect();
+        for p in resolve(2, w, h, &sums, &held) {
             for k in 0..3 {
                 assert!((p[k] - c[k]).abs() <= 4.0 * f32::EPSILON * c[k], "{p:?}");
             }
@@ -280,12 +334,62 @@ mod tests {
             let v = if i == 17 { c } else { Color::ZERO };
             fp.add(&mut one[i * 100..(i + 1) * 100], Vec2::ZERO, v);
         }
-        let img = resolve(2, w, h, &one);
+        let ones = alloc::vec![1u64; (w * h) as usize];
+        let img = resolve(2, w, h, &one, &ones);
         assert!(img[17][0] > img[16][0] && img[16][0] > 0.0);
         // Two pixels away lies the Gaussian's radius, where its weight is zero.
         assert_eq!(img[17 - 2][0], 0.0);
         let mut shifted = one[100..].to_vec();
         shifted.extend_from_slice(&[0.0; 100]);
-        assert_ne!(resolve(2, w, h, &shifted)[17], img[17]);
+        assert_ne!(resolve(2, w, h, &shifted, &ones)[17], img[17]);
+    }
+
+    /// Sources of unequal density weigh as the filter says: a row of pixels of different
+    /// values, each sample at its pixel's centre, gives the same image whether the pixels hold
+    /// 1, 7, 1, 3 and 1 samples or one each (up to rounding); the control, the same sums
+    /// resolved as if every source held one sample, is pulled toward the pixel holding 7.
+    /// Equal counts resolve to the plain sums' bits, whatever the count.
+    #[test]
+    fn unequal_densities_weigh_as_the_filter_says() {
+        let (_, fp) = gaussian();
+        let (w, h) = (5u32, 1u32);
+        let values = [1.0f32, 9.0, 2.0, 0.5, 4.0];
+        let splat = |counts: &[u64]| {
+            let mut sums = alloc::vec![0.0f32; 5 * fp.stride()];
+            for (i, (&v, &k)) in values.iter().zip(counts).enumerate() {
+                for _ in 0..k {
+                    fp.add(
+                        &mut sums[i * 100..(i + 1) * 100],
+                        Vec2::ZERO,
+                        Color::splat(v),
+                    );
+                }
+            }
+            sums
+        };
+        let ones = [1u64; 5];
+        let even = resolve(2, w, h, &splat(&ones), &ones);
+        let counts = [1u64, 7, 1, 3, 1];
+        let uneven = splat(&counts);
+        for (a, b) in resolve(2, w, h, &uneven, &counts).iter().zip(&even) {
+            assert!(
+                (a[0] - b[0]).abs() <= 8.0 * f32::EPSILON * b[0],
+                "{a:?} {b:?}"
+            );
+        }
+        let pulled = resolve(2, w, h, &uneven, &ones);
+        assert!(
+            pulled[2][0] > even[2][0] * 1.5,
+            "{:?} {:?}",
+            pulled[2],
+            even[2]
+        );
+        let fours = [4u64; 5];
+        let plain = resolve(2, w, h, &splat(&fours), &fours);
+        let as_ones = resolve(2, w, h, &splat(&fours), &ones);
+        assert_eq!(plain, as_ones);
+        // A source without samples does not make the others unequal.
+        assert_eq!(density_scale(&[0, 3, 3, 0]), None);
+        assert!(density_scale(&[0, 3, 2, 0]).is_some());
     }
 }

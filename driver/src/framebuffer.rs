@@ -102,11 +102,14 @@ impl Framebuffer {
         let (w, h) = job.size();
         Framebuffer::with_footprint(w, h, job.scene.splat.as_ref())
     }
-    /// The image: each pixel's splatted sums over their weights when the scene splats, else each
-    /// pixel's mean.
+    /// The image: each pixel's splatted sums over their weights when the scene splats (each
+    /// pixel's sums by its mean where the pixels' counts differ), else each pixel's mean.
     pub fn rgb(&self) -> Vec<[f32; 3]> {
         match &self.splats {
-            Some(s) => s.resolve(self.width, self.height),
+            Some(s) => {
+                let samples: Vec<u64> = self.pixels.iter().map(|p| p.count + p.dropped).collect();
+                s.resolve(self.width, self.height, &samples)
+            }
             None => self.pixels.iter().map(|p| p.mean()).collect(),
         }
     }

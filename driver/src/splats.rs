@@ -25,9 +25,11 @@ impl Splats {
         stride(self.reach)
     }
 
-    /// The image of a `width x height` framebuffer holding these sums.
-    pub fn resolve(&self, width: u32, height: u32) -> Vec<[f32; 3]> {
-        resolve(self.reach, width, height, &self.sums)
+    /// The image of a `width x height` framebuffer holding these sums, its pixels holding
+    /// `samples` samples attempted each (row-major; see
+    /// [`resolve`](tessera_core::splat::resolve) for why they count).
+    pub fn resolve(&self, width: u32, height: u32, samples: &[u64]) -> Vec<[f32; 3]> {
+        resolve(self.reach, width, height, &self.sums, samples)
     }
 
     /// The sums of pixel `i` (row-major index).

@@ -111,7 +111,8 @@ pub fn uncounted(mut fb: Framebuffer) -> Framebuffer {
 /// with how it ended.
 pub fn render_adaptive(job: Job, spp: u64, params: AdaptiveParams) -> (Framebuffer, Outcome) {
     let camera = &job.render.scene.camera;
-    let mut fb = Framebuffer::new(camera.width, camera.height);
+    let mut fb =
+        Framebuffer::with_footprint(camera.width, camera.height, job.render.scene.splat.as_ref());
     let plan = Plan {
         target: Some(spp),
         adaptive: Some(params),
