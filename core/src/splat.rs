@@ -201,18 +201,10 @@ pub fn resolve(
                     let entry = ((dy + n) * side + dx + n) as usize;
                     let source = (sy * w + sx) as usize;
                     let at = source * stride + CHANNELS * entry;
-                    let values = &sums[at..at + CHANNELS];
-                    match &scale {
-                        None => {
-                            for (a, &v) in acc.iter_mut().zip(values) {
-                                *a += v as f64;
-                            }
-                        }
-                        Some(k) => {
-                            for (a, &v) in acc.iter_mut().zip(values) {
-                                *a += v as f64 * k[source];
-                            }
-                        }
+                    // Times exactly 1 where the counts are equal: the plain sums' bits.
+                    let k = scale.as_ref().map_or(1.0, |s| s[source]);
+                    for (a, &v) in acc.iter_mut().zip(&sums[at..at + CHANNELS]) {
+                        *a += v as f64 * k;
                     }
                 }
             }
