@@ -97,15 +97,29 @@ pub fn run(args: &RenderArgs) -> i32 {
     if let Err(e) = loaded.set_integrator(args.integrator.as_deref(), args.max_depth) {
         return usage(e);
     }
-    // zsobol's pixel blocks follow the scene's sample count, never --spp or --time, so that
-    // progressive passes, resumed checkpoints and sample-range parts all draw one sequence.
-    // Adaptive renders (never split into parts) give noisy pixels several times the mean: their
-    // blocks are ZSOBOL_BLOCK_FACTOR times larger, so those pixels stay in one block.
-    let scene_spp = match args.adaptive {
-        true => loaded.spp.saturating_mul(ZSOBOL_BLOCK_FACTOR),
-        false => loaded.spp,
+    let resumed = match args.resume.as_deref().map(load_checkpoint).transpose() {
+        Ok(c) => c,
+        Err(e) => return usage(e),
     };
-    if let Err(e) = loaded.set_sampler(args.sampler.as_deref(), scene_spp) {
+    // zsobol's pixel blocks follow the count the render was started for: --spp, else the
+    // scene's sample count (never --time), so that progressive passes draw one sequence; a
+    // resumed render keeps the count its first run recorded, whatever --spp it asks for now.
+    // Adaptive renders give noisy pixels several times the mean: their blocks are
+    // ZSOBOL_BLOCK_FACTOR times larger, so those pixels stay in one block.
+    let sampler_spp = match &resumed {
+        Some(ck) => ck.meta.sampler_spp,
+        None => args.spp.unwrap_or(0),
+    };
+    let factor = if args.adaptive {
+        ZSOBOL_BLOCK_FACTOR
+    } else {
+        1
+    };
+    let set = match sampler_spp {
+        0 => loaded.set_sampler(args.sampler.as_deref(), loaded.spp.saturating_mul(factor)),
+        n => loaded.set_sampler_for(args.sampler.as_deref(), n.saturating_mul(factor)),
+    };
+    if let Err(e) = set {
         return usage(e);
     }
     if args.filter_sampling {
@@ -138,6 +152,7 @@ pub fn run(args: &RenderArgs) -> i32 {
         scene_hash: loaded.source_hash,
         passes: 0,
         seconds: 0.0,
+        sampler_spp,
         integrator: format!(
             "{:?}, sampler {:?}{}",
             loaded.integrator,
@@ -156,11 +171,7 @@ pub fn run(args: &RenderArgs) -> i32 {
     let mut resumed_target = None;
     let mut pending = None;
     let mut resumed_check = None;
-    if let Some(path) = &args.resume {
-        let ck = match load_checkpoint(path) {
-            Ok(c) => c,
-            Err(e) => return usage(e),
-        };
+    if let (Some(path), Some(ck)) = (&args.resume, resumed) {
         if let Err(e) = ck.meta.matches(&meta) {
             return usage(format!("{}: {e}", path.display()));
         }

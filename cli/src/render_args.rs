@@ -11,7 +11,8 @@ pub struct RenderArgs {
     /// Output image; the extension picks the format (.exr, .pfm, .png). May be repeated.
     #[arg(short = 'o', long = "output", required_unless_present = "debug_pixel")]
     pub outputs: Vec<PathBuf>,
-    /// Samples per pixel (default: the scene's sampler, or the resumed checkpoint's target).
+    /// Samples per pixel (default: the scene's sampler, or the resumed checkpoint's target);
+    /// zsobol's pixel blocks are set up for it (a resumed render keeps its first run's).
     #[arg(long, conflicts_with = "forever")]
     pub spp: Option<u64>,
     /// Time budget in seconds: render passes until it is spent (with --spp, whichever first).

@@ -47,6 +47,15 @@ pub fn run(args: &RenderArgs, loaded: &LoadedScene, threads: usize, seed: u64) -
     }
     let job = RenderJob::new(&loaded.scene, &loaded.integrator, seed);
     let samples = args.split.samples(args.spp.unwrap_or(loaded.spp));
+    if let Some(n) = args
+        .spp
+        .filter(|n| args.split.sample_range.is_some() && samples.end > *n)
+    {
+        return usage(format!(
+            "--sample-range {}..{} goes past --spp {n}, the render it is a part of",
+            samples.start, samples.end
+        ));
+    }
     let opts = RenderOptions {
         threads,
         tile_size: args.tile_size,

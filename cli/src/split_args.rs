@@ -21,8 +21,10 @@ pub struct SplitArgs {
     /// scanline tile list whose index i has i % N == K - 1.
     #[arg(long, value_parser = parse_tile_set, value_name = "K/N")]
     pub tiles: Option<(u32, u32)>,
-    /// Render only the sample indices a..b (a < b) of each pixel; replaces --spp.
-    #[arg(long, value_parser = parse_sample_range, value_name = "A..B", conflicts_with = "spp")]
+    /// Render only the sample indices a..b (a < b) of each pixel, of a render of --spp samples
+    /// if given (zsobol's pixel blocks follow that count: give the parts of an N-sample render
+    /// --spp N to merge to its bits), else of the scene's sample count.
+    #[arg(long, value_parser = parse_sample_range, value_name = "A..B")]
     pub sample_range: Option<Range<u64>>,
 }
 

@@ -105,6 +105,7 @@ fn interrupted_and_resumed_gives_the_same_bits() {
         passes: 0,
         seconds: 0.0,
         integrator: "test".into(),
+        sampler_spp: 16,
     };
     let path = std::env::temp_dir().join(format!("tessera-adaptive-{}.ckpt", std::process::id()));
     let mut stopped_inside_a_pass = 0;
@@ -270,18 +271,18 @@ fn command_line() {
     let o = render(&["--threads", "2", "--tile-size", "5"], &two);
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(std::fs::read(&one).unwrap(), std::fs::read(&two).unwrap());
-    // The command's zsobol blocks are ZSOBOL_BLOCK_FACTOR times the scene's sample count (64).
+    // The command's zsobol blocks are ZSOBOL_BLOCK_FACTOR times its --spp (8).
     let mut l = load("cbox", 16);
     let block = |l: &mut LoadedScene, spp: u64| {
         l.set_sampler(Some("zsobol"), spp).unwrap();
         adaptive(l, 8, 2, 16, 0, AdaptiveParams::default()).rgb()
     };
     let file = read_image(Path::new(&one)).unwrap().data;
-    assert_eq!(file, block(&mut l, 64 * ZSOBOL_BLOCK_FACTOR));
+    assert_eq!(file, block(&mut l, 8 * ZSOBOL_BLOCK_FACTOR));
     assert_ne!(
         file,
-        block(&mut l, 64),
-        "control: blocks of 64 give other bits"
+        block(&mut l, 64 * ZSOBOL_BLOCK_FACTOR),
+        "control: the scene's count (64) gives other blocks and bits"
     );
     // Flags it cannot honour: one line, exit 2, no output.
     let bad = t.file("bad.exr");

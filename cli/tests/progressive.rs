@@ -284,6 +284,7 @@ fn mixed_counts_continue_to_one_render() {
         passes: 0,
         seconds: 0.0,
         integrator: format!("{:?}", l.integrator),
+        sampler_spp: 24,
     };
     let more = Continuation {
         splats: fb.splats.as_ref(),

@@ -163,6 +163,7 @@ fn interrupted_and_resumed_stops_at_the_same_check_point() {
         passes: 0,
         seconds: 0.0,
         integrator: "test".into(),
+        sampler_spp: 0,
     };
     for adaptive in [false, true] {
         let (want, want_out) = render(&l, 4096, target, 2, 16, 5, adaptive);

@@ -67,6 +67,17 @@ impl LoadedScene {
         Ok(())
     }
 
+    /// [`Self::set_sampler`] for a count the render was asked for (`tessera render --spp`, or
+    /// the count a resumed render first asked for): a file that names no sampler is then set up
+    /// for it too, instead of keeping its one block for any count.
+    pub fn set_sampler_for(&mut self, name: Option<&str>, spp: u64) -> Result<(), String> {
+        if name.is_none() && !self.sampler_named {
+            self.scene.sampler = self.scene.sampler.for_spp(spp);
+            return Ok(());
+        }
+        self.set_sampler(name, spp)
+    }
+
     /// Switches to another integrator by name (keeping the file's parameters that apply; a name
     /// ending in `+reuse` turns on path reuse, any other name turns it off) and/or another
     /// `max_depth` (-1 = unbounded).

@@ -1,12 +1,12 @@
 //! Render checkpoints: the accumulated sums of every pixel plus what identifies the render, so
 //! that `tessera render --resume FILE` continues exactly where a render stopped.
 //!
-//! # File format (version 5, all integers and floats little-endian)
+//! # File format (version 6, all integers and floats little-endian)
 //!
 //! | offset | size | field |
 //! |---|---|---|
 //! | 0 | 8 | magic `TESSCKPT` |
-//! | 8 | 4 | format version, u32 = 5 (1 to 4 are still read) |
+//! | 8 | 4 | format version, u32 = 6 (1 to 5 are still read) |
 //! | 12 | 4 | image width, u32 >= 1 |
 //! | 16 | 4 | image height, u32 >= 1 |
 //! | 20 | 8 | seed, u64 |
@@ -25,6 +25,7 @@
 //! | t+24 | 72 per pixel if `c > 0` | every pixel's accumulators at the check point, as above, each at most the pixel's current count |
 //! | u | 8 | `s`, u64: 0, or the floats per pixel of the splatted sums when the render splats (version 4) |
 //! | u+8 | 4 s per pixel | row-major, every pixel's splatted sums, f32 (`driver/src/splats.rs`) |
+//! | end-16 | 8 | the samples per pixel the sampler was set up for, u64 (zsobol's pixel blocks; 0: the scene's own set-up) (version 6) |
 //! | end-8 | 8 | FNV-1a 64 of every byte before it |
 //!
 //! A pixel has taken `count + dropped` samples, indices `0..count + dropped`; a resumed render
@@ -56,8 +57,8 @@ use tessera_core::film::PixelAccum;
 
 /// The file's first 8 bytes.
 pub const MAGIC: [u8; 8] = *b"TESSCKPT";
-/// The format version this build writes (it also reads versions 1 to 4).
-pub(crate) const VERSION: u32 = 5;
+/// The format version this build writes (it also reads versions 1 to 5).
+pub(crate) const VERSION: u32 = 6;
 /// Longest integrator description accepted.
 pub(crate) const MAX_DESCRIPTION: usize = 4096;
 const HEADER: usize = 64;
@@ -90,6 +91,10 @@ pub struct CheckpointMeta {
     pub seconds: f64,
     /// The integrator and its parameters, as text.
     pub integrator: String,
+    /// The samples per pixel the sampler was set up for (zsobol's pixel blocks follow it), which
+    /// a resumed render keeps; 0 for the scene's own set-up (its `sample_count`), as in files
+    /// written before it was saved.
+    pub sampler_spp: u64,
 }
 
 impl CheckpointMeta {

@@ -108,7 +108,11 @@ pub fn read_checkpoint(bytes: &[u8]) -> Result<Checkpoint, String> {
             records(count, 4).and_then(|b| records(b, stride)),
         ),
     };
-    let expected = add(splats_end, Some(8));
+    let sampler_end = match version {
+        1..=5 => splats_end,
+        _ => add(splats_end, Some(8)),
+    };
+    let expected = add(sampler_end, Some(8));
     if expected != Some(bytes.len() as u64) {
         return Err(format!(
             "file is {} bytes, a {width}x{height} checkpoint takes {} (truncated or corrupted)",
@@ -201,6 +205,13 @@ pub fn read_checkpoint(bytes: &[u8]) -> Result<Checkpoint, String> {
         }
         Some(sums)
     };
+    if version >= 4 && stride == 0 {
+        c.at += 8;
+    }
+    let sampler_spp = match version {
+        1..=5 => 0,
+        _ => c.u64(),
+    };
     Ok(Checkpoint {
         meta: CheckpointMeta {
             width,
@@ -211,6 +222,7 @@ pub fn read_checkpoint(bytes: &[u8]) -> Result<Checkpoint, String> {
             passes,
             seconds,
             integrator,
+            sampler_spp,
         },
         pixels,
         pending,

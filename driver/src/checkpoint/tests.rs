@@ -42,9 +42,21 @@ fn resum(mut b: Vec<u8>) -> Vec<u8> {
     b
 }
 
-/// A version 5 checkpoint of `pixels` pixels in version 4's layout: every pixel record (and
-/// every check point record) without its last word, the ray count.
+/// Bytes after the last section: the sampler's set-up count and the checksum.
+const TAIL: usize = 16;
+
+/// A version 6 checkpoint in version 5's layout: without the sampler's set-up count.
+fn v5(bytes: &[u8]) -> Vec<u8> {
+    let mut b = bytes[..bytes.len() - TAIL].to_vec();
+    b.extend_from_slice(&[0; 8]);
+    b[8..12].copy_from_slice(&5u32.to_le_bytes());
+    resum(b)
+}
+
+/// A version 6 checkpoint of `pixels` pixels in version 4's layout: every pixel record (and
+/// every check point record) without its last word, the ray count, and no set-up count.
 fn without_rays(bytes: &[u8], pixels: usize) -> Vec<u8> {
+    let bytes = &v5(bytes)[..];
     let n = u32::from_le_bytes(bytes[60..64].try_into().unwrap()) as usize;
     let word = |at: usize| u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap()) as usize;
     let mut b = bytes[..64 + n].to_vec();
@@ -93,6 +105,7 @@ fn round_trip_and_every_damage_is_caught() {
         passes: 3,
         seconds: 1.5,
         integrator: "Path(max_depth: 8)".into(),
+        sampler_spp: 64,
     };
     let pixels: Vec<PixelAccum> = (0..6)
         .map(|i| PixelAccum {
@@ -169,8 +182,17 @@ fn round_trip_and_every_damage_is_caught() {
     let back = read_checkpoint(&with_splats).unwrap();
     assert_eq!(back.check.as_ref(), Some(&check));
     assert_eq!(back.splats.as_ref(), Some(&splats.sums));
-    // Versions 1 (no targets section), 2 (no check point section), 3 (no splatted sums) and 4
-    // (no ray counts, read as 0) are still read.
+    // Versions 1 (no targets section), 2 (no check point section), 3 (no splatted sums), 4
+    // (no ray counts, read as 0) and 5 (no set-up count, read as 0) are still read.
+    let v5_back = read_checkpoint(&v5(&with_splats)).unwrap();
+    assert_eq!(v5_back.meta.sampler_spp, 0);
+    assert_eq!(v5_back.pixels, pixels);
+    assert_eq!(v5_back.splats.as_ref(), Some(&splats.sums));
+    assert_eq!(read_checkpoint(&v5(&bytes)).unwrap().pixels, pixels);
+    // Control: a version 6 file labelled 5 is refused (wrong length).
+    let mut relabelled = with_splats.clone();
+    relabelled[8..12].copy_from_slice(&5u32.to_le_bytes());
+    assert!(read_checkpoint(&resum(relabelled)).is_err());
     let uncounted = |p: &[PixelAccum]| -> Vec<PixelAccum> {
         p.iter().map(|p| PixelAccum { rays: 0, ..*p }).collect()
     };
@@ -190,12 +212,12 @@ fn round_trip_and_every_damage_is_caught() {
     let v3 = read_checkpoint(&older(&without_rays(&with_both, 6), 8, 3)).unwrap();
     assert_eq!(v3.check.map(|c| c.pixels), Some(uncounted(&check.pixels)));
     // Control: a version 5 file's records read as version 4 are refused (wrong length).
-    let mut relabelled = with_both.clone();
+    let mut relabelled = v5(&with_both);
     relabelled[8..12].copy_from_slice(&4u32.to_le_bytes());
     assert!(read_checkpoint(&resum(relabelled)).is_err());
     // Splatted sums that are not finite are refused.
     let mut inf = with_splats.clone();
-    let last_sum = inf.len() - 8 - 4;
+    let last_sum = inf.len() - TAIL - 4;
     inf[last_sum..last_sum + 4].copy_from_slice(&f32::INFINITY.to_le_bytes());
     assert!(read_checkpoint(&resum(inf))
         .unwrap_err()
@@ -205,15 +227,15 @@ fn round_trip_and_every_damage_is_caught() {
     // now, a negative estimate, a check point at 0 spp.
     let n = with_both.len();
     let mut low = with_targets.clone();
-    let at = low.len() - 24 - 8 * 6;
+    let at = low.len() - TAIL - 16 - 8 * 6;
     low[at..at + 8].copy_from_slice(&0u64.to_le_bytes());
     let err = |b: Vec<u8>| read_checkpoint(&resum(b)).unwrap_err();
     assert!(err(low).contains("below its sample count"));
     let mut more = with_both.clone();
-    let last_count = n - 8 - 8 - 24;
+    let last_count = n - TAIL - 8 - 24;
     more[last_count..last_count + 8].copy_from_slice(&99u64.to_le_bytes());
     assert!(err(more).contains("check point pixel (2, 1)"));
-    let estimate_at = n - 8 - 8 - 72 * 6 - 8;
+    let estimate_at = n - TAIL - 8 - 72 * 6 - 8;
     let mut negative = with_both.clone();
     negative[estimate_at..estimate_at + 8].copy_from_slice(&(-1.0f64).to_le_bytes());
     assert!(err(negative).contains("estimate -1"));

@@ -105,6 +105,7 @@ fn write_to(
             }
         }
     }
+    w.write_all(&meta.sampler_spp.to_le_bytes())?;
     let sum = w.hash.0;
     let mut inner = w.inner;
     inner.write_all(&sum.to_le_bytes())?;
