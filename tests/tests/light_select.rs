@@ -33,8 +33,15 @@ fn vertices(
                 continue;
             }
             let wi = si.frame.to_local(si.wi);
-            let sel = VertexSelection::new(scene.light_bounds(), &si, bsdf, si.uv.into(), wi)
-                .expect("2 to 8 lights give a vertex selection");
+            let sel = VertexSelection::new(
+                scene.light_bounds(),
+                scene.light_lanes(),
+                &si,
+                bsdf,
+                si.uv.into(),
+                wi,
+            )
+            .expect("2 to 8 lights give a vertex selection");
             out.push((si, sel));
         }
     }

@@ -3,6 +3,7 @@
 //! uniform) and, for the per-vertex choice, each light's bound; the integrators ask it for a
 //! light and for the probability of the one a ray found.
 use super::bound::LightBound;
+use super::sphere_lanes::SphereLanes;
 use super::vertex::MAX_VERTEX_LIGHTS;
 use crate::emitter::{Emitter, EmitterCtx};
 use crate::sampling::Discrete1D;
@@ -35,6 +36,8 @@ pub struct LightSampler {
     selection: Option<Discrete1D>,
     /// Each light as vertex selection sees it (empty: the scene-wide `selection` applies).
     bounds: Vec<LightBound>,
+    /// The same lights four to a vector, where they are all spheres.
+    lanes: Option<SphereLanes>,
 }
 
 impl LightSampler {
@@ -60,6 +63,7 @@ impl LightSampler {
             how,
             count: emitters.len(),
             selection,
+            lanes: SphereLanes::of(&bounds),
             bounds,
         }
     }
@@ -73,6 +77,12 @@ impl LightSampler {
     #[inline]
     pub fn bounds(&self) -> &[LightBound] {
         &self.bounds
+    }
+
+    /// [`Self::bounds`] four to a vector, where every light is a sphere.
+    #[inline]
+    pub fn lanes(&self) -> Option<&SphereLanes> {
+        self.lanes.as_ref()
     }
 
     /// Picks a light for emitter sampling: its index and the probability it was picked.

@@ -9,6 +9,7 @@
 //!
 //! Scenes with one light, or more than [`MAX_VERTEX_LIGHTS`], use the scene-wide choice.
 use super::bound::LightBound;
+use super::sphere_lanes::{SphereLanes, LANE_LIGHTS};
 use crate::bsdf::Bsdf;
 use crate::emitter::luminance;
 use crate::geometry::{Interaction, ShadingPoint};
@@ -16,6 +17,7 @@ use glam::Vec3;
 
 /// Most lights a vertex selection weighs one by one.
 pub const MAX_VERTEX_LIGHTS: usize = 8;
+const _: () = assert!(MAX_VERTEX_LIGHTS == LANE_LIGHTS, "the lanes hold every light");
 
 /// Share of the probability spread evenly over all lights.
 pub const UNIFORM_SHARE: f32 = 0.2;
@@ -34,8 +36,11 @@ impl VertexSelection {
     /// The selection at `si` (BSDF `bsdf` asked at `at`, local incident direction `wi`) from the lights'
     /// bounds; `None` without bounds (the scene's own choice then applies).
     #[inline(always)]
+    /// `lanes` are the same lights laid out for [`SphereLanes`] where the scene has them (the
+    /// weights are the same bits either way, found four lights at a time).
     pub fn new(
         bounds: &[LightBound],
+        lanes: Option<&SphereLanes>,
         si: &Interaction,
         bsdf: &Bsdf,
         at: ShadingPoint,
@@ -46,19 +51,36 @@ impl VertexSelection {
         if !(2..=MAX_VERTEX_LIGHTS).contains(&bounds.len()) {
             return None;
         }
-        Some(Self::from_bounds(bounds, si, bsdf, at, wi))
+        Some(Self::from_bounds(bounds, lanes, si, bsdf, at, wi))
     }
 
     /// [`VertexSelection::new`] for 2 to [`MAX_VERTEX_LIGHTS`] bounds.
     #[inline(never)]
     fn from_bounds(
         bounds: &[LightBound],
+        lanes: Option<&SphereLanes>,
         si: &Interaction,
         bsdf: &Bsdf,
         at: ShadingPoint,
         wi: Vec3,
     ) -> VertexSelection {
         let n = bounds.len();
+        let (weight, sum) = match lanes.and_then(|l| l.weights(si.p, &si.frame, bsdf, wi)) {
+            Some(found) => found,
+            None => Self::weights(bounds, si, bsdf, at, wi),
+        };
+        Self::from_weights(n, &weight, sum)
+    }
+
+    /// Each light's weight at the vertex, one light after another, and their sum.
+    #[inline(always)]
+    fn weights(
+        bounds: &[LightBound],
+        si: &Interaction,
+        bsdf: &Bsdf,
+        at: ShadingPoint,
+        wi: Vec3,
+    ) -> ([f32; MAX_VERTEX_LIGHTS], f32) {
         // The BSDF toward `wo` (local), in luminance, up to a factor common to every light
         // (which cancels). A diffuse BSDF is its reflectance over pi times the cosine: the
         // cosine alone weighs. A rough conductor weighs by its lobe's shape alone (no Fresnel,
@@ -91,6 +113,12 @@ impl VertexSelection {
             *w = e.irradiance * f.max(0.0);
             sum += *w;
         }
+        (weight, sum)
+    }
+
+    /// The selection from the lights' weights (the first `n`) and their sum.
+    #[inline(always)]
+    fn from_weights(n: usize, weight: &[f32; MAX_VERTEX_LIGHTS], sum: f32) -> VertexSelection {
         let even = 1.0 / n as f32;
         let mut s = VertexSelection {
             pdf: [0.0; MAX_VERTEX_LIGHTS],
@@ -174,7 +202,8 @@ mod tests {
     fn weighs_by_estimate_with_an_even_share() {
         let (si, bsdf) = vertex();
         let bounds = [point(Vec3::Z, 4.0), point(Vec3::Z * 2.0, 4.0)];
-        let sel = VertexSelection::new(&bounds, &si, &bsdf, Vec2::ZERO.into(), Vec3::Z).unwrap();
+        let sel =
+            VertexSelection::new(&bounds, None, &si, &bsdf, Vec2::ZERO.into(), Vec3::Z).unwrap();
         assert!((sel.pdf(0) - 0.74).abs() < 1e-6, "{}", sel.pdf(0));
         assert!((sel.pdf(1) - 0.26).abs() < 1e-6, "{}", sel.pdf(1));
         assert_eq!(sel.pick(0.0).0, 0);
@@ -193,16 +222,16 @@ mod tests {
             [point(Vec3::Z, 1.0), point(-Vec3::Z, 1.0)],
             [point(Vec3::Z, 1.0), point(Vec3::Z, f32::NAN)],
         ] {
-            let sel =
-                VertexSelection::new(&bounds, &si, &bsdf, Vec2::ZERO.into(), Vec3::Z).unwrap();
+            let sel = VertexSelection::new(&bounds, None, &si, &bsdf, Vec2::ZERO.into(), Vec3::Z)
+                .unwrap();
             assert!((sel.pdf(1) - 0.1).abs() < 1e-6, "{}", sel.pdf(1));
         }
         for bounds in [
             [point(Vec3::Z, 1.0), point(-Vec3::Z, f32::INFINITY)],
             [point(-Vec3::Z, 1.0), point(-Vec3::Z * 2.0, 1.0)],
         ] {
-            let sel =
-                VertexSelection::new(&bounds, &si, &bsdf, Vec2::ZERO.into(), Vec3::Z).unwrap();
+            let sel = VertexSelection::new(&bounds, None, &si, &bsdf, Vec2::ZERO.into(), Vec3::Z)
+                .unwrap();
             assert_eq!((sel.pdf(0), sel.pdf(1)), (0.5, 0.5), "{bounds:?}");
         }
     }
@@ -212,9 +241,10 @@ mod tests {
     fn only_two_to_eight_lights() {
         let (si, bsdf) = vertex();
         let b = point(Vec3::Z, 1.0);
-        assert!(VertexSelection::new(&[b], &si, &bsdf, Vec2::ZERO.into(), Vec3::Z).is_none());
+        assert!(VertexSelection::new(&[b], None, &si, &bsdf, Vec2::ZERO.into(), Vec3::Z).is_none());
         assert!(VertexSelection::new(
             &[b; MAX_VERTEX_LIGHTS + 1],
+            None,
             &si,
             &bsdf,
             Vec2::ZERO.into(),
@@ -223,6 +253,7 @@ mod tests {
         .is_none());
         assert!(VertexSelection::new(
             &[b; MAX_VERTEX_LIGHTS],
+            None,
             &si,
             &bsdf,
             Vec2::ZERO.into(),

@@ -15,7 +15,7 @@ pub(crate) use arc::{ACOS_COEFFS, ATAN_COEFFS, PI_LO};
 pub use float::{gamma, next_down, next_up, offset_ray_origin};
 pub use frame::Frame;
 pub use ray::Ray;
-pub use sqrt::{acos_f64, sqrt, sqrt_f64, Norm};
+pub use sqrt::{acos_f64, sqrt, sqrt4, sqrt_f64, Norm};
 pub use transform::Transform;
 pub use turns::sincos_turns;
 

@@ -19,12 +19,15 @@
 //! upper halves (`vzeroupper`) before calling it in builds for AVX CPUs, so that square root
 //! finds nothing to merge. (The `f32` arc cosine is a polynomial of its own, in `arc.rs`.)
 //!
-//! The `unsafe` blocks are the intrinsic calls: `sqrtss` and `sqrtsd` are part of SSE and SSE2,
+//! [`sqrt4`] takes four square roots in one instruction, for code that holds four values in a
+//! vector's lanes.
+//!
+//! The `unsafe` blocks are the intrinsic calls: `sqrtss`, `sqrtps` and `sqrtsd` are part of SSE and SSE2,
 //! which every x86_64 CPU has, `vzeroupper` is compiled only for AVX CPUs, and none touches
 //! memory.
 #![allow(unsafe_code)]
 
-use glam::{DVec2, DVec3, Vec2, Vec3};
+use glam::{DVec2, DVec3, Vec2, Vec3, Vec4};
 
 /// Correctly rounded `sqrt(x)` (NaN for negative `x`), as one `sqrtss`/`vsqrtss` on x86_64.
 #[inline(always)]
@@ -60,6 +63,23 @@ pub fn sqrt_f64(x: f64) -> f64 {
     #[cfg(not(target_arch = "x86_64"))]
     {
         libm::sqrt(x)
+    }
+}
+
+/// [`sqrt`] of each of four lanes: one `sqrtps`/`vsqrtps` on x86_64, four [`sqrt`]s elsewhere.
+/// Correctly rounded per lane, so each lane's bits are [`sqrt`]'s.
+#[inline(always)]
+pub fn sqrt4(v: Vec4) -> Vec4 {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use core::arch::x86_64::{__m128, _mm_sqrt_ps};
+        let m: __m128 = v.into();
+        // SAFETY: SSE is part of the x86_64 baseline; the intrinsic only computes in registers.
+        Vec4::from(unsafe { _mm_sqrt_ps(m) })
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        Vec4::new(sqrt(v.x), sqrt(v.y), sqrt(v.z), sqrt(v.w))
     }
 }
 
