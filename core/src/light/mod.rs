@@ -7,24 +7,24 @@
 //! - `sampler`: the scene's light sampler, built once from its emitters (by power, uniform, or
 //!   per vertex), and the `light_selection` setting that chooses among these;
 //! - `vertex`: the per-vertex choice, weighing each light's estimate by the BSDF toward it;
-//! - `sphere_lanes`: the same weighing four sphere lights at a time, in a vector's lanes;
+//! - `light_lanes`: the same weighing four lights at a time, in a vector's lanes;
 //! - `bound`: each light as that choice sees it, and its estimate at a point;
 //! - `behind`: the half-space behind a flat one-sided light, where its sampling is skipped;
 //! - `sample`: what one emitter sample delivers to an integrator;
 //! - `strategies`: emitter sampling from a surface point, and emission along a traced ray.
 mod behind;
 mod bound;
+mod light_lanes;
 mod sample;
 mod sampler;
-mod sphere_lanes;
 mod strategies;
 mod vertex;
 
 pub use behind::Behind;
 pub use bound::{LightBound, LightEstimate};
+pub use light_lanes::LightLanes;
 pub use sample::LightSample;
 pub use sampler::{LightSampler, LightSelection};
-pub use sphere_lanes::SphereLanes;
 pub(crate) use strategies::emission_along;
 pub use strategies::sample_light;
 pub use vertex::{VertexSelection, MAX_VERTEX_LIGHTS, UNIFORM_SHARE};

@@ -3,7 +3,7 @@
 //! uniform) and, for the per-vertex choice, each light's bound; the integrators ask it for a
 //! light and for the probability of the one a ray found.
 use super::bound::LightBound;
-use super::sphere_lanes::SphereLanes;
+use super::light_lanes::LightLanes;
 use super::vertex::MAX_VERTEX_LIGHTS;
 use crate::emitter::{Emitter, EmitterCtx};
 use crate::sampling::Discrete1D;
@@ -36,8 +36,8 @@ pub struct LightSampler {
     selection: Option<Discrete1D>,
     /// Each light as vertex selection sees it (empty: the scene-wide `selection` applies).
     bounds: Vec<LightBound>,
-    /// The same lights four to a vector, where they are all spheres.
-    lanes: Option<SphereLanes>,
+    /// The same lights four to a vector, where at least two have a position.
+    lanes: Option<LightLanes>,
 }
 
 impl LightSampler {
@@ -63,7 +63,7 @@ impl LightSampler {
             how,
             count: emitters.len(),
             selection,
-            lanes: SphereLanes::of(&bounds),
+            lanes: LightLanes::of(&bounds),
             bounds,
         }
     }
@@ -79,9 +79,9 @@ impl LightSampler {
         &self.bounds
     }
 
-    /// [`Self::bounds`] four to a vector, where every light is a sphere.
+    /// [`Self::bounds`] four to a vector, where at least two have a position.
     #[inline]
-    pub fn lanes(&self) -> Option<&SphereLanes> {
+    pub fn lanes(&self) -> Option<&LightLanes> {
         self.lanes.as_ref()
     }
 

@@ -9,7 +9,7 @@
 //!
 //! Scenes with one light, or more than [`MAX_VERTEX_LIGHTS`], use the scene-wide choice.
 use super::bound::LightBound;
-use super::sphere_lanes::{SphereLanes, LANE_LIGHTS};
+use super::light_lanes::{LightLanes, LANE_LIGHTS};
 use crate::bsdf::Bsdf;
 use crate::emitter::luminance;
 use crate::geometry::{Interaction, ShadingPoint};
@@ -17,7 +17,10 @@ use glam::Vec3;
 
 /// Most lights a vertex selection weighs one by one.
 pub const MAX_VERTEX_LIGHTS: usize = 8;
-const _: () = assert!(MAX_VERTEX_LIGHTS == LANE_LIGHTS, "the lanes hold every light");
+const _: () = assert!(
+    MAX_VERTEX_LIGHTS == LANE_LIGHTS,
+    "the lanes hold every light"
+);
 
 /// Share of the probability spread evenly over all lights.
 pub const UNIFORM_SHARE: f32 = 0.2;
@@ -34,13 +37,13 @@ pub struct VertexSelection {
 
 impl VertexSelection {
     /// The selection at `si` (BSDF `bsdf` asked at `at`, local incident direction `wi`) from the lights'
-    /// bounds; `None` without bounds (the scene's own choice then applies).
+    /// bounds; `None` without bounds (the scene's own choice then applies). `lanes` are the same
+    /// lights laid out for [`LightLanes`] where the scene has them (the weights are the same
+    /// bits either way, found four lights at a time).
     #[inline(always)]
-    /// `lanes` are the same lights laid out for [`SphereLanes`] where the scene has them (the
-    /// weights are the same bits either way, found four lights at a time).
     pub fn new(
         bounds: &[LightBound],
-        lanes: Option<&SphereLanes>,
+        lanes: Option<&LightLanes>,
         si: &Interaction,
         bsdf: &Bsdf,
         at: ShadingPoint,
@@ -58,29 +61,13 @@ impl VertexSelection {
     #[inline(never)]
     fn from_bounds(
         bounds: &[LightBound],
-        lanes: Option<&SphereLanes>,
+        lanes: Option<&LightLanes>,
         si: &Interaction,
         bsdf: &Bsdf,
         at: ShadingPoint,
         wi: Vec3,
     ) -> VertexSelection {
         let n = bounds.len();
-        let (weight, sum) = match lanes.and_then(|l| l.weights(si.p, &si.frame, bsdf, wi)) {
-            Some(found) => found,
-            None => Self::weights(bounds, si, bsdf, at, wi),
-        };
-        Self::from_weights(n, &weight, sum)
-    }
-
-    /// Each light's weight at the vertex, one light after another, and their sum.
-    #[inline(always)]
-    fn weights(
-        bounds: &[LightBound],
-        si: &Interaction,
-        bsdf: &Bsdf,
-        at: ShadingPoint,
-        wi: Vec3,
-    ) -> ([f32; MAX_VERTEX_LIGHTS], f32) {
         // The BSDF toward `wo` (local), in luminance, up to a factor common to every light
         // (which cancels). A diffuse BSDF is its reflectance over pi times the cosine: the
         // cosine alone weighs. A rough conductor weighs by its lobe's shape alone (no Fresnel,
@@ -97,23 +84,22 @@ impl VertexSelection {
             Bsdf::RoughConductor(c) => c.lobe(wi, wo),
             _ => luminance(bsdf.eval(wi, wo, at)),
         };
-        let mut weight = [0.0f32; MAX_VERTEX_LIGHTS];
-        let mut sum = 0.0f32;
-        for (w, b) in weight.iter_mut().zip(bounds) {
-            let e = b.estimate(si.p);
-            if !(e.irradiance > 0.0) {
-                continue;
+        let one = |k: usize| light_weight(&bounds[k], si, wi, &weigh);
+        let (weight, sum) = match lanes.and_then(|l| l.weights(si.p, &si.frame, bsdf, wi, one)) {
+            Some(found) => found,
+            None => {
+                let mut weight = [0.0f32; MAX_VERTEX_LIGHTS];
+                let mut sum = 0.0f32;
+                for (k, w) in weight[..n].iter_mut().enumerate() {
+                    if let Some(x) = one(k) {
+                        *w = x;
+                        sum += x;
+                    }
+                }
+                (weight, sum)
             }
-            let f = match e.toward {
-                Some(d) => weigh(si.frame.to_local(d)),
-                // Light from everywhere: the BSDF toward the normal or the mirror direction,
-                // whichever is larger.
-                None => weigh(Vec3::Z).max(weigh(Vec3::new(-wi.x, -wi.y, wi.z))),
-            };
-            *w = e.irradiance * f.max(0.0);
-            sum += *w;
-        }
-        (weight, sum)
+        };
+        Self::from_weights(n, &weight, sum)
     }
 
     /// The selection from the lights' weights (the first `n`) and their sum.
@@ -163,6 +149,29 @@ impl VertexSelection {
     pub fn pdf(&self, k: usize) -> f32 {
         self.pdf[k]
     }
+}
+
+/// Light `b`'s weight at vertex `si` (local incident direction `wi`), the BSDF weighed toward a
+/// local direction by `weigh`; `None` where the light is estimated to give nothing (it then
+/// keeps only its even share, and adds nothing to the sum).
+#[inline(always)]
+fn light_weight(
+    b: &LightBound,
+    si: &Interaction,
+    wi: Vec3,
+    weigh: &impl Fn(Vec3) -> f32,
+) -> Option<f32> {
+    let e = b.estimate(si.p);
+    if !(e.irradiance > 0.0) {
+        return None;
+    }
+    let f = match e.toward {
+        Some(d) => weigh(si.frame.to_local(d)),
+        // Light from everywhere: the BSDF toward the normal or the mirror direction,
+        // whichever is larger.
+        None => weigh(Vec3::Z).max(weigh(Vec3::new(-wi.x, -wi.y, wi.z))),
+    };
+    Some(e.irradiance * f.max(0.0))
 }
 
 #[cfg(test)]
