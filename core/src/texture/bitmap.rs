@@ -156,7 +156,10 @@ impl Bitmap {
     }
 
     /// The colour at surface coordinates `uv` (a non-finite `uv` reads as `(0, 0)`, a huge one
-    /// as if clamped to +-1e9).
+    /// as if clamped to +-1e9). Always inlined: once the compiler stopped inlining it into
+    /// emitter sampling's BSDF evaluation (after an unrelated change elsewhere), the material
+    /// scene took 2-3% longer (`scripts/ab_bench.py`).
+    #[inline(always)]
     pub fn eval(&self, uv: Vec2) -> Color {
         let uv = self.to_uv.apply(uv);
         let uv = if uv.is_finite() {
