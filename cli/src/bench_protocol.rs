@@ -58,7 +58,8 @@ fn run_once(
     let start = Instant::now();
     let mut loaded = load_scene(c.scene, c.defines).map_err(|e| e.to_string())?;
     loaded.set_integrator(Some(c.integrator), c.max_depth)?;
-    loaded.set_sampler(c.sampler, spp)?;
+    // Set up for the count rendered, as `tessera render --spp` sets it up.
+    loaded.set_sampler_for(c.sampler, spp)?;
     let seed = c.seed.unwrap_or(loaded.seed);
     let job = RenderJob::new(&loaded.scene, &loaded.integrator, seed);
     let rgb = render(&job, 0..spp, opts, &mut |_, _| {}).rgb();
