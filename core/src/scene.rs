@@ -6,7 +6,7 @@ use crate::bsdf::{Bsdf, BsdfTraits};
 use crate::camera::{Camera, Filter};
 use crate::emitter::{Emitter, EmitterCtx};
 use crate::geometry::{Disk, Hit, Instance, Interaction, Prim, Shape, ShapeKind, TriRay};
-use crate::light::{Behind, LightBound, LightLanes, LightSampler, LightSelection};
+use crate::light::{Behind, LightBound, LightSampler, LightSelection};
 use crate::math::{Aabb, Norm, Ray};
 use crate::medium::SceneMedia;
 use crate::splat::Footprint;
@@ -337,12 +337,6 @@ impl Scene {
     #[inline]
     pub fn light_bounds(&self) -> &[LightBound] {
         self.lights.bounds()
-    }
-
-    /// The same lights four to a vector, where at least two have a position.
-    #[inline]
-    pub fn light_lanes(&self) -> Option<&LightLanes> {
-        self.lights.lanes()
     }
 
     /// Corners of primitive `i` if it is a triangle.

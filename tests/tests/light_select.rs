@@ -35,7 +35,7 @@ fn vertices(
             let wi = si.frame.to_local(si.wi);
             let sel = VertexSelection::new(
                 scene.light_bounds(),
-                scene.light_lanes(),
+                scene.lights().lanes(),
                 &si,
                 bsdf,
                 si.uv.into(),

@@ -78,7 +78,14 @@ impl DirectIntegrator {
         let (ne, nb) = (self.emitter_samples as f32, self.bsdf_samples as f32);
         let nee = scene.features.has_emitters && traits.has_smooth;
         let sel = if nee && self.emitter_samples > 0 {
-            VertexSelection::new(scene.light_bounds(), scene.light_lanes(), &si, bsdf, at, wi)
+            VertexSelection::new(
+                scene.light_bounds(),
+                scene.lights().lanes(),
+                &si,
+                bsdf,
+                at,
+                wi,
+            )
         } else {
             None
         };

@@ -335,7 +335,14 @@ impl PathIntegrator {
         };
         let nee = strategy != Strategy::Bsdf && features.has_emitters && traits.has_smooth;
         let sel = if nee {
-            VertexSelection::new(scene.light_bounds(), scene.light_lanes(), si, bsdf, at, wi)
+            VertexSelection::new(
+                scene.light_bounds(),
+                scene.lights().lanes(),
+                si,
+                bsdf,
+                at,
+                wi,
+            )
         } else {
             None
         };

@@ -77,11 +77,10 @@ impl LightLanes {
             groups: [Group::default(); GROUPS],
             alone: 0,
         };
-        let mut kinds = [[false; 4]; 4 * GROUPS];
         for (k, b) in bounds.iter().enumerate() {
             let g = &mut l.groups[k / 4];
             let i = k % 4;
-            let (at, kind) = match *b {
+            let at = match *b {
                 LightBound::Sphere {
                     center,
                     radius,
@@ -89,7 +88,8 @@ impl LightLanes {
                 } => {
                     g.inside2[i] = radius * radius;
                     g.lum[i] = lum;
-                    (center, 0)
+                    g.sphere.set(i, true);
+                    center
                 }
                 LightBound::Flat {
                     center,
@@ -99,15 +99,18 @@ impl LightLanes {
                 } => {
                     (g.nx[i], g.ny[i], g.nz[i]) = (normal.x, normal.y, normal.z);
                     (g.area[i], g.lum[i]) = (area, lum);
-                    (center, 1)
+                    g.flat.set(i, true);
+                    center
                 }
                 LightBound::Solid { center, area, lum } => {
                     (g.area[i], g.lum[i]) = (area, lum);
-                    (center, 2)
+                    g.solid.set(i, true);
+                    center
                 }
                 LightBound::Point { position, lum } => {
                     g.lum[i] = lum;
-                    (position, 3)
+                    g.point.set(i, true);
+                    position
                 }
                 LightBound::Direction { .. } | LightBound::Environment { .. } => {
                     l.alone |= 1 << k;
@@ -116,14 +119,6 @@ impl LightLanes {
             };
             (g.cx[i], g.cy[i], g.cz[i]) = (at.x, at.y, at.z);
             g.placed |= 1 << i;
-            kinds[k][kind] = true;
-        }
-        for (gi, g) in l.groups.iter_mut().enumerate() {
-            let mask = |kind: usize| {
-                let k = |i: usize| kinds[4 * gi + i][kind];
-                BVec4A::new(k(0), k(1), k(2), k(3))
-            };
-            (g.sphere, g.flat, g.solid, g.point) = (mask(0), mask(1), mask(2), mask(3));
         }
         let placed = l.groups.iter().map(|g| g.placed.count_ones()).sum::<u32>();
         (placed >= 2).then_some(l)
