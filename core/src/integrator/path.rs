@@ -176,10 +176,11 @@ impl PathIntegrator {
         let whole = |t| t;
         // A camera ray cast by the caller: its step here, the loop from the next ray on.
         if let Some(hit) = first {
-            let Some(si) = self.arrive_at::<ST, P>(scene, &path, hit, &mut result, probe) else {
+            let Some(si) = self.arrive_at::<ST, P>(scene, &path, hit.as_ref(), &mut result, probe)
+            else {
                 return result;
             };
-            if !self.leave::<ST, S, P>(scene, &si, &mut path, &mut result, sampler, probe, whole) {
+            if !self.leave::<ST, S, P>(scene, si, &mut path, &mut result, sampler, probe, whole) {
                 return result;
             }
         }
@@ -202,8 +203,14 @@ impl PathIntegrator {
         probe: &mut P,
         roulette_sees: R,
     ) {
-        while let Some(si) = self.arrive::<ST, P>(scene, path, result, probe) {
-            if !self.leave::<ST, S, P>(scene, &si, path, result, sampler, probe, &roulette_sees) {
+        // The hit is borrowed where the cast wrote it, never moved: a moved `Interaction` was
+        // copied by loads wider than the cast's stores, which stall the loop.
+        loop {
+            let hit = probe.intersect(scene, &path.ray);
+            let Some(si) = self.arrive_at::<ST, P>(scene, path, hit.as_ref(), result, probe) else {
+                break;
+            };
+            if !self.leave::<ST, S, P>(scene, si, path, result, sampler, probe, &roulette_sees) {
                 break;
             }
         }
@@ -240,19 +247,20 @@ impl PathIntegrator {
         probe: &mut P,
     ) -> Option<Interaction> {
         let hit = probe.intersect(scene, &path.ray);
-        self.arrive_at::<ST, P>(scene, path, hit, result, probe)
+        self.arrive_at::<ST, P>(scene, path, hit.as_ref(), result, probe)
+            .copied()
     }
 
     /// [`PathIntegrator::arrive`] for the path's ray, already cast: `hit` is what it met.
     #[inline(always)]
-    pub(super) fn arrive_at<const ST: u8, P: Probe>(
+    pub(super) fn arrive_at<'h, const ST: u8, P: Probe>(
         &self,
         scene: &Scene,
         path: &PathState,
-        hit: Option<Interaction>,
+        hit: Option<&'h Interaction>,
         result: &mut Color,
         probe: &mut P,
-    ) -> Option<Interaction> {
+    ) -> Option<&'h Interaction> {
         let strategy = Strategy::of(ST);
         let features = &scene.features;
         let (ray, throughput, depth) = (&path.ray, path.throughput, path.depth);
@@ -263,7 +271,7 @@ impl PathIntegrator {
         } else {
             RayKind::Continuation
         });
-        probe.hit(scene, hit.as_ref(), ray.d);
+        probe.hit(scene, hit, ray.d);
         // Mitsuba 3's hide_emitters: a camera ray that meets an emitter sees nothing at all.
         if !visible
             && hit
@@ -283,9 +291,9 @@ impl PathIntegrator {
                 scene,
                 from,
                 d,
-                hit.as_ref(),
+                hit,
                 with_pdf,
-                prev.and_then(|p| p.sel.as_ref()),
+                prev.and(path.sel.as_ref()),
                 probe,
                 |probe, le, light_pdf| {
                     let w = self.hit_weight(strategy, prev, light_pdf, probe);
@@ -334,7 +342,9 @@ impl PathIntegrator {
             memo: memo.as_ref(),
         };
         let nee = strategy != Strategy::Bsdf && features.has_emitters && traits.has_smooth;
-        let sel = if nee {
+        // The previous vertex's selection has been used (by `arrive_at`): this one's takes its
+        // place.
+        path.sel = if nee {
             VertexSelection::new(
                 scene.light_bounds(),
                 scene.lights().lanes(),
@@ -357,7 +367,7 @@ impl PathIntegrator {
                 wi,
                 sampler,
                 want_pdf,
-                sel.as_ref(),
+                path.sel.as_ref(),
                 probe,
             ) {
                 let w = match (ls.delta, strategy) {
@@ -400,7 +410,6 @@ impl PathIntegrator {
             pdf: bs.pdf,
             nee: nee_next,
             delta: bs.delta,
-            sel,
         });
         let wo = si.frame.to_world(bs.wo);
         probe.bsdf_sample(Some(&bs), wo, path.throughput);

@@ -16,8 +16,6 @@ pub(super) struct Prev {
     pub nee: bool,
     /// Whether the sampled direction came from a delta component of the BSDF.
     pub delta: bool,
-    /// The light selection used there, when it was the vertex's own.
-    pub sel: Option<VertexSelection>,
 }
 
 /// A path's state between two vertices: what the loop carries from one bounce to the next.
@@ -34,6 +32,11 @@ pub(super) struct PathState {
     pub depth: u32,
     /// How the path left the previous vertex.
     pub prev: Option<Prev>,
+    /// The light selection at the last vertex that sampled emitters, when it was the vertex's
+    /// own. Kept here rather than in [`Prev`] so that the selection is written once, in place,
+    /// where the vertex finds it: moved into a fresh `Prev` at each bounce, its 80 bytes were
+    /// copied through the stack by loads wider than the stores that wrote them, which stall.
+    pub sel: Option<VertexSelection>,
 }
 
 impl PathState {
@@ -46,6 +49,7 @@ impl PathState {
             eta: 1.0,
             depth: 0,
             prev: None,
+            sel: None,
         }
     }
 }
