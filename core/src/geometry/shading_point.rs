@@ -60,6 +60,16 @@ impl<'a> ShadingPoint<'a> {
     }
 }
 
+/// A borrowed shading point, copied where it is used: callers pass `&at` to the models so that
+/// the copy is made field by field inside the call, not by one wide load of fields stored a
+/// moment before (which the CPU cannot forward from the narrower stores, and stalls on).
+impl<'a> From<&ShadingPoint<'a>> for ShadingPoint<'a> {
+    #[inline(always)]
+    fn from(at: &ShadingPoint<'a>) -> Self {
+        *at
+    }
+}
+
 impl From<Vec2> for ShadingPoint<'_> {
     #[inline]
     fn from(uv: Vec2) -> Self {

@@ -83,7 +83,7 @@ impl DirectIntegrator {
                 scene.lights().lanes(),
                 &si,
                 bsdf,
-                at,
+                &at,
                 wi,
             )
         } else {
@@ -98,7 +98,7 @@ impl DirectIntegrator {
                     scene,
                     &si,
                     bsdf,
-                    at,
+                    &at,
                     wi,
                     sampler,
                     want_pdf,

@@ -350,7 +350,7 @@ impl PathIntegrator {
                 scene.lights().lanes(),
                 si,
                 bsdf,
-                at,
+                &at,
                 wi,
             )
         } else {
@@ -363,7 +363,7 @@ impl PathIntegrator {
                 scene,
                 si,
                 bsdf,
-                at,
+                &at,
                 wi,
                 sampler,
                 want_pdf,
@@ -391,7 +391,7 @@ impl PathIntegrator {
         }
         sampler.start_stage(depth, Stage::Bsdf);
         let (u1, u2) = traits.draw_sample_inputs(sampler);
-        let Some(bs) = bsdf.sample(wi, u1, u2, at) else {
+        let Some(bs) = bsdf.sample(wi, u1, u2, &at) else {
             probe.bsdf_sample(None, Vec3::ZERO, path.throughput);
             probe.end(PathEnd::BsdfSampleFailed);
             return false;

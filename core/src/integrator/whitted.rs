@@ -60,7 +60,7 @@ impl WhittedIntegrator {
             if traits.has_smooth {
                 if scene.features.has_emitters {
                     sampler.start_stage(depth, Stage::Light);
-                    let ls = sample_light(scene, &si, bsdf, at, wi, sampler, false, None, probe);
+                    let ls = sample_light(scene, &si, bsdf, &at, wi, sampler, false, None, probe);
                     if let Some(ls) = ls {
                         result += throughput * ls.value;
                         probe.light(&ls, 1.0, throughput * ls.value);

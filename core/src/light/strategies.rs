@@ -24,7 +24,7 @@ pub fn sample_light<S: Sampler, P: Probe>(
     scene: &Scene,
     si: &Interaction,
     bsdf: &Bsdf,
-    at: ShadingPoint,
+    at: &ShadingPoint,
     wi: Vec3,
     sampler: &mut S,
     want_bsdf_pdf: bool,

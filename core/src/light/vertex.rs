@@ -46,7 +46,7 @@ impl VertexSelection {
         lanes: Option<&LightLanes>,
         si: &Interaction,
         bsdf: &Bsdf,
-        at: ShadingPoint,
+        at: &ShadingPoint,
         wi: Vec3,
     ) -> Option<VertexSelection> {
         // Checked where the caller is, so that scenes without a choice to make (one light, or
@@ -64,7 +64,7 @@ impl VertexSelection {
         lanes: Option<&LightLanes>,
         si: &Interaction,
         bsdf: &Bsdf,
-        at: ShadingPoint,
+        at: &ShadingPoint,
         wi: Vec3,
     ) -> VertexSelection {
         let n = bounds.len();

@@ -108,8 +108,8 @@ fn lanes_give_the_light_by_light_bits() {
         };
         for bsdf in &bsdfs() {
             let at = Vec2::ZERO.into();
-            let one = VertexSelection::new(&bounds, None, &si, bsdf, at, wi).unwrap();
-            let four = VertexSelection::new(&bounds, Some(&lanes), &si, bsdf, at, wi).unwrap();
+            let one = VertexSelection::new(&bounds, None, &si, bsdf, &at, wi).unwrap();
+            let four = VertexSelection::new(&bounds, Some(&lanes), &si, bsdf, &at, wi).unwrap();
             if lanes.weights(si.p, &si.frame, bsdf, wi, |_| None).is_none() {
                 continue;
             }
@@ -123,7 +123,7 @@ fn lanes_give_the_light_by_light_bits() {
                 p: si.p + Vec3::X * 1e-3,
                 ..si
             };
-            let other = VertexSelection::new(&bounds, None, &moved, bsdf, at, wi).unwrap();
+            let other = VertexSelection::new(&bounds, None, &moved, bsdf, &at, wi).unwrap();
             moved_differs += usize::from(bits(&other, bounds.len()) != bits(&four, bounds.len()));
         }
     }
