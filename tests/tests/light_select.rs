@@ -38,7 +38,7 @@ fn vertices(
                 scene.lights().lanes(),
                 &si,
                 bsdf,
-                si.uv.into(),
+                &si.uv.into(),
                 wi,
             )
             .expect("2 to 8 lights give a vertex selection");
@@ -130,7 +130,7 @@ fn emitter_sample_variance(
                 s,
                 si,
                 bsdf,
-                si.uv.into(),
+                &si.uv.into(),
                 wi,
                 &mut sampler,
                 false,

@@ -391,6 +391,9 @@ impl PathIntegrator {
         }
         sampler.start_stage(depth, Stage::Bsdf);
         let (u1, u2) = traits.draw_sample_inputs(sampler);
+        // Lent, as to emitter sampling above, so that the callee copies the point field by
+        // field (see `ShadingPoint`'s `From<&ShadingPoint>`).
+        #[allow(clippy::needless_borrows_for_generic_args)]
         let Some(bs) = bsdf.sample(wi, u1, u2, &at) else {
             probe.bsdf_sample(None, Vec3::ZERO, path.throughput);
             probe.end(PathEnd::BsdfSampleFailed);

@@ -212,7 +212,7 @@ mod tests {
         let (si, bsdf) = vertex();
         let bounds = [point(Vec3::Z, 4.0), point(Vec3::Z * 2.0, 4.0)];
         let sel =
-            VertexSelection::new(&bounds, None, &si, &bsdf, Vec2::ZERO.into(), Vec3::Z).unwrap();
+            VertexSelection::new(&bounds, None, &si, &bsdf, &Vec2::ZERO.into(), Vec3::Z).unwrap();
         assert!((sel.pdf(0) - 0.74).abs() < 1e-6, "{}", sel.pdf(0));
         assert!((sel.pdf(1) - 0.26).abs() < 1e-6, "{}", sel.pdf(1));
         assert_eq!(sel.pick(0.0).0, 0);
@@ -231,7 +231,7 @@ mod tests {
             [point(Vec3::Z, 1.0), point(-Vec3::Z, 1.0)],
             [point(Vec3::Z, 1.0), point(Vec3::Z, f32::NAN)],
         ] {
-            let sel = VertexSelection::new(&bounds, None, &si, &bsdf, Vec2::ZERO.into(), Vec3::Z)
+            let sel = VertexSelection::new(&bounds, None, &si, &bsdf, &Vec2::ZERO.into(), Vec3::Z)
                 .unwrap();
             assert!((sel.pdf(1) - 0.1).abs() < 1e-6, "{}", sel.pdf(1));
         }
@@ -239,7 +239,7 @@ mod tests {
             [point(Vec3::Z, 1.0), point(-Vec3::Z, f32::INFINITY)],
             [point(-Vec3::Z, 1.0), point(-Vec3::Z * 2.0, 1.0)],
         ] {
-            let sel = VertexSelection::new(&bounds, None, &si, &bsdf, Vec2::ZERO.into(), Vec3::Z)
+            let sel = VertexSelection::new(&bounds, None, &si, &bsdf, &Vec2::ZERO.into(), Vec3::Z)
                 .unwrap();
             assert_eq!((sel.pdf(0), sel.pdf(1)), (0.5, 0.5), "{bounds:?}");
         }
@@ -250,13 +250,15 @@ mod tests {
     fn only_two_to_eight_lights() {
         let (si, bsdf) = vertex();
         let b = point(Vec3::Z, 1.0);
-        assert!(VertexSelection::new(&[b], None, &si, &bsdf, Vec2::ZERO.into(), Vec3::Z).is_none());
+        assert!(
+            VertexSelection::new(&[b], None, &si, &bsdf, &Vec2::ZERO.into(), Vec3::Z).is_none()
+        );
         assert!(VertexSelection::new(
             &[b; MAX_VERTEX_LIGHTS + 1],
             None,
             &si,
             &bsdf,
-            Vec2::ZERO.into(),
+            &Vec2::ZERO.into(),
             Vec3::Z
         )
         .is_none());
@@ -265,7 +267,7 @@ mod tests {
             None,
             &si,
             &bsdf,
-            Vec2::ZERO.into(),
+            &Vec2::ZERO.into(),
             Vec3::Z
         )
         .is_some());
