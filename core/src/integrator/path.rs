@@ -23,7 +23,7 @@
 //! runs them until the path ends. Path reuse (`reuse_halves.rs`) composes the same steps into
 //! the two halves of its group estimator.
 use super::mis::Heuristic;
-use super::path_state::{PathState, Prev};
+use super::path_state::{alive, PathState, Prev};
 use super::probe::{NoProbe, PathEnd, Probe, RayKind};
 use super::strategy::{Strategy, BSDF, EMITTER, HALF, MIS};
 use crate::geometry::{Interaction, ShadingPoint};
@@ -203,8 +203,7 @@ impl PathIntegrator {
         probe: &mut P,
         roulette_sees: R,
     ) {
-        // The hit is borrowed where the cast wrote it, never moved: a moved `Interaction` was
-        // copied by loads wider than the cast's stores, which stall the loop.
+        // The hit is borrowed where the cast wrote it: moved, it was copied with a stall.
         loop {
             let hit = probe.intersect(scene, &path.ray);
             let Some(si) = self.arrive_at::<ST, P>(scene, path, hit.as_ref(), result, probe) else {
@@ -342,8 +341,7 @@ impl PathIntegrator {
             memo: memo.as_ref(),
         };
         let nee = strategy != Strategy::Bsdf && features.has_emitters && traits.has_smooth;
-        // The previous vertex's selection has been used (by `arrive_at`): this one's takes its
-        // place.
+        // The previous vertex's selection, used by `arrive_at`, gives way to this one's.
         path.sel = if nee {
             VertexSelection::new(
                 scene.light_bounds(),
@@ -391,8 +389,7 @@ impl PathIntegrator {
         }
         sampler.start_stage(depth, Stage::Bsdf);
         let (u1, u2) = traits.draw_sample_inputs(sampler);
-        // Lent, as to emitter sampling above, so that the callee copies the point field by
-        // field (see `ShadingPoint`'s `From<&ShadingPoint>`).
+        // Lent, so the callee copies it field by field (`From<&ShadingPoint>`).
         #[allow(clippy::needless_borrows_for_generic_args)]
         let Some(bs) = bsdf.sample(wi, u1, u2, &at) else {
             probe.bsdf_sample(None, Vec3::ZERO, path.throughput);
@@ -448,15 +445,4 @@ impl PathIntegrator {
         }
         survived
     }
-}
-
-/// Whether the path still carries light: false (the path ends) once its throughput is zero or
-/// not finite.
-#[inline(always)]
-pub(super) fn alive<P: Probe>(path: &PathState, probe: &mut P) -> bool {
-    let alive = path.throughput != Color::ZERO && path.throughput.is_finite();
-    if !alive {
-        probe.end(PathEnd::ZeroThroughput);
-    }
-    alive
 }

@@ -1,5 +1,6 @@
 //! A path's state between vertices: what the path loop carries from one bounce to the next,
-//! including how the path left the last vertex ([`Prev`]).
+//! including how the path left the last vertex ([`Prev`]), and whether it still carries light.
+use super::probe::{PathEnd, Probe};
 use crate::light::VertexSelection;
 use crate::math::Ray;
 use crate::Color;
@@ -52,4 +53,15 @@ impl PathState {
             sel: None,
         }
     }
+}
+
+/// Whether the path still carries light: false (the path ends) once its throughput is zero or
+/// not finite.
+#[inline(always)]
+pub(super) fn alive<P: Probe>(path: &PathState, probe: &mut P) -> bool {
+    let alive = path.throughput != Color::ZERO && path.throughput.is_finite();
+    if !alive {
+        probe.end(PathEnd::ZeroThroughput);
+    }
+    alive
 }

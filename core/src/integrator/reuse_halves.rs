@@ -3,8 +3,8 @@
 //! the second vertex, and the suffix, which goes on from that vertex. Run one after the other on
 //! the same state and sampler they are the ordinary path, bit for bit; the group estimator runs
 //! the suffix from a throughput of 1 where it shares the second vertex's light.
-use super::path::{alive, PathIntegrator};
-use super::path_state::PathState;
+use super::path::PathIntegrator;
+use super::path_state::{alive, PathState};
 use super::probe::{PathEnd, Probe};
 use crate::geometry::{Interaction, Partials};
 use crate::math::Ray;
