@@ -342,18 +342,19 @@ impl PathIntegrator {
         };
         let nee = strategy != Strategy::Bsdf && features.has_emitters && traits.has_smooth;
         // The previous vertex's selection, used by `arrive_at`, gives way to this one's.
-        path.sel = if nee {
-            VertexSelection::new(
+        if nee {
+            VertexSelection::set(
+                &mut path.sel,
                 scene.light_bounds(),
                 scene.lights().lanes(),
                 si,
                 bsdf,
                 &at,
                 wi,
-            )
+            );
         } else {
-            None
-        };
+            path.sel = None;
+        }
         if nee {
             let want_pdf = strategy == Strategy::Mis;
             sampler.start_stage(depth, Stage::Light);

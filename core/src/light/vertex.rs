@@ -49,24 +49,49 @@ impl VertexSelection {
         at: &ShadingPoint,
         wi: Vec3,
     ) -> Option<VertexSelection> {
-        // Checked where the caller is, so that scenes without a choice to make (one light, or
-        // too many) pay neither a call nor the copy of an empty selection.
-        if !(2..=MAX_VERTEX_LIGHTS).contains(&bounds.len()) {
-            return None;
-        }
-        Some(Self::from_bounds(bounds, lanes, si, bsdf, at, wi))
+        let mut out = None;
+        Self::set(&mut out, bounds, lanes, si, bsdf, at, wi);
+        out
     }
 
-    /// [`VertexSelection::new`] for 2 to [`MAX_VERTEX_LIGHTS`] bounds.
-    #[inline(never)]
-    fn from_bounds(
+    /// [`VertexSelection::new`] written into `out`, in place: the path loop keeps its vertex's
+    /// selection in its state, where a returned one was copied in with wide loads of what the
+    /// weighing had just stored (a store-forwarding stall).
+    #[inline(always)]
+    pub fn set(
+        out: &mut Option<VertexSelection>,
         bounds: &[LightBound],
         lanes: Option<&LightLanes>,
         si: &Interaction,
         bsdf: &Bsdf,
         at: &ShadingPoint,
         wi: Vec3,
-    ) -> VertexSelection {
+    ) {
+        // Checked where the caller is, so that scenes without a choice to make (one light, or
+        // too many) pay neither a call nor the copy of an empty selection.
+        if !(2..=MAX_VERTEX_LIGHTS).contains(&bounds.len()) {
+            *out = None;
+            return;
+        }
+        let s = out.get_or_insert(VertexSelection {
+            pdf: [0.0; MAX_VERTEX_LIGHTS],
+            cdf: [0.0; MAX_VERTEX_LIGHTS],
+            n: 0,
+        });
+        Self::from_bounds(s, bounds, lanes, si, bsdf, at, wi);
+    }
+
+    /// [`VertexSelection::new`] for 2 to [`MAX_VERTEX_LIGHTS`] bounds.
+    #[inline(never)]
+    fn from_bounds(
+        out: &mut VertexSelection,
+        bounds: &[LightBound],
+        lanes: Option<&LightLanes>,
+        si: &Interaction,
+        bsdf: &Bsdf,
+        at: &ShadingPoint,
+        wi: Vec3,
+    ) {
         let n = bounds.len();
         // The BSDF toward `wo` (local), in luminance, up to a factor common to every light
         // (which cancels). A diffuse BSDF is its reflectance over pi times the cosine: the
@@ -99,18 +124,17 @@ impl VertexSelection {
                 (weight, sum)
             }
         };
-        Self::from_weights(n, &weight, sum)
+        out.set_weights(n, &weight, sum);
     }
 
-    /// The selection from the lights' weights (the first `n`) and their sum.
+    /// Sets the selection from the lights' weights (the first `n`) and their sum.
     #[inline(always)]
-    fn from_weights(n: usize, weight: &[f32; MAX_VERTEX_LIGHTS], sum: f32) -> VertexSelection {
+    fn set_weights(&mut self, n: usize, weight: &[f32; MAX_VERTEX_LIGHTS], sum: f32) {
         let even = 1.0 / n as f32;
-        let mut s = VertexSelection {
-            pdf: [0.0; MAX_VERTEX_LIGHTS],
-            cdf: [0.0; MAX_VERTEX_LIGHTS],
-            n,
-        };
+        let s = self;
+        s.pdf = [0.0; MAX_VERTEX_LIGHTS];
+        s.cdf = [0.0; MAX_VERTEX_LIGHTS];
+        s.n = n;
         let scale = if sum > 0.0 && sum.is_finite() {
             (1.0 - UNIFORM_SHARE) / sum
         } else {
@@ -131,7 +155,6 @@ impl VertexSelection {
         }
         // The last light takes what rounding left: its probability is 1 minus the others'.
         s.pdf[n - 1] = 1.0 - s.cdf[n - 1];
-        s
     }
 
     /// The light `u` (in [0, 1)) picks, and its probability.
