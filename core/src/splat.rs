@@ -173,59 +173,64 @@ pub fn resolve(
     sums: &[f32],
     samples: &[u64],
 ) -> Vec<[f32; 3]> {
+    let pixels = width as usize * height as usize;
+    assert_eq!(samples.len(), pixels, "resolve: one count per pixel");
+    let scale = density_scale(samples);
+    let mut out = alloc::vec![[0.0; 3]; pixels];
+    resolve_rows(reach, width, height, sums, scale.as_deref(), 0, &mut out);
+    out
+}
+
+/// The rows of [`resolve`]'s image from row `first` on, as many as `out` holds (whole rows),
+/// `scale` being [`density_scale`] of the counts: each pixel is computed alone, so bands of
+/// rows resolved apart (on several threads) give [`resolve`]'s bits.
+pub fn resolve_rows(
+    reach: u32,
+    width: u32,
+    height: u32,
+    sums: &[f32],
+    scale: Option<&[f64]>,
+    first: u32,
+    out: &mut [[f32; 3]],
+) {
     let (w, h) = (width as i64, height as i64);
-    assert_eq!(
-        samples.len(),
-        (w * h) as usize,
-        "resolve: one count per pixel"
-    );
     let n = reach as i64;
     let side = 2 * n + 1;
     let stride = stride(reach);
-    let scale = density_scale(samples);
-    let mut out = Vec::with_capacity((w * h) as usize);
-    for ty in 0..h {
-        for tx in 0..w {
-            let mut acc = [0.0f64; CHANNELS];
-            // The source at offset `-d` from the target reaches it through its entry `d`.
-            for dy in -n..=n {
-                let sy = ty - dy;
-                if !(0..h).contains(&sy) {
-                    continue;
-                }
-                for dx in -n..=n {
-                    let sx = tx - dx;
-                    if !(0..w).contains(&sx) {
-                        continue;
-                    }
-                    let entry = ((dy + n) * side + dx + n) as usize;
-                    let source = (sy * w + sx) as usize;
-                    let at = source * stride + CHANNELS * entry;
-                    // Times exactly 1 where the counts are equal: the plain sums' bits.
-                    let k = scale.as_ref().map_or(1.0, |s| s[source]);
-                    for (a, &v) in acc.iter_mut().zip(&sums[at..at + CHANNELS]) {
-                        *a += v as f64 * k;
-                    }
+    for (i, px) in out.iter_mut().enumerate() {
+        let (tx, ty) = (i as i64 % w, first as i64 + i as i64 / w);
+        let mut acc = [0.0f64; CHANNELS];
+        // The source at offset `-d` from the target reaches it through its entry `d`; the
+        // offsets whose source lies outside the image are skipped, the others taken in order.
+        for dy in (-n).max(ty - h + 1)..=n.min(ty) {
+            let sy = ty - dy;
+            for dx in (-n).max(tx - w + 1)..=n.min(tx) {
+                let entry = ((dy + n) * side + dx + n) as usize;
+                let source = (sy * w + tx - dx) as usize;
+                let at = source * stride + CHANNELS * entry;
+                let v = &sums[at..at + CHANNELS];
+                match scale {
+                    // Times 1 where the counts are equal: the plain sums' bits, unmultiplied.
+                    None => (0..CHANNELS).for_each(|k| acc[k] += v[k] as f64),
+                    Some(s) => (0..CHANNELS).for_each(|k| acc[k] += v[k] as f64 * s[source]),
                 }
             }
-            let weight = acc[3];
-            let px = core::array::from_fn(|k| {
-                let v = if weight != 0.0 { acc[k] / weight } else { 0.0 };
-                if v.is_finite() {
-                    v as f32
-                } else {
-                    0.0
-                }
-            });
-            out.push(px);
         }
+        let weight = acc[3];
+        *px = core::array::from_fn(|k| {
+            let v = if weight != 0.0 { acc[k] / weight } else { 0.0 };
+            if v.is_finite() {
+                v as f32
+            } else {
+                0.0
+            }
+        });
     }
-    out
 }
 
 /// Each source's factor `1 / samples` when the sources that hold samples do not all hold the
 /// same number (0 for a source holding none: its sums are zero), else `None`.
-fn density_scale(samples: &[u64]) -> Option<Vec<f64>> {
+pub fn density_scale(samples: &[u64]) -> Option<Vec<f64>> {
     let mut held = samples.iter().copied().filter(|&k| k > 0);
     let first = held.next()?;
     if held.all(|k| k == first) {
