@@ -81,7 +81,7 @@ impl VertexSelection {
         Self::from_bounds(s, bounds, lanes, si, bsdf, at, wi);
     }
 
-    /// [`VertexSelection::new`] for 2 to [`MAX_VERTEX_LIGHTS`] bounds.
+    /// [`VertexSelection::set`] for 2 to [`MAX_VERTEX_LIGHTS`] bounds, written into `out`.
     #[inline(never)]
     fn from_bounds(
         out: &mut VertexSelection,
@@ -131,10 +131,9 @@ impl VertexSelection {
     #[inline(always)]
     fn set_weights(&mut self, n: usize, weight: &[f32; MAX_VERTEX_LIGHTS], sum: f32) {
         let even = 1.0 / n as f32;
-        let s = self;
-        s.pdf = [0.0; MAX_VERTEX_LIGHTS];
-        s.cdf = [0.0; MAX_VERTEX_LIGHTS];
-        s.n = n;
+        self.pdf = [0.0; MAX_VERTEX_LIGHTS];
+        self.cdf = [0.0; MAX_VERTEX_LIGHTS];
+        self.n = n;
         let scale = if sum > 0.0 && sum.is_finite() {
             (1.0 - UNIFORM_SHARE) / sum
         } else {
@@ -147,14 +146,14 @@ impl VertexSelection {
         };
         let mut c = 0.0;
         for (k, w) in weight[..n].iter().enumerate() {
-            s.cdf[k] = c;
+            self.cdf[k] = c;
             // Without a usable sum (all zero, or a weight infinite or NaN) the choice is even:
             // no weight is read then, as 0 times infinity would be NaN.
-            s.pdf[k] = if scale > 0.0 { even + w * scale } else { even };
-            c += s.pdf[k];
+            self.pdf[k] = if scale > 0.0 { even + w * scale } else { even };
+            c += self.pdf[k];
         }
         // The last light takes what rounding left: its probability is 1 minus the others'.
-        s.pdf[n - 1] = 1.0 - s.cdf[n - 1];
+        self.pdf[n - 1] = 1.0 - self.cdf[n - 1];
     }
 
     /// The light `u` (in [0, 1)) picks, and its probability.
