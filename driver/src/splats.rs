@@ -38,12 +38,12 @@ impl Splats {
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
         // Bands of at least 64k pixels: below that a thread costs more than it saves.
         let bands = cores.min(pixels / 65_536).max(1);
-        let rows = (height as usize).div_ceil(bands).max(1);
+        let rows = (height as usize).div_ceil(bands);
         let band = |first: usize, out: &mut [[f32; 3]]| {
             let s = scale.as_deref();
             resolve_rows(self.reach, width, height, &self.sums, s, first as u32, out);
         };
-        if bands == 1 || width == 0 {
+        if bands == 1 {
             band(0, &mut out);
             return out;
         }
