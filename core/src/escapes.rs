@@ -3,12 +3,14 @@
 //! A sample whose camera ray meets nothing is worth the map's radiance along the ray, and a
 //! lookup's coordinates (a rotation, a normalisation, polynomial `atan2` and `acos`) are one
 //! long chain of dependent operations: in a mostly-sky image that chain was a sixth of the
-//! render. Here a batch of camera rays is cast first, the directions of those that escaped are
-//! looked up together ([`EnvMap::eval8`], in AVX2 registers where the CPU has them), and the
-//! others' paths are followed from the hit already found
-//! ([`PathIntegrator::li_from_camera_hit`]). Every value is the one the sample-by-sample loop
-//! gives, bit for bit: the lookups compute the scalar code's bits, and each path keeps its own
-//! sampler, so the order the work is done in moves nothing.
+//! render. Here the directions of a batch's escaped camera rays are looked up together
+//! ([`EnvMap::eval8`], in AVX2 registers where the CPU has them): for the independent sampler's
+//! batches through `camera_batch.rs`, for zsobol's samples (which take their samplers
+//! one at a time from the pixel's cache) through [`Escapes::push`], which follows a path from
+//! the hit already found ([`PathIntegrator::li_from_camera_hit`]) or keeps the direction, and
+//! [`Escapes::flush`]. Every value is the one the sample-by-sample loop gives, bit for bit: the
+//! lookups compute the scalar code's bits, and each path keeps its own sampler, so the order
+//! the work is done in moves nothing.
 //!
 //! It applies where the shortcut is exactly what the path integrator does with an escaping
 //! camera ray: the `path` integrator (any strategy) showing emitters to the camera, at least
@@ -139,7 +141,7 @@ impl Escapes<'_> {
         add: &mut impl FnMut(Color, Vec2, &CameraSample),
     ) {
         let sky = if pending.escaped {
-            self.env.eval8(self.avx2, &pending.dirs)
+            self.look_up(&pending.dirs)
         } else {
             [Color::ZERO; CAMERA_BATCH]
         };
@@ -148,14 +150,7 @@ impl Escapes<'_> {
                 continue;
             };
             let value = if escaped {
-                // The path loop's sum for an escaped camera ray: nothing, plus the throughput
-                // (one) times the radiance times the weight (one) where the radiance is not
-                // zero.
-                let mut l = Color::ZERO;
-                if le != Color::ZERO {
-                    l += Color::ONE * le * 1.0;
-                }
-                cam.weigh(l)
+                cam.weigh(escaped_value(le))
             } else {
                 value
             };
@@ -164,4 +159,24 @@ impl Escapes<'_> {
         pending.n = 0;
         pending.escaped = false;
     }
+}
+
+impl Escapes<'_> {
+    /// The map's radiance along each of `dirs` (normalised as the path loop normalises a camera
+    /// ray's direction), eight lookups together.
+    #[inline(always)]
+    pub(crate) fn look_up(&self, dirs: &[Vec3; CAMERA_BATCH]) -> [Color; CAMERA_BATCH] {
+        self.env.eval8(self.avx2, dirs)
+    }
+}
+
+/// The path loop's sum for a camera ray that escaped to radiance `le`: nothing, plus the
+/// throughput (one) times the radiance times the weight (one) where the radiance is not zero.
+#[inline(always)]
+pub(crate) fn escaped_value(le: Color) -> Color {
+    let mut l = Color::ZERO;
+    if le != Color::ZERO {
+        l += Color::ONE * le * 1.0;
+    }
+    l
 }

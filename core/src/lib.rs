@@ -73,6 +73,7 @@ pub mod accel;
 pub mod adaptive;
 pub mod bsdf;
 pub mod camera;
+mod camera_batch;
 mod camera_draw;
 pub mod emitter;
 pub mod error_estimate;

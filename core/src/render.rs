@@ -4,6 +4,7 @@
 //! seed. Every value it gives is a pure function of the job, the pixel and the sample index
 //! (and, with path reuse, of which pixels of the pixel's group take that index), so any loop
 //! over pixels and sample ranges, in any order and on any thread, gives the same bits.
+use crate::camera_batch::CameraBatch;
 pub use crate::camera_draw::CameraSample;
 use crate::camera_draw::{CameraDraw, CAMERA_BATCH};
 use crate::escapes::{Escapes, Pending};
@@ -142,7 +143,7 @@ impl<'a> RenderJob<'a> {
                 // The camera rays of a few samples first, then their paths: the rays' chains of
                 // divisions and square roots, each waiting on the one before, overlap when they
                 // sit together (each sample keeps its own sampler, so no value moves).
-                let escapes = Escapes::of::<P>(self.scene, self.integrator);
+                let finisher = CameraBatch::of::<P>(self.scene, self.integrator);
                 let mut run = IndependentSampler::pixel_run(self.seed, x, y, samples);
                 loop {
                     let batch: [Option<CameraDraw<IndependentSampler>>; CAMERA_BATCH] =
@@ -151,7 +152,7 @@ impl<'a> RenderJob<'a> {
                         break;
                     }
                     let draws = batch.into_iter().flatten();
-                    self.finish_draws(escapes.as_ref(), draws, probe, &mut add);
+                    self.finish_draws(finisher.as_ref(), draws, probe, &mut add);
                 }
             }
             SamplerKind::ZSobol { log2_spp } => {
@@ -180,24 +181,18 @@ impl<'a> RenderJob<'a> {
     }
 
     /// The samples whose camera parts are `draws` (at most [`CAMERA_BATCH`]): each value,
-    /// offset and camera sample passed to `add` in order, through `escapes` when it applies,
+    /// offset and camera sample passed to `add` in order, through `batch` when it applies,
     /// else by [`RenderJob::finish`] one by one (the same bits either way).
     #[inline(always)]
     pub(crate) fn finish_draws<S: Sampler, P: Probe>(
         &self,
-        escapes: Option<&Escapes>,
+        batch: Option<&CameraBatch>,
         draws: impl Iterator<Item = CameraDraw<S>>,
         probe: &mut P,
         add: &mut impl FnMut(Color, Vec2, &CameraSample),
     ) {
-        match escapes {
-            Some(esc) => {
-                let mut pending = Pending::default();
-                for draw in draws {
-                    esc.push(self.scene, &mut pending, draw, probe);
-                }
-                esc.flush(&mut pending, add);
-            }
+        match batch {
+            Some(batch) => batch.finish(self.scene, draws, probe, add),
             None => {
                 for draw in draws {
                     let (c, o, cam) = self.finish(draw, probe);

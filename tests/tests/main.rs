@@ -22,6 +22,7 @@ mod bumpmap_agreement;
 mod bvh;
 mod bvh8;
 mod bvh8_mixed;
+mod camera_batch;
 mod cameras;
 mod cbox_agreement;
 mod course_integrators;

@@ -5,6 +5,7 @@ mod mis;
 mod moment;
 mod normals;
 mod path;
+mod path_batch;
 mod path_state;
 mod probe;
 mod radiance;

@@ -123,8 +123,8 @@ impl PathIntegrator {
 
     /// Radiance along the camera ray `ray`, whose closest hit is `hit` (what
     /// `scene.intersect(&ray)` gives): [`PathIntegrator::li_probed`]'s value, bit for bit, for a
-    /// render loop that casts its camera rays before following their paths (`escapes.rs`).
-    /// `probe` is not told about the camera ray's cast.
+    /// render loop that casts its camera rays before following their paths (`escapes.rs`,
+    /// `path_batch.rs`). `probe` is not told about the camera ray's cast.
     #[inline]
     pub fn li_from_camera_hit<S: Sampler, P: Probe>(
         &self,
@@ -219,7 +219,7 @@ impl PathIntegrator {
     /// roulette; whether the path goes on.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    fn leave<const ST: u8, S: Sampler, P: Probe>(
+    pub(super) fn leave<const ST: u8, S: Sampler, P: Probe>(
         &self,
         scene: &Scene,
         si: &Interaction,
