@@ -11,13 +11,17 @@ use tessera_core::sampling::SamplerKind;
 use tessera_core::Color;
 use tessera_tests::load_file;
 
-/// Every sample's value and offset bits of pixels along a column (17 samples each: two full
-/// batches and one of a single sample).
-fn values<P: tessera_core::integrator::Probe>(job: &RenderJob, probe: &mut P) -> Vec<[u32; 3]> {
+/// Every sample's value and offset bits of pixels along a column crossing a 32-pixel image,
+/// `spp` samples each (17 here: two full batches and one of a single sample).
+pub(crate) fn values<P: tessera_core::integrator::Probe>(
+    job: &RenderJob,
+    probe: &mut P,
+    spp: u64,
+) -> Vec<[u32; 3]> {
     let mut out = Vec::new();
     let mut cache = PixelCache::default();
     for y in (0..32).step_by(3) {
-        job.pixel(13, y, 0..17, &mut cache, probe, |c: Color, o| {
+        job.pixel(13, y, 0..spp, &mut cache, probe, |c: Color, o| {
             out.push(c.to_array().map(f32::to_bits));
             out.push(o.extend(0.0).to_array().map(f32::to_bits));
         });
@@ -46,8 +50,8 @@ fn batched_first_vertices_give_the_sample_by_sample_bits() {
             }
             let job = RenderJob::new(&l.scene, &l.integrator, 3);
             let mut counters = Counters::default();
-            let fast = values(&job, &mut NoProbe);
-            let slow = values(&job, &mut counters);
+            let fast = values(&job, &mut NoProbe, 17);
+            let slow = values(&job, &mut counters, 17);
             let case = format!("{file} depth {depth} hide {hide} {integrator}");
             let first = fast.iter().zip(&slow).position(|(a, b)| a != b);
             assert!(
@@ -55,7 +59,11 @@ fn batched_first_vertices_give_the_sample_by_sample_bits() {
                 "{case}: values differ, first at {first:?}"
             );
             if depth != "0" {
-                let other = values(&RenderJob::new(&l.scene, &l.integrator, 4), &mut NoProbe);
+                let other = values(
+                    &RenderJob::new(&l.scene, &l.integrator, 4),
+                    &mut NoProbe,
+                    17,
+                );
                 assert_ne!(fast, other, "control: another seed ({case})");
             }
         }

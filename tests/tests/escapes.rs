@@ -4,25 +4,11 @@
 //! sample, with each path-tracing strategy and both samplers, in a scene where some camera
 //! rays escape and others meet surfaces. Control: another seed changes the values, so the
 //! comparison sees a difference when there is one.
+use super::camera_batch::values;
 use tessera_core::integrator::{Counters, NoProbe};
-use tessera_core::render::{PixelCache, RenderJob};
+use tessera_core::render::RenderJob;
 use tessera_core::sampling::SamplerKind;
-use tessera_core::Color;
 use tessera_tests::load_file;
-
-/// Every sample's value bits of pixels along a column that crosses sky and ground, and how
-/// many camera rays escaped (counted only by the observing probe).
-fn values<P: tessera_core::integrator::Probe>(job: &RenderJob, probe: &mut P) -> Vec<[u32; 3]> {
-    let mut out = Vec::new();
-    let mut cache = PixelCache::default();
-    for y in (0..32).step_by(3) {
-        job.pixel(13, y, 0..16, &mut cache, probe, |c: Color, o| {
-            out.push(c.to_array().map(f32::to_bits));
-            out.push(o.extend(0.0).to_array().map(f32::to_bits));
-        });
-    }
-    out
-}
 
 #[test]
 fn batched_escapes_give_the_sample_by_sample_bits() {
@@ -37,15 +23,19 @@ fn batched_escapes_give_the_sample_by_sample_bits() {
             l.scene.sampler = sampler;
             let job = RenderJob::new(&l.scene, &l.integrator, 3);
             let mut counters = Counters::default();
-            let fast = values(&job, &mut NoProbe);
-            let slow = values(&job, &mut counters);
+            let fast = values(&job, &mut NoProbe, 16);
+            let slow = values(&job, &mut counters, 16);
             assert_eq!(fast, slow, "{integrator} {sampler:?}");
             // Rays escaped, and camera rays met surfaces (continuation rays leave only those).
             assert!(
                 counters.escaped > 0 && counters.continuation_rays > 0,
                 "{counters:?}"
             );
-            let other = values(&RenderJob::new(&l.scene, &l.integrator, 4), &mut NoProbe);
+            let other = values(
+                &RenderJob::new(&l.scene, &l.integrator, 4),
+                &mut NoProbe,
+                16,
+            );
             assert_ne!(fast, other, "control: another seed");
         }
     }
