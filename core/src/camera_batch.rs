@@ -7,9 +7,11 @@
 //! Each sample keeps its own sampler and its own sum, so every value is the one the
 //! sample-by-sample loop gives, bit for bit, whatever the batch holds.
 //!
-//! It applies to the `path` integrator with a probe that observes nothing but the rays cast;
-//! the lookups of escaped rays where [`Escapes`] applies, else escaped rays are followed as
-//! paths (what the environment gives them, if any).
+//! It applies to the `path` integrator without path reuse (whose samples depend on their
+//! group), with a probe that observes nothing but the rays cast; the lookups of escaped rays
+//! where [`Escapes`] applies, else escaped rays are followed as paths (what the environment
+//! gives them, if any). The zsobol sampler's loop, whose samplers borrow the pixel's cache one
+//! at a time, takes its samples one by one ([`Escapes::push`]).
 use crate::camera_draw::{CameraDraw, CameraSample, CAMERA_BATCH};
 use crate::escapes::{escaped_value, Escapes};
 use crate::geometry::Interaction;
