@@ -60,8 +60,15 @@ impl<'a> CameraBatch<'a> {
         // Per sample: its sampler (kept only by those whose paths are followed), where it
         // lies, its ray and what the ray met; the escaped directions for the lookups.
         let mut samplers: [Option<S>; CAMERA_BATCH] = core::array::from_fn(|_| None);
-        let mut cams: [Option<(Vec2, CameraSample)>; CAMERA_BATCH] = [None; CAMERA_BATCH];
-        let mut rays = [Ray::new(Vec3::ZERO, Vec3::Y); CAMERA_BATCH];
+        let unused = Ray::new(Vec3::ZERO, Vec3::Y);
+        let mut rays = [unused; CAMERA_BATCH];
+        let mut cams = [(
+            Vec2::ZERO,
+            CameraSample {
+                ray: unused,
+                weight: None,
+            },
+        ); CAMERA_BATCH];
         let mut hits: [Option<Interaction>; CAMERA_BATCH] = [None; CAMERA_BATCH];
         let mut dirs = [Vec3::Y; CAMERA_BATCH];
         let mut looked_up = [false; CAMERA_BATCH];
@@ -83,7 +90,7 @@ impl<'a> CameraBatch<'a> {
             } else {
                 samplers[n] = Some(sampler);
             }
-            cams[n] = Some((offset, cam));
+            cams[n] = (offset, cam);
             n += 1;
         }
         let mut values = [Color::ZERO; CAMERA_BATCH];
@@ -101,10 +108,8 @@ impl<'a> CameraBatch<'a> {
                 values[k] = escaped_value(sky[k]);
             }
         }
-        for (value, cam) in values.iter().zip(&cams[..n]) {
-            if let Some((offset, cam)) = cam {
-                add(cam.weigh(*value), *offset, cam);
-            }
+        for (value, (offset, cam)) in values.iter().zip(&cams[..n]) {
+            add(cam.weigh(*value), *offset, cam);
         }
     }
 }

@@ -159,9 +159,7 @@ impl Escapes<'_> {
         pending.n = 0;
         pending.escaped = false;
     }
-}
 
-impl Escapes<'_> {
     /// The map's radiance along each of `dirs` (normalised as the path loop normalises a camera
     /// ray's direction), eight lookups together.
     #[inline(always)]
