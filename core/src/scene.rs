@@ -1,23 +1,22 @@
 //! The flat, read-only scene: shapes, primitives under a BVH, BSDFs, emitters, camera.
 use crate::accel::level::{Level, LevelError, LevelPrims, NOT_A_TRIANGLE};
-use crate::accel::tri_block::Ray4;
-use crate::accel::{AnyLeaves, BuildParams, Bvh8, Fork, InTurn, TriBlocks};
+use crate::accel::{BuildParams, Bvh8, Fork, InTurn, TriBlocks};
 use crate::bsdf::{Bsdf, BsdfTraits};
 use crate::camera::{Camera, Filter};
 use crate::emitter::{Emitter, EmitterCtx};
-use crate::geometry::{Disk, Hit, Instance, Interaction, Prim, Shape, ShapeKind, TriRay};
+use crate::geometry::{Disk, Instance, Prim, Shape, ShapeKind};
 use crate::light::{Behind, LightBound, LightSampler, LightSelection};
-use crate::math::{Aabb, Norm, Ray};
+use crate::math::{Aabb, Norm};
 use crate::medium::SceneMedia;
 use crate::splat::Footprint;
 use alloc::vec::Vec;
-use core::cell::Cell;
 use glam::Vec3;
 
 mod casts;
 mod detail;
 mod environment_sampling;
 mod numbering;
+mod queries;
 mod shading_point;
 mod surface_detail;
 pub use numbering::{ShapeNumber, ShapeNumbering};
@@ -94,6 +93,9 @@ pub struct Scene {
     /// What each BSDF's sampling reads and whether it has smooth components, by BSDF index
     /// (computed when the scene is built, as `features` is).
     bsdf_traits: Vec<BsdfTraits>,
+    /// By shape: whether its hits compute texture coordinates (false only for a sphere whose
+    /// BSDF and emitter read none, where the angles cost a tenth of the hit).
+    uv_read: Vec<bool>,
     /// Lights.
     pub emitters: Vec<Emitter>,
     /// Indices of the emitters at infinity (seen by rays that escape the scene).
@@ -256,7 +258,12 @@ impl Scene {
             has_disks: prims.iter().any(|pr| matches!(pr, Prim::Disk { .. })),
             has_null_bsdfs: p.bsdfs.iter().any(|b| matches!(b, Bsdf::Null(_))),
         };
-        let bsdf_traits = p.bsdfs.iter().map(BsdfTraits::of).collect();
+        let bsdf_traits: Vec<BsdfTraits> = p.bsdfs.iter().map(BsdfTraits::of).collect();
+        let uv_read = p
+            .shapes
+            .iter()
+            .map(|s| shape_reads_uv(s, &bsdf_traits, &p.emitters))
+            .collect();
         Ok(Scene {
             shapes: p.shapes,
             disks: p.disks,
@@ -267,6 +274,7 @@ impl Scene {
             instances: p.instances,
             bsdfs: p.bsdfs,
             bsdf_traits,
+            uv_read,
             emitters: p.emitters,
             environments,
             lights,
@@ -350,66 +358,6 @@ impl Scene {
         }
     }
 
-    /// Intersection of the ray (within `(0, t_max)`) with primitive `i` alone: `(t, uv)`. The
-    /// scalar reference the block tests agree with (it reads the shape, not the blocks).
-    pub fn intersect_prim(
-        &self,
-        i: usize,
-        ray: &Ray,
-        tri: &TriRay,
-        t_max: f32,
-    ) -> Option<(f32, glam::Vec2)> {
-        if let Prim::Instance { .. } = self.prims[i] {
-            return self.other_prim::<false>(i, ray, &NOT_A_TRIANGLE, t_max, &Cell::default());
-        }
-        let v = self.triangle(i).unwrap_or(NOT_A_TRIANGLE);
-        self.prims[i].intersect(ray, tri, &v, t_max, &self.disks, &self.shapes)
-    }
-
-    /// The closest hit along the ray, if any.
-    pub fn intersect_hit(&self, ray: &Ray) -> Option<Hit> {
-        self.closest(ray, &Cell::default())
-    }
-
-    /// The closest surface interaction along the ray, if any.
-    pub fn intersect(&self, ray: &Ray) -> Option<Interaction> {
-        let inner = Cell::default();
-        let hit = self.closest(ray, &inner)?;
-        let prim = &self.prims[hit.prim as usize];
-        if let Prim::Instance { instance } = prim {
-            let inst = &self.instances[*instance as usize];
-            let g = &self.groups[inst.group as usize];
-            let ih = inner.get();
-            let gp = &g.prims[ih.prim as usize];
-            let oray = inst.to_object(ray);
-            let ohit = Hit {
-                t: hit.t,
-                prim: ih.prim,
-                uv: ih.uv,
-            };
-            let it = self.shapes[gp.shape() as usize].interaction(&ohit, gp, &oray, &self.disks);
-            return Some(inst.interaction_to_world(&it, ray));
-        }
-        let shape = &self.shapes[prim.shape() as usize];
-        Some(shape.interaction(&hit, prim, ray, &self.disks))
-    }
-
-    /// Whether anything blocks the ray within its extent (any hit, early exit).
-    pub fn occluded(&self, ray: &Ray) -> bool {
-        let r4 = Ray4::from_ray(ray);
-        let inner = Cell::default();
-        let mut leaves = AnyLeaves {
-            blocks: &self.blocks,
-            ray: &r4,
-            hit: false,
-            other: |i: usize, v: &[Vec3; 3], t_max: f32| {
-                self.other_prim::<true>(i, ray, v, t_max, &inner)
-            },
-        };
-        self.bvh.cast::<true>(ray, &mut leaves);
-        leaves.hit
-    }
-
     /// Bytes of the ray-casting data (not counting spare vector capacity).
     pub fn accel_memory(&self) -> AccelMemory {
         AccelMemory {
@@ -446,4 +394,17 @@ impl From<LevelError> for BuildError {
             LevelError::TooLarge => BuildError::TooLarge,
         }
     }
+}
+
+/// Whether hits on `shape` should compute texture coordinates (see [`Scene::reads_uv`]), from
+/// the traits of the scene's BSDFs and its emitters.
+fn shape_reads_uv(shape: &Shape, bsdf_traits: &[BsdfTraits], emitters: &[Emitter]) -> bool {
+    let textured_light = shape.emitter.is_some_and(
+        |e| matches!(emitters.get(e as usize), Some(Emitter::Area(a)) if a.texture.is_some()),
+    );
+    !matches!(shape.kind, ShapeKind::Sphere(_))
+        || bsdf_traits
+            .get(shape.bsdf as usize)
+            .is_none_or(|t| t.reads_uv)
+        || textured_light
 }

@@ -209,8 +209,8 @@ pub fn reciprocity_error(eval: impl Fn(Vec3, Vec3) -> Vec3, seed: u64, floor: f3
 }
 
 /// Asserts what the path loop is told about a material with smooth lobes only: it samples with
-/// both inputs, is not Lambertian, reads no partials (not bump-mapped) and no image, and has no
-/// delta component.
+/// both inputs, is not Lambertian, reads no partials (not bump-mapped), no image and no texture
+/// coordinates, and has no delta component.
 pub fn assert_smooth_two_input_traits(b: &Bsdf) {
     assert_eq!(
         BsdfTraits::of(b),
@@ -221,6 +221,7 @@ pub fn assert_smooth_two_input_traits(b: &Bsdf) {
             lambertian: false,
             reads_geometry: false,
             reads_images: false,
+            reads_uv: false,
         }
     );
     assert!(!b.has_delta());

@@ -68,6 +68,7 @@ mod sampling_chi2;
 mod scene_casts;
 mod serialized;
 mod skip;
+mod sphere_uv;
 mod splat_agreement;
 mod stress_geometry;
 mod stress_materials;

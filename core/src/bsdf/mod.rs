@@ -82,6 +82,7 @@ impl BsdfTraits {
             lambertian: bsdf.is_lambertian(),
             reads_geometry: bsdf.reads_geometry(),
             reads_images: bsdf.reads_images(),
+            reads_uv: bsdf.reads_uv(),
         }
     }
 }

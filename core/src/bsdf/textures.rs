@@ -1,10 +1,18 @@
 //! Walks the textures a BSDF reads (nested models included), for reports of what a scene holds
-//! and how much memory its images take.
+//! and how much memory its images take, and to tell whether shading reads texture coordinates.
 use super::roughness_texture::RoughnessTexture;
 use super::Bsdf;
 use crate::texture::Texture;
 
 impl Bsdf {
+    /// Whether some part of the model reads the shading point's texture coordinates: a texture
+    /// that is not a constant, or a bump map.
+    pub fn reads_uv(&self) -> bool {
+        let mut varies = false;
+        self.for_each_texture(&mut |t| varies |= !matches!(t, Texture::Constant(_)));
+        varies || self.bumps()
+    }
+
     /// Calls `f` with every texture this model reads, nested models' included, in a fixed
     /// order.
     pub fn for_each_texture(&self, f: &mut dyn FnMut(&Texture)) {

@@ -21,6 +21,8 @@ pub struct BsdfTraits {
     /// Some texture of the model is an image (`Bsdf::reads_images`): its vertices keep a
     /// `LookupMemo`.
     pub reads_images: bool,
+    /// Some part of the model reads the surface's texture coordinates (`Bsdf::reads_uv`).
+    pub reads_uv: bool,
 }
 
 impl BsdfTraits {

@@ -85,9 +85,18 @@ impl Shape {
         }
     }
 
-    /// The full interaction for a hit on primitive `prim` of this shape.
+    /// The full interaction for a hit on primitive `prim` of this shape; on a sphere, its
+    /// texture coordinates only with `uv` (zero without: the two angles are most of a sphere
+    /// hit's cost, and most spheres' materials read none).
     #[inline]
-    pub fn interaction(&self, hit: &Hit, prim: &Prim, ray: &Ray, disks: &[Disk]) -> Interaction {
+    pub fn interaction(
+        &self,
+        hit: &Hit,
+        prim: &Prim,
+        ray: &Ray,
+        disks: &[Disk],
+        uv: bool,
+    ) -> Interaction {
         let (p, p_err, ng, ns, uv, dpdu, tangent) = match (&self.kind, prim) {
             (ShapeKind::Mesh(m), Prim::Triangle { face, .. }) => {
                 let h = m.hit(*face as usize, hit.uv.x, hit.uv.y);
@@ -97,7 +106,7 @@ impl Shape {
                 let (p, err) = s.project(ray.at(hit.t));
                 let n = (p - s.center) / s.radius;
                 let n = n.unit_or(Vec3::Z);
-                let uv = sphere_uv(n);
+                let uv = if uv { sphere_uv(n) } else { Vec2::ZERO };
                 // Along increasing longitude, as Mitsuba 3's sphere.
                 (p, err, n, n, uv, Vec3::new(-n.y, n.x, 0.0), None)
             }

@@ -107,7 +107,15 @@ impl AovIntegrator {
             ),
             Aov::Depth => Color::new(si.t * length, 0.0, 0.0),
             Aov::Position => si.p,
-            Aov::Uv => Color::new(si.uv.x, si.uv.y, 0.0),
+            Aov::Uv => {
+                // A sphere whose material reads no coordinates was hit without them.
+                let uv = if scene.reads_uv(si.shape) {
+                    si.uv
+                } else {
+                    scene.intersect_full(ray).map_or(si.uv, |full| full.uv)
+                };
+                Color::new(uv.x, uv.y, 0.0)
+            }
             Aov::GeoNormal => si.ng,
             Aov::ShNormal => si.frame.n,
             Aov::Alpha { .. } => Color::X,

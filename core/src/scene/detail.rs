@@ -83,7 +83,7 @@ impl Scene {
     ) -> (Vec3, Vec3, u32, Option<MeshSite<'_>>) {
         let shape_index = prim.shape();
         let shape = &self.shapes[shape_index as usize];
-        let it = shape.interaction(hit, prim, ray, &self.disks);
+        let it = shape.interaction(hit, prim, ray, &self.disks, true);
         let (dp_du, dp_dv) = shape.partials(hit, prim, it.p, &self.disks);
         let number = self
             .shape_numbering
