@@ -70,7 +70,7 @@ fn run(r: DVec3, claimed_radius: f64, seed: u64) -> tessera_lab::stats::Chi2Resu
     }
     .run(
         |u| {
-            let s = shape.sample_toward(rf, u, &[])?;
+            let s = shape.sample_toward(rf, u, &[], true)?;
             let p = s.ps.p.as_dvec3();
             let (q, _) = square(p, origin, axis, length);
             Some(q)

@@ -71,7 +71,8 @@ impl AreaLight {
             return None;
         }
         let shape = &ctx.shapes[self.shape as usize];
-        let SampleToward { ps, pdf, d, dist } = shape.sample_toward(it.p, u, ctx.disks)?;
+        let SampleToward { ps, pdf, d, dist } =
+            shape.sample_toward(it.p, u, ctx.disks, self.texture.is_some())?;
         if !(dist > 0.0) {
             return None;
         }

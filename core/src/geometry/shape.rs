@@ -46,7 +46,8 @@ pub struct PositionSample {
     pub ng: Vec3,
     /// Unit shading normal there (after `flip_normals`): the side an area emitter lights.
     pub ns: Vec3,
-    /// Texture coordinates there, as a ray hitting the point would find them.
+    /// Texture coordinates there, as a ray hitting the point would find them (zero where the
+    /// sampler was not asked for them).
     pub uv: Vec2,
 }
 
@@ -205,34 +206,48 @@ impl Shape {
         }
     }
 
-    /// A point uniformly distributed by area (density `1 / area`).
+    /// A point uniformly distributed by area (density `1 / area`); its texture coordinates only
+    /// with `uv` (zero without).
     #[inline]
-    pub(crate) fn sample_position(&self, u: Vec2, disks: &[Disk]) -> Option<PositionSample> {
+    pub(crate) fn sample_position(
+        &self,
+        u: Vec2,
+        disks: &[Disk],
+        uv: bool,
+    ) -> Option<PositionSample> {
+        let wanted = uv;
+        let uv = |f: &dyn Fn() -> Vec2| if wanted { f() } else { Vec2::ZERO };
         let (p, p_err, ng, ns, uv) = match &self.kind {
             ShapeKind::Mesh(m) => {
                 if let Some(pg) = m.parallelogram() {
                     let q = pg.point(u);
-                    (q.p, q.p_err, q.ng, q.ns, m.uv_at(q.triangle, q.b1, q.b2))
+                    (
+                        q.p,
+                        q.p_err,
+                        q.ng,
+                        q.ns,
+                        uv(&|| m.uv_at(q.triangle, q.b1, q.b2)),
+                    )
                 } else {
                     let (i, b1, b2) = m.sample(u)?;
                     let (p, err, ng, ns) = m.point(i, b1, b2);
-                    (p, err, ng, ns, m.uv_at(i, b1, b2))
+                    (p, err, ng, ns, uv(&|| m.uv_at(i, b1, b2)))
                 }
             }
             ShapeKind::Sphere(s) => {
                 let d = crate::sampling::warp::square_to_uniform_sphere(u);
                 let (p, err) = s.project(s.center + d * s.radius);
-                (p, err, d, d, sphere_uv(d))
+                (p, err, d, d, uv(&|| sphere_uv(d)))
             }
             ShapeKind::Disk(d) => {
                 let disk = &disks[*d as usize];
                 let local = crate::sampling::warp::square_to_uniform_disk_concentric(u);
                 let (p, err) = disk.point(local);
-                (p, err, disk.normal, disk.normal, disk_uv(local))
+                (p, err, disk.normal, disk.normal, uv(&|| disk_uv(local)))
             }
             ShapeKind::Cylinder(c) => {
                 let (p, err, n) = c.sample(u);
-                (p, err, n, n, c.sample_uv(u))
+                (p, err, n, n, uv(&|| c.sample_uv(u)))
             }
             ShapeKind::Curve(_) => return None,
         };
@@ -248,13 +263,21 @@ impl Shape {
     /// A point on the shape sampled for the reference point `r`, with its solid-angle density
     /// at `r`: cone sampling for spheres seen from outside, area sampling otherwise.
     pub fn sample_from(&self, r: Vec3, u: Vec2, disks: &[Disk]) -> Option<(PositionSample, f32)> {
-        self.sample_toward(r, u, disks).map(|s| (s.ps, s.pdf))
+        self.sample_toward(r, u, disks, true).map(|s| (s.ps, s.pdf))
     }
 
     /// [`Shape::sample_from`] with the offset from `r` to the point and its length, which the
-    /// density needs anyway and light sampling needs next.
+    /// density needs anyway and light sampling needs next; the point's texture coordinates
+    /// only with `uv` (zero without: on a sphere they are an `atan2` and an `acos`, half the
+    /// cost of a light's sample where the light is not textured).
     #[inline]
-    pub fn sample_toward(&self, r: Vec3, u: Vec2, disks: &[Disk]) -> Option<SampleToward> {
+    pub fn sample_toward(
+        &self,
+        r: Vec3,
+        u: Vec2,
+        disks: &[Disk],
+        uv: bool,
+    ) -> Option<SampleToward> {
         if let ShapeKind::Sphere(s) = &self.kind {
             if let Some(cs) = s.sample_cone(r, u) {
                 // `cs.p` is already projected onto the sphere, with its error bound.
@@ -267,7 +290,7 @@ impl Shape {
                         p_err,
                         ng: n,
                         ns: n,
-                        uv: sphere_uv(cs.n),
+                        uv: if uv { sphere_uv(cs.n) } else { Vec2::ZERO },
                     },
                     pdf: cs.pdf,
                     d,
@@ -275,7 +298,7 @@ impl Shape {
                 });
             }
         }
-        let ps = self.sample_position(u, disks)?;
+        let ps = self.sample_position(u, disks, uv)?;
         // area_to_solid_angle, keeping the distance.
         let d = ps.p - r;
         let dist2 = d.length_squared();
