@@ -17,7 +17,7 @@ pub use frame::Frame;
 pub use ray::Ray;
 pub use sqrt::{acos_f64, sqrt, sqrt4, sqrt_f64, Norm};
 pub use transform::Transform;
-pub use turns::{sincos_eighth, sincos_turns};
+pub use turns::sincos_turns;
 
 /// Pi as f32.
 pub const PI: f32 = core::f32::consts::PI;

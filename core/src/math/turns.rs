@@ -31,10 +31,9 @@ pub fn sincos_turns(u: f32) -> (f32, f32) {
     (a * sin_sign, b * cos_sign)
 }
 
-/// `(sin(2 pi f), cos(2 pi f))` for `|f| <= 1/8` (the polynomials [`sincos_turns`] uses after
-/// removing the quarter turns; outside that range they are not accurate).
+/// `(sin(2 pi f), cos(2 pi f))` for `|f| <= 1/8`.
 #[inline(always)]
-pub fn sincos_eighth(f: f32) -> (f32, f32) {
+fn sincos_eighth(f: f32) -> (f32, f32) {
     let t = f * f;
     let s = horner(t, [41.469_89, -76.697_78, 81.605_2, -41.341_7, TWO_PI]);
     let c = horner(t, [59.220_406, -85.442_856, 64.939_316, -19.739_208, 1.0]);

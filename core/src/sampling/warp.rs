@@ -1,6 +1,6 @@
 //! Warping functions: uniform points in `[0,1)^2` to directions and positions, with their pdfs.
 //! Every pair here has a chi-square test in `tests/`.
-use crate::math::{safe_sqrt, sincos_eighth, sincos_turns, INV_FOUR_PI, INV_PI, PI};
+use crate::math::{safe_sqrt, sincos_turns, INV_FOUR_PI, INV_PI, PI};
 use glam::{Vec2, Vec3};
 
 /// Uniform direction on the unit sphere.
@@ -24,11 +24,11 @@ pub fn square_to_uniform_disk_concentric(u: Vec2) -> Vec2 {
     }
     // theta = q in the x-dominant wedges and pi/2 - q in the y-dominant ones, with |q| <= pi/4;
     // cos and sin of pi/2 - q are sin and cos of q, so one sincos of the small angle serves
-    // both. `q` is `num / r` eighths of a turn, the range where the turn polynomials need no
-    // reduction (libm's `sincosf` converts to `f64` and back, at twice the cost).
+    // both, with no range reduction inside sincosf (whose range branches mispredicted).
     let x_major = o.x.abs() > o.y.abs();
     let (r, num) = if x_major { (o.x, o.y) } else { (o.y, o.x) };
-    let (s, c) = sincos_eighth(0.125 * (num / r));
+    let q = (PI / 4.0) * (num / r);
+    let (s, c) = libm::sincosf(q);
     if x_major {
         Vec2::new(r * c, r * s)
     } else {
