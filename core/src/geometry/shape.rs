@@ -215,8 +215,8 @@ impl Shape {
         disks: &[Disk],
         uv: bool,
     ) -> Option<PositionSample> {
-        let wanted = uv;
-        let uv = |f: &dyn Fn() -> Vec2| if wanted { f() } else { Vec2::ZERO };
+        // The coordinates `f` finds, when asked for.
+        let coords = |f: &dyn Fn() -> Vec2| if uv { f() } else { Vec2::ZERO };
         let (p, p_err, ng, ns, uv) = match &self.kind {
             ShapeKind::Mesh(m) => {
                 if let Some(pg) = m.parallelogram() {
@@ -226,28 +226,28 @@ impl Shape {
                         q.p_err,
                         q.ng,
                         q.ns,
-                        uv(&|| m.uv_at(q.triangle, q.b1, q.b2)),
+                        coords(&|| m.uv_at(q.triangle, q.b1, q.b2)),
                     )
                 } else {
                     let (i, b1, b2) = m.sample(u)?;
                     let (p, err, ng, ns) = m.point(i, b1, b2);
-                    (p, err, ng, ns, uv(&|| m.uv_at(i, b1, b2)))
+                    (p, err, ng, ns, coords(&|| m.uv_at(i, b1, b2)))
                 }
             }
             ShapeKind::Sphere(s) => {
                 let d = crate::sampling::warp::square_to_uniform_sphere(u);
                 let (p, err) = s.project(s.center + d * s.radius);
-                (p, err, d, d, uv(&|| sphere_uv(d)))
+                (p, err, d, d, coords(&|| sphere_uv(d)))
             }
             ShapeKind::Disk(d) => {
                 let disk = &disks[*d as usize];
                 let local = crate::sampling::warp::square_to_uniform_disk_concentric(u);
                 let (p, err) = disk.point(local);
-                (p, err, disk.normal, disk.normal, uv(&|| disk_uv(local)))
+                (p, err, disk.normal, disk.normal, coords(&|| disk_uv(local)))
             }
             ShapeKind::Cylinder(c) => {
                 let (p, err, n) = c.sample(u);
-                (p, err, n, n, uv(&|| c.sample_uv(u)))
+                (p, err, n, n, coords(&|| c.sample_uv(u)))
             }
             ShapeKind::Curve(_) => return None,
         };
