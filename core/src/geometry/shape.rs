@@ -87,8 +87,8 @@ impl Shape {
     }
 
     /// The full interaction for a hit on primitive `prim` of this shape; on a sphere, its
-    /// texture coordinates only with `uv` (zero without: the two angles are most of a sphere
-    /// hit's cost, and most spheres' materials read none).
+    /// texture coordinates only with `uv` (zero without: the two angles are a sizeable part of
+    /// a sphere hit's cost, and most spheres' materials read none).
     #[inline]
     pub fn interaction(
         &self,
@@ -107,7 +107,7 @@ impl Shape {
                 let (p, err) = s.project(ray.at(hit.t));
                 let n = (p - s.center) / s.radius;
                 let n = n.unit_or(Vec3::Z);
-                let uv = if uv { sphere_uv(n) } else { Vec2::ZERO };
+                let uv = uv_if(uv, || sphere_uv(n));
                 // Along increasing longitude, as Mitsuba 3's sphere.
                 (p, err, n, n, uv, Vec3::new(-n.y, n.x, 0.0), None)
             }
@@ -215,8 +215,6 @@ impl Shape {
         disks: &[Disk],
         uv: bool,
     ) -> Option<PositionSample> {
-        // The coordinates `f` finds, when asked for.
-        let coords = |f: &dyn Fn() -> Vec2| if uv { f() } else { Vec2::ZERO };
         let (p, p_err, ng, ns, uv) = match &self.kind {
             ShapeKind::Mesh(m) => {
                 if let Some(pg) = m.parallelogram() {
@@ -226,28 +224,34 @@ impl Shape {
                         q.p_err,
                         q.ng,
                         q.ns,
-                        coords(&|| m.uv_at(q.triangle, q.b1, q.b2)),
+                        uv_if(uv, || m.uv_at(q.triangle, q.b1, q.b2)),
                     )
                 } else {
                     let (i, b1, b2) = m.sample(u)?;
                     let (p, err, ng, ns) = m.point(i, b1, b2);
-                    (p, err, ng, ns, coords(&|| m.uv_at(i, b1, b2)))
+                    (p, err, ng, ns, uv_if(uv, || m.uv_at(i, b1, b2)))
                 }
             }
             ShapeKind::Sphere(s) => {
                 let d = crate::sampling::warp::square_to_uniform_sphere(u);
                 let (p, err) = s.project(s.center + d * s.radius);
-                (p, err, d, d, coords(&|| sphere_uv(d)))
+                (p, err, d, d, uv_if(uv, || sphere_uv(d)))
             }
             ShapeKind::Disk(d) => {
                 let disk = &disks[*d as usize];
                 let local = crate::sampling::warp::square_to_uniform_disk_concentric(u);
                 let (p, err) = disk.point(local);
-                (p, err, disk.normal, disk.normal, coords(&|| disk_uv(local)))
+                (
+                    p,
+                    err,
+                    disk.normal,
+                    disk.normal,
+                    uv_if(uv, || disk_uv(local)),
+                )
             }
             ShapeKind::Cylinder(c) => {
                 let (p, err, n) = c.sample(u);
-                (p, err, n, n, coords(&|| c.sample_uv(u)))
+                (p, err, n, n, uv_if(uv, || c.sample_uv(u)))
             }
             ShapeKind::Curve(_) => return None,
         };
@@ -290,7 +294,7 @@ impl Shape {
                         p_err,
                         ng: n,
                         ns: n,
-                        uv: if uv { sphere_uv(cs.n) } else { Vec2::ZERO },
+                        uv: uv_if(uv, || sphere_uv(cs.n)),
                     },
                     pdf: cs.pdf,
                     d,
@@ -343,6 +347,17 @@ pub(crate) fn area_to_solid_angle(r: Vec3, p: Vec3, n: Vec3, pdf_area: f32) -> f
         pdf_area * dist2 / cos
     } else {
         0.0
+    }
+}
+
+/// The texture coordinates `f` finds when they are `asked` for, else zero (what callers that
+/// read none get, without the cost).
+#[inline(always)]
+fn uv_if(asked: bool, f: impl FnOnce() -> Vec2) -> Vec2 {
+    if asked {
+        f()
+    } else {
+        Vec2::ZERO
     }
 }
 

@@ -69,14 +69,14 @@ impl Scene {
                 prim: ih.prim,
                 uv: ih.uv,
             };
-            let uv = FULL || self.reads_uv(gp.shape());
-            let it =
-                self.shapes[gp.shape() as usize].interaction(&ohit, gp, &oray, &self.disks, uv);
+            let shape = gp.shape();
+            let uv = FULL || self.reads_uv(shape);
+            let it = self.shapes[shape as usize].interaction(&ohit, gp, &oray, &self.disks, uv);
             return Some(inst.interaction_to_world(&it, ray));
         }
-        let uv = FULL || self.reads_uv(prim.shape());
-        let shape = &self.shapes[prim.shape() as usize];
-        Some(shape.interaction(&hit, prim, ray, &self.disks, uv))
+        let shape = prim.shape();
+        let uv = FULL || self.reads_uv(shape);
+        Some(self.shapes[shape as usize].interaction(&hit, prim, ray, &self.disks, uv))
     }
 
     /// Whether anything blocks the ray within its extent (any hit, early exit).
